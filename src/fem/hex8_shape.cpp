@@ -1,0 +1,65 @@
+#include "fem/hex8_shape.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace shard {
+
+namespace {
+
+Hex8Reference make_reference() {
+  Hex8Reference r{};
+  const int xi[8] = {-1, 1, 1, -1, -1, 1, 1, -1};
+  const int et[8] = {-1, -1, 1, 1, -1, -1, 1, 1};
+  const int ze[8] = {-1, -1, -1, -1, 1, 1, 1, 1};
+  for (int a = 0; a < 8; ++a) {
+    r.corner[a][0] = xi[a];
+    r.corner[a][1] = et[a];
+    r.corner[a][2] = ze[a];
+    r.hourglass[0][a] = et[a] * ze[a];
+    r.hourglass[1][a] = ze[a] * xi[a];
+    r.hourglass[2][a] = xi[a] * et[a];
+    r.hourglass[3][a] = xi[a] * et[a] * ze[a];
+  }
+  const double g = 1.0 / std::sqrt(3.0);
+  for (int p = 0; p < 8; ++p) {
+    // Gauss points in the same corner order as the nodes.
+    const double s = g * xi[p], t = g * et[p], u = g * ze[p];
+    for (int a = 0; a < 8; ++a) {
+      r.gauss_N[p][a] = (1 + xi[a] * s) * (1 + et[a] * t) * (1 + ze[a] * u) / 8.0;
+      r.gauss_dN[p][a][0] = xi[a] * (1 + et[a] * t) * (1 + ze[a] * u) / 8.0;
+      r.gauss_dN[p][a][1] = et[a] * (1 + xi[a] * s) * (1 + ze[a] * u) / 8.0;
+      r.gauss_dN[p][a][2] = ze[a] * (1 + xi[a] * s) * (1 + et[a] * t) / 8.0;
+    }
+  }
+  // V = Σ C_abc x_a y_b z_c with C_abc = ∫ det[∇ξN_a; ∇ξN_b; ∇ξN_c] dξ (C is antisymmetric);
+  // the integrand is at most quadratic in each ξ, so 2×2×2 Gauss is exact. Each C is 0 or ±1/12.
+  for (int a = 0; a < 8; ++a) {
+    int count = 0;
+    for (int b = 0; b < 8; ++b)
+      for (int c = b + 1; c < 8; ++c) {
+        double sum = 0;
+        for (int p = 0; p < 8; ++p) {
+          const double(*d)[3] = r.gauss_dN[p];
+          sum += d[a][0] * (d[b][1] * d[c][2] - d[b][2] * d[c][1]) -
+                 d[a][1] * (d[b][0] * d[c][2] - d[b][2] * d[c][0]) +
+                 d[a][2] * (d[b][0] * d[c][1] - d[b][1] * d[c][0]);
+        }
+        if (std::abs(sum) < 1e-9) continue;
+        if (count == 9 || std::abs(std::abs(sum) * 12.0 - 1.0) > 1e-9)
+          throw std::logic_error("hex8 volume table is not the expected one");
+        r.volume_pairs[a][count++] = {b, c, sum > 0 ? 1.0 : -1.0};
+      }
+    if (count != 9) throw std::logic_error("hex8 volume table is not the expected one");
+  }
+  return r;
+}
+
+}  // namespace
+
+const Hex8Reference& hex8_reference() {
+  static const Hex8Reference reference = make_reference();
+  return reference;
+}
+
+}  // namespace shard

@@ -1,0 +1,583 @@
+// Mesh import through the Gmsh C++ API (tested with Gmsh 4.8).
+#include "io/gmsh_import.hpp"
+
+#include <gmsh.h>
+
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <clocale>
+#include <cmath>
+#include <cstddef>
+#include <iomanip>
+#include <limits>
+#include <mutex>
+#include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "core/error.hpp"
+
+namespace shard {
+
+int nodes_per_cell(CellType type) {
+  switch (type) {
+    case CellType::line2: return 2;
+    case CellType::tri3: return 3;
+    case CellType::quad4: return 4;
+    case CellType::tet4: return 4;
+    case CellType::hex8: return 8;
+  }
+  return 0;
+}
+
+const MeshGroup* MeshData::find_group(std::string_view name) const {
+  for (const MeshGroup& group : groups) {
+    if (group.name == name) return &group;
+  }
+  return nullptr;
+}
+
+std::vector<std::string> MeshData::group_names() const {
+  std::vector<std::string> names;
+  names.reserve(groups.size());
+  for (const MeshGroup& group : groups) names.push_back(group.name);
+  return names;
+}
+
+namespace {
+
+namespace fs = std::filesystem;
+using Vec3 = std::array<double, 3>;
+
+// Measures at or below this fraction of (cell diameter)^dim count as zero: far below anything a
+// mesher produces on purpose, far above round-off in the measure itself.
+constexpr double kZeroMeasure = 1e-12;
+// Nodes of a 2D mesh with |z| above this fraction of the mesh's extent are off the z = 0 plane.
+constexpr double kPlaneTolerance = 1e-10;
+
+constexpr int kGmshLine2 = 1;
+constexpr int kGmshTri3 = 2;
+constexpr int kGmshQuad4 = 3;
+constexpr int kGmshTet4 = 4;
+constexpr int kGmshHex8 = 5;
+
+const char* cell_name(CellType type) {
+  switch (type) {
+    case CellType::line2: return "line";
+    case CellType::tri3: return "triangle";
+    case CellType::quad4: return "quadrangle";
+    case CellType::tet4: return "tetrahedron";
+    case CellType::hex8: return "hexahedron";
+  }
+  return "cell";
+}
+
+bool from_gmsh_type(int gmsh_type, CellType& type) {
+  switch (gmsh_type) {
+    case kGmshLine2: type = CellType::line2; return true;
+    case kGmshTri3: type = CellType::tri3; return true;
+    case kGmshQuad4: type = CellType::quad4; return true;
+    case kGmshTet4: type = CellType::tet4; return true;
+    case kGmshHex8: type = CellType::hex8; return true;
+    default: return false;
+  }
+}
+
+[[noreturn]] void fail(const fs::path& file, const std::string& reason) {
+  throw InputError(file.string(), 0, "mesh", reason);
+}
+
+// Gmsh keeps global state and is not reentrant: one import at a time in the whole process.
+std::mutex& gmsh_mutex() {
+  static std::mutex mutex;
+  return mutex;
+}
+
+// Initialises Gmsh for one import and finalises it on every exit path, so options, models and the
+// logger never carry over from one call to the next.
+class GmshSession {
+ public:
+  explicit GmshSession(bool quiet) {
+    // Gmsh 4.8 calls setlocale(LC_ALL, "") (keeping LC_NUMERIC "C"); put the process's locale
+    // back afterwards so importing a mesh changes nothing outside this call.
+    if (const char* locale = std::setlocale(LC_ALL, nullptr)) saved_locale_ = locale;
+    // Gmsh parses argv like its command line; only the program name, and no gmshrc or
+    // gmsh-options files, so a user's Gmsh configuration cannot change what shard reads.
+    static char program[] = "shard";
+    char* argv[] = {program, nullptr};
+    gmsh::initialize(1, argv, false);
+    gmsh::option::setNumber("General.Terminal", quiet ? 0 : 1);
+    // The API sets AbortOnError = 2 (throw on error), but Gmsh 4.8 meshes surfaces inside an
+    // OpenMP parallel region and an exception cannot leave one: a failed surface mesh would call
+    // std::terminate. With 0, errors are only logged, and call_gmsh turns the log into an
+    // InputError.
+    gmsh::option::setNumber("General.AbortOnError", 0);
+    gmsh::logger::start();
+  }
+  ~GmshSession() {
+    try {
+      gmsh::logger::stop();
+      gmsh::finalize();
+    } catch (...) {
+      // Nothing sensible to report from a destructor; the import itself already succeeded or
+      // is already throwing.
+    }
+    if (!saved_locale_.empty()) std::setlocale(LC_ALL, saved_locale_.c_str());
+  }
+  GmshSession(const GmshSession&) = delete;
+  GmshSession& operator=(const GmshSession&) = delete;
+
+ private:
+  std::string saved_locale_;
+};
+
+// Error lines Gmsh logged since the session started, without their "Error: " prefix.
+std::vector<std::string> logged_errors() {
+  std::vector<std::string> log;
+  gmsh::logger::get(log);
+  std::vector<std::string> errors;
+  const std::string prefix = "Error: ";
+  for (const std::string& line : log) {
+    if (line.rfind(prefix, 0) == 0) errors.push_back(line.substr(prefix.size()));
+  }
+  return errors;
+}
+
+// Runs a Gmsh call and fails with Gmsh's own error text if it logged errors (AbortOnError = 0) or
+// threw (Gmsh 4.8 throws its last error as a std::string where it still throws).
+template <class Call>
+void call_gmsh(const fs::path& file, const std::string& what, Call&& call) {
+  std::string thrown;
+  bool threw = false;
+  try {
+    call();
+  } catch (const std::string& error) {
+    thrown = error;
+    threw = true;
+  } catch (const char* error) {
+    thrown = error ? error : "";
+    threw = true;
+  }
+  std::vector<std::string> errors = logged_errors();
+  if (threw && !thrown.empty() &&
+      std::find(errors.begin(), errors.end(), thrown) == errors.end()) {
+    errors.push_back(thrown);
+  }
+  if (!threw && errors.empty()) return;
+  std::string reason = "Gmsh could not " + what;
+  if (errors.empty()) {
+    reason += " (Gmsh gave no reason)";
+  } else {
+    // Without aborting, one syntax error can cascade: the first few say what went wrong.
+    constexpr std::size_t kShown = 5;
+    reason += ": ";
+    for (std::size_t i = 0; i < std::min(errors.size(), kShown); ++i) {
+      reason += (i ? "; " : "") + errors[i];
+    }
+    if (errors.size() > kShown) {
+      reason += " (and " + std::to_string(errors.size() - kShown) + " more errors)";
+    }
+  }
+  fail(file, reason);
+}
+
+std::string lower_extension(const fs::path& file) {
+  std::string ext = file.extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return ext;
+}
+
+std::string unsupported_type_reason(const std::string& group, int group_dim, int gmsh_type) {
+  std::string name;
+  int element_dim = 0;
+  int order = 0;
+  int node_count = 0;
+  int primary_nodes = 0;
+  std::vector<double> local_coords;
+  try {
+    gmsh::model::mesh::getElementProperties(gmsh_type, name, element_dim, order, node_count,
+                                            local_coords, primary_nodes);
+  } catch (const std::string&) {
+    name = "unknown";
+  }
+  std::ostringstream out;
+  out << "physical group '" << group << "' (dimension " << group_dim << ") contains '" << name
+      << "' elements (Gmsh element type " << gmsh_type;
+  if (order > 0) out << ", order " << order << ", " << node_count << " nodes";
+  out << "); shard supports only first-order 2-node lines, 3-node triangles, 4-node quadrangles, "
+         "4-node tetrahedra and 8-node hexahedra. ";
+  const bool prism_or_pyramid = name.find("Prism") != std::string::npos ||
+                                name.find("Pyramid") != std::string::npos;
+  if (order > 1) {
+    out << "Mesh with first-order elements (Mesh.ElementOrder = 1; do not export with -order 2)";
+  } else if (prism_or_pyramid) {
+    out << "Mesh each volume entirely with tetrahedra (no Recombine of 3D extrusion layers, "
+           "Mesh.Recombine3DAll = 0) or entirely with hexahedra (Transfinite Volume on "
+           "recombined transfinite surfaces, or Extrude with Layers and Recombine of a "
+           "quadrangle mesh)";
+  } else {
+    out << "Remove these elements from the physical group";
+  }
+  return out.str();
+}
+
+// Raw cells of one group and type, still with Gmsh tags.
+struct RawBlock {
+  CellType type;
+  std::vector<std::size_t> element_tags;
+  std::vector<std::size_t> node_tags;
+};
+
+struct RawGroup {
+  std::string name;
+  int dim = 0;
+  int tag = 0;
+  std::vector<RawBlock> blocks;  // in CellType order
+};
+
+Vec3 sub(const Vec3& a, const Vec3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+Vec3 cross(const Vec3& a, const Vec3& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+double norm(const Vec3& a) { return std::sqrt(dot(a, a)); }
+double det3(const Vec3& a, const Vec3& b, const Vec3& c) { return dot(a, cross(b, c)); }
+// Signed area of the parallelogram (a, b) seen from +z.
+double cross_z(const Vec3& a, const Vec3& b) { return a[0] * b[1] - a[1] * b[0]; }
+
+double diameter(const Vec3* x, int n) {
+  double d = 0;
+  for (int i = 0; i < n; ++i) {
+    for (int j = i + 1; j < n; ++j) d = std::max(d, norm(sub(x[i], x[j])));
+  }
+  return d;
+}
+
+// Reference coordinates of the Gmsh 8-node hexahedron's nodes.
+constexpr std::array<std::array<int, 3>, 8> kHexRef = {{{-1, -1, -1}, {1, -1, -1}, {1, 1, -1},
+                                                        {-1, 1, -1}, {-1, -1, 1}, {1, -1, 1},
+                                                        {1, 1, 1}, {-1, 1, 1}}};
+
+// Jacobian determinant of the trilinear hexahedron map at reference point (r, s, t).
+double hex_jacobian(const Vec3* x, double r, double s, double t) {
+  Vec3 dr{}, ds{}, dt{};
+  for (int a = 0; a < 8; ++a) {
+    const double ra = kHexRef[a][0], sa = kHexRef[a][1], ta = kHexRef[a][2];
+    const double nr = ra * (1 + sa * s) * (1 + ta * t) / 8;
+    const double ns = sa * (1 + ra * r) * (1 + ta * t) / 8;
+    const double nt = ta * (1 + ra * r) * (1 + sa * s) / 8;
+    for (int k = 0; k < 3; ++k) {
+      dr[k] += nr * x[a][k];
+      ds[k] += ns * x[a][k];
+      dt[k] += nt * x[a][k];
+    }
+  }
+  return det3(dr, ds, dt);
+}
+
+// Volume by 2x2x2 Gauss quadrature (exact for the trilinear map's Jacobian).
+double hex_volume(const Vec3* x) {
+  const double g = 1 / std::sqrt(3.0);
+  double v = 0;
+  for (double r : {-g, g}) {
+    for (double s : {-g, g}) {
+      for (double t : {-g, g}) v += hex_jacobian(x, r, s, t);
+    }
+  }
+  return v;
+}
+
+class CellChecker {
+ public:
+  CellChecker(const fs::path& file, int mesh_dim, double mesh_extent)
+      : file_(file), mesh_dim_(mesh_dim), mesh_extent_(mesh_extent) {}
+
+  // Checks one cell (nodes: local ids into `coords`, reordered in place when mirrored).
+  void check(const std::string& group, CellType type, std::size_t element_tag,
+             std::int32_t* nodes, const std::vector<double>& coords,
+             const std::vector<std::size_t>& gmsh_node_tags) {
+    const int n = nodes_per_cell(type);
+    std::array<Vec3, 8> x{};
+    for (int i = 0; i < n; ++i) {
+      const double* p = &coords[3 * static_cast<std::size_t>(nodes[i])];
+      x[i] = {p[0], p[1], p[2]};
+    }
+    const double h = diameter(x.data(), n);
+    auto report = [&](const std::string& what) {
+      std::ostringstream out;
+      out << std::setprecision(10) << "physical group '" << group << "': " << cell_name(type)
+          << " (Gmsh element " << element_tag << ") " << what << "; its nodes (Gmsh tag: "
+          << "x, y, z in the file's units):";
+      for (int i = 0; i < n; ++i) {
+        out << (i ? "," : "") << ' ' << gmsh_node_tags[static_cast<std::size_t>(nodes[i])]
+            << ": (" << x[i][0] << ", " << x[i][1] << ", " << x[i][2] << ')';
+      }
+      fail(file_, out.str());
+    };
+    const char* zero_area = "has zero area (collinear or duplicate nodes)";
+    const char* zero_volume = "has zero volume (coplanar or duplicate nodes)";
+    switch (type) {
+      case CellType::line2:
+        if (h <= kZeroMeasure * mesh_extent_) report("has zero length (duplicate nodes)");
+        break;
+      case CellType::tri3: {
+        const Vec3 a = sub(x[1], x[0]), b = sub(x[2], x[0]);
+        if (mesh_dim_ == 2) {
+          const double area2 = cross_z(a, b);
+          if (std::abs(area2) <= kZeroMeasure * h * h) report(zero_area);
+          if (area2 < 0) std::swap(nodes[1], nodes[2]);
+        } else if (norm(cross(a, b)) <= kZeroMeasure * h * h) {
+          report(zero_area);
+        }
+        break;
+      }
+      case CellType::quad4: {
+        if (mesh_dim_ == 2) {
+          double area2 = 0;  // shoelace
+          std::array<double, 4> corner{};
+          for (int i = 0; i < 4; ++i) {
+            const Vec3& p = x[i];
+            const Vec3& next = x[(i + 1) % 4];
+            const Vec3& prev = x[(i + 3) % 4];
+            area2 += p[0] * next[1] - next[0] * p[1];
+            corner[i] = cross_z(sub(next, p), sub(prev, p));
+          }
+          const double tol = kZeroMeasure * h * h;
+          if (std::abs(area2) <= tol) report(zero_area);
+          const double sign = area2 < 0 ? -1 : 1;
+          for (double c : corner) {
+            // A corner with negative Jacobian (relative to the cell's orientation) makes the
+            // bilinear map fold over: a bow-tie or a reflex angle.
+            if (sign * c < -tol) {
+              report("is self-intersecting or non-convex (a corner above 180 degrees)");
+            }
+          }
+          if (area2 < 0) std::swap(nodes[1], nodes[3]);
+        } else if (norm(cross(sub(x[2], x[0]), sub(x[3], x[1]))) <= kZeroMeasure * h * h) {
+          report(zero_area);
+        }
+        break;
+      }
+      case CellType::tet4: {
+        const double volume6 = det3(sub(x[1], x[0]), sub(x[2], x[0]), sub(x[3], x[0]));
+        if (std::abs(volume6) <= kZeroMeasure * h * h * h) report(zero_volume);
+        if (volume6 < 0) std::swap(nodes[1], nodes[2]);
+        break;
+      }
+      case CellType::hex8: {
+        const double volume = hex_volume(x.data());
+        const double tol = kZeroMeasure * h * h * h;
+        if (std::abs(volume) <= tol) report(zero_volume);
+        const double sign = volume < 0 ? -1 : 1;
+        for (const auto& ref : kHexRef) {
+          // Corner Jacobians carry a factor 1/8 against the cell volume; compare on that scale.
+          if (sign * hex_jacobian(x.data(), ref[0], ref[1], ref[2]) < -tol / 8) {
+            report("is inverted or folded (negative Jacobian at a corner)");
+          }
+        }
+        if (volume < 0) {
+          for (int i = 0; i < 4; ++i) std::swap(nodes[i], nodes[i + 4]);
+        }
+        break;
+      }
+    }
+  }
+
+ private:
+  const fs::path& file_;
+  int mesh_dim_;
+  double mesh_extent_;
+};
+
+}  // namespace
+
+MeshData load_gmsh_mesh(const fs::path& file, const GmshOptions& options) {
+  if (!(options.scale > 0) || !std::isfinite(options.scale)) {
+    fail(file, "mesh scale must be a positive finite number");
+  }
+  if (!(options.mesh_size >= 0) || !std::isfinite(options.mesh_size)) {
+    fail(file, "mesh size must be zero (as the file says) or a positive finite length");
+  }
+  if (options.dimension != 0 && options.dimension != 2 && options.dimension != 3) {
+    fail(file, "mesh dimension must be 2, 3 or 0 (the highest dimension with a physical group), "
+               "not " + std::to_string(options.dimension));
+  }
+  std::error_code ec;
+  if (!fs::exists(file, ec)) fail(file, "mesh file '" + file.string() + "' not found");
+  if (!fs::is_regular_file(file, ec)) {
+    fail(file, "mesh file '" + file.string() + "' is not a regular file");
+  }
+
+  std::lock_guard lock(gmsh_mutex());
+  GmshSession session(options.quiet);
+
+  call_gmsh(file, "read '" + file.string() + "'", [&] { gmsh::open(file.string()); });
+
+  gmsh::vectorpair physical;
+  gmsh::model::getPhysicalGroups(physical, -1);
+  std::erase_if(physical, [](const std::pair<int, int>& dt) { return dt.first <= 0; });
+  if (physical.empty()) {
+    fail(file,
+         "the file defines no physical groups (of dimension 1 to 3); parts and boundary "
+         "conditions refer to physical groups, so name them in the .geo, e.g. "
+         "Physical Surface(\"plate\") = {1}; Physical Curve(\"left\") = {4}; or "
+         "Physical Volume(\"bar\") = {1};");
+  }
+  int max_dim = 0;
+  for (const auto& [dim, tag] : physical) max_dim = std::max(max_dim, dim);
+  if (max_dim < 2) {
+    fail(file, "the file has physical curves only; a mesh needs a physical surface (2D) or a "
+               "physical volume (3D), e.g. Physical Surface(\"plate\") = {1};");
+  }
+  const int mesh_dim = options.dimension > 0 ? options.dimension : max_dim;
+  if (mesh_dim > max_dim) {
+    fail(file, "dimension " + std::to_string(mesh_dim) + " was asked for but the file has no "
+               "physical group of that dimension (highest: " + std::to_string(max_dim) + ")");
+  }
+  std::erase_if(physical, [&](const std::pair<int, int>& dt) { return dt.first > mesh_dim; });
+
+  if (lower_extension(file) != ".msh") {
+    std::vector<int> existing;
+    gmsh::model::mesh::getElementTypes(existing, mesh_dim, -1);
+    if (existing.empty()) {
+      // Set after open so they win over options the geometry file itself sets.
+      gmsh::option::setNumber("Mesh.ElementOrder", 1);
+      if (options.mesh_size > 0) {
+        gmsh::option::setNumber("Mesh.MeshSizeMax", options.mesh_size);
+        gmsh::option::setNumber("Mesh.MeshSizeMin", 0);
+      }
+      call_gmsh(file, "mesh '" + file.string() + "' in " + std::to_string(mesh_dim) + "D",
+                [&] { gmsh::model::mesh::generate(mesh_dim); });
+    }
+  }
+
+  // Gather each group's cells with Gmsh tags.
+  std::vector<RawGroup> raw_groups;
+  raw_groups.reserve(physical.size());
+  std::vector<std::size_t> used_nodes;
+  for (const auto& [group_dim, group_tag] : physical) {
+    RawGroup group;
+    group.dim = group_dim;
+    group.tag = group_tag;
+    gmsh::model::getPhysicalName(group_dim, group_tag, group.name);
+    if (group.name.empty()) group.name = "group" + std::to_string(group_tag);
+    std::vector<int> entities;
+    gmsh::model::getEntitiesForPhysicalGroup(group_dim, group_tag, entities);
+    for (int entity : entities) {
+      std::vector<int> types;
+      std::vector<std::vector<std::size_t>> element_tags, node_tags;
+      gmsh::model::mesh::getElements(types, element_tags, node_tags, group_dim, entity);
+      for (std::size_t t = 0; t < types.size(); ++t) {
+        CellType type{};
+        if (!from_gmsh_type(types[t], type)) {
+          fail(file, unsupported_type_reason(group.name, group_dim, types[t]));
+        }
+        auto block = std::find_if(group.blocks.begin(), group.blocks.end(),
+                                  [&](const RawBlock& b) { return b.type == type; });
+        if (block == group.blocks.end()) {
+          block = group.blocks.insert(
+              std::upper_bound(group.blocks.begin(), group.blocks.end(), type,
+                               [](CellType a, const RawBlock& b) { return a < b.type; }),
+              RawBlock{type, {}, {}});
+        }
+        block->element_tags.insert(block->element_tags.end(), element_tags[t].begin(),
+                                   element_tags[t].end());
+        block->node_tags.insert(block->node_tags.end(), node_tags[t].begin(),
+                                node_tags[t].end());
+        used_nodes.insert(used_nodes.end(), node_tags[t].begin(), node_tags[t].end());
+      }
+    }
+    raw_groups.push_back(std::move(group));
+  }
+
+  // Keep only referenced nodes, numbered by increasing Gmsh tag: independent of the order in which
+  // groups and entities list them.
+  std::sort(used_nodes.begin(), used_nodes.end());
+  used_nodes.erase(std::unique(used_nodes.begin(), used_nodes.end()), used_nodes.end());
+  if (used_nodes.size() > static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max())) {
+    fail(file, "the mesh has more nodes than shard's 32-bit node ids can number");
+  }
+
+  std::vector<std::size_t> all_tags;
+  std::vector<double> all_coords, parametric;
+  gmsh::model::mesh::getNodes(all_tags, all_coords, parametric, -1, -1, false, false);
+  std::vector<std::size_t> by_tag(all_tags.size());
+  for (std::size_t i = 0; i < by_tag.size(); ++i) by_tag[i] = i;
+  std::sort(by_tag.begin(), by_tag.end(),
+            [&](std::size_t a, std::size_t b) { return all_tags[a] < all_tags[b]; });
+
+  MeshData mesh;
+  mesh.dim = mesh_dim;
+  mesh.source = file.string();
+  mesh.coordinates.resize(3 * used_nodes.size());
+  {
+    std::size_t j = 0;  // merge walk: both lists sorted by tag
+    for (std::size_t i = 0; i < used_nodes.size(); ++i) {
+      while (j < by_tag.size() && all_tags[by_tag[j]] < used_nodes[i]) ++j;
+      if (j == by_tag.size() || all_tags[by_tag[j]] != used_nodes[i]) {
+        fail(file, "an element refers to node " + std::to_string(used_nodes[i]) +
+                       ", which the file does not define");
+      }
+      for (int k = 0; k < 3; ++k) mesh.coordinates[3 * i + k] = all_coords[3 * by_tag[j] + k];
+    }
+  }
+
+  double extent = 0;
+  if (!used_nodes.empty()) {
+    Vec3 lo{}, hi{};
+    for (int k = 0; k < 3; ++k) lo[k] = hi[k] = mesh.coordinates[k];
+    for (std::size_t i = 0; i < used_nodes.size(); ++i) {
+      for (int k = 0; k < 3; ++k) {
+        lo[k] = std::min(lo[k], mesh.coordinates[3 * i + k]);
+        hi[k] = std::max(hi[k], mesh.coordinates[3 * i + k]);
+      }
+    }
+    extent = norm(sub(hi, lo));
+  }
+
+  if (mesh_dim == 2) {
+    for (std::size_t i = 0; i < used_nodes.size(); ++i) {
+      double& z = mesh.coordinates[3 * i + 2];
+      if (std::abs(z) > kPlaneTolerance * extent) {
+        std::ostringstream out;
+        out << std::setprecision(10) << "a 2D mesh must lie in the z = 0 plane, but node "
+            << used_nodes[i] << " has z = " << z
+            << "; draw the geometry in the x-y plane (or Rotate it there in the .geo)";
+        fail(file, out.str());
+      }
+      z = 0;  // round-off from CAD kernels would otherwise leak into 2D kinematics
+    }
+  }
+
+  CellChecker checker(file, mesh_dim, extent);
+  mesh.groups.reserve(raw_groups.size());
+  for (RawGroup& raw : raw_groups) {
+    MeshGroup group;
+    group.name = std::move(raw.name);
+    group.dim = raw.dim;
+    group.tag = raw.tag;
+    for (RawBlock& raw_block : raw.blocks) {
+      CellBlock block{raw_block.type, {}};
+      block.connectivity.resize(raw_block.node_tags.size());
+      for (std::size_t i = 0; i < raw_block.node_tags.size(); ++i) {
+        const auto it =
+            std::lower_bound(used_nodes.begin(), used_nodes.end(), raw_block.node_tags[i]);
+        block.connectivity[i] = static_cast<std::int32_t>(it - used_nodes.begin());
+      }
+      const auto n = static_cast<std::size_t>(nodes_per_cell(block.type));
+      for (std::size_t c = 0; c < raw_block.element_tags.size(); ++c) {
+        checker.check(group.name, block.type, raw_block.element_tags[c],
+                      &block.connectivity[c * n], mesh.coordinates, used_nodes);
+      }
+      group.blocks.push_back(std::move(block));
+    }
+    mesh.groups.push_back(std::move(group));
+  }
+
+  for (double& x : mesh.coordinates) x *= options.scale;
+  return mesh;
+}
+
+}  // namespace shard

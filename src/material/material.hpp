@@ -1,0 +1,89 @@
+// The constitutive-model interface: one model per file, registered by name.
+//
+// A model declares its parameters, sizes its per-point state, updates a batch of integration
+// points, and reports its elastic moduli (for the stable time step, bulk viscosity, hourglass
+// control and plane stress). Nothing more: the element kernels own kinematics and rotation.
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "core/parameters.hpp"
+
+namespace shard {
+
+/// A contiguous batch of integration points of one part. The kernel has already rotated the
+/// stress with the objective (Jaumann, Hughes–Winget) increment, so a model works in a frame in
+/// which an increment is a plain small-strain increment.
+struct MaterialPointBatch {
+  std::size_t count = 0;
+  double dt = 0;                           ///< time step of the increment
+  const double* strain_increment = nullptr;  ///< kTensorSize per point: D·dt (tensor shear)
+  double* stress = nullptr;                ///< kTensorSize per point: in σ_n (rotated), out σ_n+1
+  double* state = nullptr;                 ///< state_size() per point, updated in place
+  double* temperature = nullptr;           ///< one per point, updated in place (adiabatic heating)
+  const double* volume = nullptr;          ///< one per point: the volume it represents (for energies)
+
+  // Energy dissipated in this increment by the whole batch (J); added to by the model.
+  double plastic_work = 0;
+  double fracture_work = 0;
+};
+
+struct ElasticModuli {
+  double bulk = 0;   ///< K
+  double shear = 0;  ///< G
+  double lame() const { return bulk - 2.0 * shear / 3.0; }
+  double constrained() const { return bulk + 4.0 * shear / 3.0; }  ///< λ + 2G (P-wave modulus)
+};
+
+class Material {
+ public:
+  virtual ~Material() = default;
+
+  virtual std::string_view model() const = 0;
+  /// Elastic moduli at the reference state: used for the dilatational wave speed and plane stress.
+  virtual ElasticModuli elastic() const = 0;
+  virtual std::vector<std::string> state_names() const { return {}; }
+  std::size_t state_size() const { return state_names().size(); }
+  /// Initial values of the history variables of `points` points (zero by default).
+  virtual void initialise(double* state, std::size_t points) const;
+  /// σ_n+1 from σ_n and the strain increment, for every point of the batch.
+  virtual void update(MaterialPointBatch& batch) const = 0;
+
+  double density() const { return density_; }
+  /// Dilatational (P-wave) speed sqrt((K + 4G/3)/ρ), for the stable time step.
+  double wave_speed() const;
+  const std::string& name() const { return name_; }  ///< the scenario's name for this material
+
+ protected:
+  Material(std::string name, double density) : name_(std::move(name)), density_(density) {}
+
+ private:
+  std::string name_;
+  double density_;
+};
+
+/// What a scenario can ask for: a model name, its parameter declarations and a factory.
+struct MaterialModelInfo {
+  std::string name;
+  std::string summary;       ///< one line for the reference
+  std::string theory_note;   ///< docs/ file with equations and references
+  std::function<KeyList()> parameters;
+  std::function<std::unique_ptr<Material>(const std::string& name, const ParameterValues&)> create;
+};
+
+/// Static registry (LAMMPS-style "one model, one file, registered by name", in plain C++).
+class MaterialRegistry {
+ public:
+  static bool add(MaterialModelInfo info);
+  static const MaterialModelInfo* find(const std::string& name);
+  static std::vector<std::string> names();
+};
+
+/// The keys every material has (density) followed by the model's own.
+KeyList material_keys(const MaterialModelInfo& info);
+
+}  // namespace shard

@@ -1,0 +1,134 @@
+// The Model: the whole simulation state as plain arrays (structure of arrays).
+//
+// Nodes, elements and integration points are integers into arrays; nothing holds a pointer across
+// a step. Topology changes (cracks, erosion, remeshing) rebuild or append to these arrays between
+// steps, and a checkpoint is a dump of them (see Model::visit_arrays).
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace shard {
+
+/// How the 2D or 3D continuum is idealised (scenario key analysis.formulation).
+enum class Formulation : std::uint8_t { plane_strain, plane_stress, axisymmetric, three_d };
+
+/// Element formulations. One kernel per value (src/fem/).
+enum class ElementKind : std::uint8_t {
+  tri3,          ///< 3-node triangle, constant strain (plane strain/stress, axisymmetric)
+  tet4,          ///< 4-node tetrahedron, constant strain
+  hex8,          ///< 8-node hexahedron, 2x2x2 Gauss points
+  hex8_reduced,  ///< 8-node hexahedron, one point (uniform gradient) + viscous hourglass control
+};
+
+int nodes_per_element(ElementKind kind);
+int points_per_element(ElementKind kind);  ///< integration points
+int dimension_of(ElementKind kind);
+const char* name_of(ElementKind kind);
+const char* name_of(Formulation formulation);
+
+/// Stress and strain are stored as 6 tensor components per point in this order (shear as the
+/// tensor component, not the engineering strain). In 2D, zz is the out-of-plane (plane strain) or
+/// hoop (axisymmetric) component and yz = zx = 0.
+enum Voigt : int { xx = 0, yy = 1, zz = 2, xy = 3, yz = 4, zx = 5 };
+constexpr int kTensorSize = 6;
+
+/// Nodal arrays. Vectors are stored interleaved with `dim` components per node (x0[dim*i + k]).
+struct NodeArrays {
+  int dim = 0;
+  std::vector<double> x0;     ///< reference (initial) position
+  std::vector<double> x;      ///< current position
+  std::vector<double> v;      ///< velocity at the last half step
+  std::vector<double> force;  ///< net nodal force at the current step (external - internal)
+  std::vector<double> mass;   ///< lumped mass, one per node (axisymmetric: of the full ring)
+
+  std::size_t count() const { return mass.size(); }
+  void resize(std::size_t n) {
+    x0.assign(n * dim, 0.0);
+    x.assign(n * dim, 0.0);
+    v.assign(n * dim, 0.0);
+    force.assign(n * dim, 0.0);
+    mass.assign(n, 0.0);
+  }
+};
+
+/// A part: elements of one kind and one material. Elements are stored grouped by colour (no two
+/// elements of one colour share a node) so that the force scatter can run in parallel with a
+/// fixed summation order: the same result for any thread count.
+struct Part {
+  std::string name;
+  ElementKind kind = ElementKind::tri3;
+  int material = 0;                 ///< index into the run's material list
+  double hourglass_coefficient = 0.1;
+
+  std::vector<std::int32_t> connectivity;  ///< nodes_per_element per element
+  std::vector<std::int32_t> colour_begin;  ///< colour c holds elements [colour_begin[c], colour_begin[c+1])
+
+  // Integration-point state, points_per_element per element.
+  std::vector<double> stress;       ///< Cauchy stress, kTensorSize per point
+  std::vector<double> strain;       ///< accumulated (rotated) strain, kTensorSize per point
+  std::vector<double> state;        ///< material history variables, material.state_size() per point
+  std::vector<double> temperature;  ///< one per point
+  std::vector<double> volume;       ///< current element volume (axisymmetric: of the ring), per element
+
+  std::size_t element_count() const {
+    return connectivity.size() / static_cast<std::size_t>(nodes_per_element(kind));
+  }
+  std::size_t point_count() const {
+    return element_count() * static_cast<std::size_t>(points_per_element(kind));
+  }
+  std::size_t colour_count() const { return colour_begin.empty() ? 0 : colour_begin.size() - 1; }
+};
+
+/// A named set of boundary facets (2-node segments in 2D, 3- or 4-node faces in 3D), oriented so
+/// that their right-hand normal points out of the body. Used for pressure loads.
+struct FacetSet {
+  std::string name;
+  int nodes_per_facet = 2;
+  std::vector<std::int32_t> nodes;
+};
+
+/// A named set of nodes (from a Gmsh physical group of any dimension).
+struct NodeSet {
+  std::string name;
+  std::vector<std::int32_t> nodes;  ///< sorted, unique
+};
+
+struct Model {
+  Formulation formulation = Formulation::plane_strain;
+  double thickness = 1.0;  ///< out-of-plane thickness for plane strain / plane stress
+  NodeArrays nodes;
+  std::vector<Part> parts;
+  std::vector<NodeSet> node_sets;
+  std::vector<FacetSet> facet_sets;
+
+  int dim() const { return nodes.dim; }
+  std::size_t element_count() const;
+  const NodeSet* find_node_set(const std::string& name) const;
+  const FacetSet* find_facet_set(const std::string& name) const;
+
+  /// Calls f(name, vector&) for every array of state (double and int32 vectors), in a fixed
+  /// order. Checkpoints are written and read through this, so adding an array here is all a
+  /// new piece of state needs to survive a restart.
+  template <class Visitor>
+  void visit_arrays(Visitor&& f) {
+    f("nodes.x0", nodes.x0);
+    f("nodes.x", nodes.x);
+    f("nodes.v", nodes.v);
+    f("nodes.force", nodes.force);
+    f("nodes.mass", nodes.mass);
+    for (auto& p : parts) {
+      const std::string prefix = "part." + p.name + ".";
+      f(prefix + "connectivity", p.connectivity);
+      f(prefix + "colour_begin", p.colour_begin);
+      f(prefix + "stress", p.stress);
+      f(prefix + "strain", p.strain);
+      f(prefix + "state", p.state);
+      f(prefix + "temperature", p.temperature);
+      f(prefix + "volume", p.volume);
+    }
+  }
+};
+
+}  // namespace shard

@@ -1,0 +1,253 @@
+#include "solver/explicit_solver.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <sstream>
+
+#include "core/error.hpp"
+#include "fem/hex8_shape.hpp"
+
+namespace shard {
+
+namespace {
+/// Nodes per chunk of the nodal update. Sums are formed per chunk and then added in chunk order,
+/// so the energies are the same, bit for bit, for any number of threads.
+constexpr std::size_t kNodeChunk = 2048;
+}  // namespace
+
+void lump_masses(Model& model, const std::vector<std::unique_ptr<Material>>& materials) {
+  const int dim = model.dim();
+  auto& mass = model.nodes.mass;
+  const double* X = model.nodes.x.data();
+  for (const Part& part : model.parts) {
+    const double rho = materials[part.material]->density();
+    const int npe = nodes_per_element(part.kind);
+    for (std::size_t e = 0; e < part.element_count(); ++e) {
+      const std::int32_t* cn = &part.connectivity[npe * e];
+      if (part.kind == ElementKind::tri3) {
+        const double x1 = X[2 * cn[0]], y1 = X[2 * cn[0] + 1], x2 = X[2 * cn[1]],
+                     y2 = X[2 * cn[1] + 1], x3 = X[2 * cn[2]], y3 = X[2 * cn[2] + 1];
+        const double area = 0.5 * ((x2 - x1) * (y3 - y1) - (x3 - x1) * (y2 - y1));
+        if (model.formulation == Formulation::axisymmetric) {
+          // Row sums of the consistent ring mass: 2πρA(2r_a + r_b + r_c)/12.
+          const double r[3] = {x1, x2, x3};
+          for (int a = 0; a < 3; ++a)
+            mass[cn[a]] += 2.0 * std::numbers::pi * rho * area *
+                           (2.0 * r[a] + r[(a + 1) % 3] + r[(a + 2) % 3]) / 12.0;
+        } else {
+          for (int a = 0; a < 3; ++a) mass[cn[a]] += rho * area * model.thickness / 3.0;
+        }
+      } else if (part.kind == ElementKind::tet4) {
+        const double v = element_measure(part, model.nodes, e, model.formulation, model.thickness);
+        for (int a = 0; a < 4; ++a) mass[cn[a]] += rho * v / 4.0;
+      } else {
+        // Row sums of the consistent mass, ∫ρ N_a dV, by 2×2×2 Gauss (exact for the trilinear map).
+        const auto& ref = hex8_reference();
+        double x[8][3];
+        for (int a = 0; a < 8; ++a)
+          for (int k = 0; k < 3; ++k) x[a][k] = X[3 * cn[a] + k];
+        for (int p = 0; p < 8; ++p) {
+          double J[3][3] = {};
+          for (int a = 0; a < 8; ++a)
+            for (int r = 0; r < 3; ++r)
+              for (int c = 0; c < 3; ++c) J[r][c] += x[a][r] * ref.gauss_dN[p][a][c];
+          const double det = J[0][0] * (J[1][1] * J[2][2] - J[1][2] * J[2][1]) -
+                             J[0][1] * (J[1][0] * J[2][2] - J[1][2] * J[2][0]) +
+                             J[0][2] * (J[1][0] * J[2][1] - J[1][1] * J[2][0]);
+          for (int a = 0; a < 8; ++a) mass[cn[a]] += rho * ref.gauss_N[p][a] * det;
+        }
+      }
+    }
+  }
+  (void)dim;
+}
+
+ExplicitSolver::ExplicitSolver(Model& model,
+                               const std::vector<std::unique_ptr<Material>>& materials,
+                               const Loads& loads, SolverSettings settings)
+    : model_(model), materials_(materials), loads_(loads), settings_(settings) {}
+
+void ExplicitSolver::initialise() {
+  std::fill(model_.nodes.mass.begin(), model_.nodes.mass.end(), 0.0);
+  lump_masses(model_, materials_);
+  const int dim = model_.dim();
+  // Prescribed velocities hold from t = 0: they are part of the initial state, so the initial
+  // kinetic energy includes them and no impulsive jump happens in the first step.
+  for (const auto& c : loads_.constraints)
+    model_.nodes.v[static_cast<std::size_t>(dim) * c.node + c.component] = loads_.tables[c.table].at(0.0);
+  double kinetic = 0;
+  for (std::size_t i = 0; i < model_.nodes.count(); ++i) {
+    const double m = model_.nodes.mass[i];
+    if (!(m > 0)) {
+      std::ostringstream out;
+      out << "node " << i << " at (" << model_.nodes.x[dim * i] << ", " << model_.nodes.x[dim * i + 1]
+          << ") has no mass: it belongs to no element of any part (a boundary group node "
+             "outside the parts?)";
+      throw RunError(out.str());
+    }
+    for (int k = 0; k < dim; ++k) kinetic += 0.5 * m * model_.nodes.v[dim * i + k] * model_.nodes.v[dim * i + k];
+  }
+  state_ = SolverState{};
+  state_.energy.initial = kinetic;
+  state_.energy.kinetic = kinetic;
+}
+
+bool ExplicitSolver::finished() const {
+  return state_.time >= settings_.end_time * (1.0 - 1e-12);
+}
+
+void ExplicitSolver::compute_forces() {
+  auto& nodes = model_.nodes;
+  std::fill(nodes.force.begin(), nodes.force.end(), 0.0);
+  StepContext ctx;
+  ctx.formulation = model_.formulation;
+  ctx.thickness = model_.thickness;
+  ctx.dt = state_.dt_half;
+  ctx.q_linear = settings_.q_linear;
+  ctx.q_quadratic = settings_.q_quadratic;
+  ForceSums total;
+  for (Part& part : model_.parts) {
+    const ForceSums sums = add_internal_forces(part, *materials_[part.material], nodes, ctx);
+    if (sums.inverted_element >= 0) {
+      const int npe = nodes_per_element(part.kind);
+      std::ostringstream out;
+      out << "element " << sums.inverted_element << " of part '" << part.name
+          << "' turned inside out (volume <= 0) at t = " << state_.time << " s, step "
+          << state_.step << "; its nodes are at";
+      for (int a = 0; a < npe; ++a) {
+        const auto n = part.connectivity[npe * sums.inverted_element + a];
+        out << " (";
+        for (int k = 0; k < model_.dim(); ++k) out << (k ? ", " : "") << nodes.x[model_.dim() * n + k];
+        out << ")";
+      }
+      out << ". Usual causes: a time step too large (lower analysis.time_step_safety), too little "
+             "hourglass control, or a load beyond what the mesh can follow";
+      throw RunError(out.str());
+    }
+    total.add(sums);
+  }
+  auto& E = state_.energy;
+  E.stress_work += total.stress_work;
+  E.viscosity += total.viscous_work;
+  E.hourglass += total.hourglass_work;
+  E.plastic += total.plastic_work;
+  E.fracture += total.fracture_work;
+
+  applied_.clear();
+  add_pressure_forces(model_, loads_, state_.time, applied_);
+
+  state_.stable_dt = total.stable_dt;
+  double dt = settings_.time_step_safety * total.stable_dt;
+  if (settings_.max_time_step > 0) dt = std::min(dt, settings_.max_time_step);
+  const double remaining = settings_.end_time - state_.time;
+  if (remaining > 0 && remaining < 1.000001 * dt) dt = remaining;  // land on end_time
+  if (!(dt > 0) || !std::isfinite(dt)) {
+    std::ostringstream out;
+    out << "the stable time step collapsed to " << dt << " s at t = " << state_.time << " s, step "
+        << state_.step;
+    throw RunError(out.str());
+  }
+  state_.dt_next = dt;
+}
+
+void ExplicitSolver::advance() {
+  auto& nodes = model_.nodes;
+  const int dim = model_.dim();
+  const double dt_next = state_.dt_next;
+  const double dt_n = state_.step == 0 ? 0.5 * dt_next : 0.5 * (state_.dt_half + dt_next);
+  // Central difference with mass-proportional damping taken at the mid-point:
+  // m (v+ − v−)/Δt = F − α m (v+ + v−)/2  ⇒  v+ = ((1 − αΔt/2) v− + Δt F/m) / (1 + αΔt/2).
+  const double alpha = settings_.mass_damping;
+  const double d1 = 1.0 - 0.5 * alpha * dt_n;
+  const double d2 = 1.0 / (1.0 + 0.5 * alpha * dt_n);
+  double* V = nodes.v.data();
+  double* F = nodes.force.data();
+  const double* M = nodes.mass.data();
+  auto new_velocity = [&](std::size_t dof, double m) { return (d1 * V[dof] + dt_n * (F[dof] / m)) * d2; };
+
+  // Work of a nodal force F_n is split at t_n: ½Δt_n−1/2 F_n·v_n−1/2 closes the interval
+  // [t_n−1/2, t_n] and ½Δt_n+1/2 F_n·v_n+1/2 opens [t_n, t_n+1/2]. The second half is booked
+  // next step, so that the reported energies all end at t_n, where the element stress work ends.
+  const double back = 0.5 * state_.dt_half, ahead = 0.5 * dt_next;
+
+  // Prescribed velocities: replace the force by the one that gives v+ = v_prescribed; the
+  // difference is the reaction, whose work is external work.
+  double external_back = 0, external_ahead = 0;
+  const double t_half = state_.time + 0.5 * dt_next;
+  for (const auto& c : loads_.constraints) {
+    const std::size_t dof = static_cast<std::size_t>(dim) * c.node + c.component;
+    const double m = M[c.node];
+    const double vp = loads_.tables[c.table].at(t_half);
+    const double f_needed = m * (vp / d2 - d1 * V[dof]) / dt_n;
+    const double reaction = f_needed - F[dof];
+    external_back += reaction * back * V[dof];
+    external_ahead += reaction * ahead * vp;
+    F[dof] = f_needed;
+  }
+  for (const auto& [dof, f] : applied_) {
+    const double m = M[dof / dim];
+    external_back += f * back * V[dof];
+    external_ahead += f * ahead * new_velocity(dof, m);
+  }
+
+  const std::size_t n = nodes.count();
+  const std::size_t chunks = (n + kNodeChunk - 1) / kNodeChunk;
+  constexpr int kSums = 4;  // kinetic, damping back, damping ahead, first bad node
+  chunk_sums_.assign(kSums * chunks, 0.0);
+  double* X = nodes.x.data();
+#pragma omp parallel for schedule(static)
+  for (std::size_t ch = 0; ch < chunks; ++ch) {
+    double kinetic = 0, damp_back = 0, damp_ahead = 0, bad = -1;
+    const std::size_t end = std::min(n, (ch + 1) * kNodeChunk);
+    for (std::size_t i = ch * kNodeChunk; i < end; ++i) {
+      const double m = M[i];
+      double v2 = 0, vb = 0, va = 0;
+      for (int k = 0; k < dim; ++k) {
+        const std::size_t dof = dim * i + k;
+        const double v_old = V[dof];
+        const double v_new = new_velocity(dof, m);
+        const double v_mean = 0.5 * (v_old + v_new);
+        v2 += v_mean * v_mean;
+        vb += v_mean * v_old;
+        va += v_mean * v_new;
+        V[dof] = v_new;
+        X[dof] += dt_next * v_new;
+      }
+      if (!std::isfinite(v2) && bad < 0) bad = static_cast<double>(i);
+      kinetic += 0.5 * m * v2;
+      damp_back += alpha * m * vb * back;  // damping force α m v_n at t_n
+      damp_ahead += alpha * m * va * ahead;
+    }
+    double* out = &chunk_sums_[kSums * ch];
+    out[0] = kinetic;
+    out[1] = damp_back;
+    out[2] = damp_ahead;
+    out[3] = bad;
+  }
+  double kinetic = 0, damp_back = 0, damp_ahead = 0;
+  for (std::size_t ch = 0; ch < chunks; ++ch) {
+    const double* in = &chunk_sums_[kSums * ch];
+    if (in[3] >= 0) {
+      std::ostringstream out;
+      out << "the velocity of node " << static_cast<std::int64_t>(in[3])
+          << " is not finite at t = " << state_.time << " s, step " << state_.step
+          << " (the run has become unstable)";
+      throw RunError(out.str());
+    }
+    kinetic += in[0];
+    damp_back += in[1];
+    damp_ahead += in[2];
+  }
+  auto& E = state_.energy;
+  E.kinetic = kinetic;
+  E.damping += state_.pending_damping + damp_back;
+  E.external_work += state_.pending_external + external_back;
+  state_.pending_damping = damp_ahead;
+  state_.pending_external = external_ahead;
+  state_.dt_half = dt_next;
+  state_.time += dt_next;
+  state_.step += 1;
+}
+
+}  // namespace shard

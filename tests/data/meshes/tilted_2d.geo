@@ -1,0 +1,12 @@
+// A surface in the x-z plane: a 2D mesh that does not lie in z = 0, which the importer refuses.
+Point(1) = {0, 0, 0, 0.5};
+Point(2) = {1, 0, 0, 0.5};
+Point(3) = {1, 0, 1, 0.5};
+Point(4) = {0, 0, 1, 0.5};
+Line(1) = {1, 2};
+Line(2) = {2, 3};
+Line(3) = {3, 4};
+Line(4) = {4, 1};
+Curve Loop(1) = {1, 2, 3, 4};
+Plane Surface(1) = {1};
+Physical Surface("wall") = {1};

@@ -1,0 +1,66 @@
+// Test support: run a Model built in code (no scenario file), with one linear elastic material.
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <vector>
+
+#include "material/linear_elastic.hpp"
+#include "model/model.hpp"
+#include "model/structured_mesh.hpp"
+#include "solver/explicit_solver.hpp"
+#include "solver/setup.hpp"
+
+namespace shard::testing {
+
+struct ElasticRun {
+  Model model;
+  std::vector<std::unique_ptr<Material>> materials;
+  Loads loads;
+  SolverSettings settings;
+
+  ElasticRun(Model m, double density, double youngs, double poisson) : model(std::move(m)) {
+    const double K = youngs / (3 * (1 - 2 * poisson)), G = youngs / (2 * (1 + poisson));
+    materials.push_back(std::make_unique<LinearElastic>("elastic", density, ElasticModuli{K, G}));
+    for (auto& p : model.parts) prepare_part(p, *materials[0], model.nodes.count(), 293.15);
+  }
+
+  int table(double value) {
+    loads.tables.push_back(TimeTable::constant(value));
+    return static_cast<int>(loads.tables.size()) - 1;
+  }
+  /// Prescribes velocity component k of every node of a node set.
+  void prescribe(const std::string& set, int k, double value) {
+    const int t = table(value);
+    for (auto n : model.find_node_set(set)->nodes) loads.constraints.push_back({n, k, t});
+  }
+
+  /// Runs to end_time; calls `each_step(solver)` after every force phase (state at t_n).
+  void run(const std::function<void(const ExplicitSolver&)>& each_step = {}) {
+    ExplicitSolver solver(model, materials, loads, settings);
+    solver.initialise();
+    while (true) {
+      solver.compute_forces();
+      if (each_step) each_step(solver);
+      solver.advance();
+      energy = solver.state().energy;
+      steps = solver.state().step;
+      max_error = std::max(max_error, std::abs(energy.relative_error()));
+      if (solver.state().time - solver.state().dt_half >= settings.end_time * (1 - 1e-12)) break;
+    }
+  }
+
+  EnergyBalance energy;
+  std::int64_t steps = 0;
+  double max_error = 0;
+};
+
+/// Centroid coordinate k of element e of a part.
+inline double element_centroid(const Model& model, const Part& part, std::size_t e, int k) {
+  const int npe = nodes_per_element(part.kind);
+  double c = 0;
+  for (int a = 0; a < npe; ++a) c += model.nodes.x[model.dim() * part.connectivity[npe * e + a] + k];
+  return c / npe;
+}
+
+}  // namespace shard::testing
