@@ -1,1 +1,138 @@
-int main() { return 0; }
+// The `shard` command line: run, check, reference, info.
+#include <cstdio>
+#include <cstring>
+#include <iostream>
+#include <optional>
+#include <string>
+#include <vector>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+#include "core/error.hpp"
+#include "core/units.hpp"
+#include "io/scenario.hpp"
+#include "material/material.hpp"
+#include "solver/run.hpp"
+
+namespace {
+
+constexpr int kOk = 0, kRunFailed = 1, kBadInput = 2;
+
+const char* kHelp = R"(shard — explicit dynamics of cracking, fragmenting and crushing solids
+
+Usage:
+  shard run SCENARIO.yaml [-o OUTDIR] [--threads N] [--quiet]
+                          [--restart CHECKPOINT] [--until TIME]
+  shard check SCENARIO.yaml     validate the scenario, its mesh and model; run nothing
+  shard reference               print the scenario reference (Markdown) generated from the
+                                declared keys (docs/scenario.md)
+  shard info                    list material models, elements and formulations
+  shard --version | --help
+
+run writes into OUTDIR (default: out/<scenario name>): frames.pvd + frame_*.vtu (ParaView),
+history.csv (energies per time), summary.json, resolved.yaml (the scenario with every default
+filled in, SI units) and checkpoint.bin. --until 20us stops at that time with a checkpoint;
+--restart OUTDIR/checkpoint.bin continues it in the same OUTDIR.
+
+Exit status: 0 success, 1 the run failed (the outputs so far are kept, summary.json says why),
+2 bad input (nothing is written).
+)";
+
+int usage_error(const std::string& message) {
+  std::fprintf(stderr, "shard: %s\nRun 'shard --help' for usage.\n", message.c_str());
+  return kBadInput;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::vector<std::string> args(argv + 1, argv + argc);
+  if (args.empty()) {
+    std::fputs(kHelp, stderr);
+    return kBadInput;
+  }
+  const std::string command = args[0];
+  if (command == "--help" || command == "-h" || command == "help") {
+    std::fputs(kHelp, stdout);
+    return kOk;
+  }
+  if (command == "--version") {
+    std::printf("shard %s\n", SHARD_VERSION);
+    return kOk;
+  }
+  try {
+    if (command == "reference") {
+      std::fputs(shard::scenario_reference_markdown().c_str(), stdout);
+      return kOk;
+    }
+    if (command == "info") {
+      std::printf("shard %s\nmaterial models:", SHARD_VERSION);
+      for (const auto& n : shard::MaterialRegistry::names()) std::printf(" %s", n.c_str());
+      std::printf("\nelements: tri3 (2D), tet4, hex8, hex8_reduced (3D)\n"
+                  "formulations: plane_strain, plane_stress, axisymmetric, 3d\n");
+#ifdef _OPENMP
+      std::printf("threads available: %d\n", omp_get_max_threads());
+#endif
+      return kOk;
+    }
+    if (command == "check") {
+      if (args.size() != 2) return usage_error("check takes one scenario file");
+      std::fputs(shard::check_scenario(args[1]).c_str(), stdout);
+      return kOk;
+    }
+    if (command == "run") {
+      std::optional<std::string> scenario;
+      shard::RunOptions options;
+      std::optional<std::filesystem::path> output;
+      for (std::size_t i = 1; i < args.size(); ++i) {
+        const std::string& a = args[i];
+        auto value = [&](const char* name) -> std::string {
+          if (i + 1 >= args.size()) throw shard::InputError("", 0, name, "needs a value");
+          return args[++i];
+        };
+        if (a == "-o" || a == "--output") output = value("-o");
+        else if (a == "--threads") {
+          const std::string v = value("--threads");
+          char* end = nullptr;
+          const long n = std::strtol(v.c_str(), &end, 10);
+          if (*end != '\0' || n < 1 || n > 1024)
+            return usage_error("--threads expects a whole number >= 1, got '" + v + "'");
+          options.threads = static_cast<int>(n);
+        } else if (a == "--quiet" || a == "-q") options.quiet = true;
+        else if (a == "--restart") options.restart = value("--restart");
+        else if (a == "--until") {
+          const std::string v = value("--until");
+          try {
+            options.until = shard::parse_quantity_as(v, shard::dim::time);
+          } catch (const std::invalid_argument& e) {
+            return usage_error(std::string("--until: ") + e.what());
+          }
+        } else if (!a.empty() && a[0] == '-') return usage_error("unknown option '" + a + "'");
+        else if (!scenario) scenario = a;
+        else return usage_error("more than one scenario given ('" + *scenario + "', '" + a + "')");
+      }
+      if (!scenario) return usage_error("run needs a scenario file");
+      options.output_dir = output ? *output
+                                  : std::filesystem::path("out") /
+                                        std::filesystem::path(*scenario).stem();
+      const auto summary = shard::run_scenario(*scenario, options);
+      if (!options.quiet)
+        std::fprintf(stderr, "done: %lld steps to t = %.6g s in %.2f s wall, energy balance error %+.4f%%; outputs in %s\n",
+                     static_cast<long long>(summary.steps), summary.end_time, summary.wall_seconds,
+                     100 * summary.energy_balance_error, options.output_dir.string().c_str());
+      return kOk;
+    }
+    return usage_error("unknown command '" + command + "'");
+  } catch (const shard::InputError& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return kBadInput;
+  } catch (const shard::RunError& e) {
+    std::fprintf(stderr, "\nrun failed: %s\n", e.what());
+    return kRunFailed;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "\ninternal error: %s\n", e.what());
+    return kRunFailed;
+  }
+}

@@ -97,18 +97,32 @@ struct Tri3 {
     const double u1 = V[2 * cn[0]], w1 = V[2 * cn[0] + 1];
     const double u2 = V[2 * cn[1]], w2 = V[2 * cn[1] + 1];
     const double u3 = V[2 * cn[2]], w3 = V[2 * cn[2] + 1];
-    const double lxx = u1 * b1 + u2 * b2 + u3 * b3, lxy = u1 * c1 + u2 * c2 + u3 * c3;
-    const double lyx = w1 * b1 + w2 * b2 + w3 * b3, lyy = w1 * c1 + w2 * c2 + w3 * c3;
+    const double dt = ctx.dt;
+    // Velocity gradient on x_n, then on the mid-step geometry (see midstep_gradient):
+    // L_mid = L (I − ½Δt L)⁻¹ in the plane, v_r / r_n−1/2 for the hoop rate.
+    const double gxx = u1 * b1 + u2 * b2 + u3 * b3, gxy = u1 * c1 + u2 * c2 + u3 * c3;
+    const double gyx = w1 * b1 + w2 * b2 + w3 * b3, gyy = w1 * c1 + w2 * c2 + w3 * c3;
+    const double h = 0.5 * dt;
+    const double m00 = 1.0 - h * gxx, m01 = -h * gxy, m10 = -h * gyx, m11 = 1.0 - h * gyy;
+    const double mdet = m00 * m11 - m01 * m10;
+    double lxx = gxx, lxy = gxy, lyx = gyx, lyy = gyy;
+    if (mdet > 0.0) {
+      const double id = 1.0 / mdet;  // (M⁻¹) = [[m11, −m01], [−m10, m00]] / det
+      lxx = (gxx * m11 - gxy * m10) * id;
+      lxy = (-gxx * m01 + gxy * m00) * id;
+      lyx = (gyx * m11 - gyy * m10) * id;
+      lyy = (-gyx * m01 + gyy * m00) * id;
+    }
     const double area = 0.5 * area2;
     double weight, dzz = 0.0, rbar = 0.0;
     if (ctx.formulation == Formulation::axisymmetric) {
       rbar = (x1 + x2 + x3) / 3.0;
       weight = 2.0 * std::numbers::pi * rbar * area;
-      dzz = (u1 + u2 + u3) / (3.0 * rbar);
+      const double vr = (u1 + u2 + u3) / 3.0;
+      dzz = vr / (rbar - h * vr);
     } else {
       weight = ctx.thickness * area;
     }
-    const double dt = ctx.dt;
     de[xx] = lxx * dt;
     de[yy] = lyy * dt;
     de[zz] = dzz * dt;  // plane stress: set by the driver's σ_zz = 0 iteration
@@ -150,8 +164,39 @@ struct Tri3 {
   }
 };
 
-/// Velocity gradient → Δε, spin → rotation of σ and ε of one 3D point.
-inline void update_point_3d(const double L[3][3], double dt, double* de, double* sig, double* eps) {
+/// The velocity gradient on the mid-step geometry x_n−1/2 = x_n − ½Δt v from the one on the
+/// current geometry x_n: ∂v/∂x_n−1/2 = L (∂x_n−1/2/∂x_n)⁻¹ = L (I − ½Δt L)⁻¹, in place. Exact at a
+/// point (and for the uniform gradient of a linear field). The strain increment and spin must be
+/// taken on the mid-step geometry for the update to be incrementally objective: for a rigid
+/// rotation Q_Δ over the step, Δt L_mid = 2(Q_Δ − I)(Q_Δ + I)⁻¹ is exactly skew (Δε = 0) and the
+/// Hughes–Winget rotation is exactly Q_Δ, whereas on x_n the symmetric part is (1 − cos Δθ) I, a
+/// spurious dilatation of Δθ²/2 a step (Hughes & Winget 1980; Belytschko, Liu & Moran §6.5).
+inline void midstep_gradient(double L[3][3], double dt) {
+  const double h = 0.5 * dt;
+  double M[3][3];
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) M[r][c] = (r == c ? 1.0 : 0.0) - h * L[r][c];
+  const double c00 = M[1][1] * M[2][2] - M[1][2] * M[2][1];
+  const double c01 = M[1][2] * M[2][0] - M[1][0] * M[2][2];
+  const double c02 = M[1][0] * M[2][1] - M[1][1] * M[2][0];
+  const double det = M[0][0] * c00 + M[0][1] * c01 + M[0][2] * c02;
+  if (!(det > 0.0)) return;  // |Δt L| of order one: the run is failing anyway
+  const double id = 1.0 / det;
+  const double Mi[3][3] = {
+      {c00 * id, (M[0][2] * M[2][1] - M[0][1] * M[2][2]) * id, (M[0][1] * M[1][2] - M[0][2] * M[1][1]) * id},
+      {c01 * id, (M[0][0] * M[2][2] - M[0][2] * M[2][0]) * id, (M[0][2] * M[1][0] - M[0][0] * M[1][2]) * id},
+      {c02 * id, (M[0][1] * M[2][0] - M[0][0] * M[2][1]) * id, (M[0][0] * M[1][1] - M[0][1] * M[1][0]) * id}};
+  double out[3][3];
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) out[r][c] = L[r][0] * Mi[0][c] + L[r][1] * Mi[1][c] + L[r][2] * Mi[2][c];
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) L[r][c] = out[r][c];
+}
+
+/// Velocity gradient on x_n → (mid-step gradient, in place) → Δε, spin → rotation of σ and ε of
+/// one 3D point.
+inline void update_point_3d(double L[3][3], double dt, double* de, double* sig, double* eps) {
+  midstep_gradient(L, dt);
   de[xx] = L[0][0] * dt;
   de[yy] = L[1][1] * dt;
   de[zz] = L[2][2] * dt;

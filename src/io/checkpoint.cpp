@@ -1,0 +1,135 @@
+#include "io/checkpoint.hpp"
+
+#include <cstring>
+#include <fstream>
+#include <type_traits>
+#include <vector>
+
+#include "core/error.hpp"
+
+namespace shard {
+
+namespace {
+
+constexpr char kMagic[8] = {'S', 'H', 'A', 'R', 'D', 'C', 'K', '1'};
+
+/// Scalars of SolverState and OutputCursor in one fixed order, for both directions.
+template <class F>
+void visit_scalars(SolverState& s, OutputCursor& c, F&& f) {
+  f(s.step);
+  f(s.time);
+  f(s.dt_half);
+  f(s.dt_next);
+  f(s.stable_dt);
+  f(s.pending_external);
+  f(s.pending_damping);
+  auto& e = s.energy;
+  for (double* v : {&e.kinetic, &e.stress_work, &e.external_work, &e.viscosity, &e.hourglass,
+                    &e.damping, &e.plastic, &e.fracture, &e.initial})
+    f(*v);
+  f(c.next_frame);
+  f(c.next_history);
+  f(c.next_checkpoint);
+  f(c.history_bytes);
+}
+
+class Writer {
+ public:
+  explicit Writer(std::ofstream& out) : out_(out) {}
+  template <class T>
+  void raw(const T& v) {
+    out_.write(reinterpret_cast<const char*>(&v), sizeof(T));
+  }
+  void text(const std::string& s) {
+    raw<std::uint64_t>(s.size());
+    out_.write(s.data(), static_cast<std::streamsize>(s.size()));
+  }
+  template <class T>
+  void array(const std::string& name, const std::vector<T>& a) {
+    text(name);
+    raw<std::uint8_t>(std::is_same_v<T, double> ? 1 : 2);
+    raw<std::uint64_t>(a.size());
+    out_.write(reinterpret_cast<const char*>(a.data()), static_cast<std::streamsize>(a.size() * sizeof(T)));
+  }
+
+ private:
+  std::ofstream& out_;
+};
+
+class Reader {
+ public:
+  Reader(std::ifstream& in, std::string file) : in_(in), file_(std::move(file)) {}
+  template <class T>
+  T raw() {
+    T v{};
+    in_.read(reinterpret_cast<char*>(&v), sizeof(T));
+    check();
+    return v;
+  }
+  std::string text() {
+    const auto n = raw<std::uint64_t>();
+    if (n > (1u << 20)) fail("corrupt name");
+    std::string s(n, '\0');
+    in_.read(s.data(), static_cast<std::streamsize>(n));
+    check();
+    return s;
+  }
+  template <class T>
+  void array(const std::string& name, std::vector<T>& a) {
+    const std::string got = text();
+    if (got != name) fail("expected array '" + name + "', found '" + got + "' (a checkpoint of another model?)");
+    const auto type = raw<std::uint8_t>();
+    if (type != (std::is_same_v<T, double> ? 1 : 2)) fail("array '" + name + "' has the wrong type");
+    const auto n = raw<std::uint64_t>();
+    a.resize(n);
+    in_.read(reinterpret_cast<char*>(a.data()), static_cast<std::streamsize>(n * sizeof(T)));
+    check();
+  }
+  [[noreturn]] void fail(const std::string& why) {
+    throw InputError(file_, 0, "--restart", "cannot restart from this checkpoint: " + why);
+  }
+
+ private:
+  void check() {
+    if (!in_) fail("the file ends early (truncated?)");
+  }
+  std::ifstream& in_;
+  std::string file_;
+};
+
+}  // namespace
+
+void write_checkpoint(const std::filesystem::path& path, Model& model, const SolverState& state,
+                      const OutputCursor& cursor, const std::string& fingerprint) {
+  const std::filesystem::path tmp = path.string() + ".tmp";
+  {
+    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+    if (!out) throw RunError("cannot write checkpoint '" + tmp.string() + "'");
+    Writer w(out);
+    out.write(kMagic, sizeof(kMagic));
+    w.text(fingerprint);
+    SolverState s = state;
+    OutputCursor c = cursor;
+    visit_scalars(s, c, [&](auto& v) { w.raw(v); });
+    model.visit_arrays([&](const std::string& name, auto& a) { w.array(name, a); });
+    out.flush();
+    if (!out) throw RunError("writing checkpoint '" + tmp.string() + "' failed (disk full?)");
+  }
+  std::filesystem::rename(tmp, path);
+}
+
+void read_checkpoint(const std::filesystem::path& path, Model& model, SolverState& state,
+                     OutputCursor& cursor, const std::string& fingerprint) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path.string(), 0, "--restart", "checkpoint file not found");
+  Reader r(in, path.string());
+  char magic[8];
+  in.read(magic, sizeof(magic));
+  if (!in || std::memcmp(magic, kMagic, sizeof(kMagic)) != 0) r.fail("not a shard checkpoint");
+  if (r.text() != fingerprint)
+    r.fail("it was written by a different scenario (restart with the scenario that wrote it)");
+  visit_scalars(state, cursor, [&](auto& v) { v = r.raw<std::decay_t<decltype(v)>>(); });
+  model.visit_arrays([&](const std::string& name, auto& a) { r.array(name, a); });
+}
+
+}  // namespace shard

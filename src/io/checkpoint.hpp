@@ -1,0 +1,30 @@
+// Checkpoints: the Model's arrays and the integrator's scalars, written atomically.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+
+#include "model/model.hpp"
+#include "solver/explicit_solver.hpp"
+
+namespace shard {
+
+/// Where the outputs stood when the checkpoint was taken.
+struct OutputCursor {
+  std::int64_t next_frame = 0;       ///< index of the next frame to write
+  std::int64_t next_history = 0;     ///< index of the next history row
+  std::int64_t next_checkpoint = 1;  ///< index of the next checkpoint
+  std::uint64_t history_bytes = 0;   ///< length of history.csv at the checkpoint
+};
+
+/// Writes `path` via "<path>.tmp" and a rename: a run killed while writing leaves the previous
+/// checkpoint intact. `fingerprint` identifies the scenario (a restart with another is refused).
+void write_checkpoint(const std::filesystem::path& path, Model& model, const SolverState& state,
+                      const OutputCursor& cursor, const std::string& fingerprint);
+
+/// Restores the arrays and scalars. Throws InputError for a missing, corrupt or foreign file.
+void read_checkpoint(const std::filesystem::path& path, Model& model, SolverState& state,
+                     OutputCursor& cursor, const std::string& fingerprint);
+
+}  // namespace shard

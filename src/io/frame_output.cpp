@@ -1,0 +1,116 @@
+#include "io/frame_output.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace shard {
+
+namespace {
+bool wants(const std::vector<std::string>& fields, const char* name) {
+  return std::find(fields.begin(), fields.end(), name) != fields.end();
+}
+}  // namespace
+
+VtuGrid make_frame(const Model& model, const std::vector<std::unique_ptr<Material>>& materials,
+                   const std::vector<std::string>& fields, double time) {
+  VtuGrid grid;
+  const int dim = model.dim();
+  const std::size_t nn = model.nodes.count();
+  grid.points.assign(3 * nn, 0.0);
+  for (std::size_t i = 0; i < nn; ++i)
+    for (int k = 0; k < dim; ++k) grid.points[3 * i + k] = model.nodes.x[dim * i + k];
+
+  std::size_t ne = 0;
+  for (const auto& p : model.parts) ne += p.element_count();
+  grid.offsets.reserve(ne);
+  grid.types.reserve(ne);
+  for (const auto& part : model.parts) {
+    const int npe = nodes_per_element(part.kind);
+    const VtkCellType type = part.kind == ElementKind::tri3   ? VtkCellType::triangle
+                             : part.kind == ElementKind::tet4 ? VtkCellType::tetra
+                                                              : VtkCellType::hexahedron;
+    for (std::size_t e = 0; e < part.element_count(); ++e) {
+      for (int a = 0; a < npe; ++a) grid.connectivity.push_back(part.connectivity[npe * e + a]);
+      grid.offsets.push_back(static_cast<std::int64_t>(grid.connectivity.size()));
+      grid.types.push_back(type);
+    }
+  }
+
+  auto point_vector = [&](const char* name, auto value) {
+    VtuField f{name, 3, std::vector<double>(3 * nn, 0.0)};
+    for (std::size_t i = 0; i < nn; ++i)
+      for (int k = 0; k < dim; ++k) f.values[3 * i + k] = value(dim * i + k);
+    grid.point_fields.push_back(std::move(f));
+  };
+  if (wants(fields, "displacement"))
+    point_vector("displacement", [&](std::size_t d) { return model.nodes.x[d] - model.nodes.x0[d]; });
+  if (wants(fields, "velocity"))
+    point_vector("velocity", [&](std::size_t d) { return model.nodes.v[d]; });
+
+  // Cell fields: the mean over each element's integration points.
+  auto cell_field = [&](const char* name, int components, auto per_point) {
+    VtuField f{name, components, {}};
+    f.values.reserve(components * ne);
+    for (std::size_t p = 0; p < model.parts.size(); ++p) {
+      const Part& part = model.parts[p];
+      const int npts = points_per_element(part.kind);
+      for (std::size_t e = 0; e < part.element_count(); ++e)
+        for (int c = 0; c < components; ++c) {
+          double sum = 0;
+          for (int q = 0; q < npts; ++q) sum += per_point(p, part, npts * e + q, c);
+          f.values.push_back(sum / npts);
+        }
+    }
+    grid.cell_fields.push_back(std::move(f));
+  };
+  auto tensor = [](const std::vector<double>& a) {
+    return [&a](std::size_t, const Part&, std::size_t q, int c) { return a[kTensorSize * q + c]; };
+  };
+  if (wants(fields, "stress"))
+    cell_field("stress", 6, [](std::size_t, const Part& part, std::size_t q, int c) {
+      return part.stress[kTensorSize * q + c];
+    });
+  if (wants(fields, "strain"))
+    cell_field("strain", 6, [](std::size_t, const Part& part, std::size_t q, int c) {
+      return part.strain[kTensorSize * q + c];
+    });
+  (void)tensor;
+  if (wants(fields, "von_mises"))
+    cell_field("von_mises", 1, [](std::size_t, const Part& part, std::size_t q, int) {
+      const double* s = &part.stress[kTensorSize * q];
+      const double j2 = ((s[xx] - s[yy]) * (s[xx] - s[yy]) + (s[yy] - s[zz]) * (s[yy] - s[zz]) +
+                         (s[zz] - s[xx]) * (s[zz] - s[xx])) / 6.0 +
+                        s[xy] * s[xy] + s[yz] * s[yz] + s[zx] * s[zx];
+      return std::sqrt(3.0 * j2);
+    });
+  if (wants(fields, "pressure"))
+    cell_field("pressure", 1, [](std::size_t, const Part& part, std::size_t q, int) {
+      const double* s = &part.stress[kTensorSize * q];
+      return -(s[xx] + s[yy] + s[zz]) / 3.0;
+    });
+  if (wants(fields, "temperature"))
+    cell_field("temperature", 1, [](std::size_t, const Part& part, std::size_t q, int) {
+      return part.temperature[q];
+    });
+  if (wants(fields, "part"))
+    cell_field("part", 1, [](std::size_t p, const Part&, std::size_t, int) { return static_cast<double>(p); });
+  if (wants(fields, "state")) {
+    // One field per history variable name; zero in parts whose material lacks it.
+    std::vector<std::string> names;
+    for (const auto& part : model.parts)
+      for (const auto& n : materials[part.material]->state_names())
+        if (std::find(names.begin(), names.end(), n) == names.end()) names.push_back(n);
+    for (const auto& name : names) {
+      cell_field(name.c_str(), 1, [&](std::size_t, const Part& part, std::size_t q, int) {
+        const auto own = materials[part.material]->state_names();
+        const auto it = std::find(own.begin(), own.end(), name);
+        if (it == own.end()) return 0.0;
+        return part.state[own.size() * q + static_cast<std::size_t>(it - own.begin())];
+      });
+    }
+  }
+  grid.field_data.push_back({"TimeValue", 1, {time}});
+  return grid;
+}
+
+}  // namespace shard

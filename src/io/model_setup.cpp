@@ -1,0 +1,221 @@
+#include "io/model_setup.hpp"
+
+#include <algorithm>
+#include <map>
+#include <sstream>
+
+#include "core/error.hpp"
+#include "solver/setup.hpp"
+
+namespace shard {
+
+MeshData load_scenario_mesh(const Scenario& sc) {
+  GmshOptions options;
+  options.scale = sc.mesh_unit;
+  options.mesh_size = sc.mesh_size > 0 ? sc.mesh_size / sc.mesh_unit : 0.0;
+  options.dimension = sc.dim();
+  try {
+    return load_gmsh_mesh(sc.mesh_file, options);
+  } catch (const InputError& e) {
+    // Keep Gmsh's reason, and point at the scenario key that named the file.
+    throw InputError(sc.file.string(), sc.mesh_line, "mesh.file", e.what());
+  }
+}
+
+namespace {
+
+std::string group_list(const MeshData& mesh, int dim) {
+  std::string s;
+  for (const auto& g : mesh.groups)
+    if (dim < 0 || g.dim == dim) s += (s.empty() ? "" : ", ") + g.name;
+  return s.empty() ? "(none)" : s;
+}
+
+const MeshGroup& find_group(const Scenario& sc, const MeshData& mesh, const std::string& name,
+                            int line, const std::string& key, int wanted_dim) {
+  const MeshGroup* found = nullptr;
+  for (const auto& g : mesh.groups)
+    if (g.name == name && (wanted_dim < 0 || g.dim == wanted_dim)) found = found ? found : &g;
+  if (found) return *found;
+  std::vector<std::string> names;
+  for (const auto& g : mesh.groups)
+    if (wanted_dim < 0 || g.dim == wanted_dim) names.push_back(g.name);
+  std::string reason;
+  if (mesh.find_group(name)) {
+    reason = "physical group '" + name + "' has dimension " + std::to_string(mesh.find_group(name)->dim) +
+             ", expected " + std::to_string(wanted_dim);
+  } else {
+    reason = "the mesh '" + sc.mesh_file.filename().string() + "' has no physical group '" + name + "'";
+    const std::string close = closest_match(name, names);
+    if (!close.empty()) reason += " (did you mean '" + close + "'?)";
+  }
+  reason += "; groups of that dimension: " + group_list(mesh, wanted_dim);
+  throw InputError(sc.file.string(), line, key, reason);
+}
+
+}  // namespace
+
+Simulation build_simulation(Scenario& sc, const MeshData& mesh) {
+  Simulation sim;
+  Model& model = sim.model;
+  const int dim = sc.dim();
+  const std::string file = sc.file.string();
+  model.formulation = sc.formulation;
+  model.thickness = sc.thickness;
+  model.nodes.dim = dim;
+
+  for (const auto& m : sc.materials)
+    sim.materials.push_back(MaterialRegistry::find(m.model)->create(m.name, m.values));
+
+  // Parts: elements from the physical groups, in mesh node numbering for now.
+  std::vector<char> used(mesh.node_count(), 0);
+  for (const auto& pin : sc.parts) {
+    const std::string key = "parts." + pin.name + ".group";
+    const MeshGroup& group = find_group(sc, mesh, pin.group, pin.line, key, dim);
+    if (group.blocks.size() != 1) {
+      throw InputError(file, pin.line, key,
+                       "physical group '" + pin.group +
+                           "' mixes cell types; a part holds one element type (split it into "
+                           "several physical groups and parts)");
+    }
+    const CellBlock& block = group.blocks[0];
+    ElementKind kind;
+    switch (block.type) {
+      case CellType::tri3: kind = ElementKind::tri3; break;
+      case CellType::tet4: kind = ElementKind::tet4; break;
+      case CellType::hex8: kind = ElementKind::hex8_reduced; break;
+      default:
+        throw InputError(file, pin.line, key,
+                         "physical group '" + pin.group +
+                             "' is meshed with quadrilaterals, which shard does not support in 2D; "
+                             "remove 'Recombine' from the .geo to mesh it with triangles");
+    }
+    if (pin.element) {
+      const bool hex_cells = block.type == CellType::hex8;
+      const bool hex_element = *pin.element == ElementKind::hex8 || *pin.element == ElementKind::hex8_reduced;
+      if (hex_cells != hex_element || (!hex_cells && *pin.element != kind))
+        throw InputError(file, pin.line, "parts." + pin.name + ".element",
+                         std::string("element '") + name_of(*pin.element) + "' does not fit the cells of group '" +
+                             pin.group + "' (" + name_of(kind) + " cells)");
+      kind = *pin.element;
+    }
+    sc.resolved["parts"][pin.name]["element"] = name_of(kind);
+    Part part;
+    part.name = pin.name;
+    part.kind = kind;
+    part.hourglass_coefficient = pin.hourglass_coefficient;
+    for (std::size_t m = 0; m < sc.materials.size(); ++m)
+      if (sc.materials[m].name == pin.material) part.material = static_cast<int>(m);
+    part.connectivity = block.connectivity;
+    for (auto n : part.connectivity) used[n] = 1;
+    model.parts.push_back(std::move(part));
+  }
+
+  // Keep the nodes of the parts' elements only, in mesh order.
+  std::vector<std::int32_t> renumber(mesh.node_count(), -1);
+  std::int32_t count = 0;
+  for (std::size_t i = 0; i < mesh.node_count(); ++i)
+    if (used[i]) renumber[i] = count++;
+  model.nodes.resize(static_cast<std::size_t>(count));
+  for (std::size_t i = 0; i < mesh.node_count(); ++i)
+    if (used[i])
+      for (int k = 0; k < dim; ++k) model.nodes.x0[dim * renumber[i] + k] = mesh.coordinates[3 * i + k];
+  model.nodes.x = model.nodes.x0;
+  for (auto& part : model.parts) {
+    for (auto& n : part.connectivity) n = renumber[n];
+  }
+  if (sc.formulation == Formulation::axisymmetric) {
+    for (std::size_t i = 0; i < model.nodes.count(); ++i)
+      if (model.nodes.x0[2 * i] < -1e-12) {
+        std::ostringstream out;
+        out << "axisymmetric models lie at r = x >= 0; node at (" << model.nodes.x0[2 * i] << ", "
+            << model.nodes.x0[2 * i + 1] << ") has x < 0";
+        throw InputError(file, sc.mesh_line, "mesh.file", out.str());
+      }
+  }
+  for (std::size_t p = 0; p < model.parts.size(); ++p)
+    prepare_part(model.parts[p], *sim.materials[model.parts[p].material], model.nodes.count(),
+                 sc.initial_temperature);
+
+  // Node sets (and facet sets for boundary groups) of every physical group, on the kept nodes.
+  auto node_set_of = [&](const MeshGroup& g, int line, const std::string& key) -> const NodeSet& {
+    if (const NodeSet* s = model.find_node_set(g.name)) return *s;
+    NodeSet s;
+    s.name = g.name;
+    for (const auto& b : g.blocks)
+      for (auto n : b.connectivity) {
+        if (renumber[n] < 0)
+          throw InputError(file, line, key,
+                           "physical group '" + g.name +
+                               "' has nodes that belong to no part (a boundary condition or load "
+                               "must act on the boundary of a part)");
+        s.nodes.push_back(renumber[n]);
+      }
+    std::sort(s.nodes.begin(), s.nodes.end());
+    s.nodes.erase(std::unique(s.nodes.begin(), s.nodes.end()), s.nodes.end());
+    model.node_sets.push_back(std::move(s));
+    return model.node_sets.back();
+  };
+
+  // Initial velocities.
+  for (const auto& ic : sc.initial_velocities) {
+    for (const auto& part : model.parts)
+      if (part.name == ic.part)
+        for (auto n : part.connectivity)
+          for (int k = 0; k < dim; ++k) model.nodes.v[dim * n + k] = ic.velocity[k];
+  }
+
+  // Boundary conditions: one constraint per (node, component); a later entry overrides.
+  std::map<std::pair<std::int32_t, int>, int> constraint_table;
+  for (std::size_t i = 0; i < sc.boundary_conditions.size(); ++i) {
+    const auto& bc = sc.boundary_conditions[i];
+    const std::string key = "boundary_conditions[" + std::to_string(i + 1) + "].group";
+    const MeshGroup& g = find_group(sc, mesh, bc.group, bc.line, key, -1);
+    const NodeSet& set = node_set_of(g, bc.line, key);
+    for (int k = 0; k < dim; ++k) {
+      if (!bc.velocity[k]) continue;
+      sim.loads.tables.push_back(*bc.velocity[k]);
+      const int table = static_cast<int>(sim.loads.tables.size()) - 1;
+      for (auto n : set.nodes) constraint_table[{n, k}] = table;
+    }
+  }
+  for (const auto& [dof, table] : constraint_table)
+    sim.loads.constraints.push_back({dof.first, dof.second, table});
+
+  // Pressure loads on boundary facets.
+  for (std::size_t i = 0; i < sc.pressures.size(); ++i) {
+    const auto& p = sc.pressures[i];
+    const std::string key = "loads[" + std::to_string(i + 1) + "].group";
+    const MeshGroup& g = find_group(sc, mesh, p.group, p.line, key, dim - 1);
+    node_set_of(g, p.line, key);
+    FacetSet fs;
+    fs.name = g.name;
+    for (const auto& b : g.blocks) {
+      const int npf = nodes_per_cell(b.type);
+      if (!fs.nodes.empty() && npf != fs.nodes_per_facet)
+        throw InputError(file, p.line, key, "group '" + g.name + "' mixes triangles and quadrilaterals; split it");
+      fs.nodes_per_facet = npf;
+      for (auto n : b.connectivity) fs.nodes.push_back(renumber[n]);
+    }
+    try {
+      orient_facets_outward(model, fs);
+    } catch (const std::runtime_error& e) {
+      throw InputError(file, p.line, key, e.what());
+    }
+    model.facet_sets.push_back(std::move(fs));
+    sim.loads.tables.push_back(p.pressure);
+    sim.loads.pressures.push_back({static_cast<int>(model.facet_sets.size()) - 1,
+                                   static_cast<int>(sim.loads.tables.size()) - 1});
+  }
+
+  SolverSettings& s = sim.settings;
+  s.end_time = sc.end_time;
+  s.time_step_safety = sc.time_step_safety;
+  s.q_linear = sc.bulk_viscosity_linear;
+  s.q_quadratic = sc.bulk_viscosity_quadratic;
+  s.mass_damping = sc.mass_damping;
+  s.max_time_step = sc.max_time_step;
+  return sim;
+}
+
+}  // namespace shard

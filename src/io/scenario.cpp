@@ -1,0 +1,727 @@
+#include "io/scenario.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include "core/error.hpp"
+#include "core/units.hpp"
+#include "material/material.hpp"
+
+namespace shard {
+
+// ---------------------------------------------------------------------------------------------
+// The schema: every key, declared once.
+// ---------------------------------------------------------------------------------------------
+namespace {
+
+const std::vector<std::string> kFieldNames = {"displacement", "velocity", "stress",      "strain",
+                                              "von_mises",    "pressure", "temperature", "state",
+                                              "part"};
+
+KeyList top_keys() {
+  KeyList k;
+  k.add("title", ValueKind::text, "a line describing the scenario").defaults_to("\"\"");
+  k.add("analysis", ValueKind::section, "formulation, end time, time step, viscosity, damping")
+      .must_be_given();
+  k.add("mesh", ValueKind::section, "the Gmsh geometry or mesh file").must_be_given();
+  k.add("materials", ValueKind::section, "named materials: `<name>: {model: ..., ...}`")
+      .must_be_given();
+  k.add("parts", ValueKind::section,
+        "named parts: a physical group of the mesh + a material + an element formulation")
+      .must_be_given();
+  k.add("initial_conditions", ValueKind::list, "initial velocity per part").defaults_to("[]");
+  k.add("boundary_conditions", ValueKind::list,
+        "fixed, symmetry and prescribed-velocity conditions on physical groups")
+      .defaults_to("[]");
+  k.add("loads", ValueKind::list, "pressure on boundary groups").defaults_to("[]");
+  k.add("output", ValueKind::section, "frames, history, checkpoints").defaults_to("{}");
+  return k;
+}
+
+KeyList analysis_keys() {
+  KeyList k;
+  k.choice("formulation", {"plane_strain", "plane_stress", "axisymmetric", "3d"},
+           "idealisation: 2D plane strain / plane stress (x, y), axisymmetric (x = r, y = z), or 3D")
+      .must_be_given();
+  k.quantity("end_time", dim::time, "simulated time to run").above(0).must_be_given();
+  k.quantity("time_step_safety", dim::none, "fraction of the stable time step used")
+      .above(0)
+      .at_most(1)
+      .defaults_to("0.9");
+  k.quantity("max_time_step", dim::time, "upper limit on the time step (0: none)")
+      .at_least(0)
+      .defaults_to("0");
+  k.quantity("thickness", dim::length, "out-of-plane thickness (plane strain / plane stress)")
+      .above(0)
+      .defaults_to("1 m");
+  k.quantity("bulk_viscosity_linear", dim::none, "linear bulk viscosity coefficient C_l")
+      .at_least(0)
+      .at_most(1)
+      .defaults_to("0.06");
+  k.quantity("bulk_viscosity_quadratic", dim::none, "quadratic bulk viscosity coefficient C_q")
+      .at_least(0)
+      .at_most(4)
+      .defaults_to("1.5");
+  k.quantity("mass_damping", dim::rate,
+             "mass-proportional damping α (force −α m v), for quasi-static runs")
+      .at_least(0)
+      .defaults_to("0");
+  k.quantity("initial_temperature", dim::temperature, "initial temperature of every part")
+      .above(0)
+      .defaults_to("293.15 K");
+  k.add("max_steps", ValueKind::integer, "stop with an error after this many steps (0: no limit)")
+      .at_least(0)
+      .defaults_to("0");
+  return k;
+}
+
+KeyList mesh_keys() {
+  KeyList k;
+  k.add("file", ValueKind::text,
+        "Gmsh file, relative to the scenario: .geo (meshed at load time) or .msh")
+      .must_be_given();
+  k.quantity("size", dim::length, "element size for meshing a .geo (Mesh.MeshSizeMax)").above(0);
+  k.quantity("unit", dim::length, "length of one coordinate unit of the file (e.g. 1 mm)")
+      .above(0)
+      .defaults_to("1 m");
+  return k;
+}
+
+KeyList part_keys() {
+  KeyList k;
+  k.add("group", ValueKind::text, "the Gmsh physical group (surface in 2D, volume in 3D)")
+      .defaults_to("the part's name");
+  k.add("material", ValueKind::text, "name of a material in `materials`").must_be_given();
+  k.choice("element", {"tri3", "tet4", "hex8", "hex8_reduced"},
+           "element formulation (default from the mesh: tri3, tet4, or hex8_reduced for hexahedra)");
+  k.quantity("hourglass_coefficient", dim::none,
+             "viscous hourglass control κ (hex8_reduced)")
+      .at_least(0)
+      .at_most(0.5)
+      .defaults_to("0.1");
+  return k;
+}
+
+KeyList initial_condition_keys() {
+  KeyList k;
+  k.add("part", ValueKind::text, "name of a part").must_be_given();
+  KeySpec& v = k.add("velocity", ValueKind::vector, "initial velocity [vx, vy(, vz)]");
+  v.dimension = dim::velocity;
+  v.must_be_given();
+  return k;
+}
+
+KeyList boundary_condition_keys() {
+  KeyList k;
+  k.add("group", ValueKind::text, "a Gmsh physical group (any dimension)").must_be_given();
+  k.add("fix", ValueKind::list, "components held at zero velocity, e.g. [x, y]");
+  k.choice("symmetry", {"x", "y", "z"},
+           "symmetry plane normal to this axis (its normal velocity is zero)");
+  k.add("velocity", ValueKind::section,
+        "prescribed velocity per component: {x: 10 m/s} or {y: [[0, 0], [1 us, -5 m/s]]}");
+  return k;
+}
+
+KeyList velocity_component_keys() {
+  KeyList k;
+  for (const char* c : {"x", "y", "z"}) {
+    KeySpec& s = k.add(c, ValueKind::table, std::string("velocity along ") + c);
+    s.dimension = dim::velocity;
+  }
+  return k;
+}
+
+KeyList load_keys() {
+  KeyList k;
+  k.add("group", ValueKind::text, "a boundary physical group (curves in 2D, surfaces in 3D)")
+      .must_be_given();
+  KeySpec& p = k.add("pressure", ValueKind::table, "pressure, positive pushing into the body");
+  p.dimension = dim::pressure;
+  p.must_be_given();
+  return k;
+}
+
+KeyList output_keys() {
+  KeyList k;
+  k.quantity("frame_interval", dim::time, "time between VTU frames").above(0).defaults_to(
+      "end_time / 20");
+  k.quantity("history_interval", dim::time, "time between history.csv rows (0: every step)")
+      .at_least(0)
+      .defaults_to("end_time / 1000");
+  k.quantity("checkpoint_interval", dim::time,
+             "time between checkpoints (0: only at the end)")
+      .at_least(0)
+      .defaults_to("end_time / 10");
+  k.quantity("log_interval", dim::time,
+             "wall-clock seconds between progress lines when the output is not a terminal")
+      .above(0)
+      .defaults_to("10 s");
+  std::string all;
+  for (const auto& f : kFieldNames) all += (all.empty() ? "" : ", ") + f;
+  k.add("fields", ValueKind::list, "frame fields, any of: " + all).defaults_to("all");
+  return k;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Reading
+// ---------------------------------------------------------------------------------------------
+
+int line_of(const YAML::Node& node) { return node.IsDefined() ? node.Mark().line + 1 : 0; }
+
+/// One map section of the scenario under validation.
+class Section {
+ public:
+  Section(const YAML::Node& node, const std::string& file, std::string path, const KeyList& keys,
+          YAML::Node resolved, int parent_line)
+      : node_(node), file_(file), path_(std::move(path)), keys_(keys), resolved_(resolved),
+        line_(node.IsDefined() && !node.IsNull() ? line_of(node) : parent_line) {
+    if (node_.IsDefined() && !node_.IsNull() && !node_.IsMap())
+      throw InputError(file_, line_, path_, "expected a map of keys (key: value), got " + shape(node_));
+    if (node_.IsMap()) {
+      for (auto it = node_.begin(); it != node_.end(); ++it) {
+        const std::string key = it->first.as<std::string>();
+        key_lines_[key] = line_of(it->first);
+        if (!keys_.find(key)) {
+          std::string reason = "unknown key '" + key + "'";
+          const std::string close = closest_match(key, keys_.names());
+          if (!close.empty()) reason += " (did you mean '" + close + "'?)";
+          reason += "; keys here: ";
+          const auto names = keys_.names();
+          for (std::size_t i = 0; i < names.size(); ++i) reason += (i ? ", " : "") + names[i];
+          throw InputError(file_, line_of(it->first), key_path(key), reason);
+        }
+      }
+    }
+    for (const auto& spec : keys_.keys())
+      if (spec.required && !has(spec.name))
+        throw InputError(file_, line_, key_path(spec.name),
+                         "missing required key '" + spec.name + "' (" + spec.doc + "; " +
+                             spec.type_text() + ")");
+  }
+
+  static std::string shape(const YAML::Node& n) {
+    if (n.IsMap()) return "a map";
+    if (n.IsSequence()) return "a list";
+    if (n.IsScalar()) return "'" + n.Scalar() + "'";
+    return "nothing";
+  }
+
+  bool has(const std::string& key) const {
+    return node_.IsMap() && node_[key].IsDefined() && !node_[key].IsNull();
+  }
+  int line() const { return line_; }
+  int line(const std::string& key) const {
+    auto it = key_lines_.find(key);
+    return it == key_lines_.end() ? line_ : it->second;
+  }
+  std::string key_path(const std::string& key) const {
+    return path_.empty() ? key : path_ + "." + key;
+  }
+  YAML::Node value(const std::string& key) const { return node_[key]; }
+  YAML::Node resolved() const { return resolved_; }
+  const std::string& file() const { return file_; }
+  const std::string& path() const { return path_; }
+
+  [[noreturn]] void fail(const std::string& key, const std::string& reason) const {
+    throw InputError(file_, line(key), key_path(key), reason);
+  }
+
+  const KeySpec& spec(const std::string& key) const {
+    const KeySpec* s = keys_.find(key);
+    SHARD_ASSERT(s, "undeclared key " << key);
+    return *s;
+  }
+
+  /// A quantity: given, or the declared default (`fallback` when the default is derived).
+  double number(const std::string& key, std::optional<double> fallback = {}) {
+    const KeySpec& s = spec(key);
+    double v;
+    if (has(key)) {
+      v = parse_number(value(key), s, key);
+    } else if (fallback) {
+      v = *fallback;
+    } else {
+      SHARD_ASSERT(s.default_text, "key " << key << " has no default");
+      v = parse_quantity_as(*s.default_text, s.dimension);
+    }
+    resolved_[key] = v;
+    return v;
+  }
+
+  std::optional<double> optional_number(const std::string& key) {
+    if (!has(key)) return std::nullopt;
+    return number(key);
+  }
+
+  double parse_number(const YAML::Node& n, const KeySpec& s, const std::string& key) const {
+    if (!n.IsScalar()) fail(key, "expected a " + s.type_text() + ", got " + shape(n));
+    double v;
+    try {
+      v = parse_quantity_as(n.Scalar(), s.dimension);
+    } catch (const std::invalid_argument& e) {
+      fail(key, e.what());
+    }
+    if (!s.in_range(v))
+      fail(key, "value " + n.Scalar() + " is out of range: must be " + s.range_text() +
+                    (s.dimension == dim::none ? "" : " (in " + s.dimension.si_unit() + ")"));
+    return v;
+  }
+
+  std::int64_t integer(const std::string& key) {
+    const KeySpec& s = spec(key);
+    std::string text = has(key) ? value(key).Scalar() : *s.default_text;
+    if (has(key) && !value(key).IsScalar()) fail(key, "expected an integer, got " + shape(value(key)));
+    std::int64_t v = 0;
+    std::size_t used = 0;
+    try {
+      v = std::stoll(text, &used);
+    } catch (...) {
+      used = 0;
+    }
+    if (used != text.size() || text.empty()) fail(key, "expected an integer, got '" + text + "'");
+    if (!s.in_range(static_cast<double>(v)))
+      fail(key, "value " + text + " is out of range: must be " + s.range_text());
+    resolved_[key] = v;
+    return v;
+  }
+
+  std::string text(const std::string& key, const std::string& fallback = "") {
+    std::string v = fallback;
+    if (has(key)) {
+      if (!value(key).IsScalar()) fail(key, "expected text, got " + shape(value(key)));
+      v = value(key).Scalar();
+    }
+    resolved_[key] = v;
+    return v;
+  }
+
+  std::optional<std::string> choice(const std::string& key) {
+    const KeySpec& s = spec(key);
+    if (!has(key)) return std::nullopt;
+    if (!value(key).IsScalar()) fail(key, "expected " + s.type_text() + ", got " + shape(value(key)));
+    const std::string v = value(key).Scalar();
+    if (std::find(s.choices.begin(), s.choices.end(), v) == s.choices.end()) {
+      std::string reason = "'" + v + "' is not " + s.type_text();
+      const std::string close = closest_match(v, s.choices);
+      if (!close.empty()) reason += " (did you mean '" + close + "'?)";
+      fail(key, reason);
+    }
+    resolved_[key] = v;
+    return v;
+  }
+
+  TimeTable table(const std::string& key) {
+    const KeySpec& s = spec(key);
+    const YAML::Node n = value(key);
+    TimeTable t;
+    if (n.IsScalar()) {
+      t = TimeTable::constant(parse_number(n, s, key));
+      resolved_[key] = t.values[0];
+      return t;
+    }
+    if (!n.IsSequence() || n.size() == 0)
+      fail(key, "expected " + s.type_text() + ", got " + shape(n));
+    KeySpec time_spec;
+    time_spec.dimension = dim::time;
+    time_spec.name = key;
+    YAML::Node out(YAML::NodeType::Sequence);
+    for (std::size_t i = 0; i < n.size(); ++i) {
+      const YAML::Node row = n[i];
+      if (!row.IsSequence() || row.size() != 2)
+        throw InputError(file_, line_of(row), key_path(key),
+                         "each row of a time table is [time, value], got " + shape(row));
+      const double time = parse_number(row[0], time_spec, key);
+      const double value = parse_number(row[1], s, key);
+      if (!t.times.empty() && !(time > t.times.back()))
+        throw InputError(file_, line_of(row), key_path(key),
+                         "the times of a time table must increase (row " + std::to_string(i + 1) + ")");
+      t.times.push_back(time);
+      t.values.push_back(value);
+      YAML::Node r(YAML::NodeType::Sequence);
+      r.SetStyle(YAML::EmitterStyle::Flow);
+      r.push_back(time);
+      r.push_back(value);
+      out.push_back(r);
+    }
+    resolved_[key] = out;
+    return t;
+  }
+
+  std::vector<double> vector(const std::string& key, std::size_t size) {
+    const KeySpec& s = spec(key);
+    const YAML::Node n = value(key);
+    if (!n.IsSequence() || n.size() != size)
+      fail(key, "expected a list of " + std::to_string(size) + " " + s.dimension.name() +
+                    " components (e.g. [" + s.dimension.example() + ", 0" +
+                    (size == 3 ? ", 0" : "") + "]), got " + shape(n));
+    std::vector<double> v;
+    YAML::Node out(YAML::NodeType::Sequence);
+    out.SetStyle(YAML::EmitterStyle::Flow);
+    for (std::size_t i = 0; i < size; ++i) {
+      v.push_back(parse_number(n[i], s, key));
+      out.push_back(v.back());
+    }
+    resolved_[key] = out;
+    return v;
+  }
+
+ private:
+  YAML::Node node_;
+  std::string file_;
+  std::string path_;
+  const KeyList& keys_;
+  YAML::Node resolved_;
+  int line_;
+  std::map<std::string, int> key_lines_;
+};
+
+Formulation formulation_from(const std::string& s) {
+  if (s == "plane_strain") return Formulation::plane_strain;
+  if (s == "plane_stress") return Formulation::plane_stress;
+  if (s == "axisymmetric") return Formulation::axisymmetric;
+  return Formulation::three_d;
+}
+
+ElementKind element_from(const std::string& s) {
+  if (s == "tri3") return ElementKind::tri3;
+  if (s == "tet4") return ElementKind::tet4;
+  if (s == "hex8") return ElementKind::hex8;
+  return ElementKind::hex8_reduced;
+}
+
+int component_index(const std::string& c) { return c == "x" ? 0 : c == "y" ? 1 : c == "z" ? 2 : -1; }
+
+}  // namespace
+
+Scenario read_scenario(const std::filesystem::path& path) {
+  const std::string file = path.string();
+  if (!std::filesystem::exists(path))
+    throw InputError(file, 0, "", "scenario file not found");
+  YAML::Node root;
+  try {
+    root = YAML::LoadFile(file);
+  } catch (const YAML::ParserException& e) {
+    throw InputError(file, e.mark.line + 1, "", "not valid YAML: " + e.msg);
+  } catch (const YAML::BadFile&) {
+    throw InputError(file, 0, "", "cannot read the scenario file");
+  }
+  if (!root.IsMap()) throw InputError(file, 1, "", "a scenario is a YAML map of sections (analysis:, mesh:, ...)");
+
+  Scenario sc;
+  sc.file = std::filesystem::absolute(path);
+  sc.resolved = YAML::Node(YAML::NodeType::Map);
+  const KeyList top_list = top_keys();
+  Section top(root, file, "", top_list, sc.resolved, 1);
+  sc.title = top.text("title");
+
+  // analysis
+  const KeyList a_keys = analysis_keys();
+  Section analysis(top.value("analysis"), file, "analysis", a_keys, sc.resolved["analysis"], top.line("analysis"));
+  sc.formulation = formulation_from(*analysis.choice("formulation"));
+  sc.end_time = analysis.number("end_time");
+  sc.time_step_safety = analysis.number("time_step_safety");
+  sc.max_time_step = analysis.number("max_time_step");
+  sc.thickness = analysis.number("thickness");
+  sc.bulk_viscosity_linear = analysis.number("bulk_viscosity_linear");
+  sc.bulk_viscosity_quadratic = analysis.number("bulk_viscosity_quadratic");
+  sc.mass_damping = analysis.number("mass_damping");
+  sc.initial_temperature = analysis.number("initial_temperature");
+  sc.max_steps = analysis.integer("max_steps");
+  const std::size_t dim = static_cast<std::size_t>(sc.dim());
+  const std::vector<std::string> components =
+      dim == 3 ? std::vector<std::string>{"x", "y", "z"} : std::vector<std::string>{"x", "y"};
+
+  // mesh
+  const KeyList m_keys = mesh_keys();
+  Section mesh(top.value("mesh"), file, "mesh", m_keys, sc.resolved["mesh"], top.line("mesh"));
+  sc.mesh_line = mesh.line("file");
+  std::filesystem::path mesh_file = mesh.text("file");
+  if (mesh_file.is_relative()) mesh_file = sc.file.parent_path() / mesh_file;
+  sc.mesh_file = mesh_file.lexically_normal();
+  sc.resolved["mesh"]["file"] = sc.mesh_file.string();
+  if (!std::filesystem::exists(sc.mesh_file))
+    mesh.fail("file", "mesh file '" + sc.mesh_file.string() + "' not found");
+  sc.mesh_unit = mesh.number("unit");
+  sc.mesh_size = mesh.optional_number("size").value_or(0.0);
+
+  // materials
+  const YAML::Node materials = top.value("materials");
+  if (!materials.IsMap() || materials.size() == 0)
+    top.fail("materials", "expected a map of named materials, e.g.\n  materials:\n    steel: {model: linear_elastic, density: 7830 kg/m^3, youngs_modulus: 210 GPa, poissons_ratio: 0.3}");
+  for (auto it = materials.begin(); it != materials.end(); ++it) {
+    MaterialInput mat;
+    mat.name = it->first.as<std::string>();
+    mat.line = line_of(it->first);
+    const YAML::Node body = it->second;
+    const std::string path = "materials." + mat.name;
+    if (!body.IsMap()) throw InputError(file, mat.line, path, "expected a map with 'model:' and the model's parameters");
+    if (!body["model"].IsDefined())
+      throw InputError(file, mat.line, path + ".model",
+                       "missing required key 'model' (one of: " + [] {
+                         std::string s;
+                         for (const auto& n : MaterialRegistry::names()) s += (s.empty() ? "" : ", ") + n;
+                         return s;
+                       }() + ")");
+    mat.model = body["model"].Scalar();
+    const MaterialModelInfo* info = MaterialRegistry::find(mat.model);
+    if (!info) {
+      std::string reason = "unknown material model '" + mat.model + "'";
+      const std::string close = closest_match(mat.model, MaterialRegistry::names());
+      if (!close.empty()) reason += " (did you mean '" + close + "'?)";
+      throw InputError(file, line_of(body["model"]), path + ".model", reason);
+    }
+    const KeyList keys = material_keys(*info);
+    Section s(body, file, path, keys, sc.resolved["materials"][mat.name], mat.line);
+    s.choice("model");
+    for (const auto& spec : keys.keys()) {
+      if (spec.name == "model") continue;
+      if (spec.kind == ValueKind::number) {
+        if (s.has(spec.name) || spec.default_text) mat.values.numbers[spec.name] = s.number(spec.name);
+      } else if (s.has(spec.name)) {
+        mat.values.texts[spec.name] = s.text(spec.name);
+      }
+    }
+    try {
+      (void)info->create(mat.name, mat.values);  // the model's own consistency checks
+    } catch (const ParameterError& e) {
+      s.fail(e.key(), e.what());
+    }
+    sc.materials.push_back(std::move(mat));
+  }
+  std::vector<std::string> material_names;
+  for (const auto& m : sc.materials) material_names.push_back(m.name);
+
+  // parts
+  const YAML::Node parts = top.value("parts");
+  if (!parts.IsMap() || parts.size() == 0)
+    top.fail("parts", "expected a map of named parts, e.g.\n  parts:\n    plate: {group: plate, material: alumina, element: tri3}");
+  const KeyList p_keys = part_keys();
+  for (auto it = parts.begin(); it != parts.end(); ++it) {
+    PartInput part;
+    part.name = it->first.as<std::string>();
+    part.line = line_of(it->first);
+    Section s(it->second, file, "parts." + part.name, p_keys, sc.resolved["parts"][part.name], part.line);
+    part.group = s.text("group", part.name);
+    part.material = s.text("material");
+    if (std::find(material_names.begin(), material_names.end(), part.material) == material_names.end()) {
+      std::string reason = "no material named '" + part.material + "'";
+      const std::string close = closest_match(part.material, material_names);
+      if (!close.empty()) reason += " (did you mean '" + close + "'?)";
+      s.fail("material", reason);
+    }
+    if (auto e = s.choice("element")) {
+      part.element = element_from(*e);
+      const bool planar = part.element == ElementKind::tri3;
+      if (planar != (dim == 2))
+        s.fail("element", std::string("element '") + *e + "' does not fit formulation '" +
+                              name_of(sc.formulation) + "' (2D: tri3; 3D: tet4, hex8, hex8_reduced)");
+    }
+    part.hourglass_coefficient = s.number("hourglass_coefficient");
+    sc.parts.push_back(std::move(part));
+  }
+  std::vector<std::string> part_names;
+  for (const auto& p : sc.parts) part_names.push_back(p.name);
+
+  auto list_of = [&](const std::string& key) {
+    const YAML::Node n = top.value(key);
+    if (!n.IsDefined() || n.IsNull()) return YAML::Node(YAML::NodeType::Sequence);
+    if (!n.IsSequence())
+      top.fail(key, "expected a list (entries starting with '- '), got " + Section::shape(n));
+    return n;
+  };
+
+  // initial conditions
+  const KeyList ic_keys = initial_condition_keys();
+  const YAML::Node ics = list_of("initial_conditions");
+  YAML::Node ic_out(YAML::NodeType::Sequence);
+  for (std::size_t i = 0; i < (ics.IsSequence() ? ics.size() : 0); ++i) {
+    YAML::Node entry_out(YAML::NodeType::Map);
+    Section s(ics[i], file, "initial_conditions[" + std::to_string(i + 1) + "]", ic_keys, entry_out, line_of(ics[i]));
+    InitialVelocityInput ic;
+    ic.line = s.line();
+    ic.part = s.text("part");
+    if (std::find(part_names.begin(), part_names.end(), ic.part) == part_names.end()) {
+      std::string reason = "no part named '" + ic.part + "'";
+      const std::string close = closest_match(ic.part, part_names);
+      if (!close.empty()) reason += " (did you mean '" + close + "'?)";
+      s.fail("part", reason);
+    }
+    const auto v = s.vector("velocity", dim);
+    std::copy(v.begin(), v.end(), ic.velocity.begin());
+    sc.initial_velocities.push_back(ic);
+    ic_out.push_back(entry_out);
+  }
+  sc.resolved["initial_conditions"] = ic_out;
+
+  // boundary conditions
+  const KeyList bc_keys = boundary_condition_keys();
+  const KeyList vc_keys = velocity_component_keys();
+  const YAML::Node bcs = list_of("boundary_conditions");
+  YAML::Node bc_out(YAML::NodeType::Sequence);
+  for (std::size_t i = 0; i < (bcs.IsSequence() ? bcs.size() : 0); ++i) {
+    YAML::Node entry_out(YAML::NodeType::Map);
+    const std::string path = "boundary_conditions[" + std::to_string(i + 1) + "]";
+    Section s(bcs[i], file, path, bc_keys, entry_out, line_of(bcs[i]));
+    BoundaryConditionInput bc;
+    bc.line = s.line();
+    bc.group = s.text("group");
+    bool any = false;
+    if (s.has("fix")) {
+      const YAML::Node fix = s.value("fix");
+      std::vector<std::string> list;
+      if (fix.IsScalar()) list.push_back(fix.Scalar());
+      else if (fix.IsSequence())
+        for (const auto& c : fix) list.push_back(c.IsScalar() ? c.Scalar() : "?");
+      else
+        s.fail("fix", "expected a list of components such as [x, y], got " + Section::shape(fix));
+      if (list.size() == 1 && list[0] == "all") list = components;
+      YAML::Node out(YAML::NodeType::Sequence);
+      out.SetStyle(YAML::EmitterStyle::Flow);
+      for (const auto& c : list) {
+        const int k = component_index(c);
+        if (k < 0 || k >= static_cast<int>(dim))
+          s.fail("fix", "'" + c + "' is not a component of this " + std::to_string(dim) +
+                            "D model (use " + (dim == 3 ? "x, y, z" : "x, y") + ", or all)");
+        bc.velocity[k] = TimeTable::constant(0.0);
+        out.push_back(c);
+      }
+      entry_out["fix"] = out;
+      any = true;
+    }
+    if (auto sym = s.choice("symmetry")) {
+      const int k = component_index(*sym);
+      if (k >= static_cast<int>(dim)) s.fail("symmetry", "a 2D model has no z axis");
+      bc.velocity[k] = TimeTable::constant(0.0);
+      any = true;
+    }
+    if (s.has("velocity")) {
+      Section v(s.value("velocity"), file, path + ".velocity", vc_keys, entry_out["velocity"], s.line("velocity"));
+      for (std::size_t k = 0; k < 3; ++k)
+        if (v.has(components.size() > k ? components[k] : "z")) {
+          if (k >= dim) v.fail("z", "a 2D model has no z component");
+          bc.velocity[k] = v.table(components[k]);
+        }
+      any = true;
+    }
+    if (!any)
+      throw InputError(file, s.line(), path,
+                       "a boundary condition needs 'fix', 'symmetry' or 'velocity'");
+    sc.boundary_conditions.push_back(bc);
+    bc_out.push_back(entry_out);
+  }
+  sc.resolved["boundary_conditions"] = bc_out;
+
+  // loads
+  const KeyList l_keys = load_keys();
+  const YAML::Node loads = list_of("loads");
+  YAML::Node load_out(YAML::NodeType::Sequence);
+  for (std::size_t i = 0; i < (loads.IsSequence() ? loads.size() : 0); ++i) {
+    YAML::Node entry_out(YAML::NodeType::Map);
+    Section s(loads[i], file, "loads[" + std::to_string(i + 1) + "]", l_keys, entry_out, line_of(loads[i]));
+    PressureInput p;
+    p.line = s.line();
+    p.group = s.text("group");
+    p.pressure = s.table("pressure");
+    sc.pressures.push_back(p);
+    load_out.push_back(entry_out);
+  }
+  sc.resolved["loads"] = load_out;
+
+  // output
+  const KeyList o_keys = output_keys();
+  Section out(top.value("output"), file, "output", o_keys, sc.resolved["output"], top.line("output"));
+  sc.output.frame_interval = out.number("frame_interval", sc.end_time / 20);
+  sc.output.history_interval = out.number("history_interval", sc.end_time / 1000);
+  sc.output.checkpoint_interval = out.number("checkpoint_interval", sc.end_time / 10);
+  sc.output.log_interval = out.number("log_interval");
+  if (out.has("fields")) {
+    const YAML::Node f = out.value("fields");
+    if (!f.IsSequence()) out.fail("fields", "expected a list of field names, e.g. [stress, velocity]");
+    YAML::Node fo(YAML::NodeType::Sequence);
+    fo.SetStyle(YAML::EmitterStyle::Flow);
+    for (const auto& name : f) {
+      const std::string n = name.IsScalar() ? name.Scalar() : "?";
+      if (std::find(kFieldNames.begin(), kFieldNames.end(), n) == kFieldNames.end()) {
+        std::string reason = "unknown field '" + n + "'";
+        const std::string close = closest_match(n, kFieldNames);
+        if (!close.empty()) reason += " (did you mean '" + close + "'?)";
+        throw InputError(file, line_of(name), "output.fields", reason);
+      }
+      sc.output.fields.push_back(n);
+      fo.push_back(n);
+    }
+    sc.resolved["output"]["fields"] = fo;
+  } else {
+    sc.output.fields = kFieldNames;
+    YAML::Node fo(YAML::NodeType::Sequence);
+    fo.SetStyle(YAML::EmitterStyle::Flow);
+    for (const auto& n : kFieldNames) fo.push_back(n);
+    sc.resolved["output"]["fields"] = fo;
+  }
+  return sc;
+}
+
+std::vector<SchemaSection> scenario_schema() {
+  return {{"(top level)", "the sections of a scenario file", top_keys()},
+          {"analysis", "what is solved and how", analysis_keys()},
+          {"mesh", "the geometry or mesh (Gmsh)", mesh_keys()},
+          {"parts.<name>", "a part: elements of one physical group with one material", part_keys()},
+          {"initial_conditions[]", "a list entry", initial_condition_keys()},
+          {"boundary_conditions[]", "a list entry", boundary_condition_keys()},
+          {"boundary_conditions[].velocity", "prescribed velocity components", velocity_component_keys()},
+          {"loads[]", "a list entry", load_keys()},
+          {"output", "what is written to the output folder", output_keys()}};
+}
+
+namespace {
+void key_table(std::ostringstream& out, const KeyList& keys) {
+  out << "| key | type | range | default | meaning |\n|---|---|---|---|---|\n";
+  for (const auto& k : keys.keys()) {
+    std::string type = k.type_text();
+    std::replace(type.begin(), type.end(), '|', '/');
+    out << "| `" << k.name << "` | " << type << " | " << k.range_text() << " | "
+        << (k.required ? "**required**" : k.default_text ? "`" + *k.default_text + "`" : "—") << " | "
+        << k.doc << " |\n";
+  }
+  out << "\n";
+}
+}  // namespace
+
+std::string scenario_reference_markdown() {
+  std::ostringstream out;
+  out << "# Scenario reference\n\n"
+         "<!-- Generated by `shard reference` from the key declarations in src/io/scenario.cpp and "
+         "the material models; do not edit by hand (a test checks it is current). -->\n\n"
+         "A scenario is a YAML file. Quantities take units (`370 MPa`, `0.5 mm`, `203 m/s`, "
+         "`20 us`, `7830 kg/m^3`); plain numbers are SI. Time tables are lists of `[time, value]` "
+         "rows, interpolated linearly and held constant beyond their ends. `shard check` validates "
+         "a scenario without running it; `shard run` writes the resolved scenario (every default "
+         "filled in, SI units) to `resolved.yaml` in the output folder.\n\n";
+  for (const auto& section : scenario_schema()) {
+    out << "## `" << section.path << "`\n\n" << section.summary << ".\n\n";
+    key_table(out, section.keys);
+  }
+  out << "## Material models\n\nEvery material has `model` and `density`; the model adds its "
+         "own keys.\n\n";
+  for (const auto& name : MaterialRegistry::names()) {
+    const MaterialModelInfo* info = MaterialRegistry::find(name);
+    out << "### `" << name << "`\n\n" << info->summary << ". Theory: `" << info->theory_note
+        << "`.\n\n";
+    key_table(out, material_keys(*info));
+  }
+  return out.str();
+}
+
+std::string to_yaml_text(const YAML::Node& node) {
+  YAML::Emitter emitter;
+  emitter.SetDoublePrecision(17);
+  emitter << node;
+  return std::string(emitter.c_str()) + "\n";
+}
+
+}  // namespace shard

@@ -1,0 +1,112 @@
+// The scenario file: declared keys, validation with file/line/key errors, and the resolved
+// scenario (every default and derived value filled in, SI units) written next to the outputs.
+// Reference (generated from the same declarations): docs/scenario.md.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <yaml-cpp/yaml.h>
+
+#include "core/parameters.hpp"
+#include "core/time_table.hpp"
+#include "model/model.hpp"
+
+namespace shard {
+
+struct MaterialInput {
+  std::string name;
+  std::string model;
+  ParameterValues values;
+  int line = 0;
+};
+
+struct PartInput {
+  std::string name;
+  std::string group;
+  std::string material;
+  std::optional<ElementKind> element;  ///< absent: chosen from the mesh's cell type
+  double hourglass_coefficient = 0.1;
+  int line = 0;
+};
+
+struct InitialVelocityInput {
+  std::string part;
+  std::array<double, 3> velocity{0, 0, 0};
+  int line = 0;
+};
+
+struct BoundaryConditionInput {
+  std::string group;
+  std::array<std::optional<TimeTable>, 3> velocity;  ///< prescribed (fixed = constant 0)
+  int line = 0;
+};
+
+struct PressureInput {
+  std::string group;
+  TimeTable pressure;
+  int line = 0;
+};
+
+struct OutputSettings {
+  double frame_interval = 0;
+  double history_interval = 0;
+  double checkpoint_interval = 0;
+  double log_interval = 0;  ///< wall seconds between progress lines when not on a terminal
+  std::vector<std::string> fields;
+};
+
+struct Scenario {
+  std::filesystem::path file;
+  std::string title;
+
+  Formulation formulation = Formulation::plane_strain;
+  double end_time = 0;
+  double time_step_safety = 0.9;
+  double max_time_step = 0;
+  double thickness = 1;
+  double bulk_viscosity_linear = 0.06;
+  double bulk_viscosity_quadratic = 1.5;
+  double mass_damping = 0;
+  double initial_temperature = 293.15;
+  std::int64_t max_steps = 0;
+
+  std::filesystem::path mesh_file;  ///< absolute
+  double mesh_size = 0;             ///< m; 0: as the file says
+  double mesh_unit = 1;             ///< m per coordinate unit of the file
+  int mesh_line = 0;
+
+  std::vector<MaterialInput> materials;
+  std::vector<PartInput> parts;
+  std::vector<InitialVelocityInput> initial_velocities;
+  std::vector<BoundaryConditionInput> boundary_conditions;
+  std::vector<PressureInput> pressures;
+  OutputSettings output;
+
+  YAML::Node resolved;  ///< the scenario as resolved (SI, defaults filled in)
+
+  int dim() const { return formulation == Formulation::three_d ? 3 : 2; }
+};
+
+/// Reads and validates a scenario file (not the mesh). Throws InputError.
+Scenario read_scenario(const std::filesystem::path& file);
+
+/// One section of the declared scenario schema (for the generated reference).
+struct SchemaSection {
+  std::string path;     ///< "analysis", "parts.<name>", "boundary_conditions[]", ...
+  std::string summary;
+  KeyList keys;
+};
+std::vector<SchemaSection> scenario_schema();
+
+/// The scenario reference in Markdown, generated from the declarations (docs/scenario.md).
+std::string scenario_reference_markdown();
+
+/// Writes `node` as YAML text.
+std::string to_yaml_text(const YAML::Node& node);
+
+}  // namespace shard

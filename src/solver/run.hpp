@@ -1,0 +1,36 @@
+// The run loop: a scenario from start (or a checkpoint) to its end time, with outputs.
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <string>
+
+#include "io/scenario.hpp"
+
+namespace shard {
+
+struct RunOptions {
+  std::filesystem::path output_dir;
+  int threads = 0;  ///< 0: OpenMP's default
+  bool quiet = false;
+  std::optional<std::filesystem::path> restart;  ///< continue from this checkpoint
+  std::optional<double> until;  ///< stop (with a checkpoint) once the time reaches this
+};
+
+struct RunSummary {
+  std::int64_t steps = 0;
+  double end_time = 0;
+  double wall_seconds = 0;
+  double energy_balance_error = 0;
+};
+
+/// Validates (mesh and model included) before anything is written, then runs. Throws
+/// InputError for bad input (nothing written), RunError for a run that went wrong (outputs up
+/// to the failure are kept, summary.json says why).
+RunSummary run_scenario(const std::filesystem::path& scenario_file, const RunOptions& options);
+
+/// Validation only: reads the scenario, loads the mesh, builds the model. Returns a short
+/// description (nodes, elements, parts, estimated time step and steps).
+std::string check_scenario(const std::filesystem::path& scenario_file);
+
+}  // namespace shard
