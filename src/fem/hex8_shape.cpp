@@ -51,6 +51,12 @@ Hex8Reference make_reference() {
         r.volume_pairs[a][count++] = {b, c, sum > 0 ? 1.0 : -1.0};
       }
     if (count != 9) throw std::logic_error("hex8 volume table is not the expected one");
+    for (int q = 0; q < 9; ++q) {
+      const auto& c = kHex8VolumePairs[a][q];
+      const auto& r2 = r.volume_pairs[a][q];
+      if (c.j != r2.j || c.k != r2.k || c.sign != static_cast<int>(r2.sign))
+        throw std::logic_error("kHex8VolumePairs differs from the integrated volume table");
+    }
   }
   return r;
 }

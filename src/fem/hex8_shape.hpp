@@ -20,12 +20,28 @@ struct Hex8Reference {
 
 const Hex8Reference& hex8_reference();
 
+/// The node pairs of ∂V/∂x_a as compile-time constants (so the kernel unrolls with fixed
+/// indices); hex8_reference() recomputes them by integration and refuses to start if they differ.
+struct Hex8VolumePair {
+  int j, k, sign;
+};
+inline constexpr Hex8VolumePair kHex8VolumePairs[8][9] = {
+    {{1, 2, -1}, {1, 3, -1}, {1, 4, 1}, {1, 5, 1}, {2, 3, -1}, {3, 4, -1}, {3, 7, -1}, {4, 5, -1}, {4, 7, 1}},
+    {{0, 2, 1}, {0, 3, 1}, {0, 4, -1}, {0, 5, -1}, {2, 3, -1}, {2, 5, 1}, {2, 6, 1}, {4, 5, -1}, {5, 6, -1}},
+    {{0, 1, -1}, {0, 3, 1}, {1, 3, 1}, {1, 5, -1}, {1, 6, -1}, {3, 6, 1}, {3, 7, 1}, {5, 6, -1}, {6, 7, -1}},
+    {{0, 1, -1}, {0, 2, -1}, {0, 4, 1}, {0, 7, 1}, {1, 2, -1}, {2, 6, -1}, {2, 7, -1}, {4, 7, 1}, {6, 7, -1}},
+    {{0, 1, 1}, {0, 3, -1}, {0, 5, 1}, {0, 7, -1}, {1, 5, 1}, {3, 7, -1}, {5, 6, 1}, {5, 7, 1}, {6, 7, 1}},
+    {{0, 1, 1}, {0, 4, -1}, {1, 2, 1}, {1, 4, -1}, {1, 6, 1}, {2, 6, 1}, {4, 6, -1}, {4, 7, -1}, {6, 7, 1}},
+    {{1, 2, 1}, {1, 5, -1}, {2, 3, 1}, {2, 5, -1}, {2, 7, 1}, {3, 7, 1}, {4, 5, 1}, {4, 7, -1}, {5, 7, -1}},
+    {{0, 3, -1}, {0, 4, 1}, {2, 3, 1}, {2, 6, -1}, {3, 4, 1}, {3, 6, -1}, {4, 5, 1}, {4, 6, 1}, {5, 6, 1}}
+
+};
+
 /// B[a] = ∂V/∂x_a (exact). B̄ = B/V is the uniform gradient; V = Σ_a x_a B[a][0].
 inline void hex8_volume_gradient(const double x[8][3], double B[8][3]) {
-  const auto& pairs = hex8_reference().volume_pairs;
   for (int a = 0; a < 8; ++a) {
     double bx = 0, by = 0, bz = 0;
-    for (const auto& p : pairs[a]) {
+    for (const auto& p : kHex8VolumePairs[a]) {
       const double* u = x[p.j];
       const double* w = x[p.k];
       bx += p.sign * (u[1] * w[2] - w[1] * u[2]);

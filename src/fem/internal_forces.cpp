@@ -210,13 +210,13 @@ inline void update_point_3d(double L[3][3], double dt, double* de, double* sig, 
   rotate_symmetric(R, eps);
 }
 
-inline double face_area(const double x[][3], int a, int b, int c, int d) {
-  // Half the cross product of the diagonals: exact for a planar quadrilateral.
+inline double face_area_squared(const double x[][3], int a, int b, int c, int d) {
+  // (Half the cross product of the diagonals)²: exact for a planar quadrilateral.
   const double d1[3] = {x[c][0] - x[a][0], x[c][1] - x[a][1], x[c][2] - x[a][2]};
   const double d2[3] = {x[d][0] - x[b][0], x[d][1] - x[b][1], x[d][2] - x[b][2]};
   const double n[3] = {d1[1] * d2[2] - d1[2] * d2[1], d1[2] * d2[0] - d1[0] * d2[2],
                        d1[0] * d2[1] - d1[1] * d2[0]};
-  return 0.5 * std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+  return 0.25 * (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
 }
 
 inline double triangle_area(const double x[][3], int a, int b, int c) {
@@ -229,10 +229,10 @@ inline double triangle_area(const double x[][3], int a, int b, int c) {
 
 inline double hex_length(const double x[8][3], double volume) {
   // LS-DYNA's choice for solids: volume over the largest face area.
-  const double a = std::max({face_area(x, 0, 1, 2, 3), face_area(x, 4, 5, 6, 7),
-                             face_area(x, 0, 1, 5, 4), face_area(x, 1, 2, 6, 5),
-                             face_area(x, 2, 3, 7, 6), face_area(x, 3, 0, 4, 7)});
-  return volume / a;
+  const double a2 = std::max({face_area_squared(x, 0, 1, 2, 3), face_area_squared(x, 4, 5, 6, 7),
+                              face_area_squared(x, 0, 1, 5, 4), face_area_squared(x, 1, 2, 6, 5),
+                              face_area_squared(x, 2, 3, 7, 6), face_area_squared(x, 3, 0, 4, 7)});
+  return volume / std::sqrt(a2);
 }
 
 /// 4-node tetrahedron, constant strain.

@@ -9,6 +9,23 @@
 
 namespace shard {
 
+namespace {
+
+/// The scenario file as the person named it on the command line, so that errors found here read
+/// like those of the scenario reader ("bar.yaml:12: ..."). Scenario::file is absolute: made from
+/// the current directory and the given path, which is recovered when it was relative.
+std::string shown_path(const std::filesystem::path& file) {
+  std::error_code ec;
+  const std::string cwd = std::filesystem::current_path(ec).string();
+  const std::string full = file.string();
+  if (!ec && !cwd.empty() && full.size() > cwd.size() + 1 && full.compare(0, cwd.size(), cwd) == 0 &&
+      full[cwd.size()] == std::filesystem::path::preferred_separator)
+    return full.substr(cwd.size() + 1);
+  return full;
+}
+
+}  // namespace
+
 MeshData load_scenario_mesh(const Scenario& sc) {
   GmshOptions options;
   options.scale = sc.mesh_unit;
@@ -17,12 +34,25 @@ MeshData load_scenario_mesh(const Scenario& sc) {
   try {
     return load_gmsh_mesh(sc.mesh_file, options);
   } catch (const InputError& e) {
-    // Keep Gmsh's reason, and point at the scenario key that named the file.
-    throw InputError(sc.file.string(), sc.mesh_line, "mesh.file", e.what());
+    // Keep the importer's reason (and its line in the mesh file, if any), and point at the
+    // scenario key that named the file.
+    std::string where = e.file().empty() ? std::string("the mesh file") : "mesh file '" + e.file() + "'";
+    if (e.line() > 0) where += " line " + std::to_string(e.line());
+    throw InputError(shown_path(sc.file), sc.mesh_line, "mesh.file",
+                     "problem in " + where + ": " + e.reason());
   }
 }
 
 namespace {
+
+const char* dimension_word(int dim) {
+  switch (dim) {
+    case 0: return "point";
+    case 1: return "curve";
+    case 2: return "surface";
+    default: return "volume";
+  }
+}
 
 std::string group_list(const MeshData& mesh, int dim) {
   std::string s;
@@ -42,15 +72,19 @@ const MeshGroup& find_group(const Scenario& sc, const MeshData& mesh, const std:
     if (wanted_dim < 0 || g.dim == wanted_dim) names.push_back(g.name);
   std::string reason;
   if (mesh.find_group(name)) {
-    reason = "physical group '" + name + "' has dimension " + std::to_string(mesh.find_group(name)->dim) +
-             ", expected " + std::to_string(wanted_dim);
+    const int found_dim = mesh.find_group(name)->dim;
+    reason = "physical group '" + name + "' is a " + dimension_word(found_dim) + " (dimension " +
+             std::to_string(found_dim) + "), but this needs a " + dimension_word(wanted_dim) +
+             " group (dimension " + std::to_string(wanted_dim) + ")";
   } else {
     reason = "the mesh '" + sc.mesh_file.filename().string() + "' has no physical group '" + name + "'";
     const std::string close = closest_match(name, names);
     if (!close.empty()) reason += " (did you mean '" + close + "'?)";
   }
-  reason += "; groups of that dimension: " + group_list(mesh, wanted_dim);
-  throw InputError(sc.file.string(), line, key, reason);
+  reason += wanted_dim < 0 ? "; groups of the mesh: " + group_list(mesh, wanted_dim)
+                           : std::string("; ") + dimension_word(wanted_dim) +
+                                 " groups of the mesh: " + group_list(mesh, wanted_dim);
+  throw InputError(shown_path(sc.file), line, key, reason);
 }
 
 }  // namespace
@@ -59,7 +93,7 @@ Simulation build_simulation(Scenario& sc, const MeshData& mesh) {
   Simulation sim;
   Model& model = sim.model;
   const int dim = sc.dim();
-  const std::string file = sc.file.string();
+  const std::string file = shown_path(sc.file);
   model.formulation = sc.formulation;
   model.thickness = sc.thickness;
   model.nodes.dim = dim;

@@ -7,6 +7,7 @@
 #include <map>
 #include <set>
 #include <sstream>
+#include <utility>
 
 #include "core/error.hpp"
 #include "core/units.hpp"
@@ -178,13 +179,21 @@ class Section {
  public:
   Section(const YAML::Node& node, const std::string& file, std::string path, const KeyList& keys,
           YAML::Node resolved, int parent_line)
-      : node_(node), file_(file), path_(std::move(path)), keys_(keys), resolved_(resolved),
-        line_(node.IsDefined() && !node.IsNull() ? line_of(node) : parent_line) {
+      // An optional section that is absent arrives as an invalid node from yaml-cpp; treat it
+      // as empty (null) so that its defaults apply instead of yaml-cpp throwing InvalidNode.
+      : node_(node.IsDefined() ? node : YAML::Node()), file_(file), path_(std::move(path)),
+        keys_(keys), resolved_(resolved),
+        line_(node.IsDefined() && !node.IsNull() ? line_of(node) : parent_line),
+        parent_line_(parent_line) {
     if (node_.IsDefined() && !node_.IsNull() && !node_.IsMap())
       throw InputError(file_, line_, path_, "expected a map of keys (key: value), got " + shape(node_));
     if (node_.IsMap()) {
       for (auto it = node_.begin(); it != node_.end(); ++it) {
         const std::string key = it->first.as<std::string>();
+        if (key_lines_.count(key))
+          throw InputError(file_, line_of(it->first), key_path(key),
+                           "'" + key + "' is given twice (first at line " +
+                               std::to_string(key_lines_[key]) + "); keep one");
         key_lines_[key] = line_of(it->first);
         if (!keys_.find(key)) {
           std::string reason = "unknown key '" + key + "'";
@@ -199,14 +208,16 @@ class Section {
     }
     for (const auto& spec : keys_.keys())
       if (spec.required && !has(spec.name))
-        throw InputError(file_, line_, key_path(spec.name),
+        // At the line naming the section ("analysis:"), where the key belongs.
+        throw InputError(file_, parent_line_ > 0 ? parent_line_ : line_, key_path(spec.name),
                          "missing required key '" + spec.name + "' (" + spec.doc + "; " +
                              spec.type_text() + ")");
   }
 
   static std::string shape(const YAML::Node& n) {
     if (n.IsMap()) return "a map";
-    if (n.IsSequence()) return "a list";
+    if (n.IsSequence())
+      return "a list of " + std::to_string(n.size()) + (n.size() == 1 ? " entry" : " entries");
     if (n.IsScalar()) return "'" + n.Scalar() + "'";
     return "nothing";
   }
@@ -339,7 +350,10 @@ class Section {
       const double value = parse_number(row[1], s, key);
       if (!t.times.empty() && !(time > t.times.back()))
         throw InputError(file_, line_of(row), key_path(key),
-                         "the times of a time table must increase (row " + std::to_string(i + 1) + ")");
+                         "the times of a time table must increase from row to row: row " +
+                             std::to_string(i + 1) + " has time '" + row[0].Scalar() +
+                             "', not later than row " + std::to_string(i) + " ('" +
+                             n[i - 1][0].Scalar() + "')");
       t.times.push_back(time);
       t.values.push_back(value);
       YAML::Node r(YAML::NodeType::Sequence);
@@ -357,8 +371,8 @@ class Section {
     const YAML::Node n = value(key);
     if (!n.IsSequence() || n.size() != size)
       fail(key, "expected a list of " + std::to_string(size) + " " + s.dimension.name() +
-                    " components (e.g. [" + s.dimension.example() + ", 0" +
-                    (size == 3 ? ", 0" : "") + "]), got " + shape(n));
+                    " components, one per axis of this " + std::to_string(size) + "D model (e.g. [" +
+                    s.dimension.example() + ", 0" + (size == 3 ? ", 0" : "") + "]), got " + shape(n));
     std::vector<double> v;
     YAML::Node out(YAML::NodeType::Sequence);
     out.SetStyle(YAML::EmitterStyle::Flow);
@@ -377,6 +391,7 @@ class Section {
   const KeyList& keys_;
   YAML::Node resolved_;
   int line_;
+  int parent_line_;
   std::map<std::string, int> key_lines_;
 };
 
@@ -394,6 +409,34 @@ ElementKind element_from(const std::string& s) {
   return ElementKind::hex8_reduced;
 }
 
+/// yaml-cpp's reason for a syntax error, with what usually causes it. yaml-cpp notices some
+/// mistakes only on a later line, so the hint names the lines before too. A tab in an
+/// indentation is reported at its own line.
+std::pair<int, std::string> yaml_syntax_error(const std::string& file, int line, const std::string& msg) {
+  std::ifstream in(file);
+  std::string text;
+  for (int n = 1; n <= line && std::getline(in, text); ++n) {
+    const auto indent_end = text.find_first_not_of(" \t");
+    if (text.find('\t') < std::min(indent_end, text.size()))
+      return {n, "not valid YAML: this line is indented with a tab; YAML indentation must use spaces"};
+  }
+  std::string hint;
+  if (msg == YAML::ErrorMsg::END_OF_MAP_FLOW)
+    hint = "a '{' on this line or before it is not closed by '}'";
+  else if (msg == YAML::ErrorMsg::END_OF_SEQ_FLOW)
+    hint = "a '[' on this line or before it is not closed by ']'";
+  else if (msg == YAML::ErrorMsg::FLOW_END)
+    hint = "a '}' or ']' that does not match the bracket it closes";
+  else if (msg == YAML::ErrorMsg::MAP_VALUE)
+    hint = "a ':' where none can be: a key on this line or the line before may lack its ':' "
+           "(write 'key: value'), or a value holds ': ' and needs quotes";
+  else if (msg == YAML::ErrorMsg::END_OF_MAP || msg == YAML::ErrorMsg::END_OF_SEQ ||
+           msg == YAML::ErrorMsg::BLOCK_ENTRY)
+    hint = "the indentation of this line does not match that of the lines before it (keys of one "
+           "section line up; a list's '- ' entries line up)";
+  return {line, "not valid YAML: " + msg + (hint.empty() ? "" : " (" + hint + ")")};
+}
+
 int component_index(const std::string& c) { return c == "x" ? 0 : c == "y" ? 1 : c == "z" ? 2 : -1; }
 
 }  // namespace
@@ -406,7 +449,8 @@ Scenario read_scenario(const std::filesystem::path& path) {
   try {
     root = YAML::LoadFile(file);
   } catch (const YAML::ParserException& e) {
-    throw InputError(file, e.mark.line + 1, "", "not valid YAML: " + e.msg);
+    const auto [line, reason] = yaml_syntax_error(file, e.mark.line + 1, e.msg);
+    throw InputError(file, line, "", reason);
   } catch (const YAML::BadFile&) {
     throw InputError(file, 0, "", "cannot read the scenario file");
   }
@@ -416,7 +460,7 @@ Scenario read_scenario(const std::filesystem::path& path) {
   sc.file = std::filesystem::absolute(path);
   sc.resolved = YAML::Node(YAML::NodeType::Map);
   const KeyList top_list = top_keys();
-  Section top(root, file, "", top_list, sc.resolved, 1);
+  Section top(root, file, "", top_list, sc.resolved, 0);
   sc.title = top.text("title");
 
   // analysis
@@ -445,7 +489,8 @@ Scenario read_scenario(const std::filesystem::path& path) {
   sc.mesh_file = mesh_file.lexically_normal();
   sc.resolved["mesh"]["file"] = sc.mesh_file.string();
   if (!std::filesystem::exists(sc.mesh_file))
-    mesh.fail("file", "mesh file '" + sc.mesh_file.string() + "' not found");
+    mesh.fail("file", "mesh file '" + sc.mesh_file.string() +
+                          "' not found (a relative path is taken from the scenario file's folder)");
   sc.mesh_unit = mesh.number("unit");
   sc.mesh_size = mesh.optional_number("size").value_or(0.0);
 
@@ -459,6 +504,11 @@ Scenario read_scenario(const std::filesystem::path& path) {
     mat.line = line_of(it->first);
     const YAML::Node body = it->second;
     const std::string path = "materials." + mat.name;
+    for (const auto& other : sc.materials)
+      if (other.name == mat.name)
+        throw InputError(file, mat.line, path,
+                         "a second material named '" + mat.name + "' (the first is at line " +
+                             std::to_string(other.line) + "); material names must differ");
     if (!body.IsMap()) throw InputError(file, mat.line, path, "expected a map with 'model:' and the model's parameters");
     if (!body["model"].IsDefined())
       throw InputError(file, mat.line, path + ".model",
@@ -489,7 +539,10 @@ Scenario read_scenario(const std::filesystem::path& path) {
     try {
       (void)info->create(mat.name, mat.values);  // the model's own consistency checks
     } catch (const ParameterError& e) {
-      s.fail(e.key(), e.what());
+      // A model names the key at fault; when it names 'model' or a key that is not given (a
+      // missing or conflicting combination), the material as a whole is at fault.
+      if (e.key() != "model" && s.has(e.key())) s.fail(e.key(), e.what());
+      throw InputError(file, mat.line, path, e.what());
     }
     sc.materials.push_back(std::move(mat));
   }
@@ -505,6 +558,11 @@ Scenario read_scenario(const std::filesystem::path& path) {
     PartInput part;
     part.name = it->first.as<std::string>();
     part.line = line_of(it->first);
+    for (const auto& other : sc.parts)
+      if (other.name == part.name)
+        throw InputError(file, part.line, "parts." + part.name,
+                         "a second part named '" + part.name + "' (the first is at line " +
+                             std::to_string(other.line) + "); part names must differ");
     Section s(it->second, file, "parts." + part.name, p_keys, sc.resolved["parts"][part.name], part.line);
     part.group = s.text("group", part.name);
     part.material = s.text("material");
@@ -610,7 +668,8 @@ Scenario read_scenario(const std::filesystem::path& path) {
     }
     if (!any)
       throw InputError(file, s.line(), path,
-                       "a boundary condition needs 'fix', 'symmetry' or 'velocity'");
+                       "a boundary condition needs 'fix', 'symmetry' or 'velocity' (e.g. {group: " +
+                           bc.group + ", fix: [x, y]})");
     sc.boundary_conditions.push_back(bc);
     bc_out.push_back(entry_out);
   }

@@ -1,0 +1,136 @@
+// Whole runs through the shard command: thread determinism, restart identity, the bar_impact
+// example's expected result, and exit codes.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <unistd.h>
+
+#include "support/cli.hpp"
+
+namespace shard {
+namespace {
+
+const std::string kExample2d = std::string(SHARD_SOURCE_DIR) + "/examples/bar_impact/bar_2d.yaml";
+const std::string kExample3d = std::string(SHARD_SOURCE_DIR) + "/examples/bar_impact/bar_3d.yaml";
+
+TEST(RunCli, SameOutputForOneAndTwoThreads) {
+  for (const std::string& scenario : {kExample2d, kExample3d}) {
+    const auto dir = testing::fresh_dir("threads");
+    const auto one = testing::run_shard("run " + scenario + " --quiet --threads 1 -o " + (dir / "one").string());
+    const auto two = testing::run_shard("run " + scenario + " --quiet --threads 2 -o " + (dir / "two").string());
+    ASSERT_EQ(one.status, 0) << one.output;
+    ASSERT_EQ(two.status, 0) << two.output;
+    const std::string h1 = testing::read_file(dir / "one" / "history.csv");
+    EXPECT_GT(h1.size(), 1000u);
+    EXPECT_EQ(h1, testing::read_file(dir / "two" / "history.csv")) << scenario;
+    // Frames too: positions, velocities and stresses written in binary, bit for bit.
+    EXPECT_EQ(testing::read_file(dir / "one" / "frame_00025.vtu"),
+              testing::read_file(dir / "two" / "frame_00025.vtu"));
+    std::filesystem::remove_all(dir);
+  }
+}
+
+TEST(RunCli, RestartReproducesTheUninterruptedRun) {
+  const auto dir = testing::fresh_dir("restart");
+  const auto full = testing::run_shard("run " + kExample2d + " --quiet -o " + (dir / "full").string());
+  ASSERT_EQ(full.status, 0) << full.output;
+  const auto first = testing::run_shard("run " + kExample2d + " --quiet --until 11.3us -o " + (dir / "pieces").string());
+  ASSERT_EQ(first.status, 0) << first.output;
+  EXPECT_LT(testing::read_file(dir / "pieces" / "history.csv").size(),
+            testing::read_file(dir / "full" / "history.csv").size());
+  const auto second = testing::run_shard("run " + kExample2d + " --quiet -o " + (dir / "pieces").string() +
+                                         " --restart " + (dir / "pieces" / "checkpoint.bin").string());
+  ASSERT_EQ(second.status, 0) << second.output;
+  EXPECT_EQ(testing::read_file(dir / "full" / "history.csv"),
+            testing::read_file(dir / "pieces" / "history.csv"));
+  EXPECT_EQ(testing::read_file(dir / "full" / "frames.pvd"),
+            testing::read_file(dir / "pieces" / "frames.pvd"));
+  EXPECT_EQ(testing::read_file(dir / "full" / "frame_00025.vtu"),
+            testing::read_file(dir / "pieces" / "frame_00025.vtu"));
+  std::filesystem::remove_all(dir);
+}
+
+TEST(RunCli, RestartWithAnotherScenarioIsRefused) {
+  const auto dir = testing::fresh_dir("restart_other");
+  ASSERT_EQ(testing::run_shard("run " + kExample2d + " --quiet --until 2us -o " + (dir / "a").string()).status, 0);
+  const auto r = testing::run_shard("run " + kExample3d + " --quiet -o " + (dir / "a").string() + " --restart " +
+                                    (dir / "a" / "checkpoint.bin").string());
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_NE(r.output.find("different scenario"), std::string::npos) << r.output;
+  std::filesystem::remove_all(dir);
+}
+
+// The example's README promises: the energy put in by the driven end is W = ρ c v² A t until the
+// wave reflected at the free end comes back (2L/c = 34 µs), with c = sqrt((K + 4G/3)/ρ); the
+// balance closes to better than 0.5 %.
+TEST(RunCli, BarImpactExampleMatchesClosedForm) {
+  const auto dir = testing::fresh_dir("example");
+  const auto r = testing::run_shard("run " + kExample2d + " --quiet -o " + (dir / "bar").string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  const auto h = testing::read_history(dir / "bar" / "history.csv");
+  ASSERT_GT(h.rows.size(), 100u);
+  const double rho = 7830, c = std::sqrt((159e9 + 4.0 / 3.0 * 81.8e9) / rho), v = 10, area = 10e-3 * 1.0;
+  const std::size_t last = h.rows.size() - 1;
+  const double t = h.at(last, "time");
+  EXPECT_NEAR(t, 25e-6, 1e-12);
+  EXPECT_NEAR(h.at(last, "external_work"), rho * c * v * v * area * t, 0.01 * rho * c * v * v * area * t);
+  for (std::size_t i = h.rows.size() / 10; i < h.rows.size(); ++i)
+    EXPECT_LT(std::abs(h.at(i, "energy_error")), 0.005) << "row " << i;
+  const std::string summary = testing::read_file(dir / "bar" / "summary.json");
+  EXPECT_NE(summary.find("\"status\": \"completed\""), std::string::npos);
+  EXPECT_TRUE(std::filesystem::exists(dir / "bar" / "resolved.yaml"));
+  std::filesystem::remove_all(dir);
+}
+
+TEST(RunCli, ResolvedScenarioRunsAsAScenario) {
+  // resolved.yaml holds SI values and an absolute mesh path: it is itself a valid scenario.
+  const auto dir = testing::fresh_dir("resolved");
+  ASSERT_EQ(testing::run_shard("run " + kExample2d + " --quiet --until 1us -o " + (dir / "a").string()).status, 0);
+  const auto r = testing::run_shard("check " + (dir / "a" / "resolved.yaml").string());
+  EXPECT_EQ(r.status, 0) << r.output;
+  std::filesystem::remove_all(dir);
+}
+
+TEST(RunCli, ExitCodesAndHelp) {
+  EXPECT_EQ(testing::run_shard("--version").status, 0);
+  const auto help = testing::run_shard("--help");
+  EXPECT_EQ(help.status, 0);
+  EXPECT_NE(help.output.find("shard run SCENARIO.yaml"), std::string::npos);
+  EXPECT_EQ(testing::run_shard("frobnicate").status, 2);
+  EXPECT_EQ(testing::run_shard("run").status, 2);
+  EXPECT_EQ(testing::run_shard("run " + kExample2d + " --threads zero").status, 2);
+  EXPECT_EQ(testing::run_shard("check " + kExample2d).status, 0);
+}
+
+TEST(RunCli, ReferenceDocumentIsCurrent) {
+  // docs/scenario.md is generated by `shard reference`; it must match the declarations.
+  const auto r = testing::run_shard("reference");
+  ASSERT_EQ(r.status, 0);
+  EXPECT_EQ(r.output, testing::read_file(std::string(SHARD_SOURCE_DIR) + "/docs/scenario.md"))
+      << "regenerate with: build/shard reference > docs/scenario.md";
+}
+
+TEST(RunCli, FailedRunStopsWithWhereAndWhyAndKeepsOutputs) {
+  // A run stopped by analysis.max_steps fails with exit 1, says where and why, and keeps its
+  // frames, history and a summary that gives the reason.
+  const auto dir = testing::fresh_dir("failed");
+  const std::string scenario = (dir / "limited.yaml").string();
+  std::ofstream(scenario) << "analysis: {formulation: plane_strain, end_time: 25 us, max_steps: 60}\n"
+                             "mesh: {file: " << SHARD_SOURCE_DIR << "/examples/bar_impact/bar_2d.geo, unit: 1 mm, size: 2 mm}\n"
+                             "materials: {steel: {model: linear_elastic, density: 7830, youngs_modulus: 200 GPa, poissons_ratio: 0.3}}\n"
+                             "parts: {bar: {material: steel}}\n"
+                             "boundary_conditions: [{group: left, velocity: {x: 10 m/s}}]\n"
+                             "output: {frame_interval: 0.5 us}\n";
+  const auto r = testing::run_shard("run " + scenario + " --quiet -o " + (dir / "out").string());
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_NE(r.output.find("max_steps"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("t = "), std::string::npos) << r.output;
+  const std::string summary = testing::read_file(dir / "out" / "summary.json");
+  EXPECT_NE(summary.find("\"status\": \"failed\""), std::string::npos) << summary;
+  EXPECT_TRUE(std::filesystem::exists(dir / "out" / "frame_00001.vtu"));
+  EXPECT_GT(testing::read_history(dir / "out" / "history.csv").rows.size(), 10u);
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace shard
