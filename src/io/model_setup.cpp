@@ -130,7 +130,11 @@ Simulation build_simulation(Scenario& sc, const MeshData& mesh) {
       if (hex_cells != hex_element || (!hex_cells && *pin.element != kind))
         throw InputError(file, pin.line, "parts." + pin.name + ".element",
                          std::string("element '") + name_of(*pin.element) + "' does not fit the cells of group '" +
-                             pin.group + "' (" + name_of(kind) + " cells)");
+                             pin.group + "': it is meshed with " +
+                             (hex_cells ? "hexahedra (use hex8 or hex8_reduced)"
+                                        : kind == ElementKind::tet4 ? "tetrahedra (use tet4)"
+                                                                    : "triangles (use tri3)") +
+                             ", or leave 'element' out to take it from the mesh");
       kind = *pin.element;
     }
     sc.resolved["parts"][pin.name]["element"] = name_of(kind);

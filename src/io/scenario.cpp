@@ -417,7 +417,7 @@ std::pair<int, std::string> yaml_syntax_error(const std::string& file, int line,
   std::string text;
   for (int n = 1; n <= line && std::getline(in, text); ++n) {
     const auto indent_end = text.find_first_not_of(" \t");
-    if (text.find('\t') < std::min(indent_end, text.size()))
+    if (indent_end != std::string::npos && text[indent_end] != '#' && text.find('\t') < indent_end)
       return {n, "not valid YAML: this line is indented with a tab; YAML indentation must use spaces"};
   }
   std::string hint;
@@ -428,12 +428,12 @@ std::pair<int, std::string> yaml_syntax_error(const std::string& file, int line,
   else if (msg == YAML::ErrorMsg::FLOW_END)
     hint = "a '}' or ']' that does not match the bracket it closes";
   else if (msg == YAML::ErrorMsg::MAP_VALUE)
-    hint = "a ':' where none can be: a key on this line or the line before may lack its ':' "
-           "(write 'key: value'), or a value holds ': ' and needs quotes";
+    hint = "a ':' where none can be: a key on this line or the line before may lack its ':' as "
+           "in 'key: value', or a value holding ': ' needs quotes";
   else if (msg == YAML::ErrorMsg::END_OF_MAP || msg == YAML::ErrorMsg::END_OF_SEQ ||
            msg == YAML::ErrorMsg::BLOCK_ENTRY)
-    hint = "the indentation of this line does not match that of the lines before it (keys of one "
-           "section line up; a list's '- ' entries line up)";
+    hint = "the indentation of this line does not match the lines before it: the keys of one "
+           "section line up, and so do the '- ' entries of a list";
   return {line, "not valid YAML: " + msg + (hint.empty() ? "" : " (" + hint + ")")};
 }
 
@@ -523,6 +523,9 @@ Scenario read_scenario(const std::filesystem::path& path) {
       std::string reason = "unknown material model '" + mat.model + "'";
       const std::string close = closest_match(mat.model, MaterialRegistry::names());
       if (!close.empty()) reason += " (did you mean '" + close + "'?)";
+      reason += "; models: ";
+      const auto models = MaterialRegistry::names();
+      for (std::size_t i = 0; i < models.size(); ++i) reason += (i ? ", " : "") + models[i];
       throw InputError(file, line_of(body["model"]), path + ".model", reason);
     }
     const KeyList keys = material_keys(*info);
