@@ -21,6 +21,10 @@ Hex8Reference make_reference() {
     r.hourglass[2][a] = xi[a] * et[a];
     r.hourglass[3][a] = xi[a] * et[a] * ze[a];
   }
+  for (int al = 0; al < 4; ++al)
+    for (int a = 0; a < 8; ++a)
+      if (r.hourglass[al][a] != kHex8HourglassBase[al][a])
+        throw std::logic_error("kHex8HourglassBase differs from the corner products");
   const double g = 1.0 / std::sqrt(3.0);
   for (int p = 0; p < 8; ++p) {
     // Gauss points in the same corner order as the nodes.
@@ -32,6 +36,11 @@ Hex8Reference make_reference() {
       r.gauss_dN[p][a][2] = ze[a] * (1 + xi[a] * s) * (1 + et[a] * t) / 8.0;
     }
   }
+  for (int p = 0; p < 8; ++p)
+    for (int a = 0; a < 8; ++a)
+      for (int k = 0; k < 3; ++k)
+        if (std::abs(r.gauss_dN[p][a][k] - kHex8Gauss.dN[p][a][k]) > 1e-15)
+          throw std::logic_error("kHex8Gauss differs from the computed shape derivatives");
   // V = Σ C_abc x_a y_b z_c with C_abc = ∫ det[∇ξN_a; ∇ξN_b; ∇ξN_c] dξ (C is antisymmetric);
   // the integrand is at most quadratic in each ξ, so 2×2×2 Gauss is exact. Each C is 0 or ±1/12.
   for (int a = 0; a < 8; ++a) {

@@ -37,10 +37,44 @@ inline constexpr Hex8VolumePair kHex8VolumePairs[8][9] = {
 
 };
 
+/// Shape functions and their ξ-derivatives at the 2×2×2 Gauss points (points in the node
+/// order, weights 1), as compile-time constants so that the kernels fold them into code.
+struct Hex8GaussTable {
+  double N[8][8];      ///< N[p][a]
+  double dN[8][8][3];  ///< ∂N_a/∂ξ at point p
+};
+constexpr Hex8GaussTable make_hex8_gauss_table() {
+  constexpr int xi[8] = {-1, 1, 1, -1, -1, 1, 1, -1};
+  constexpr int et[8] = {-1, -1, 1, 1, -1, -1, 1, 1};
+  constexpr int ze[8] = {-1, -1, -1, -1, 1, 1, 1, 1};
+  constexpr double g = 0.57735026918962576451;  // 1/√3
+  Hex8GaussTable t{};
+  for (int p = 0; p < 8; ++p) {
+    const double s = g * xi[p], u = g * et[p], w = g * ze[p];
+    for (int a = 0; a < 8; ++a) {
+      t.N[p][a] = (1 + xi[a] * s) * (1 + et[a] * u) * (1 + ze[a] * w) / 8.0;
+      t.dN[p][a][0] = xi[a] * (1 + et[a] * u) * (1 + ze[a] * w) / 8.0;
+      t.dN[p][a][1] = et[a] * (1 + xi[a] * s) * (1 + ze[a] * w) / 8.0;
+      t.dN[p][a][2] = ze[a] * (1 + xi[a] * s) * (1 + et[a] * u) / 8.0;
+    }
+  }
+  return t;
+}
+inline constexpr Hex8GaussTable kHex8Gauss = make_hex8_gauss_table();
+
+/// Hourglass base vectors Γ (ηζ, ζξ, ξη, ξηζ at the nodes) as compile-time constants; equal to
+/// Hex8Reference::hourglass (checked at start-up).
+inline constexpr double kHex8HourglassBase[4][8] = {{1, 1, -1, -1, -1, -1, 1, 1},
+                                                    {1, -1, -1, 1, -1, 1, 1, -1},
+                                                    {1, -1, 1, -1, 1, -1, 1, -1},
+                                                    {-1, 1, -1, 1, 1, -1, 1, -1}};
+
 /// B[a] = ∂V/∂x_a (exact). B̄ = B/V is the uniform gradient; V = Σ_a x_a B[a][0].
 inline void hex8_volume_gradient(const double x[8][3], double B[8][3]) {
+#pragma GCC unroll 8
   for (int a = 0; a < 8; ++a) {
     double bx = 0, by = 0, bz = 0;
+#pragma GCC unroll 9
     for (const auto& p : kHex8VolumePairs[a]) {
       const double* u = x[p.j];
       const double* w = x[p.k];

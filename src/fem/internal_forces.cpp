@@ -359,38 +359,46 @@ struct Hex8Reduced {
     for (int a = 0; a < 8; ++a)
       for (int r = 0; r < 3; ++r)
         for (int c = 0; c < 3; ++c) L[r][c] += v[a][r] * B[a][c];
+    // Hourglass control (Flanagan & Belytschko 1981, viscous form): with the γ vectors
+    // γ_α = Γ_α − (Γ_α·x) B̄ (orthogonal to linear fields), the rates are q_α = Σ_a v_a γ_αa and
+    // the forces f_a = −c Σ_α q_α γ_αa, c = κ ρ c_d V^(2/3) / 4. Expanded so that γ is never
+    // formed: q_α = Γ_α·v − L (Γ_α·x) with the gradient L on x_n, and
+    // f_a = −c (Σ_α Γ_αa q_α − M B̄_a) with M = Σ_α q_α ⊗ (Γ_α·x). Γ entries are ±1 constants.
+    double* fh = g + 25;
+    ws.hourglass_work[i] = 0.0;
+    if (hourglass_scale > 0.0) {
+      const double c = hourglass_scale * std::cbrt(volume * volume);
+      double q[4][3], M[3][3] = {}, work = 0.0;
+      for (int al = 0; al < 4; ++al) {
+        const double* G = kHex8HourglassBase[al];
+        double gx[3] = {0, 0, 0}, gv[3] = {0, 0, 0};
+        for (int a = 0; a < 8; ++a)
+          for (int k = 0; k < 3; ++k) {
+            gx[k] += G[a] * x[a][k];
+            gv[k] += G[a] * v[a][k];
+          }
+        for (int k = 0; k < 3; ++k) {
+          q[al][k] = gv[k] - (L[k][0] * gx[0] + L[k][1] * gx[1] + L[k][2] * gx[2]);
+          work += q[al][k] * q[al][k];
+          for (int j = 0; j < 3; ++j) M[k][j] += q[al][k] * gx[j];
+        }
+      }
+      for (int a = 0; a < 8; ++a)
+        for (int k = 0; k < 3; ++k) {
+          double s = 0;
+          for (int al = 0; al < 4; ++al) s += kHex8HourglassBase[al][a] * q[al][k];
+          fh[3 * a + k] = -c * (s - (M[k][0] * B[a][0] + M[k][1] * B[a][1] + M[k][2] * B[a][2]));
+        }
+      ws.hourglass_work[i] = c * work * ctx.dt;  // hourglass dissipation of this element
+    } else {
+      std::fill(fh, fh + 24, 0.0);
+    }
     update_point_3d(L, ctx.dt, de, sig, &part.strain[kTensorSize * e]);
     std::copy_n(sig, kTensorSize, &ws.stress_old[kTensorSize * i]);
     g[24] = volume;
     ws.point_volume[i] = ws.volume[i] = volume;
     ws.volume_rate[i] = L[0][0] + L[1][1] + L[2][2];
-    const double length = hex_length(x, volume);
-    ws.length[i] = length;
-
-    // Hourglass: γ_α = Γ_α − (Γ_α · x_k) B̄_k (eq. (4.x) of Flanagan–Belytschko), rates
-    // q_αk = Σ_a v_ak γ_αa, force f_ak = −c Σ_α q_αk γ_αa with c = κ ρ c_d V^(2/3) / 4.
-    double* fh = g + 25;
-    std::fill(fh, fh + 24, 0.0);
-    ws.hourglass_work[i] = 0.0;
-    if (hourglass_scale > 0.0) {
-      const double c = hourglass_scale * std::cbrt(volume * volume);
-      double work = 0.0;
-      for (int al = 0; al < 4; ++al) {
-        const double* G = hex8_reference().hourglass[al];
-        double gx[3] = {0, 0, 0};
-        for (int a = 0; a < 8; ++a)
-          for (int k = 0; k < 3; ++k) gx[k] += G[a] * x[a][k];
-        double gamma[8];
-        for (int a = 0; a < 8; ++a) gamma[a] = G[a] - (gx[0] * B[a][0] + gx[1] * B[a][1] + gx[2] * B[a][2]);
-        double qa[3] = {0, 0, 0};
-        for (int a = 0; a < 8; ++a)
-          for (int k = 0; k < 3; ++k) qa[k] += v[a][k] * gamma[a];
-        for (int a = 0; a < 8; ++a)
-          for (int k = 0; k < 3; ++k) fh[3 * a + k] -= c * qa[k] * gamma[a];
-        work += c * (qa[0] * qa[0] + qa[1] * qa[1] + qa[2] * qa[2]);
-      }
-      ws.hourglass_work[i] = work * ctx.dt;  // hourglass dissipation of this element
-    }
+    ws.length[i] = hex_length(x, volume);
     return true;
   }
 
@@ -427,9 +435,10 @@ struct Hex8Full {
       }
     double volume = 0.0, rate = 0.0;
     bool ok = true;
+#pragma GCC unroll 8
     for (int p = 0; p < 8; ++p) {
       double* g = &ws.geometry[geometry * i + 25 * p];
-      const double(*dN)[3] = hex8_reference().gauss_dN[p];
+      const double(*dN)[3] = kHex8Gauss.dN[p];
       double J[3][3] = {};  // J[r][c] = ∂x_r/∂ξ_c
       for (int a = 0; a < 8; ++a)
         for (int r = 0; r < 3; ++r)

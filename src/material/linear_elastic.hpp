@@ -1,5 +1,5 @@
 // Linear isotropic elasticity in rate form: σ_n+1 = σ_n + λ tr(Δε) I + 2G Δε.
-// Theory note: docs/theory/linear_elastic.md.
+// Theory note: docs/theory/elements_and_kinematics.md (section 8, "Linear elasticity").
 #pragma once
 
 #include "material/material.hpp"

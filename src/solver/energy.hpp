@@ -16,7 +16,7 @@ struct EnergyBalance {
   double damping = 0;         ///< mass-proportional damping dissipation
   double plastic = 0;         ///< plastic work
   double fracture = 0;        ///< fracture energy
-  double initial = 0;         ///< kinetic + internal at t = 0
+  double initial = 0;         ///< kinetic energy at t = 0 (the models start stress-free)
 
   /// Recoverable (elastic) internal energy: stress work less what the material dissipated.
   double internal() const { return stress_work - plastic - fracture; }

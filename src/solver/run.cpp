@@ -82,19 +82,19 @@ class Progress {
       : quiet_(quiet), tty_(isatty(STDERR_FILENO) != 0), log_interval_(log_interval),
         end_time_(end_time), start_(Clock::now()), last_(start_) {}
 
-  void update(const SolverState& s, bool force = false) {
+  void update(const SolverState& s, double t, bool force = false) {
     if (quiet_) return;
     const auto now = Clock::now();
     const double since = std::chrono::duration<double>(now - last_).count();
     if (!force && since < (tty_ ? 0.25 : log_interval_)) return;
     last_ = now;
     const double wall = std::chrono::duration<double>(now - start_).count();
-    const double fraction = std::min(1.0, s.time / end_time_);
+    const double fraction = std::min(1.0, t / end_time_);
     const double eta = fraction > 0 ? wall * (1 - fraction) / fraction : 0;
     char line[256];
     std::snprintf(line, sizeof line,
                   "t = %s / %s (%3.0f%%)  step %lld  dt %s  wall %.1f s  ETA %.1f s  energy error %+.3f%%",
-                  format_time(s.time).c_str(), format_time(end_time_).c_str(), 100 * fraction,
+                  format_time(t).c_str(), format_time(end_time_).c_str(), 100 * fraction,
                   static_cast<long long>(s.step), format_time(s.dt_half).c_str(), wall, eta,
                   100 * s.energy.relative_error());
     if (tty_) std::fprintf(stderr, "\r%s\033[K", line);
@@ -252,7 +252,7 @@ RunSummary run_scenario(const std::filesystem::path& file, const RunOptions& opt
         if (out.history_interval > 0)
           cursor.next_history = static_cast<std::int64_t>(std::floor(t / out.history_interval * (1 + 1e-9))) + 1;
       }
-      progress.update(s, final);
+      progress.update(s, t, final);
       if (final) break;
       if (sc.max_steps > 0 && s.step >= sc.max_steps)
         throw RunError("reached analysis.max_steps = " + std::to_string(sc.max_steps) + " at t = " +
