@@ -368,7 +368,8 @@ struct Hex8Reduced {
     ws.hourglass_work[i] = 0.0;
     if (hourglass_scale > 0.0) {
       const double c = hourglass_scale * std::cbrt(volume * volume);
-      double q[4][3], M[3][3] = {}, work = 0.0;
+      double q[4][3], M[3][3] = {}, work = 0.0, work_prev = 0.0;
+      double* stored = &part.hourglass_rate[12 * e];  // c·q_α of the previous step
       for (int al = 0; al < 4; ++al) {
         const double* G = kHex8HourglassBase[al];
         double gx[3] = {0, 0, 0}, gv[3] = {0, 0, 0};
@@ -380,6 +381,8 @@ struct Hex8Reduced {
         for (int k = 0; k < 3; ++k) {
           q[al][k] = gv[k] - (L[k][0] * gx[0] + L[k][1] * gx[1] + L[k][2] * gx[2]);
           work += q[al][k] * q[al][k];
+          work_prev += stored[3 * al + k] * q[al][k];
+          stored[3 * al + k] = c * q[al][k];
           for (int j = 0; j < 3; ++j) M[k][j] += q[al][k] * gx[j];
         }
       }
@@ -389,9 +392,12 @@ struct Hex8Reduced {
           for (int al = 0; al < 4; ++al) s += kHex8HourglassBase[al][a] * q[al][k];
           fh[3 * a + k] = -c * (s - (M[k][0] * B[a][0] + M[k][1] * B[a][1] + M[k][2] * B[a][2]));
         }
-      ws.hourglass_work[i] = c * work * ctx.dt;  // hourglass dissipation of this element
+      // Dissipation over [t_n−1, t_n] (velocities v_n−1/2): trapezoid of the forces at both ends,
+      // the earlier one from the stored c·q_α (γ taken as unchanged over one step).
+      ws.hourglass_work[i] = 0.5 * (c * work + work_prev) * ctx.dt;
     } else {
       std::fill(fh, fh + 24, 0.0);
+      std::fill(&part.hourglass_rate[12 * e], &part.hourglass_rate[12 * e] + 12, 0.0);
     }
     update_point_3d(L, ctx.dt, de, sig, &part.strain[kTensorSize * e]);
     std::copy_n(sig, kTensorSize, &ws.stress_old[kTensorSize * i]);
@@ -630,8 +636,12 @@ ForceSums run_part(Part& part, const Material& material, NodeArrays& nodes,
         if (rate < 0.0) {
           q = rho * l * (ctx.q_quadratic * l * rate * rate - ctx.q_linear * c * rate);
           qs = ctx.q_linear * c - ctx.q_quadratic * l * rate;
-          out.viscous_work += -q * rate * ws.volume[i] * ctx.dt;
         }
+        // Work of the viscous forces over [t_n−1, t_n], where the velocities were v_n−1/2: the
+        // trapezoid of the forces at both ends (the same split as every nodal force).
+        double& q_prev = part.bulk_viscosity[batch.begin + i];
+        out.viscous_work += -0.5 * (q_prev + q) * rate * ws.volume[i] * ctx.dt;
+        q_prev = q;
         // Stable step with bulk viscosity (Q + sqrt(Q² + c²) replaces c).
         stable = std::min(stable, l / (qs + std::sqrt(qs * qs + c * c)));
         part.volume[batch.begin + i] = ws.volume[i];
@@ -722,6 +732,8 @@ void colour_elements(Part& part, std::size_t node_count) {
   if (!part.state.empty()) permute(part.state, part.state.size() / ne);
   permute(part.temperature, npts);
   permute(part.volume, 1);
+  permute(part.bulk_viscosity, 1);
+  permute(part.hourglass_rate, 12);
   part.colour_begin.assign(colours + 1, 0);
   for (std::size_t e = 0; e < ne; ++e) part.colour_begin[colour[e] + 1]++;
   for (int c = 0; c < colours; ++c) part.colour_begin[c + 1] += part.colour_begin[c];

@@ -23,9 +23,11 @@ void visit_scalars(SolverState& s, OutputCursor& c, F&& f) {
   f(s.stable_dt);
   f(s.pending_external);
   f(s.pending_damping);
+  f(s.pending_contact);
+  f(s.pending_wall);
   auto& e = s.energy;
   for (double* v : {&e.kinetic, &e.stress_work, &e.external_work, &e.viscosity, &e.hourglass,
-                    &e.damping, &e.plastic, &e.fracture, &e.initial})
+                    &e.damping, &e.plastic, &e.fracture, &e.contact_work, &e.wall_work, &e.friction, &e.initial})
     f(*v);
   f(c.next_frame);
   f(c.next_history);

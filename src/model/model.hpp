@@ -71,6 +71,11 @@ struct Part {
   std::vector<double> state;        ///< material history variables, material.state_size() per point
   std::vector<double> temperature;  ///< one per point
   std::vector<double> volume;       ///< current element volume (axisymmetric: of the ring), per element
+  /// Forces of the last step that the next step needs to book their work exactly (trapezoid over
+  /// the interval): the bulk viscosity q per element, and for hex8_reduced the hourglass force
+  /// coefficients c·q_α (12 per element).
+  std::vector<double> bulk_viscosity;
+  std::vector<double> hourglass_rate;
 
   std::size_t element_count() const {
     return connectivity.size() / static_cast<std::size_t>(nodes_per_element(kind));
@@ -95,6 +100,14 @@ struct NodeSet {
   std::vector<std::int32_t> nodes;  ///< sorted, unique
 };
 
+/// Contact history that must survive a step (and a restart). Per-node arrays are indexed by
+/// node id (dim components per node), so they stay valid when the contact surface is rebuilt.
+struct ContactState {
+  std::vector<double> tangential;       ///< stick force of node-to-facet contact, per node
+  std::vector<double> wall_tangential;  ///< stick force against each wall: wall-major, per node
+  std::vector<double> wall_offset;      ///< displacement of each rigid wall, dim per wall
+};
+
 struct Model {
   Formulation formulation = Formulation::plane_strain;
   double thickness = 1.0;  ///< out-of-plane thickness for plane strain / plane stress
@@ -102,6 +115,7 @@ struct Model {
   std::vector<Part> parts;
   std::vector<NodeSet> node_sets;
   std::vector<FacetSet> facet_sets;
+  ContactState contact;
 
   int dim() const { return nodes.dim; }
   std::size_t element_count() const;
@@ -118,6 +132,9 @@ struct Model {
     f("nodes.v", nodes.v);
     f("nodes.force", nodes.force);
     f("nodes.mass", nodes.mass);
+    f("contact.tangential", contact.tangential);
+    f("contact.wall_tangential", contact.wall_tangential);
+    f("contact.wall_offset", contact.wall_offset);
     for (auto& p : parts) {
       const std::string prefix = "part." + p.name + ".";
       f(prefix + "connectivity", p.connectivity);
@@ -127,6 +144,8 @@ struct Model {
       f(prefix + "state", p.state);
       f(prefix + "temperature", p.temperature);
       f(prefix + "volume", p.volume);
+      f(prefix + "bulk_viscosity", p.bulk_viscosity);
+      f(prefix + "hourglass_rate", p.hourglass_rate);
     }
   }
 };

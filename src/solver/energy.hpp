@@ -16,13 +16,22 @@ struct EnergyBalance {
   double damping = 0;         ///< mass-proportional damping dissipation
   double plastic = 0;         ///< plastic work
   double fracture = 0;        ///< fracture energy
+  double contact_work = 0;    ///< work done on the nodes by contact and wall forces
+  double wall_work = 0;       ///< work of moving walls on the bodies (part of external_work)
+  double friction = 0;        ///< dissipated by friction (contact and walls)
   double initial = 0;         ///< kinetic energy at t = 0 (the models start stress-free)
 
   /// Recoverable (elastic) internal energy: stress work less what the material dissipated.
   double internal() const { return stress_work - plastic - fracture; }
-  double dissipated() const { return viscosity + hourglass + damping + plastic + fracture; }
+  /// Contact ("sliding interface") energy: what the contact forces took from the nodes, less
+  /// what friction dissipated and what moving walls put in. The penalty springs' elastic energy
+  /// plus the penalty method's discretisation error; it returns to ~0 when bodies separate.
+  double contact() const { return wall_work - contact_work - friction; }
+  double dissipated() const { return viscosity + hourglass + damping + plastic + fracture + friction; }
   /// kinetic + internal + dissipated − external work − initial
-  double residual() const { return kinetic + internal() + dissipated() - external_work - initial; }
+  double residual() const {
+    return kinetic + internal() + contact() + dissipated() - external_work - initial;
+  }
   /// residual relative to the largest energy in play (never the residual's own scale)
   double relative_error() const;
 

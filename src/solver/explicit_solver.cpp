@@ -136,6 +136,21 @@ void ExplicitSolver::compute_forces() {
 
   applied_.clear();
   add_pressure_forces(model_, loads_, state_.time, applied_);
+  const auto& g = settings_.gravity;
+  if (g[0] != 0 || g[1] != 0 || g[2] != 0) {
+    const int dim = model_.dim();
+    const std::size_t n = nodes.count();
+#pragma omp parallel for schedule(static)
+    for (std::size_t i = 0; i < n; ++i)
+      for (int k = 0; k < dim; ++k) nodes.force[dim * i + k] += nodes.mass[i] * g[k];
+  }
+  if (contact_) {
+    contact_->add_forces(model_, state_.time, state_.dt_half, total.stable_dt);
+    E.friction += contact_->friction_increment();
+    const auto& wf = contact_->wall_forces();
+    state_.wall_force_on_bodies.assign(wf.size(), 0.0);
+    for (std::size_t i = 0; i < wf.size(); ++i) state_.wall_force_on_bodies[i] = -wf[i];
+  }
 
   state_.stable_dt = total.stable_dt;
   double dt = settings_.time_step_safety * total.stable_dt;
@@ -191,29 +206,55 @@ void ExplicitSolver::advance() {
     external_ahead += f * ahead * new_velocity(dof, m);
   }
 
+  // Work of the contact forces on the nodes, and of moving rigid walls on the bodies they push
+  // (F_wall→body · v_wall, external work).
+  double contact_back = 0, contact_ahead = 0, wall_back = 0, wall_ahead = 0;
+  if (contact_) {
+    for (const auto& [dof, f] : contact_->applied_forces()) {
+      contact_back += f * back * V[dof];
+      contact_ahead += f * ahead * new_velocity(dof, M[dof / dim]);
+    }
+    const auto& walls = contact_->settings().walls;
+    const auto& f = state_.wall_force_on_bodies;
+    for (std::size_t w = 0; w < walls.size(); ++w)
+      for (int k = 0; k < dim; ++k) {
+        const double vb = walls[w].velocity[k].at(state_.time - 0.5 * state_.dt_half);
+        const double va = walls[w].velocity[k].at(state_.time + 0.5 * dt_next);
+        wall_back += f[dim * w + k] * back * vb;
+        wall_ahead += f[dim * w + k] * ahead * va;
+        model_.contact.wall_offset[dim * w + k] += va * dt_next;
+      }
+  }
+  const auto& g = settings_.gravity;
+  const bool gravity = g[0] != 0 || g[1] != 0 || g[2] != 0;
+
   const std::size_t n = nodes.count();
   const std::size_t chunks = (n + kNodeChunk - 1) / kNodeChunk;
-  constexpr int kSums = 4;  // kinetic, damping back, damping ahead, first bad node
+  constexpr int kSums = 6;  // kinetic, damping back/ahead, gravity back/ahead, first bad node
   chunk_sums_.assign(kSums * chunks, 0.0);
   double* X = nodes.x.data();
 #pragma omp parallel for schedule(static)
   for (std::size_t ch = 0; ch < chunks; ++ch) {
-    double kinetic = 0, damp_back = 0, damp_ahead = 0, bad = -1;
+    double kinetic = 0, damp_back = 0, damp_ahead = 0, grav_back = 0, grav_ahead = 0, bad = -1;
     const std::size_t end = std::min(n, (ch + 1) * kNodeChunk);
     for (std::size_t i = ch * kNodeChunk; i < end; ++i) {
       const double m = M[i];
-      double v2 = 0, vb = 0, va = 0;
+      double v2 = 0, vb = 0, va = 0, gb = 0, ga = 0;
       for (int k = 0; k < dim; ++k) {
         const std::size_t dof = dim * i + k;
         const double v_old = V[dof];
+        if (gravity) gb += g[k] * v_old;
         const double v_new = new_velocity(dof, m);
         const double v_mean = 0.5 * (v_old + v_new);
         v2 += v_mean * v_mean;
         vb += v_mean * v_old;
         va += v_mean * v_new;
+        if (gravity) ga += g[k] * v_new;
         V[dof] = v_new;
         X[dof] += dt_next * v_new;
       }
+      grav_back += m * gb * back;
+      grav_ahead += m * ga * ahead;
       if (!std::isfinite(v2) && bad < 0) bad = static_cast<double>(i);
       kinetic += 0.5 * m * v2;
       damp_back += alpha * m * vb * back;  // damping force α m v_n at t_n
@@ -223,14 +264,16 @@ void ExplicitSolver::advance() {
     out[0] = kinetic;
     out[1] = damp_back;
     out[2] = damp_ahead;
-    out[3] = bad;
+    out[3] = grav_back;
+    out[4] = grav_ahead;
+    out[5] = bad;
   }
   double kinetic = 0, damp_back = 0, damp_ahead = 0;
   for (std::size_t ch = 0; ch < chunks; ++ch) {
     const double* in = &chunk_sums_[kSums * ch];
-    if (in[3] >= 0) {
+    if (in[5] >= 0) {
       std::ostringstream out;
-      out << "the velocity of node " << static_cast<std::int64_t>(in[3])
+      out << "the velocity of node " << static_cast<std::int64_t>(in[5])
           << " is not finite at t = " << state_.time << " s, step " << state_.step
           << " (the run has become unstable)";
       throw RunError(out.str());
@@ -238,13 +281,19 @@ void ExplicitSolver::advance() {
     kinetic += in[0];
     damp_back += in[1];
     damp_ahead += in[2];
+    external_back += in[3];
+    external_ahead += in[4];
   }
   auto& E = state_.energy;
   E.kinetic = kinetic;
   E.damping += state_.pending_damping + damp_back;
-  E.external_work += state_.pending_external + external_back;
+  E.external_work += state_.pending_external + external_back + state_.pending_wall + wall_back;
+  E.wall_work += state_.pending_wall + wall_back;
+  E.contact_work += state_.pending_contact + contact_back;
   state_.pending_damping = damp_ahead;
   state_.pending_external = external_ahead;
+  state_.pending_wall = wall_ahead;
+  state_.pending_contact = contact_ahead;
   state_.dt_half = dt_next;
   state_.time += dt_next;
   state_.step += 1;

@@ -2,10 +2,12 @@
 // Theory: docs/theory/time_integration_and_energy.md.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <vector>
 
+#include "contact/contact.hpp"
 #include "fem/internal_forces.hpp"
 #include "material/material.hpp"
 #include "model/model.hpp"
@@ -21,6 +23,7 @@ struct SolverSettings {
   double q_quadratic = 1.5;
   double mass_damping = 0;  ///< α of the damping force −α m v (1/s)
   double max_time_step = 0; ///< 0: no limit
+  std::array<double, 3> gravity{0, 0, 0};  ///< body force per unit mass (m/s²)
 };
 
 /// Scalars of the integrator's state; with the Model's arrays this is everything a restart needs.
@@ -33,7 +36,9 @@ struct SolverState {
   EnergyBalance energy;    ///< every term through t_n
   /// Work of the nodal forces at t_n over [t_n, t_n+1/2]: booked with the next step, so that
   /// all terms of `energy` end at t_n (see docs/theory/time_integration_and_energy.md).
-  double pending_external = 0, pending_damping = 0;
+  double pending_external = 0, pending_damping = 0, pending_contact = 0, pending_wall = 0;
+  /// The wall forces on the bodies at t_n (dim per wall), for the work of moving walls.
+  std::vector<double> wall_force_on_bodies;
 };
 
 class ExplicitSolver {
@@ -50,6 +55,10 @@ class ExplicitSolver {
   /// Phase 2: velocities to t_n+1/2 (with constraints), energies at t_n, positions to t_n+1.
   void advance();
 
+  /// Contact between parts and with rigid walls (optional; not owned).
+  void attach_contact(ContactSystem* contact) { contact_ = contact; }
+  const ContactSystem* contact() const { return contact_; }
+
   bool finished() const;
   const SolverState& state() const { return state_; }
   SolverState& state() { return state_; }
@@ -63,6 +72,7 @@ class ExplicitSolver {
   SolverState state_;
   std::vector<std::pair<std::int64_t, double>> applied_;  // (dof, force) of pressure loads
   std::vector<double> chunk_sums_;
+  ContactSystem* contact_ = nullptr;
 };
 
 /// Lumped (row-sum) nodal masses of every part, added into model.nodes.mass.

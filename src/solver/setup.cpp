@@ -13,6 +13,8 @@ void prepare_part(Part& part, const Material& material, std::size_t node_count,
   if (!part.state.empty()) material.initialise(part.state.data(), points);
   part.temperature.assign(points, initial_temperature);
   part.volume.assign(part.element_count(), 0.0);
+  part.bulk_viscosity.assign(part.element_count(), 0.0);
+  part.hourglass_rate.assign(part.kind == ElementKind::hex8_reduced ? 12 * part.element_count() : 0, 0.0);
   colour_elements(part, node_count);
 }
 

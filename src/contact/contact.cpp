@@ -1,0 +1,362 @@
+#include "contact/contact.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace shard {
+
+bool ContactSettings::any_pairs() const {
+  return std::find(part_pairs.begin(), part_pairs.end(), 1) != part_pairs.end();
+}
+
+ContactSystem::ContactSystem(const Model& model, ContactSettings settings,
+                             std::vector<int> part_material, int material_count)
+    : settings_(std::move(settings)), part_material_(std::move(part_material)),
+      material_count_(material_count) {
+  rebuild(model);
+}
+
+void ContactSystem::rebuild(const Model& model) {
+  surface_ = extract_contact_surface(model);
+  hits_.assign(surface_.nodes.size(), Hit{});
+  normal_force_.assign(surface_.nodes.size(), 0.0);
+  const int dim = model.dim();
+  const std::size_t np = model.parts.size();
+  pairs_.clear();
+  for (std::size_t a = 0; a < np; ++a)
+    for (std::size_t b = a; b < np; ++b)
+      if (settings_.part_pairs[a * np + b] || settings_.part_pairs[b * np + a])
+        pairs_.emplace_back(static_cast<int>(a), static_cast<int>(b));
+  pair_force_.assign(pairs_.size() * dim, 0.0);
+  wall_force_.assign(settings_.walls.size() * dim, 0.0);
+}
+
+namespace {
+
+/// Penalty stiffness that keeps the stable step of a contact spring between two lumped masses
+/// within (1 − r) of the element step: the spring adds k (1/m_a + 1/m_b) ≤ 2k/m to ω², so
+/// k = m ω_e² ((1 − r)⁻² − 1) / 2 with ω_e = 2/Δt_e; halved again because a node can be held
+/// both as a node (its own spring) and as a facet corner (its neighbours' springs).
+double penalty(double mass, double stable_dt, double reduction, double scale) {
+  const double omega2 = 4.0 / (stable_dt * stable_dt);
+  return scale * mass * omega2 * (1.0 / ((1.0 - reduction) * (1.0 - reduction)) - 1.0) / 4.0;
+}
+
+std::size_t cell_hash(std::int64_t i, std::int64_t j, std::int64_t k, std::size_t mask) {
+  const std::uint64_t h = static_cast<std::uint64_t>(i) * 73856093u ^
+                          static_cast<std::uint64_t>(j) * 19349663u ^
+                          static_cast<std::uint64_t>(k) * 83492791u;
+  return static_cast<std::size_t>(h) & mask;
+}
+
+/// Coulomb friction with an elastic stick spring of stiffness k: returns the dissipated work.
+double coulomb(double* T, const double* n, const double* vt, double k, double dt, double fn,
+               const FrictionLaw& law, int dim) {
+  if (law.static_coefficient <= 0 && law.dynamic_coefficient <= 0) {
+    for (int d = 0; d < dim; ++d) T[d] = 0;
+    return 0;
+  }
+  // Keep the stored force in the current tangent plane (the surface may have rotated).
+  double tn = 0, before = 0;
+  for (int d = 0; d < dim; ++d) {
+    tn += T[d] * n[d];
+    before += T[d] * T[d];
+  }
+  double after = 0;
+  for (int d = 0; d < dim; ++d) {
+    T[d] -= tn * n[d];
+    after += T[d] * T[d];
+  }
+  if (after > 0)
+    for (int d = 0; d < dim; ++d) T[d] *= std::sqrt(before / after);
+  double trial[3], norm2 = 0;
+  for (int d = 0; d < dim; ++d) {
+    trial[d] = T[d] - k * vt[d] * dt;
+    norm2 += trial[d] * trial[d];
+  }
+  const double norm = std::sqrt(norm2);
+  if (norm <= law.static_coefficient * fn) {
+    for (int d = 0; d < dim; ++d) T[d] = trial[d];
+    return 0;
+  }
+  // Slip: the force drops to μ_d F_n along the trial direction; the slip (trial − T)/k times
+  // the force is the dissipated work (≥ 0, the two are parallel).
+  double work = 0;
+  const double s = norm > 0 ? law.dynamic_coefficient * fn / norm : 0;
+  for (int d = 0; d < dim; ++d) {
+    const double t = s * trial[d];
+    work += t * (trial[d] - t) / k;
+    T[d] = t;
+  }
+  return work;
+}
+
+}  // namespace
+
+void ContactSystem::find_facet_hits(const Model& model) {
+  const int dim = model.dim();
+  const std::size_t nf = surface_.facet_count();
+  const std::size_t ns = surface_.nodes.size();
+  for (auto& h : hits_) h = Hit{};
+  if (nf == 0 || !settings_.any_pairs()) return;
+  const double* X = model.nodes.x.data();
+  const std::int32_t* F = surface_.facets.data();
+  // Bins: a cell is as large as the largest facet plus its search depth, so a facet's box
+  // (grown by its depth) covers at most 2 cells per direction and a node looks in one cell.
+  double largest = 0;
+  for (std::size_t f = 0; f < nf; ++f)
+    for (int d = 0; d < dim; ++d) {
+      double lo = X[dim * F[dim * f] + d], hi = lo;
+      for (int a = 1; a < dim; ++a) {
+        lo = std::min(lo, X[dim * F[dim * f + a] + d]);
+        hi = std::max(hi, X[dim * F[dim * f + a] + d]);
+      }
+      largest = std::max(largest, hi - lo);
+    }
+  bin_size_ = std::max(1.5 * largest, 1e-12);
+  std::size_t table = 1;
+  while (table < 4 * nf) table <<= 1;
+  bin_mask_ = table - 1;
+  bin_begin_.assign(table + 1, 0);
+  std::vector<std::size_t> keys;
+  keys.reserve(nf * (dim == 2 ? 4 : 8));
+  std::vector<std::int32_t> owners;
+  owners.reserve(keys.capacity());
+  for (std::size_t f = 0; f < nf; ++f) {
+    double lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
+    for (int d = 0; d < dim; ++d) {
+      lo[d] = hi[d] = X[dim * F[dim * f] + d];
+      for (int a = 1; a < dim; ++a) {
+        lo[d] = std::min(lo[d], X[dim * F[dim * f + a] + d]);
+        hi[d] = std::max(hi[d], X[dim * F[dim * f + a] + d]);
+      }
+    }
+    const double margin = 0.5 * largest;
+    std::int64_t c0[3] = {0, 0, 0}, c1[3] = {0, 0, 0};
+    for (int d = 0; d < dim; ++d) {
+      c0[d] = static_cast<std::int64_t>(std::floor((lo[d] - margin) / bin_size_));
+      c1[d] = static_cast<std::int64_t>(std::floor((hi[d] + margin) / bin_size_));
+    }
+    std::size_t local[8];
+    int count = 0;
+    for (std::int64_t i = c0[0]; i <= c1[0]; ++i)
+      for (std::int64_t j = c0[1]; j <= c1[1]; ++j)
+        for (std::int64_t k = c0[2]; k <= c1[2]; ++k) {
+          const std::size_t h = cell_hash(i, j, k, bin_mask_);
+          if (std::find(local, local + count, h) == local + count && count < 8) local[count++] = h;
+        }
+    for (int c = 0; c < count; ++c) {
+      keys.push_back(local[c]);
+      owners.push_back(static_cast<std::int32_t>(f));
+      bin_begin_[local[c] + 1]++;
+    }
+  }
+  for (std::size_t b = 0; b < table; ++b) bin_begin_[b + 1] += bin_begin_[b];
+  bin_facets_.assign(keys.size(), 0);
+  {
+    std::vector<std::int32_t> fill(bin_begin_.begin(), bin_begin_.end() - 1);
+    for (std::size_t e = 0; e < keys.size(); ++e) bin_facets_[fill[keys[e]]++] = owners[e];
+  }
+
+  const std::size_t np = model.parts.size();
+#pragma omp parallel for schedule(static)
+  for (std::size_t i = 0; i < ns; ++i) {
+    const std::int32_t s = surface_.nodes[i];
+    const int ps = surface_.node_part[i];
+    const double* x = &X[dim * s];
+    std::int64_t c[3] = {0, 0, 0};
+    for (int d = 0; d < dim; ++d) c[d] = static_cast<std::int64_t>(std::floor(x[d] / bin_size_));
+    const std::size_t h = cell_hash(c[0], c[1], c[2], bin_mask_);
+    Hit best;
+    double best_gap = -std::numeric_limits<double>::infinity();
+    for (std::int32_t q = bin_begin_[h]; q < bin_begin_[h + 1]; ++q) {
+      const std::int32_t f = bin_facets_[q];
+      const int pf = surface_.facet_part[f];
+      if (!settings_.part_pairs[ps * np + pf]) continue;
+      const std::int32_t* fn = &F[dim * f];
+      bool own = false;
+      for (int a = 0; a < dim; ++a) own = own || fn[a] == s || (ps == pf && surface_.are_neighbours(i, fn[a]));
+      if (own) continue;
+      Hit hit;
+      hit.facet = f;
+      if (dim == 2) {
+        const double* a = &X[2 * fn[0]];
+        const double* b = &X[2 * fn[1]];
+        const double tx = b[0] - a[0], ty = b[1] - a[1];
+        const double l2 = tx * tx + ty * ty, l = std::sqrt(l2);
+        double xi = ((x[0] - a[0]) * tx + (x[1] - a[1]) * ty) / l2;
+        if (xi < -0.01 || xi > 1.01) continue;
+        xi = std::clamp(xi, 0.0, 1.0);
+        hit.normal[0] = ty / l;
+        hit.normal[1] = -tx / l;
+        hit.gap = (x[0] - a[0]) * hit.normal[0] + (x[1] - a[1]) * hit.normal[1];
+        if (hit.gap >= 0 || hit.gap < -0.5 * l) continue;
+        hit.weights[0] = 1 - xi;
+        hit.weights[1] = xi;
+      } else {
+        const double* a = &X[3 * fn[0]];
+        const double* b = &X[3 * fn[1]];
+        const double* cc = &X[3 * fn[2]];
+        const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+        const double w[3] = {cc[0] - a[0], cc[1] - a[1], cc[2] - a[2]};
+        double n[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
+        const double n2 = n[0] * n[0] + n[1] * n[1] + n[2] * n[2], nl = std::sqrt(n2);
+        for (double& v : n) v /= nl;
+        const double r[3] = {x[0] - a[0], x[1] - a[1], x[2] - a[2]};
+        hit.gap = r[0] * n[0] + r[1] * n[1] + r[2] * n[2];
+        if (hit.gap >= 0 || hit.gap < -0.5 * std::sqrt(nl)) continue;
+        // Barycentric coordinates of the projection.
+        const double p[3] = {r[0] - hit.gap * n[0], r[1] - hit.gap * n[1], r[2] - hit.gap * n[2]};
+        const double d00 = u[0] * u[0] + u[1] * u[1] + u[2] * u[2];
+        const double d01 = u[0] * w[0] + u[1] * w[1] + u[2] * w[2];
+        const double d11 = w[0] * w[0] + w[1] * w[1] + w[2] * w[2];
+        const double d20 = p[0] * u[0] + p[1] * u[1] + p[2] * u[2];
+        const double d21 = p[0] * w[0] + p[1] * w[1] + p[2] * w[2];
+        const double den = d00 * d11 - d01 * d01;
+        double lb = (d11 * d20 - d01 * d21) / den, lc = (d00 * d21 - d01 * d20) / den;
+        double la = 1 - lb - lc;
+        if (la < -0.01 || lb < -0.01 || lc < -0.01) continue;
+        la = std::max(la, 0.0);
+        lb = std::max(lb, 0.0);
+        lc = std::max(lc, 0.0);
+        const double sum = la + lb + lc;
+        hit.weights[0] = la / sum;
+        hit.weights[1] = lb / sum;
+        hit.weights[2] = lc / sum;
+        for (int d = 0; d < 3; ++d) hit.normal[d] = n[d];
+      }
+      // The shallowest penetration is the face the node came through.
+      if (hit.gap > best_gap || (hit.gap == best_gap && f < best.facet)) {
+        best_gap = hit.gap;
+        best = hit;
+      }
+    }
+    hits_[i] = best;
+  }
+}
+
+void ContactSystem::add_forces(Model& model, double time, double dt, double stable_dt) {
+  const int dim = model.dim();
+  const std::size_t nn = model.nodes.count();
+  if (model.contact.tangential.size() != dim * nn) model.contact.tangential.assign(dim * nn, 0.0);
+  const std::size_t nw = settings_.walls.size();
+  if (model.contact.wall_tangential.size() != nw * dim * nn) model.contact.wall_tangential.assign(nw * dim * nn, 0.0);
+  if (model.contact.wall_offset.size() != nw * dim) model.contact.wall_offset.assign(nw * dim, 0.0);
+  stored_energy_ = 0;
+  friction_work_ = 0;
+  applied_.clear();
+  active_ = 0;
+  std::fill(pair_force_.begin(), pair_force_.end(), 0.0);
+  std::fill(wall_force_.begin(), wall_force_.end(), 0.0);
+  std::fill(normal_force_.begin(), normal_force_.end(), 0.0);
+  if (!(stable_dt > 0) || !std::isfinite(stable_dt)) return;
+
+  find_facet_hits(model);
+  double* force = model.nodes.force.data();
+  const double* V = model.nodes.v.data();
+  const double* M = model.nodes.mass.data();
+  const std::size_t np = model.parts.size();
+  const double r = settings_.time_step_reduction, scale = settings_.penalty_scale;
+  auto pair_index = [&](int a, int b) -> int {
+    for (std::size_t p = 0; p < pairs_.size(); ++p)
+      if (pairs_[p].first == a && pairs_[p].second == b) return static_cast<int>(p);
+    return -1;
+  };
+  const std::int32_t* F = surface_.facets.data();
+  for (std::size_t i = 0; i < surface_.nodes.size(); ++i) {
+    const std::int32_t s = surface_.nodes[i];
+    double* T = &model.contact.tangential[dim * s];
+    const Hit& hit = hits_[i];
+    if (hit.facet < 0) {
+      for (int d = 0; d < dim; ++d) T[d] = 0;
+      continue;
+    }
+    const std::int32_t* fn = &F[dim * hit.facet];
+    double facet_mass = 0, vrel[3] = {0, 0, 0};
+    for (int a = 0; a < dim; ++a) facet_mass += hit.weights[a] * M[fn[a]];
+    for (int d = 0; d < dim; ++d) {
+      vrel[d] = V[dim * s + d];
+      for (int a = 0; a < dim; ++a) vrel[d] -= hit.weights[a] * V[dim * fn[a] + d];
+    }
+    const double k = penalty(std::min(M[s], facet_mass), stable_dt, r, scale);
+    const double fn_mag = -k * hit.gap;
+    double vn = 0;
+    for (int d = 0; d < dim; ++d) vn += vrel[d] * hit.normal[d];
+    double vt[3];
+    for (int d = 0; d < dim; ++d) vt[d] = vrel[d] - vn * hit.normal[d];
+    const int ps = surface_.node_part[i], pf = surface_.facet_part[hit.facet];
+    const FrictionLaw& law = settings_.friction[part_material_[ps] * material_count_ + part_material_[pf]];
+    friction_work_ += coulomb(T, hit.normal, vt, k, dt, fn_mag, law, dim);
+    double f[3], t2 = 0;
+    for (int d = 0; d < dim; ++d) {
+      f[d] = fn_mag * hit.normal[d] + T[d];
+      t2 += T[d] * T[d];
+      force[dim * s + d] += f[d];
+      applied_.emplace_back(static_cast<std::int64_t>(dim) * s + d, f[d]);
+      for (int a = 0; a < dim; ++a) {
+        force[dim * fn[a] + d] -= hit.weights[a] * f[d];
+        applied_.emplace_back(static_cast<std::int64_t>(dim) * fn[a] + d, -hit.weights[a] * f[d]);
+      }
+    }
+    stored_energy_ += 0.5 * k * hit.gap * hit.gap + 0.5 * t2 / k;
+    normal_force_[i] = fn_mag;
+    ++active_;
+    const int p = ps <= pf ? pair_index(ps, pf) : pair_index(pf, ps);
+    if (p >= 0)
+      for (int d = 0; d < dim; ++d) pair_force_[dim * p + d] += ps <= pf ? f[d] : -f[d];
+  }
+  (void)np;
+
+  // Rigid walls.
+  for (std::size_t w = 0; w < nw; ++w) {
+    const RigidWall& wall = settings_.walls[w];
+    double vw[3] = {0, 0, 0}, origin[3] = {0, 0, 0};
+    for (int d = 0; d < dim; ++d) {
+      vw[d] = wall.velocity[d].at(time);
+      origin[d] = wall.point[d] + model.contact.wall_offset[dim * w + d];
+    }
+    for (std::size_t i = 0; i < surface_.nodes.size(); ++i) {
+      const int ps = surface_.node_part[i];
+      if (!wall.parts[ps]) continue;
+      const std::int32_t s = surface_.nodes[i];
+      double* T = &model.contact.wall_tangential[(w * nn + s) * dim];
+      double gap = 0;
+      for (int d = 0; d < dim; ++d) gap += (model.nodes.x[dim * s + d] - origin[d]) * wall.normal[d];
+      if (gap >= 0) {
+        for (int d = 0; d < dim; ++d) T[d] = 0;
+        continue;
+      }
+      const double k = penalty(2.0 * M[s], stable_dt, r, scale);  // the wall does not move back
+      const double fn_mag = -k * gap;
+      double vrel[3] = {0, 0, 0}, vn = 0;
+      for (int d = 0; d < dim; ++d) {
+        vrel[d] = V[dim * s + d] - vw[d];
+        vn += vrel[d] * wall.normal[d];
+      }
+      double vt[3];
+      for (int d = 0; d < dim; ++d) vt[d] = vrel[d] - vn * wall.normal[d];
+      friction_work_ += coulomb(T, wall.normal.data(), vt, k, dt, fn_mag, wall.friction, dim);
+      double t2 = 0;
+      for (int d = 0; d < dim; ++d) {
+        const double f = fn_mag * wall.normal[d] + T[d];
+        force[dim * s + d] += f;
+        applied_.emplace_back(static_cast<std::int64_t>(dim) * s + d, f);
+        wall_force_[dim * w + d] -= f;
+        t2 += T[d] * T[d];
+      }
+      stored_energy_ += 0.5 * k * gap * gap + 0.5 * t2 / k;
+      normal_force_[i] += fn_mag;
+      ++active_;
+    }
+  }
+}
+
+std::vector<double> ContactSystem::nodal_pressure(const Model& model) const {
+  std::vector<double> p(model.nodes.count(), 0.0);
+  for (std::size_t i = 0; i < surface_.nodes.size(); ++i)
+    if (surface_.node_area[i] > 0) p[surface_.nodes[i]] = normal_force_[i] / surface_.node_area[i];
+  return p;
+}
+
+}  // namespace shard

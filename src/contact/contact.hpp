@@ -1,0 +1,99 @@
+// Penalty contact with Coulomb friction between the surfaces of parts, and rigid walls.
+// Theory: docs/theory/contact.md.
+#pragma once
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include "contact/contact_surface.hpp"
+#include "core/time_table.hpp"
+#include "model/model.hpp"
+
+namespace shard {
+
+struct FrictionLaw {
+  double static_coefficient = 0;   ///< μ_s: the tangential force sticks while |F_t| ≤ μ_s F_n
+  double dynamic_coefficient = 0;  ///< μ_d: sliding force μ_d F_n
+};
+
+/// A rigid plane. Bodies stay on the side its normal points to.
+struct RigidWall {
+  std::string name;
+  std::array<double, 3> point{0, 0, 0};
+  std::array<double, 3> normal{0, 1, 0};  ///< unit
+  std::array<TimeTable, 3> velocity{TimeTable::constant(0), TimeTable::constant(0),
+                                     TimeTable::constant(0)};
+  FrictionLaw friction;
+  std::vector<char> parts;  ///< per part: 1 if the wall acts on it
+};
+
+struct ContactSettings {
+  /// part_pairs[a * parts + b] = 1 if parts a and b (a == b: self-contact) are in contact.
+  std::vector<char> part_pairs;
+  /// friction[ma * materials + mb]: the law between two materials (symmetric).
+  std::vector<FrictionLaw> friction;
+  double penalty_scale = 1.0;
+  /// The automatic penalty keeps the stable time step within this fraction of the element one.
+  double time_step_reduction = 0.1;
+  std::vector<RigidWall> walls;
+
+  bool any_pairs() const;
+};
+
+class ContactSystem {
+ public:
+  ContactSystem(const Model& model, ContactSettings settings, std::vector<int> part_material,
+                int material_count);
+
+  /// Rebuilds the contact surface from the current topology (call after topology changes).
+  void rebuild(const Model& model);
+
+  /// Adds contact and wall forces at the positions x_n to model.nodes.force. Friction uses the
+  /// velocities v_n−1/2 over dt = Δt_n−1/2; the penalty is set from `stable_dt`, the element
+  /// stable time step. Deterministic: pairs are found in parallel per node, applied in order.
+  void add_forces(Model& model, double time, double dt, double stable_dt);
+
+  double stored_energy() const { return stored_energy_; }      ///< penalty springs, now (J)
+  double friction_increment() const { return friction_work_; }  ///< dissipated in this call (J)
+  std::size_t active_contacts() const { return active_; }
+  /// (dof, force) of every contact and wall force added in the last call, in a fixed order.
+  const std::vector<std::pair<std::int64_t, double>>& applied_forces() const { return applied_; }
+
+  /// Force on each wall from the bodies (dim per wall): what a load cell under it measures.
+  const std::vector<double>& wall_forces() const { return wall_force_; }
+  /// Force on part a from part b for every pair with a ≤ b (dim per pair; see pair_names()).
+  const std::vector<double>& pair_forces() const { return pair_force_; }
+  const std::vector<std::pair<int, int>>& reported_pairs() const { return pairs_; }
+  const ContactSettings& settings() const { return settings_; }
+  const ContactSurface& surface() const { return surface_; }
+
+  /// Normal contact pressure at every node of the model (0 away from contact), for frames.
+  std::vector<double> nodal_pressure(const Model& model) const;
+
+ private:
+  struct Hit {
+    std::int32_t facet = -1;  ///< or −1 - wall index for a wall
+    double gap = 0;
+    double weights[3] = {0, 0, 0};
+    double normal[3] = {0, 0, 0};
+  };
+  void find_facet_hits(const Model& model);
+
+  ContactSettings settings_;
+  std::vector<int> part_material_;
+  int material_count_;
+  ContactSurface surface_;
+  std::vector<Hit> hits_;                // per surface node
+  std::vector<double> normal_force_;     // per surface node, last call (N)
+  std::vector<std::int32_t> bin_begin_, bin_facets_;
+  double bin_size_ = 0;
+  std::size_t bin_mask_ = 0;
+  double stored_energy_ = 0, friction_work_ = 0;
+  std::size_t active_ = 0;
+  std::vector<double> wall_force_, pair_force_;
+  std::vector<std::pair<int, int>> pairs_;
+  std::vector<std::pair<std::int64_t, double>> applied_;
+};
+
+}  // namespace shard

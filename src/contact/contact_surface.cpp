@@ -1,0 +1,149 @@
+#include "contact/contact_surface.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <numbers>
+#include <unordered_map>
+
+namespace shard {
+
+namespace {
+
+// Faces of each element kind with outward right-hand normals (for positive-volume elements in
+// Gmsh/VTK node order).
+constexpr int kTri3Edges[3][2] = {{0, 1}, {1, 2}, {2, 0}};
+constexpr int kTet4Faces[4][3] = {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {0, 3, 2}};
+constexpr int kHex8Faces[6][4] = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4},
+                                  {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}};
+
+struct Face {
+  std::array<std::int32_t, 4> nodes;  // oriented
+  int count;                           // 2, 3 or 4 nodes
+  std::int32_t part;
+};
+
+struct Key {
+  std::array<std::int32_t, 4> sorted;
+  bool operator==(const Key& o) const { return sorted == o.sorted; }
+};
+struct KeyHash {
+  std::size_t operator()(const Key& k) const {
+    std::size_t h = 1469598103934665603ull;
+    for (auto v : k.sorted) h = (h ^ static_cast<std::size_t>(v + 1)) * 1099511628211ull;
+    return h;
+  }
+};
+
+}  // namespace
+
+bool ContactSurface::are_neighbours(std::size_t surface_node, std::int32_t node) const {
+  const auto* b = neighbours.data() + neighbour_begin[surface_node];
+  const auto* e = neighbours.data() + neighbour_begin[surface_node + 1];
+  return std::binary_search(b, e, node);
+}
+
+ContactSurface extract_contact_surface(const Model& model) {
+  ContactSurface s;
+  s.dim = model.dim();
+  std::vector<Face> faces;
+  std::unordered_map<Key, int, KeyHash> seen;  // face key → index in faces, or -1 if shared
+  for (std::size_t p = 0; p < model.parts.size(); ++p) {
+    const Part& part = model.parts[p];
+    const int npe = nodes_per_element(part.kind);
+    for (std::size_t e = 0; e < part.element_count(); ++e) {
+      const std::int32_t* cn = &part.connectivity[npe * e];
+      auto add = [&](const int* local, int count) {
+        Face f{{-1, -1, -1, -1}, count, static_cast<std::int32_t>(p)};
+        for (int i = 0; i < count; ++i) f.nodes[i] = cn[local[i]];
+        Key k{f.nodes};
+        std::sort(k.sorted.begin(), k.sorted.begin() + count);
+        auto [it, inserted] = seen.emplace(k, static_cast<int>(faces.size()));
+        if (inserted) faces.push_back(f);
+        else it->second = -1;
+      };
+      if (part.kind == ElementKind::tri3)
+        for (const auto& edge : kTri3Edges) add(edge, 2);
+      else if (part.kind == ElementKind::tet4)
+        for (const auto& face : kTet4Faces) add(face, 3);
+      else
+        for (const auto& face : kHex8Faces) add(face, 4);
+    }
+  }
+  // Keep the faces seen once, in the order they were first met (deterministic).
+  std::vector<char> boundary(faces.size(), 0);
+  for (const auto& [key, index] : seen)
+    if (index >= 0) boundary[index] = 1;
+  const int dim = s.dim;
+  const double* X = model.nodes.x.data();
+  std::vector<double> area(model.nodes.count(), 0.0);
+  std::vector<std::int32_t> part_of(model.nodes.count(), -1);
+  for (std::size_t f = 0; f < faces.size(); ++f) {
+    if (!boundary[f]) continue;
+    const Face& face = faces[f];
+    auto emit = [&](std::int32_t a, std::int32_t b, std::int32_t c) {
+      s.facets.push_back(a);
+      s.facets.push_back(b);
+      if (dim == 3) s.facets.push_back(c);
+      s.facet_part.push_back(face.part);
+    };
+    if (face.count == 2) {
+      emit(face.nodes[0], face.nodes[1], -1);
+      const double dx = X[2 * face.nodes[1]] - X[2 * face.nodes[0]];
+      const double dy = X[2 * face.nodes[1] + 1] - X[2 * face.nodes[0] + 1];
+      double length = std::sqrt(dx * dx + dy * dy);
+      if (model.formulation == Formulation::axisymmetric)
+        length *= std::numbers::pi * (X[2 * face.nodes[0]] + X[2 * face.nodes[1]]);
+      else
+        length *= model.thickness;
+      for (int i = 0; i < 2; ++i) area[face.nodes[i]] += 0.5 * length;
+    } else {
+      emit(face.nodes[0], face.nodes[1], face.nodes[2]);
+      if (face.count == 4) emit(face.nodes[0], face.nodes[2], face.nodes[3]);
+      const std::int32_t* n = face.nodes.data();
+      const double* a = &X[3 * n[0]];
+      const double* c = &X[3 * n[2]];
+      const double* b = &X[3 * n[1]];
+      const double* d = face.count == 4 ? &X[3 * n[3]] : a;
+      const double u[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+      const double w[3] = {face.count == 4 ? d[0] - b[0] : a[0] - b[0],
+                           face.count == 4 ? d[1] - b[1] : a[1] - b[1],
+                           face.count == 4 ? d[2] - b[2] : a[2] - b[2]};
+      const double nx = u[1] * w[2] - u[2] * w[1], ny = u[2] * w[0] - u[0] * w[2], nz = u[0] * w[1] - u[1] * w[0];
+      const double face_area = 0.5 * std::sqrt(nx * nx + ny * ny + nz * nz);
+      for (int i = 0; i < face.count; ++i) area[n[i]] += face_area / face.count;
+    }
+    for (int i = 0; i < face.count; ++i) part_of[face.nodes[i]] = face.part;
+  }
+  for (std::size_t i = 0; i < part_of.size(); ++i)
+    if (part_of[i] >= 0) {
+      s.nodes.push_back(static_cast<std::int32_t>(i));
+      s.node_part.push_back(part_of[i]);
+      s.node_area.push_back(area[i]);
+    }
+  // Element neighbourhoods of the surface nodes.
+  std::vector<std::int32_t> slot(model.nodes.count(), -1);
+  for (std::size_t i = 0; i < s.nodes.size(); ++i) slot[s.nodes[i]] = static_cast<std::int32_t>(i);
+  std::vector<std::vector<std::int32_t>> lists(s.nodes.size());
+  for (const Part& part : model.parts) {
+    const int npe = nodes_per_element(part.kind);
+    for (std::size_t e = 0; e < part.element_count(); ++e) {
+      const std::int32_t* cn = &part.connectivity[npe * e];
+      for (int a = 0; a < npe; ++a) {
+        if (slot[cn[a]] < 0) continue;
+        auto& l = lists[slot[cn[a]]];
+        l.insert(l.end(), cn, cn + npe);
+      }
+    }
+  }
+  s.neighbour_begin.push_back(0);
+  for (auto& l : lists) {
+    std::sort(l.begin(), l.end());
+    l.erase(std::unique(l.begin(), l.end()), l.end());
+    s.neighbours.insert(s.neighbours.end(), l.begin(), l.end());
+    s.neighbour_begin.push_back(static_cast<std::int32_t>(s.neighbours.size()));
+  }
+  return s;
+}
+
+}  // namespace shard

@@ -1,0 +1,32 @@
+// The contact surface of a model: every element face that belongs to exactly one element.
+// Rebuilt from the connectivity whenever the topology changes (cracks, erosion, remeshing).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "model/model.hpp"
+
+namespace shard {
+
+struct ContactSurface {
+  int dim = 2;
+  /// Facets: 2-node segments in 2D, 3-node triangles in 3D (quadrilateral faces of hexahedra
+  /// are split in two), numbered so that the right-hand normal points out of the body.
+  std::vector<std::int32_t> facets;
+  std::vector<std::int32_t> facet_part;
+  std::vector<std::int32_t> nodes;      ///< surface nodes, sorted
+  std::vector<std::int32_t> node_part;  ///< the part of each surface node
+  std::vector<double> node_area;        ///< tributary area of each surface node (m², 2D: per thickness)
+  /// For self-contact: the nodes that share an element with each surface node (CSR), so that a
+  /// node is never found "penetrating" the faces of its own neighbourhood.
+  std::vector<std::int32_t> neighbour_begin, neighbours;
+
+  int nodes_per_facet() const { return dim; }
+  std::size_t facet_count() const { return facets.size() / static_cast<std::size_t>(dim); }
+  bool are_neighbours(std::size_t surface_node, std::int32_t node) const;
+};
+
+ContactSurface extract_contact_surface(const Model& model);
+
+}  // namespace shard

@@ -1,0 +1,69 @@
+// Two identical elastic bars colliding head-on, frictionless: for equal bars the velocities
+// swap (each bar leaves with the other's velocity) after a contact of duration 2L/c; momentum
+// is conserved exactly by equal and opposite contact forces (tolerance 1e-10 relative) and the
+// energy balance closes (1 %).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+
+#include "support/contact_models.hpp"
+#include "support/model_runner.hpp"
+
+namespace shard {
+
+void collide(ElementKind kind, double velocity_tolerance) {
+  const double L = 0.02, h = 0.004, rho = 7800, E = 200e9, v = 5.0, gap = 1e-5;
+  BoxMesh box;
+  box.kind = kind;
+  box.cells = {40, 4, 4};
+  box.size = {L, h, h};
+  const Formulation f = kind == ElementKind::tri3 ? Formulation::plane_strain : Formulation::three_d;
+  Model model = make_box_model(f, box);
+  // The right bar is meshed differently across (5 cells instead of 4): node-to-facet contact
+  // of two faces whose nodes coincide is a degenerate case (nodes on facet corners).
+  BoxMesh other = box;
+  other.cells = {40, 5, 5};
+  testing::append_model(model, make_box_model(f, other), {L + gap, 0, 0}, "right_", 0);
+  const int dim = model.dim();
+  const std::size_t half = make_box_model(f, box).nodes.count();
+  for (std::size_t i = 0; i < model.nodes.count(); ++i) model.nodes.v[dim * i] = i < half ? v : -v;
+  testing::ElasticRun run(std::move(model), rho, E, 0.0);
+  ContactSystem contact(run.model, testing::all_pairs(2, 1), {0, 0}, 1);
+  const double c = std::sqrt(E / rho);  // ν = 0: bar speed = dilatational speed
+  run.settings.end_time = 2.6 * L / c;
+  ExplicitSolver solver(run.model, run.materials, run.loads, run.settings);
+  solver.attach_contact(&contact);
+  solver.initialise();
+  double m_left = 0, m_right = 0;
+  for (std::size_t i = 0; i < run.model.nodes.count(); ++i) (i < half ? m_left : m_right) += run.model.nodes.mass[i];
+  const double m_half = m_left;
+  double worst_error = 0;
+  while (true) {
+    solver.compute_forces();
+    solver.advance();
+    if (solver.state().time > 0.2 * L / c) worst_error = std::max(worst_error, std::abs(solver.state().energy.relative_error()));
+    if (solver.state().time >= run.settings.end_time) break;
+  }
+  double p_left = 0, p_right = 0;
+  for (std::size_t i = 0; i < run.model.nodes.count(); ++i)
+    (i < half ? p_left : p_right) += run.model.nodes.mass[i] * run.model.nodes.v[dim * i];
+  const double v_left = p_left / m_left, v_right = p_right / m_right;
+  std::printf("[contact bars] %s: v_left %+.4f m/s, v_right %+.4f m/s (expected -/+ %.1f), momentum %.2e of m v, energy error max %.2e\n",
+              name_of(kind), v_left, v_right, v, std::abs(p_left + p_right) / (m_half * v), worst_error);
+  EXPECT_NEAR(v_left, -v, velocity_tolerance * v);
+  EXPECT_NEAR(v_right, v, velocity_tolerance * v);
+  EXPECT_LT(std::abs(p_left + p_right), 1e-10 * m_half * v);
+  EXPECT_LT(worst_error, 0.01);
+}
+
+TEST(ContactBars, Tri3HeadOnVelocitiesSwap) { collide(ElementKind::tri3, 0.03); }
+
+// 3D with one-point hexahedra: momentum and the energy balance as in 2D, but the contact loads
+// excite hourglass modes and the viscous hourglass control takes about 8 % of the energy, so the
+// bars leave at about 0.92 v (measured -4.60 m/s for 5 m/s). Fully integrated hex8 and tet4 keep
+// that energy as high-frequency ringing of the contact faces instead (balance 1.7-3 % from the
+// mean-velocity kinetic energy of ringing nodes): open work of the contact issue.
+TEST(ContactBars, Hex8ReducedMomentumAndEnergy) { collide(ElementKind::hex8_reduced, 0.10); }
+
+}  // namespace shard
