@@ -26,6 +26,12 @@ std::string shown_path(const std::filesystem::path& file) {
 
 }  // namespace
 
+std::vector<int> Simulation::part_materials() const {
+  std::vector<int> m;
+  for (const auto& p : model.parts) m.push_back(p.material);
+  return m;
+}
+
 MeshData load_scenario_mesh(const Scenario& sc) {
   GmshOptions options;
   options.scale = sc.mesh_unit;
@@ -246,7 +252,55 @@ Simulation build_simulation(Scenario& sc, const MeshData& mesh) {
                                    static_cast<int>(sim.loads.tables.size()) - 1});
   }
 
+  // Contact and rigid walls.
+  const std::size_t np = model.parts.size(), nm = sim.materials.size();
+  auto part_index = [&](const std::string& name) {
+    for (std::size_t p = 0; p < np; ++p)
+      if (model.parts[p].name == name) return static_cast<int>(p);
+    return -1;
+  };
+  if (sc.contact || !sc.walls.empty()) {
+    ContactSettings cs;
+    cs.part_pairs.assign(np * np, 0);
+    cs.friction.assign(nm * nm, FrictionLaw{});
+    if (sc.contact) {
+      const ContactInput& ci = *sc.contact;
+      for (std::size_t a = 0; a < np; ++a)
+        for (std::size_t b = 0; b < np; ++b)
+          if (ci.all_pairs && (a != b || ci.self_contact)) cs.part_pairs[a * np + b] = 1;
+      for (const auto& [a, b] : ci.pairs) {
+        const int ia = part_index(a), ib = part_index(b);
+        cs.part_pairs[ia * np + ib] = cs.part_pairs[ib * np + ia] = 1;
+      }
+      std::fill(cs.friction.begin(), cs.friction.end(), FrictionLaw{ci.friction, ci.dynamic_friction});
+      for (const auto& f : ci.material_friction) {
+        std::size_t ma = 0, mb = 0;
+        for (std::size_t m = 0; m < nm; ++m) {
+          if (sc.materials[m].name == f.material_a) ma = m;
+          if (sc.materials[m].name == f.material_b) mb = m;
+        }
+        cs.friction[ma * nm + mb] = cs.friction[mb * nm + ma] = {f.static_coefficient, f.dynamic_coefficient};
+      }
+      cs.penalty_scale = ci.penalty_scale;
+      cs.time_step_reduction = ci.time_step_reduction;
+    }
+    for (const auto& wi : sc.walls) {
+      RigidWall w;
+      w.name = wi.name;
+      w.point = wi.point;
+      w.normal = wi.normal;
+      for (int k = 0; k < 3; ++k)
+        if (wi.velocity[k]) w.velocity[k] = *wi.velocity[k];
+      w.friction = {wi.friction, wi.dynamic_friction};
+      w.parts.assign(np, wi.parts.empty() ? 1 : 0);
+      for (const auto& name : wi.parts) w.parts[part_index(name)] = 1;
+      cs.walls.push_back(w);
+    }
+    sim.contact = cs;
+  }
+
   SolverSettings& s = sim.settings;
+  s.gravity = sc.gravity;
   s.end_time = sc.end_time;
   s.time_step_safety = sc.time_step_safety;
   s.q_linear = sc.bulk_viscosity_linear;

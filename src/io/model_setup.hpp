@@ -2,8 +2,10 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <vector>
 
+#include "contact/contact.hpp"
 #include "io/gmsh_import.hpp"
 #include "io/scenario.hpp"
 #include "material/material.hpp"
@@ -18,6 +20,9 @@ struct Simulation {
   std::vector<std::unique_ptr<Material>> materials;
   Loads loads;
   SolverSettings settings;
+  std::optional<ContactSettings> contact;  ///< contact between parts and/or rigid walls
+
+  std::vector<int> part_materials() const;
 };
 
 /// Loads (or meshes) the scenario's mesh. Throws InputError naming the scenario line for bad

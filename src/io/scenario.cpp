@@ -40,6 +40,9 @@ KeyList top_keys() {
         "fixed, symmetry and prescribed-velocity conditions on physical groups")
       .defaults_to("[]");
   k.add("loads", ValueKind::list, "pressure on boundary groups").defaults_to("[]");
+  k.add("contact", ValueKind::section,
+        "penalty contact with Coulomb friction between parts (theory: docs/theory/contact.md)");
+  k.add("walls", ValueKind::list, "rigid planes, fixed or moving, with friction").defaults_to("[]");
   k.add("output", ValueKind::section, "frames, history, checkpoints").defaults_to("{}");
   return k;
 }
@@ -78,6 +81,58 @@ KeyList analysis_keys() {
   k.add("max_steps", ValueKind::integer, "stop with an error after this many steps (0: no limit)")
       .at_least(0)
       .defaults_to("0");
+  KeySpec& g = k.add("gravity", ValueKind::vector, "body force per unit mass, e.g. [0, -9.81 m/s^2]");
+  g.dimension = dim::acceleration;
+  g.defaults_to("[0, 0, 0]");
+  return k;
+}
+
+KeyList contact_keys() {
+  KeyList k;
+  k.add("pairs", ValueKind::list,
+        "parts in contact: `all` (every pair of different parts) or a list of pairs [[a, b], ...]; "
+        "[a, a] is self-contact")
+      .must_be_given();
+  k.add("self_contact", ValueKind::boolean, "with `pairs: all`, also each part with itself")
+      .defaults_to("false");
+  k.quantity("friction", dim::none, "Coulomb coefficient μ_s of every pair (static)")
+      .at_least(0)
+      .defaults_to("0");
+  k.quantity("dynamic_friction", dim::none, "sliding coefficient μ_d")
+      .at_least(0)
+      .defaults_to("friction");
+  k.add("material_friction", ValueKind::list,
+        "per pair of materials: [{materials: [a, b], static: 0.3, dynamic: 0.25}]")
+      .defaults_to("[]");
+  k.quantity("penalty_scale", dim::none, "multiplies the automatic penalty stiffness").above(0).defaults_to("1");
+  k.quantity("time_step_reduction", dim::none,
+             "the automatic penalty keeps the stable time step within this fraction of the elements' one")
+      .above(0)
+      .below(1)
+      .defaults_to("0.1");
+  return k;
+}
+
+KeyList material_friction_keys() {
+  KeyList k;
+  k.add("materials", ValueKind::list, "two material names").must_be_given();
+  k.quantity("static", dim::none, "static coefficient μ_s").at_least(0).must_be_given();
+  k.quantity("dynamic", dim::none, "dynamic coefficient μ_d").at_least(0).defaults_to("static");
+  return k;
+}
+
+KeyList wall_keys() {
+  KeyList k;
+  k.add("name", ValueKind::text, "name used in history.csv columns").must_be_given();
+  KeySpec& p = k.add("point", ValueKind::vector, "a point of the plane at t = 0");
+  p.dimension = dim::length;
+  p.must_be_given();
+  KeySpec& n = k.add("normal", ValueKind::vector, "normal pointing to the side where the bodies are");
+  n.must_be_given();
+  k.quantity("friction", dim::none, "Coulomb coefficient (static)").at_least(0).defaults_to("0");
+  k.quantity("dynamic_friction", dim::none, "sliding coefficient").at_least(0).defaults_to("friction");
+  k.add("velocity", ValueKind::section, "wall velocity per component: {y: -1 m/s} or time tables");
+  k.add("parts", ValueKind::list, "the parts it acts on (default: all)").defaults_to("all");
   return k;
 }
 
@@ -477,6 +532,15 @@ Scenario read_scenario(const std::filesystem::path& path) {
   sc.initial_temperature = analysis.number("initial_temperature");
   sc.max_steps = analysis.integer("max_steps");
   const std::size_t dim = static_cast<std::size_t>(sc.dim());
+  if (analysis.has("gravity")) {
+    const auto g = analysis.vector("gravity", dim);
+    std::copy(g.begin(), g.end(), sc.gravity.begin());
+  } else {
+    YAML::Node zero(YAML::NodeType::Sequence);
+    zero.SetStyle(YAML::EmitterStyle::Flow);
+    for (std::size_t k = 0; k < dim; ++k) zero.push_back(0.0);
+    sc.resolved["analysis"]["gravity"] = zero;
+  }
   const std::vector<std::string> components =
       dim == 3 ? std::vector<std::string>{"x", "y", "z"} : std::vector<std::string>{"x", "y"};
 
@@ -694,6 +758,134 @@ Scenario read_scenario(const std::filesystem::path& path) {
   }
   sc.resolved["loads"] = load_out;
 
+  // contact
+  auto check_part = [&](Section& sec, const std::string& key, const std::string& name) {
+    if (std::find(part_names.begin(), part_names.end(), name) == part_names.end()) {
+      std::string reason = "no part named '" + name + "'";
+      const std::string close = closest_match(name, part_names);
+      if (!close.empty()) reason += " (did you mean '" + close + "'?)";
+      sec.fail(key, reason);
+    }
+  };
+  if (top.has("contact")) {
+    const KeyList c_keys = contact_keys();
+    Section c(top.value("contact"), file, "contact", c_keys, sc.resolved["contact"], top.line("contact"));
+    ContactInput ci;
+    ci.line = c.line();
+    const YAML::Node pairs = c.value("pairs");
+    if (pairs.IsScalar() && pairs.Scalar() == "all") {
+      ci.all_pairs = true;
+      sc.resolved["contact"]["pairs"] = "all";
+    } else if (pairs.IsSequence()) {
+      YAML::Node out(YAML::NodeType::Sequence);
+      for (const auto& pair : pairs) {
+        if (!pair.IsSequence() || pair.size() != 2 || !pair[0].IsScalar() || !pair[1].IsScalar())
+          c.fail("pairs", "each entry is a pair of part names [a, b], got " + Section::shape(pair));
+        check_part(c, "pairs", pair[0].Scalar());
+        check_part(c, "pairs", pair[1].Scalar());
+        ci.pairs.emplace_back(pair[0].Scalar(), pair[1].Scalar());
+        YAML::Node p(YAML::NodeType::Sequence);
+        p.SetStyle(YAML::EmitterStyle::Flow);
+        p.push_back(pair[0].Scalar());
+        p.push_back(pair[1].Scalar());
+        out.push_back(p);
+      }
+      sc.resolved["contact"]["pairs"] = out;
+    } else {
+      c.fail("pairs", "expected 'all' or a list of part pairs [[a, b], ...]");
+    }
+    if (c.has("self_contact")) {
+      const std::string v = c.value("self_contact").Scalar();
+      if (v != "true" && v != "false") c.fail("self_contact", "expected true or false, got '" + v + "'");
+      ci.self_contact = v == "true";
+    }
+    sc.resolved["contact"]["self_contact"] = ci.self_contact;
+    ci.friction = c.number("friction");
+    ci.dynamic_friction = c.number("dynamic_friction", ci.friction);
+    ci.penalty_scale = c.number("penalty_scale");
+    ci.time_step_reduction = c.number("time_step_reduction");
+    if (c.has("material_friction")) {
+      const YAML::Node list = c.value("material_friction");
+      if (!list.IsSequence()) c.fail("material_friction", "expected a list of {materials: [a, b], static: ..}");
+      const KeyList f_keys = material_friction_keys();
+      YAML::Node out(YAML::NodeType::Sequence);
+      for (std::size_t i = 0; i < list.size(); ++i) {
+        YAML::Node entry(YAML::NodeType::Map);
+        Section f(list[i], file, "contact.material_friction[" + std::to_string(i + 1) + "]", f_keys, entry, line_of(list[i]));
+        const YAML::Node mats = f.value("materials");
+        if (!mats.IsSequence() || mats.size() != 2) f.fail("materials", "expected two material names [a, b]");
+        FrictionInput fi;
+        fi.line = f.line();
+        fi.material_a = mats[0].Scalar();
+        fi.material_b = mats[1].Scalar();
+        for (const auto& m : {fi.material_a, fi.material_b})
+          if (std::find(material_names.begin(), material_names.end(), m) == material_names.end()) {
+            std::string reason = "no material named '" + m + "'";
+            const std::string close = closest_match(m, material_names);
+            if (!close.empty()) reason += " (did you mean '" + close + "'?)";
+            f.fail("materials", reason);
+          }
+        entry["materials"] = mats;
+        fi.static_coefficient = f.number("static");
+        fi.dynamic_coefficient = f.number("dynamic", fi.static_coefficient);
+        ci.material_friction.push_back(fi);
+        out.push_back(entry);
+      }
+      sc.resolved["contact"]["material_friction"] = out;
+    }
+    sc.contact = ci;
+  }
+
+  // rigid walls
+  if (top.has("walls")) {
+    const YAML::Node walls = list_of("walls");
+    const KeyList w_keys = wall_keys();
+    YAML::Node out(YAML::NodeType::Sequence);
+    for (std::size_t i = 0; i < walls.size(); ++i) {
+      YAML::Node entry(YAML::NodeType::Map);
+      const std::string path = "walls[" + std::to_string(i + 1) + "]";
+      Section w(walls[i], file, path, w_keys, entry, line_of(walls[i]));
+      WallInput wi;
+      wi.line = w.line();
+      wi.name = w.text("name");
+      const auto point = w.vector("point", dim);
+      const auto normal = w.vector("normal", dim);
+      double norm = 0;
+      for (double v : normal) norm += v * v;
+      if (!(norm > 0)) w.fail("normal", "the normal must not be zero");
+      for (std::size_t k = 0; k < dim; ++k) {
+        wi.point[k] = point[k];
+        wi.normal[k] = normal[k] / std::sqrt(norm);
+      }
+      wi.friction = w.number("friction");
+      wi.dynamic_friction = w.number("dynamic_friction", wi.friction);
+      if (w.has("velocity")) {
+        Section v(w.value("velocity"), file, path + ".velocity", vc_keys, entry["velocity"], w.line("velocity"));
+        for (std::size_t k = 0; k < 3; ++k)
+          if (v.has(components.size() > k ? components[k] : "z")) {
+            if (k >= dim) v.fail("z", "a 2D model has no z component");
+            wi.velocity[k] = v.table(components[k]);
+          }
+      }
+      if (w.has("parts")) {
+        const YAML::Node parts_node = w.value("parts");
+        if (parts_node.IsSequence()) {
+          for (const auto& p : parts_node) {
+            check_part(w, "parts", p.Scalar());
+            wi.parts.push_back(p.Scalar());
+          }
+          entry["parts"] = parts_node;
+        } else if (!(parts_node.IsScalar() && parts_node.Scalar() == "all")) {
+          w.fail("parts", "expected 'all' or a list of part names");
+        }
+      }
+      if (wi.parts.empty()) entry["parts"] = "all";
+      sc.walls.push_back(wi);
+      out.push_back(entry);
+    }
+    sc.resolved["walls"] = out;
+  }
+
   // output
   const KeyList o_keys = output_keys();
   Section out(top.value("output"), file, "output", o_keys, sc.resolved["output"], top.line("output"));
@@ -737,6 +929,9 @@ std::vector<SchemaSection> scenario_schema() {
           {"boundary_conditions[]", "a list entry", boundary_condition_keys()},
           {"boundary_conditions[].velocity", "prescribed velocity components", velocity_component_keys()},
           {"loads[]", "a list entry", load_keys()},
+          {"contact", "contact between parts", contact_keys()},
+          {"contact.material_friction[]", "friction of a pair of materials", material_friction_keys()},
+          {"walls[]", "a rigid plane", wall_keys()},
           {"output", "what is written to the output folder", output_keys()}};
 }
 

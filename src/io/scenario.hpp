@@ -60,6 +60,31 @@ struct OutputSettings {
   std::vector<std::string> fields;
 };
 
+struct FrictionInput {
+  std::string material_a, material_b;
+  double static_coefficient = 0, dynamic_coefficient = 0;
+  int line = 0;
+};
+
+struct ContactInput {
+  bool all_pairs = false;
+  bool self_contact = false;
+  std::vector<std::pair<std::string, std::string>> pairs;
+  double friction = 0, dynamic_friction = 0;
+  std::vector<FrictionInput> material_friction;
+  double penalty_scale = 1, time_step_reduction = 0.1;
+  int line = 0;
+};
+
+struct WallInput {
+  std::string name;
+  std::array<double, 3> point{0, 0, 0}, normal{0, 0, 0};
+  std::array<std::optional<TimeTable>, 3> velocity;
+  double friction = 0, dynamic_friction = 0;
+  std::vector<std::string> parts;  ///< empty: all
+  int line = 0;
+};
+
 struct Scenario {
   std::filesystem::path file;
   std::string title;
@@ -74,6 +99,7 @@ struct Scenario {
   double mass_damping = 0;
   double initial_temperature = 293.15;
   std::int64_t max_steps = 0;
+  std::array<double, 3> gravity{0, 0, 0};
 
   std::filesystem::path mesh_file;  ///< absolute
   double mesh_size = 0;             ///< m; 0: as the file says
@@ -85,6 +111,8 @@ struct Scenario {
   std::vector<InitialVelocityInput> initial_velocities;
   std::vector<BoundaryConditionInput> boundary_conditions;
   std::vector<PressureInput> pressures;
+  std::optional<ContactInput> contact;
+  std::vector<WallInput> walls;
   OutputSettings output;
 
   YAML::Node resolved;  ///< the scenario as resolved (SI, defaults filled in)

@@ -129,6 +129,11 @@ std::string check_scenario(const std::filesystem::path& file) {
   Prepared p = prepare(file);
   Simulation& sim = p.sim;
   ExplicitSolver solver(sim.model, sim.materials, sim.loads, sim.settings);
+  std::optional<ContactSystem> contact;
+  if (sim.contact) {
+    contact.emplace(sim.model, *sim.contact, sim.part_materials(), static_cast<int>(sim.materials.size()));
+    solver.attach_contact(&*contact);
+  }
   solver.initialise();
   solver.compute_forces();
   std::ostringstream out;
@@ -158,6 +163,11 @@ RunSummary run_scenario(const std::filesystem::path& file, const RunOptions& opt
   Scenario& sc = p.scenario;
   Simulation& sim = p.sim;
   ExplicitSolver solver(sim.model, sim.materials, sim.loads, sim.settings);
+  std::optional<ContactSystem> contact;
+  if (sim.contact) {
+    contact.emplace(sim.model, *sim.contact, sim.part_materials(), static_cast<int>(sim.materials.size()));
+    solver.attach_contact(&*contact);
+  }
   const std::string fingerprint = fingerprint_of(sc);
   OutputCursor cursor;
   if (options.restart) {
@@ -172,6 +182,18 @@ RunSummary run_scenario(const std::filesystem::path& file, const RunOptions& opt
                                                    SHARD_VERSION + " (SI units)\n" +
                                                    to_yaml_text(sc.resolved));
   const std::filesystem::path history_path = dir / "history.csv";
+  // Contact forces per part pair and per wall: what load cells and crush tests measure.
+  std::vector<std::string> extra_columns;
+  const char* axes[3] = {"x", "y", "z"};
+  const int dim = sim.model.dim();
+  if (contact) {
+    for (const auto& [a, b] : contact->reported_pairs())
+      for (int k = 0; k < dim; ++k)
+        extra_columns.push_back("contact_force_" + sim.model.parts[a].name + "_from_" +
+                                sim.model.parts[b].name + "_" + axes[k]);
+    for (const auto& w : contact->settings().walls)
+      for (int k = 0; k < dim; ++k) extra_columns.push_back("wall_" + w.name + "_force_" + axes[k]);
+  }
   PvdCollection pvd(dir / "frames.pvd");
   std::ofstream history;
   if (options.restart) {
@@ -188,6 +210,7 @@ RunSummary run_scenario(const std::filesystem::path& file, const RunOptions& opt
     history.open(history_path, std::ios::trunc);
     history << "time,step,dt";
     for (const auto& c : EnergyBalance::column_names()) history << ',' << c;
+    for (const auto& c : extra_columns) history << ',' << c;
     history << '\n';
   }
 
@@ -233,7 +256,12 @@ RunSummary run_scenario(const std::filesystem::path& file, const RunOptions& opt
       if (final || due(t, cursor.next_frame, out.frame_interval)) {
         char name[32];
         std::snprintf(name, sizeof name, "frame_%05lld.vtu", static_cast<long long>(cursor.next_frame));
-        write_vtu(dir / name, make_frame(sim.model, sim.materials, out.fields, t));
+        VtuGrid frame = make_frame(sim.model, sim.materials, out.fields, t);
+        if (contact) {
+          VtuField p{"contact_pressure", 1, contact->nodal_pressure(sim.model)};
+          frame.point_fields.push_back(std::move(p));
+        }
+        write_vtu(dir / name, frame);
         pvd.add(t, name);
         cursor.next_frame = static_cast<std::int64_t>(std::floor(t / out.frame_interval * (1 + 1e-9))) + 1;
       }
@@ -247,6 +275,13 @@ RunSummary run_scenario(const std::filesystem::path& file, const RunOptions& opt
         for (double v : s.energy.column_values()) {
           std::snprintf(buffer, sizeof buffer, ",%.12e", v);
           history << buffer;
+        }
+        if (contact) {
+          for (const auto* values : {&contact->pair_forces(), &contact->wall_forces()})
+            for (double v : *values) {
+              std::snprintf(buffer, sizeof buffer, ",%.12e", v);
+              history << buffer;
+            }
         }
         history << '\n';
         if (out.history_interval > 0)

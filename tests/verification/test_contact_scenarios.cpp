@@ -1,0 +1,133 @@
+// Contact through scenario files: a disc bouncing off a rigid wall (restitution, energy), a
+// block on an inclined plane with Coulomb friction (sliding acceleration and sticking), and
+// thread determinism with contact.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <numbers>
+
+#include "io/model_setup.hpp"
+#include "support/cli.hpp"
+
+namespace shard {
+namespace {
+
+const std::string kData = std::string(SHARD_TEST_DATA_DIR) + "/contact/";
+
+struct ScenarioRun {
+  Scenario scenario;
+  Simulation sim;
+  std::optional<ContactSystem> contact;
+  std::unique_ptr<ExplicitSolver> solver;
+
+  explicit ScenarioRun(const std::string& file) : scenario(read_scenario(file)) {
+    sim = build_simulation(scenario, load_scenario_mesh(scenario));
+    solver = std::make_unique<ExplicitSolver>(sim.model, sim.materials, sim.loads, sim.settings);
+    contact.emplace(sim.model, *sim.contact, sim.part_materials(), static_cast<int>(sim.materials.size()));
+    solver->attach_contact(&*contact);
+    solver->initialise();
+  }
+  void step() {
+    solver->compute_forces();
+    solver->advance();
+  }
+  std::array<double, 3> mean_velocity() const {
+    std::array<double, 3> p{0, 0, 0};
+    double m = 0;
+    const int dim = sim.model.dim();
+    for (std::size_t i = 0; i < sim.model.nodes.count(); ++i) {
+      m += sim.model.nodes.mass[i];
+      for (int k = 0; k < dim; ++k) p[k] += sim.model.nodes.mass[i] * sim.model.nodes.v[dim * i + k];
+    }
+    for (double& v : p) v /= m;
+    return p;
+  }
+};
+
+// An elastic disc (no friction) dropped on a rigid wall leaves with nearly its impact speed:
+// the restitution coefficient of an elastic body is 1 less the energy left in vibration and
+// taken by bulk viscosity (a few percent here); the balance closes within 1 %.
+TEST(ContactScenarios, DiscBouncesOffRigidWall) {
+  ScenarioRun run(kData + "disc_bounce.yaml");
+  const double v0 = run.mean_velocity()[1];
+  double worst = 0;
+  while (!run.solver->finished()) {
+    run.step();
+    worst = std::max(worst, std::abs(run.solver->state().energy.relative_error()));
+  }
+  const double v1 = run.mean_velocity()[1];
+  const double restitution = -v1 / v0;
+  std::printf("[disc bounce] v0 %.3f m/s, v1 %.3f m/s, restitution %.4f, energy error max %.2e, contacts at end %zu\n",
+              v0, v1, restitution, worst, run.contact->active_contacts());
+  EXPECT_GT(restitution, 0.95);
+  EXPECT_LE(restitution, 1.0);
+  EXPECT_LT(worst, 0.01);
+  EXPECT_EQ(run.contact->active_contacts(), 0u) << "the disc must have left the wall";
+}
+
+/// Mean x-acceleration of the block between 100 and 200 µs for gravity tilted by theta.
+double sliding_acceleration(double theta_degrees, double mu, double* g_out) {
+  const std::string file = (std::filesystem::temp_directory_path() / "shard_incline.yaml").string();
+  {
+    std::ifstream in(kData + "block_on_incline.yaml");
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const double g = 1e5, th = theta_degrees * std::numbers::pi / 180;
+    char gravity[128];
+    std::snprintf(gravity, sizeof gravity, "gravity: [%.10g, %.10g]", g * std::sin(th), -g * std::cos(th));
+    text.replace(text.find("gravity: ["), text.find(']', text.find("gravity: [")) - text.find("gravity: [") + 1, gravity);
+    text.replace(text.find("mesh: {file: "), 13, "mesh: {file: " + kData);
+    char friction[64];
+    std::snprintf(friction, sizeof friction, "friction: %.6g}", mu);
+    text.replace(text.find("friction: 0.3}"), 14, friction);
+    std::ofstream(file) << text;
+    *g_out = g;
+  }
+  ScenarioRun run(file);
+  double v_mid = 0, t_mid = 0;
+  while (!run.solver->finished()) {
+    run.step();
+    const double t = run.solver->state().time;
+    if (t_mid == 0 && t >= 100e-6) {
+      t_mid = t;
+      v_mid = run.mean_velocity()[0];
+    }
+  }
+  return (run.mean_velocity()[0] - v_mid) / (run.solver->state().time - t_mid);
+}
+
+TEST(ContactScenarios, BlockSlidesDownInclineWithCoulombFriction) {
+  const double mu = 0.3, theta = 30;
+  double g;
+  const double a = sliding_acceleration(theta, mu, &g);
+  const double th = theta * std::numbers::pi / 180;
+  const double expected = g * (std::sin(th) - mu * std::cos(th));
+  std::printf("[incline] theta %.0f deg, mu %.2f: a = %.5g m/s^2, g(sin - mu cos) = %.5g (%+.2f %%)\n", theta,
+              mu, a, expected, 100 * (a / expected - 1));
+  EXPECT_NEAR(a, expected, 0.02 * expected);
+}
+
+TEST(ContactScenarios, BlockSticksWhenTanThetaBelowMu) {
+  const double mu = 0.3, theta = 10;  // tan 10° = 0.176 < 0.3
+  double g;
+  const double a = sliding_acceleration(theta, mu, &g);
+  const double driving = g * std::sin(theta * std::numbers::pi / 180);
+  std::printf("[incline] theta %.0f deg, mu %.2f: a = %.3g m/s^2 (driving g sin = %.4g)\n", theta, mu, a, driving);
+  EXPECT_LT(std::abs(a), 0.005 * driving);
+}
+
+TEST(ContactScenarios, SameOutputForOneAndTwoThreadsWithContact) {
+  const auto dir = testing::fresh_dir("contact_threads");
+  const std::string s = kData + "disc_bounce.yaml";
+  ASSERT_EQ(testing::run_shard("run " + s + " --quiet --threads 1 -o " + (dir / "one").string()).status, 0);
+  ASSERT_EQ(testing::run_shard("run " + s + " --quiet --threads 2 -o " + (dir / "two").string()).status, 0);
+  const std::string h1 = testing::read_file(dir / "one" / "history.csv");
+  EXPECT_NE(h1.find("wall_base_force_y"), std::string::npos);
+  EXPECT_EQ(h1, testing::read_file(dir / "two" / "history.csv"));
+  EXPECT_EQ(testing::read_file(dir / "one" / "frame_00010.vtu"), testing::read_file(dir / "two" / "frame_00010.vtu"));
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace shard
