@@ -307,6 +307,8 @@ Simulation build_simulation(Scenario& sc, const MeshData& mesh) {
   s.q_quadratic = sc.bulk_viscosity_quadratic;
   s.mass_damping = sc.mass_damping;
   s.max_time_step = sc.max_time_step;
+  if (sim.contact)
+    sim.contact_system.emplace(sim.model, *sim.contact, sim.part_materials(), static_cast<int>(nm));
   return sim;
 }
 

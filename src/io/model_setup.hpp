@@ -21,6 +21,7 @@ struct Simulation {
   Loads loads;
   SolverSettings settings;
   std::optional<ContactSettings> contact;  ///< contact between parts and/or rigid walls
+  std::optional<ContactSystem> contact_system;  ///< built from `contact`; attach it to the solver
 
   std::vector<int> part_materials() const;
 };

@@ -129,11 +129,8 @@ std::string check_scenario(const std::filesystem::path& file) {
   Prepared p = prepare(file);
   Simulation& sim = p.sim;
   ExplicitSolver solver(sim.model, sim.materials, sim.loads, sim.settings);
-  std::optional<ContactSystem> contact;
-  if (sim.contact) {
-    contact.emplace(sim.model, *sim.contact, sim.part_materials(), static_cast<int>(sim.materials.size()));
-    solver.attach_contact(&*contact);
-  }
+  ContactSystem* contact = sim.contact_system ? &*sim.contact_system : nullptr;
+  solver.attach_contact(contact);
   solver.initialise();
   solver.compute_forces();
   std::ostringstream out;
@@ -163,11 +160,8 @@ RunSummary run_scenario(const std::filesystem::path& file, const RunOptions& opt
   Scenario& sc = p.scenario;
   Simulation& sim = p.sim;
   ExplicitSolver solver(sim.model, sim.materials, sim.loads, sim.settings);
-  std::optional<ContactSystem> contact;
-  if (sim.contact) {
-    contact.emplace(sim.model, *sim.contact, sim.part_materials(), static_cast<int>(sim.materials.size()));
-    solver.attach_contact(&*contact);
-  }
+  ContactSystem* contact = sim.contact_system ? &*sim.contact_system : nullptr;
+  solver.attach_contact(contact);
   const std::string fingerprint = fingerprint_of(sc);
   OutputCursor cursor;
   if (options.restart) {

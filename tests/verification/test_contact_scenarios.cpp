@@ -19,14 +19,14 @@ const std::string kData = std::string(SHARD_TEST_DATA_DIR) + "/contact/";
 struct ScenarioRun {
   Scenario scenario;
   Simulation sim;
-  std::optional<ContactSystem> contact;
+  ContactSystem* contact = nullptr;
   std::unique_ptr<ExplicitSolver> solver;
 
   explicit ScenarioRun(const std::string& file) : scenario(read_scenario(file)) {
     sim = build_simulation(scenario, load_scenario_mesh(scenario));
     solver = std::make_unique<ExplicitSolver>(sim.model, sim.materials, sim.loads, sim.settings);
-    contact.emplace(sim.model, *sim.contact, sim.part_materials(), static_cast<int>(sim.materials.size()));
-    solver->attach_contact(&*contact);
+    contact = &*sim.contact_system;
+    solver->attach_contact(contact);
     solver->initialise();
   }
   void step() {
