@@ -246,6 +246,7 @@ void ContactSystem::add_forces(Model& model, double time, double dt, double stab
   stored_energy_ = 0;
   friction_work_ = 0;
   applied_.clear();
+  max_penetration_ = 0;
   active_ = 0;
   std::fill(pair_force_.begin(), pair_force_.end(), 0.0);
   std::fill(wall_force_.begin(), wall_force_.end(), 0.0);
@@ -281,6 +282,7 @@ void ContactSystem::add_forces(Model& model, double time, double dt, double stab
     }
     const double k = penalty(std::min(M[s], facet_mass), stable_dt, r, scale);
     const double fn_mag = -k * hit.gap;
+    max_penetration_ = std::max(max_penetration_, -hit.gap);
     double vn = 0;
     for (int d = 0; d < dim; ++d) vn += vrel[d] * hit.normal[d];
     double vt[3];
@@ -329,6 +331,7 @@ void ContactSystem::add_forces(Model& model, double time, double dt, double stab
       }
       const double k = penalty(2.0 * M[s], stable_dt, r, scale);  // the wall does not move back
       const double fn_mag = -k * gap;
+      max_penetration_ = std::max(max_penetration_, -gap);
       double vrel[3] = {0, 0, 0}, vn = 0;
       for (int d = 0; d < dim; ++d) {
         vrel[d] = V[dim * s + d] - vw[d];

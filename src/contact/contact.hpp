@@ -57,6 +57,8 @@ class ContactSystem {
   double stored_energy() const { return stored_energy_; }      ///< penalty springs, now (J)
   double friction_increment() const { return friction_work_; }  ///< dissipated in this call (J)
   std::size_t active_contacts() const { return active_; }
+  /// The deepest penetration (−gap, m) found in the last call, node-to-facet and walls.
+  double max_penetration() const { return max_penetration_; }
   /// (dof, force) of every contact and wall force added in the last call, in a fixed order.
   const std::vector<std::pair<std::int64_t, double>>& applied_forces() const { return applied_; }
 
@@ -91,6 +93,7 @@ class ContactSystem {
   std::size_t bin_mask_ = 0;
   double stored_energy_ = 0, friction_work_ = 0;
   std::size_t active_ = 0;
+  double max_penetration_ = 0;
   std::vector<double> wall_force_, pair_force_;
   std::vector<std::pair<int, int>> pairs_;
   std::vector<std::pair<std::int64_t, double>> applied_;
