@@ -95,7 +95,11 @@ def plot_energy(args):
     path = find_history(args.input)
     columns = read_history(path)
     time_us = columns["time"] * 1e6
-    energies = [name for name in columns if name not in NON_ENERGY_COLUMNS]
+    # The energies are the columns between dt and energy_error; columns after energy_error are
+    # other histories (contact and wall forces) with other units.
+    names = list(columns)
+    last = names.index("energy_error") if "energy_error" in names else len(names)
+    energies = [name for name in names[:last] if name not in NON_ENERGY_COLUMNS]
     shown = [name for name in energies if np.any(columns[name] != 0.0)]
     all_zero = [name for name in energies if name not in shown]
     has_error = "energy_error" in columns
@@ -125,6 +129,24 @@ def plot_energy(args):
         error_axes.set_xlabel("time [µs]")
     else:
         axes.set_xlabel("time [µs]")
+    axes.set_title(args.title or run_name(path))
+    save(figure, args.output, args.dpi)
+
+
+def plot_history(args):
+    path = find_history(args.input)
+    columns = read_history(path)
+    missing = [name for name in args.columns if name not in columns]
+    if missing:
+        raise PlotError(f"no column {', '.join(missing)} in {path}; columns: {', '.join(columns)}")
+    time_us = columns["time"] * 1e6
+    figure, axes = plt.subplots(figsize=(8, 4.5))
+    for name in args.columns:
+        axes.plot(time_us, columns[name] * args.scale, label=name)
+    axes.set_xlabel("time [µs]")
+    axes.set_ylabel(args.ylabel or ("value" if args.scale == 1 else f"value × {args.scale:g}"))
+    axes.grid(True, alpha=0.3)
+    axes.legend(loc="best", fontsize="small")
     axes.set_title(args.title or run_name(path))
     save(figure, args.output, args.dpi)
 
@@ -554,6 +576,22 @@ small axis below. Incomplete lines (a run killed while writing) are skipped.""")
     energy.add_argument("--title", help="plot title (default: the run folder's name)")
     energy.add_argument("--dpi", type=int, default=150, help="resolution (default: %(default)s)")
     energy.set_defaults(run=plot_energy)
+
+    history = commands.add_parser(
+        "history", help="plot chosen history.csv columns (e.g. a wall's reaction force)",
+        description="Plot chosen columns of history.csv against time in µs, for example the force "
+                    "on a rigid wall: history OUT --columns wall_base_force_y --scale 1e-3 "
+                    "--ylabel 'force [kN/m]'.")
+    history.add_argument("input", metavar="OUTDIR_OR_history.csv",
+                         help="run folder (uses OUTDIR/history.csv) or the csv file itself")
+    history.add_argument("--columns", nargs="+", required=True, help="column names to plot")
+    history.add_argument("--scale", type=float, default=1.0, help="multiply values by this")
+    history.add_argument("--ylabel", help="label of the vertical axis")
+    history.add_argument("-o", "--output", default="history.png",
+                         help="image file to write (default: %(default)s)")
+    history.add_argument("--title", help="plot title (default: the run folder's name)")
+    history.add_argument("--dpi", type=int, default=150, help="resolution (default: %(default)s)")
+    history.set_defaults(run=plot_history)
 
     field = commands.add_parser(
         "field", formatter_class=argparse.RawDescriptionHelpFormatter,
