@@ -29,6 +29,9 @@ void ContactSystem::rebuild(const Model& model) {
       if (settings_.part_pairs[a * np + b] || settings_.part_pairs[b * np + a])
         pairs_.emplace_back(static_cast<int>(a), static_cast<int>(b));
   pair_force_.assign(pairs_.size() * dim, 0.0);
+  pair_of_parts_.assign(np * np, -1);
+  for (std::size_t p = 0; p < pairs_.size(); ++p)
+    pair_of_parts_[pairs_[p].first * np + pairs_[p].second] = static_cast<int>(p);
   wall_force_.assign(settings_.walls.size() * dim, 0.0);
 }
 
@@ -102,8 +105,9 @@ void ContactSystem::find_facet_hits(const Model& model) {
   if (nf == 0 || !settings_.any_pairs()) return;
   const double* X = model.nodes.x.data();
   const std::int32_t* F = surface_.facets.data();
-  // Bins: a cell is as large as the largest facet plus its search depth, so a facet's box
-  // (grown by its depth) covers at most 2 cells per direction and a node looks in one cell.
+  // Bins: a facet's box grown by the search margin (half the largest facet extent on each side)
+  // is at most twice the largest extent long; a cell 2.5 times the largest extent is longer than
+  // that, so a grown box covers at most 2 cells per direction and a node looks in one cell.
   double largest = 0;
   for (std::size_t f = 0; f < nf; ++f)
     for (int d = 0; d < dim; ++d) {
@@ -114,7 +118,7 @@ void ContactSystem::find_facet_hits(const Model& model) {
       }
       largest = std::max(largest, hi - lo);
     }
-  bin_size_ = std::max(1.5 * largest, 1e-12);
+  bin_size_ = std::max(2.5 * largest, 1e-12);
   std::size_t table = 1;
   while (table < 4 * nf) table <<= 1;
   bin_mask_ = table - 1;
@@ -138,13 +142,13 @@ void ContactSystem::find_facet_hits(const Model& model) {
       c0[d] = static_cast<std::int64_t>(std::floor((lo[d] - margin) / bin_size_));
       c1[d] = static_cast<std::int64_t>(std::floor((hi[d] + margin) / bin_size_));
     }
-    std::size_t local[8];
+    std::size_t local[27];
     int count = 0;
     for (std::int64_t i = c0[0]; i <= c1[0]; ++i)
       for (std::int64_t j = c0[1]; j <= c1[1]; ++j)
         for (std::int64_t k = c0[2]; k <= c1[2]; ++k) {
           const std::size_t h = cell_hash(i, j, k, bin_mask_);
-          if (std::find(local, local + count, h) == local + count && count < 8) local[count++] = h;
+          if (std::find(local, local + count, h) == local + count) local[count++] = h;
         }
     for (int c = 0; c < count; ++c) {
       keys.push_back(local[c]);
@@ -159,12 +163,37 @@ void ContactSystem::find_facet_hits(const Model& model) {
     for (std::size_t e = 0; e < keys.size(); ++e) bin_facets_[fill[keys[e]]++] = owners[e];
   }
 
+  // Outward normal of each surface node (sum of its facets' area normals): a node only touches
+  // facets that face it, which keeps coincident or nearby corners of two bodies from pushing each
+  // other sideways.
+  node_normal_.assign(static_cast<std::size_t>(dim) * model.nodes.count(), 0.0);
+  for (std::size_t f = 0; f < nf; ++f) {
+    const std::int32_t* fn = &F[dim * f];
+    double n[3] = {0, 0, 0};
+    if (dim == 2) {
+      n[0] = X[2 * fn[1] + 1] - X[2 * fn[0] + 1];
+      n[1] = -(X[2 * fn[1]] - X[2 * fn[0]]);
+    } else {
+      const double* a = &X[3 * fn[0]];
+      const double* b = &X[3 * fn[1]];
+      const double* c = &X[3 * fn[2]];
+      const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+      const double w[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+      n[0] = u[1] * w[2] - u[2] * w[1];
+      n[1] = u[2] * w[0] - u[0] * w[2];
+      n[2] = u[0] * w[1] - u[1] * w[0];
+    }
+    for (int a = 0; a < dim; ++a)
+      for (int d = 0; d < dim; ++d) node_normal_[dim * fn[a] + d] += n[d];
+  }
+
   const std::size_t np = model.parts.size();
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < ns; ++i) {
     const std::int32_t s = surface_.nodes[i];
     const int ps = surface_.node_part[i];
     const double* x = &X[dim * s];
+    const double* nn = &node_normal_[dim * s];
     std::int64_t c[3] = {0, 0, 0};
     for (int d = 0; d < dim; ++d) c[d] = static_cast<std::int64_t>(std::floor(x[d] / bin_size_));
     const std::size_t h = cell_hash(c[0], c[1], c[2], bin_mask_);
@@ -185,11 +214,13 @@ void ContactSystem::find_facet_hits(const Model& model) {
         const double* b = &X[2 * fn[1]];
         const double tx = b[0] - a[0], ty = b[1] - a[1];
         const double l2 = tx * tx + ty * ty, l = std::sqrt(l2);
-        double xi = ((x[0] - a[0]) * tx + (x[1] - a[1]) * ty) / l2;
-        if (xi < -0.01 || xi > 1.01) continue;
-        xi = std::clamp(xi, 0.0, 1.0);
+        // Only a node whose projection falls on the facet: past a convex corner of the master
+        // surface the next facet decides, not this one's extended line.
+        const double xi = ((x[0] - a[0]) * tx + (x[1] - a[1]) * ty) / l2;
+        if (xi < 0.0 || xi > 1.0) continue;
         hit.normal[0] = ty / l;
         hit.normal[1] = -tx / l;
+        if (hit.normal[0] * nn[0] + hit.normal[1] * nn[1] >= 0) continue;  // not facing each other
         hit.gap = (x[0] - a[0]) * hit.normal[0] + (x[1] - a[1]) * hit.normal[1];
         if (hit.gap >= 0 || hit.gap < -0.5 * l) continue;
         hit.weights[0] = 1 - xi;
@@ -215,15 +246,12 @@ void ContactSystem::find_facet_hits(const Model& model) {
         const double d21 = p[0] * w[0] + p[1] * w[1] + p[2] * w[2];
         const double den = d00 * d11 - d01 * d01;
         double lb = (d11 * d20 - d01 * d21) / den, lc = (d00 * d21 - d01 * d20) / den;
-        double la = 1 - lb - lc;
-        if (la < -0.01 || lb < -0.01 || lc < -0.01) continue;
-        la = std::max(la, 0.0);
-        lb = std::max(lb, 0.0);
-        lc = std::max(lc, 0.0);
-        const double sum = la + lb + lc;
-        hit.weights[0] = la / sum;
-        hit.weights[1] = lb / sum;
-        hit.weights[2] = lc / sum;
+        const double la = 1 - lb - lc;
+        if (la < 0.0 || lb < 0.0 || lc < 0.0) continue;
+        if (n[0] * nn[0] + n[1] * nn[1] + n[2] * nn[2] >= 0) continue;  // not facing each other
+        hit.weights[0] = la;
+        hit.weights[1] = lb;
+        hit.weights[2] = lc;
         for (int d = 0; d < 3; ++d) hit.normal[d] = n[d];
       }
       // The shallowest penetration is the face the node came through.
@@ -252,6 +280,8 @@ void ContactSystem::add_forces(Model& model, double time, double dt, double stab
   std::fill(wall_force_.begin(), wall_force_.end(), 0.0);
   std::fill(normal_force_.begin(), normal_force_.end(), 0.0);
   if (!(stable_dt > 0) || !std::isfinite(stable_dt)) return;
+  if (model.contact.penalty_time_step.empty()) model.contact.penalty_time_step.assign(1, stable_dt);
+  stable_dt = model.contact.penalty_time_step[0];
 
   find_facet_hits(model);
   double* force = model.nodes.force.data();
@@ -259,11 +289,7 @@ void ContactSystem::add_forces(Model& model, double time, double dt, double stab
   const double* M = model.nodes.mass.data();
   const std::size_t np = model.parts.size();
   const double r = settings_.time_step_reduction, scale = settings_.penalty_scale;
-  auto pair_index = [&](int a, int b) -> int {
-    for (std::size_t p = 0; p < pairs_.size(); ++p)
-      if (pairs_[p].first == a && pairs_[p].second == b) return static_cast<int>(p);
-    return -1;
-  };
+  auto pair_index = [&](int a, int b) { return pair_of_parts_[a * np + b]; };
   const std::int32_t* F = surface_.facets.data();
   for (std::size_t i = 0; i < surface_.nodes.size(); ++i) {
     const std::int32_t s = surface_.nodes[i];
@@ -308,7 +334,6 @@ void ContactSystem::add_forces(Model& model, double time, double dt, double stab
     if (p >= 0)
       for (int d = 0; d < dim; ++d) pair_force_[dim * p + d] += ps <= pf ? f[d] : -f[d];
   }
-  (void)np;
 
   // Rigid walls.
   for (std::size_t w = 0; w < nw; ++w) {

@@ -50,8 +50,8 @@ class ContactSystem {
   void rebuild(const Model& model);
 
   /// Adds contact and wall forces at the positions x_n to model.nodes.force. Friction uses the
-  /// velocities v_n−1/2 over dt = Δt_n−1/2; the penalty is set from `stable_dt`, the element
-  /// stable time step. Deterministic: pairs are found in parallel per node, applied in order.
+  /// velocities v_n−1/2 over dt = Δt_n−1/2; the penalty is set from the element stable time step
+  /// `stable_dt` of the first call (kept in model.contact.penalty_time_step). Deterministic: pairs are found in parallel per node, applied in order.
   void add_forces(Model& model, double time, double dt, double stable_dt);
 
   double stored_energy() const { return stored_energy_; }      ///< penalty springs, now (J)
@@ -97,6 +97,8 @@ class ContactSystem {
   std::vector<double> wall_force_, pair_force_;
   std::vector<std::pair<int, int>> pairs_;
   std::vector<std::pair<std::int64_t, double>> applied_;
+  std::vector<int> pair_of_parts_;     // part a * parts + b → index in pairs_ (a ≤ b), or −1
+  std::vector<double> node_normal_;    // outward normal of each node (surface nodes non-zero)
 };
 
 }  // namespace shard

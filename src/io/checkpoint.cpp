@@ -21,6 +21,7 @@ void visit_scalars(SolverState& s, OutputCursor& c, F&& f) {
   f(s.dt_half);
   f(s.dt_next);
   f(s.stable_dt);
+  f(s.initial_dt);
   f(s.pending_external);
   f(s.pending_damping);
   f(s.pending_contact);

@@ -106,6 +106,10 @@ struct ContactState {
   std::vector<double> tangential;       ///< stick force of node-to-facet contact, per node
   std::vector<double> wall_tangential;  ///< stick force against each wall: wall-major, per node
   std::vector<double> wall_offset;      ///< displacement of each rigid wall, dim per wall
+  /// The element stable time step the penalty is built on, fixed at the first contact step (one
+  /// value): a penalty that followed the current step would change with the motion of the
+  /// critical element and bulk viscosity, and make contact chatter.
+  std::vector<double> penalty_time_step;
 };
 
 struct Model {
@@ -135,6 +139,7 @@ struct Model {
     f("contact.tangential", contact.tangential);
     f("contact.wall_tangential", contact.wall_tangential);
     f("contact.wall_offset", contact.wall_offset);
+    f("contact.penalty_time_step", contact.penalty_time_step);
     for (auto& p : parts) {
       const std::string prefix = "part." + p.name + ".";
       f(prefix + "connectivity", p.connectivity);

@@ -152,15 +152,22 @@ void ExplicitSolver::compute_forces() {
     for (std::size_t i = 0; i < wf.size(); ++i) state_.wall_force_on_bodies[i] = -wf[i];
   }
 
+  // Contact springs may lower the stable step by up to the stated fraction (the automatic
+  // penalty is built for that bound, docs/theory/contact.md): take it off before the safety factor.
   state_.stable_dt = total.stable_dt;
-  double dt = settings_.time_step_safety * total.stable_dt;
+  if (contact_) state_.stable_dt *= 1.0 - contact_->settings().time_step_reduction;
+  double dt = settings_.time_step_safety * state_.stable_dt;
   if (settings_.max_time_step > 0) dt = std::min(dt, settings_.max_time_step);
   const double remaining = settings_.end_time - state_.time;
   if (remaining > 0 && remaining < 1.000001 * dt) dt = remaining;  // land on end_time
-  if (!(dt > 0) || !std::isfinite(dt)) {
+  if (state_.initial_dt == 0) state_.initial_dt = dt;
+  const bool land_on_end = remaining > 0 && dt == remaining;
+  if (!(dt > 0) || !std::isfinite(dt) || (!land_on_end && dt < 1e-6 * state_.initial_dt)) {
     std::ostringstream out;
-    out << "the stable time step collapsed to " << dt << " s at t = " << state_.time << " s, step "
-        << state_.step;
+    out << "the stable time step collapsed to " << dt << " s (initial " << state_.initial_dt
+        << " s) at t = " << state_.time << " s, step " << state_.step
+        << ": an element is being crushed to nothing (look at the last frame; lower the load, "
+           "refine, or check contact penetration)";
     throw RunError(out.str());
   }
   state_.dt_next = dt;

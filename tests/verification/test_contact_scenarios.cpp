@@ -68,7 +68,7 @@ TEST(ContactScenarios, DiscBouncesOffRigidWall) {
 }
 
 /// Mean x-acceleration of the block between 100 and 200 µs for gravity tilted by theta.
-double sliding_acceleration(double theta_degrees, double mu, double* g_out) {
+double sliding_acceleration(double theta_degrees, double mu, double* g_out, double* travel = nullptr) {
   const std::string file = (std::filesystem::temp_directory_path() / "shard_incline.yaml").string();
   {
     std::ifstream in(kData + "block_on_incline.yaml");
@@ -94,6 +94,15 @@ double sliding_acceleration(double theta_degrees, double mu, double* g_out) {
       v_mid = run.mean_velocity()[0];
     }
   }
+  if (travel) {  // mean displacement along the plane at the end
+    const auto& nodes = run.sim.model.nodes;
+    double m = 0, mx = 0;
+    for (std::size_t i = 0; i < nodes.count(); ++i) {
+      m += nodes.mass[i];
+      mx += nodes.mass[i] * (nodes.x[2 * i] - nodes.x0[2 * i]);
+    }
+    *travel = mx / m;
+  }
   return (run.mean_velocity()[0] - v_mid) / (run.solver->state().time - t_mid);
 }
 
@@ -108,13 +117,18 @@ TEST(ContactScenarios, BlockSlidesDownInclineWithCoulombFriction) {
   EXPECT_NEAR(a, expected, 0.02 * expected);
 }
 
+// Sticking: the block rocks on the elastic stick spring (an undamped oscillation about rest) but
+// does not travel: its displacement along the plane stays below 1 % of the ½ g sin θ t² it would
+// cover unresisted. (Measured 0.71 %: most of it is slip in the first microseconds, while the
+// block settles onto the plane and the normal force, hence the friction limit, is still small.)
 TEST(ContactScenarios, BlockSticksWhenTanThetaBelowMu) {
   const double mu = 0.3, theta = 10;  // tan 10° = 0.176 < 0.3
-  double g;
-  const double a = sliding_acceleration(theta, mu, &g);
-  const double driving = g * std::sin(theta * std::numbers::pi / 180);
-  std::printf("[incline] theta %.0f deg, mu %.2f: a = %.3g m/s^2 (driving g sin = %.4g)\n", theta, mu, a, driving);
-  EXPECT_LT(std::abs(a), 0.005 * driving);
+  double g, travel;
+  sliding_acceleration(theta, mu, &g, &travel);
+  const double t = 200e-6, free_travel = 0.5 * g * std::sin(theta * std::numbers::pi / 180) * t * t;
+  std::printf("[incline] theta %.0f deg, mu %.2f: travel along the plane %.3g m (%.3f %% of the "
+              "unresisted %.3g m)\n", theta, mu, travel, 100 * std::abs(travel) / free_travel, free_travel);
+  EXPECT_LT(std::abs(travel), 0.01 * free_travel);
 }
 
 TEST(ContactScenarios, SameOutputForOneAndTwoThreadsWithContact) {
