@@ -1,5 +1,7 @@
 #include "contact/contact.hpp"
 
+#include "model/facet_geometry.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -169,20 +171,8 @@ void ContactSystem::find_facet_hits(const Model& model) {
   node_normal_.assign(static_cast<std::size_t>(dim) * model.nodes.count(), 0.0);
   for (std::size_t f = 0; f < nf; ++f) {
     const std::int32_t* fn = &F[dim * f];
-    double n[3] = {0, 0, 0};
-    if (dim == 2) {
-      n[0] = X[2 * fn[1] + 1] - X[2 * fn[0] + 1];
-      n[1] = -(X[2 * fn[1]] - X[2 * fn[0]]);
-    } else {
-      const double* a = &X[3 * fn[0]];
-      const double* b = &X[3 * fn[1]];
-      const double* c = &X[3 * fn[2]];
-      const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
-      const double w[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
-      n[0] = u[1] * w[2] - u[2] * w[1];
-      n[1] = u[2] * w[0] - u[0] * w[2];
-      n[2] = u[0] * w[1] - u[1] * w[0];
-    }
+    double n[3];
+    facet_normal(X, dim, fn, n);
     for (int a = 0; a < dim; ++a)
       for (int d = 0; d < dim; ++d) node_normal_[dim * fn[a] + d] += n[d];
   }

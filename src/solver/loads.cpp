@@ -1,5 +1,7 @@
 #include "solver/loads.hpp"
 
+#include "model/facet_geometry.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -115,20 +117,8 @@ void orient_facets_outward(const Model& model, FacetSet& set) {
       for (int k = 0; k < dim; ++k) centre[k] += X[dim * part.connectivity[npe * owner.second + a] + k] / npe;
     for (int i = 0; i < npf; ++i)
       for (int k = 0; k < dim; ++k) fc[k] += X[dim * fn[i] + k] / npf;
-    double normal[3] = {0, 0, 0};
-    if (dim == 2) {
-      normal[0] = X[2 * fn[1] + 1] - X[2 * fn[0] + 1];
-      normal[1] = -(X[2 * fn[1]] - X[2 * fn[0]]);
-    } else {
-      const double* a = &X[3 * fn[0]];
-      const double* b = &X[3 * fn[1]];
-      const double* c = &X[3 * fn[2]];
-      const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
-      const double w[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
-      normal[0] = u[1] * w[2] - u[2] * w[1];
-      normal[1] = u[2] * w[0] - u[0] * w[2];
-      normal[2] = u[0] * w[1] - u[1] * w[0];
-    }
+    double normal[3];
+    facet_normal(X, dim, fn, normal);
     double dot = 0;
     for (int k = 0; k < dim; ++k) dot += normal[k] * (fc[k] - centre[k]);
     if (dot < 0) std::reverse(fn, fn + npf);

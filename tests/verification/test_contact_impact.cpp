@@ -23,6 +23,7 @@
 #include "io/model_setup.hpp"
 #include "model/structured_mesh.hpp"
 #include "support/cli.hpp"
+#include "support/scenario_run.hpp"
 #include "support/contact_models.hpp"
 
 namespace shard {
@@ -52,52 +53,29 @@ std::string edited_copy(const std::string& file, const std::string& name,
   return out;
 }
 
-struct ScenarioRun {
-  Scenario scenario;
-  Simulation sim;
-  ContactSystem* contact = nullptr;
-  std::unique_ptr<ExplicitSolver> solver;
+using testing::ScenarioRun;
 
-  explicit ScenarioRun(const std::string& file) : scenario(read_scenario(file)) {
-    sim = build_simulation(scenario, load_scenario_mesh(scenario));
-    solver = std::make_unique<ExplicitSolver>(sim.model, sim.materials, sim.loads, sim.settings);
-    contact = &*sim.contact_system;
-    solver->attach_contact(contact);
-    solver->initialise();
-  }
-  void step() {
-    solver->compute_forces();
-    solver->advance();
-  }
-  std::array<double, 3> momentum() const {
-    std::array<double, 3> p{0, 0, 0};
-    const int dim = sim.model.dim();
-    for (std::size_t i = 0; i < sim.model.nodes.count(); ++i)
-      for (int k = 0; k < dim; ++k) p[k] += sim.model.nodes.mass[i] * sim.model.nodes.v[dim * i + k];
-    return p;
-  }
-  /// The smallest element size of the mesh: the smallest altitude of any triangle (at t = 0, the
-  /// characteristic length of the time step; it is also below every edge).
-  double smallest_altitude() const {
-    const auto& x = sim.model.nodes.x0;
-    double smallest = INFINITY;
-    for (const Part& part : sim.model.parts) {
-      EXPECT_EQ(part.kind, ElementKind::tri3);
-      for (std::size_t e = 0; e < part.element_count(); ++e) {
-        const std::int32_t* n = &part.connectivity[3 * e];
-        double longest = 0;
-        for (int a = 0; a < 3; ++a) {
-          const double dx = x[2 * n[(a + 1) % 3]] - x[2 * n[a]], dy = x[2 * n[(a + 1) % 3] + 1] - x[2 * n[a] + 1];
-          longest = std::max(longest, std::hypot(dx, dy));
-        }
-        const double area = 0.5 * ((x[2 * n[1]] - x[2 * n[0]]) * (x[2 * n[2] + 1] - x[2 * n[0] + 1]) -
-                                   (x[2 * n[2]] - x[2 * n[0]]) * (x[2 * n[1] + 1] - x[2 * n[0] + 1]));
-        smallest = std::min(smallest, 2 * area / longest);
+/// The smallest element size of the mesh: the smallest altitude of any triangle (at t = 0, the
+/// characteristic length of the time step; it is also below every edge).
+double smallest_altitude(const Model& model) {
+const auto& x = model.nodes.x0;
+  double smallest = INFINITY;
+  for (const Part& part : model.parts) {
+    EXPECT_EQ(part.kind, ElementKind::tri3);
+    for (std::size_t e = 0; e < part.element_count(); ++e) {
+      const std::int32_t* n = &part.connectivity[3 * e];
+      double longest = 0;
+      for (int a = 0; a < 3; ++a) {
+        const double dx = x[2 * n[(a + 1) % 3]] - x[2 * n[a]], dy = x[2 * n[(a + 1) % 3] + 1] - x[2 * n[a] + 1];
+        longest = std::max(longest, std::hypot(dx, dy));
       }
+      const double area = 0.5 * ((x[2 * n[1]] - x[2 * n[0]]) * (x[2 * n[2] + 1] - x[2 * n[0] + 1]) -
+                                 (x[2 * n[2]] - x[2 * n[0]]) * (x[2 * n[1] + 1] - x[2 * n[0] + 1]));
+      smallest = std::min(smallest, 2 * area / longest);
     }
-    return smallest;
   }
-};
+  return smallest;
+}
 
 struct ImpactFigures {
   double smallest = 0;          ///< smallest element altitude (m)
@@ -117,7 +95,7 @@ ImpactFigures run_impact(const std::string& file) {
   const auto start = std::chrono::steady_clock::now();
   ScenarioRun run(file);
   ImpactFigures f;
-  f.smallest = run.smallest_altitude();
+  f.smallest = smallest_altitude(run.sim.model);
   const auto p0 = run.momentum();
   const double p0_norm = std::hypot(p0[0], p0[1]);
   while (!run.solver->finished()) {

@@ -12,41 +12,14 @@
 #include "io/model_setup.hpp"
 #include "model/structured_mesh.hpp"
 #include "support/cli.hpp"
+#include "support/scenario_run.hpp"
 
 namespace shard {
 namespace {
 
 const std::string kData = std::string(SHARD_TEST_DATA_DIR) + "/contact/";
 
-struct ScenarioRun {
-  Scenario scenario;
-  Simulation sim;
-  ContactSystem* contact = nullptr;
-  std::unique_ptr<ExplicitSolver> solver;
-
-  explicit ScenarioRun(const std::string& file) : scenario(read_scenario(file)) {
-    sim = build_simulation(scenario, load_scenario_mesh(scenario));
-    solver = std::make_unique<ExplicitSolver>(sim.model, sim.materials, sim.loads, sim.settings);
-    contact = &*sim.contact_system;
-    solver->attach_contact(contact);
-    solver->initialise();
-  }
-  void step() {
-    solver->compute_forces();
-    solver->advance();
-  }
-  std::array<double, 3> mean_velocity() const {
-    std::array<double, 3> p{0, 0, 0};
-    double m = 0;
-    const int dim = sim.model.dim();
-    for (std::size_t i = 0; i < sim.model.nodes.count(); ++i) {
-      m += sim.model.nodes.mass[i];
-      for (int k = 0; k < dim; ++k) p[k] += sim.model.nodes.mass[i] * sim.model.nodes.v[dim * i + k];
-    }
-    for (double& v : p) v /= m;
-    return p;
-  }
-};
+using testing::ScenarioRun;
 
 // An elastic disc (no friction) dropped on a rigid wall leaves with nearly its impact speed:
 // the restitution coefficient of an elastic body is 1 less the energy left in vibration and
