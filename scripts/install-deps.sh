@@ -1,11 +1,11 @@
 #!/usr/bin/env bash
-# Installs what shard needs to build, test and plot, from Debian 12 packages.
+# Installs what shard needs to build, test and plot, from Debian 12 packages
+# (the list is scripts/debian-packages.txt; nothing else is downloaded).
 set -euo pipefail
+cd "$(dirname "$0")/.."
 SUDO=""
 if [ "$(id -u)" != 0 ]; then SUDO="sudo"; fi
-packages=(build-essential cmake ninja-build ccache pkg-config
-          libeigen3-dev libyaml-cpp-dev libgmsh-dev gmsh libgtest-dev libgmock-dev libbenchmark-dev
-          python3 python3-numpy python3-matplotlib python3-meshio)
+mapfile -t packages < scripts/debian-packages.txt
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
