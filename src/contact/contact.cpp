@@ -125,10 +125,10 @@ void ContactSystem::find_facet_hits(const Model& model) {
   while (table < 4 * nf) table <<= 1;
   bin_mask_ = table - 1;
   bin_begin_.assign(table + 1, 0);
-  std::vector<std::size_t> keys;
-  keys.reserve(nf * (dim == 2 ? 4 : 8));
-  std::vector<std::int32_t> owners;
-  owners.reserve(keys.capacity());
+  std::vector<std::size_t>& keys = bin_keys_;
+  std::vector<std::int32_t>& owners = bin_owners_;
+  keys.clear();
+  owners.clear();
   for (std::size_t f = 0; f < nf; ++f) {
     double lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
     for (int d = 0; d < dim; ++d) {
@@ -160,10 +160,8 @@ void ContactSystem::find_facet_hits(const Model& model) {
   }
   for (std::size_t b = 0; b < table; ++b) bin_begin_[b + 1] += bin_begin_[b];
   bin_facets_.assign(keys.size(), 0);
-  {
-    std::vector<std::int32_t> fill(bin_begin_.begin(), bin_begin_.end() - 1);
-    for (std::size_t e = 0; e < keys.size(); ++e) bin_facets_[fill[keys[e]]++] = owners[e];
-  }
+  bin_fill_.assign(bin_begin_.begin(), bin_begin_.end() - 1);
+  for (std::size_t e = 0; e < keys.size(); ++e) bin_facets_[bin_fill_[keys[e]]++] = owners[e];
 
   // Outward normal of each surface node (sum of its facets' area normals): a node only touches
   // facets that face it, which keeps coincident or nearby corners of two bodies from pushing each
@@ -261,7 +259,6 @@ void ContactSystem::add_forces(Model& model, double time, double dt, double stab
   const std::size_t nw = settings_.walls.size();
   if (model.contact.wall_tangential.size() != nw * dim * nn) model.contact.wall_tangential.assign(nw * dim * nn, 0.0);
   if (model.contact.wall_offset.size() != nw * dim) model.contact.wall_offset.assign(nw * dim, 0.0);
-  stored_energy_ = 0;
   friction_work_ = 0;
   applied_.clear();
   max_penetration_ = 0;
@@ -306,10 +303,9 @@ void ContactSystem::add_forces(Model& model, double time, double dt, double stab
     const int ps = surface_.node_part[i], pf = surface_.facet_part[hit.facet];
     const FrictionLaw& law = settings_.friction[part_material_[ps] * material_count_ + part_material_[pf]];
     friction_work_ += coulomb(T, hit.normal, vt, k, dt, fn_mag, law, dim);
-    double f[3], t2 = 0;
+    double f[3];
     for (int d = 0; d < dim; ++d) {
       f[d] = fn_mag * hit.normal[d] + T[d];
-      t2 += T[d] * T[d];
       force[dim * s + d] += f[d];
       applied_.emplace_back(static_cast<std::int64_t>(dim) * s + d, f[d]);
       for (int a = 0; a < dim; ++a) {
@@ -317,7 +313,6 @@ void ContactSystem::add_forces(Model& model, double time, double dt, double stab
         applied_.emplace_back(static_cast<std::int64_t>(dim) * fn[a] + d, -hit.weights[a] * f[d]);
       }
     }
-    stored_energy_ += 0.5 * k * hit.gap * hit.gap + 0.5 * t2 / k;
     normal_force_[i] = fn_mag;
     ++active_;
     const int p = ps <= pf ? pair_index(ps, pf) : pair_index(pf, ps);
@@ -355,15 +350,12 @@ void ContactSystem::add_forces(Model& model, double time, double dt, double stab
       double vt[3];
       for (int d = 0; d < dim; ++d) vt[d] = vrel[d] - vn * wall.normal[d];
       friction_work_ += coulomb(T, wall.normal.data(), vt, k, dt, fn_mag, wall.friction, dim);
-      double t2 = 0;
       for (int d = 0; d < dim; ++d) {
         const double f = fn_mag * wall.normal[d] + T[d];
         force[dim * s + d] += f;
         applied_.emplace_back(static_cast<std::int64_t>(dim) * s + d, f);
         wall_force_[dim * w + d] -= f;
-        t2 += T[d] * T[d];
       }
-      stored_energy_ += 0.5 * k * gap * gap + 0.5 * t2 / k;
       normal_force_[i] += fn_mag;
       ++active_;
     }

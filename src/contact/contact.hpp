@@ -54,7 +54,6 @@ class ContactSystem {
   /// `stable_dt` of the first call (kept in model.contact.penalty_time_step). Deterministic: pairs are found in parallel per node, applied in order.
   void add_forces(Model& model, double time, double dt, double stable_dt);
 
-  double stored_energy() const { return stored_energy_; }      ///< penalty springs, now (J)
   double friction_increment() const { return friction_work_; }  ///< dissipated in this call (J)
   std::size_t active_contacts() const { return active_; }
   /// The deepest penetration (−gap, m) found in the last call, node-to-facet and walls.
@@ -88,10 +87,11 @@ class ContactSystem {
   ContactSurface surface_;
   std::vector<Hit> hits_;                // per surface node
   std::vector<double> normal_force_;     // per surface node, last call (N)
-  std::vector<std::int32_t> bin_begin_, bin_facets_;
+  std::vector<std::int32_t> bin_begin_, bin_facets_, bin_fill_, bin_owners_;
+  std::vector<std::size_t> bin_keys_;  // scratch of the search, kept to avoid per-step allocation
   double bin_size_ = 0;
   std::size_t bin_mask_ = 0;
-  double stored_energy_ = 0, friction_work_ = 0;
+  double friction_work_ = 0;
   std::size_t active_ = 0;
   double max_penetration_ = 0;
   std::vector<double> wall_force_, pair_force_;

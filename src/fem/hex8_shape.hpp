@@ -6,8 +6,6 @@ namespace shard {
 
 struct Hex8Reference {
   double corner[8][3];          ///< (ξ, η, ζ) of each node
-  double gauss_dN[8][8][3];     ///< ∂N_a/∂ξ at the 2×2×2 Gauss points (weights 1)
-  double gauss_N[8][8];         ///< N_a at the Gauss points
   double hourglass[4][8];       ///< Γ vectors ηζ, ζξ, ξη, ξηζ (Flanagan & Belytschko 1981)
   /// ∂V/∂x_a = Σ_p s_p (y_j z_k − y_k z_j) / 12 over 9 node pairs (j, k) per node: the closed
   /// form of the exact volume derivative, found by integrating the triple products of

@@ -101,11 +101,17 @@ VtuGrid make_frame(const Model& model, const std::vector<std::unique_ptr<Materia
       for (const auto& n : materials[part.material]->state_names())
         if (std::find(names.begin(), names.end(), n) == names.end()) names.push_back(n);
     for (const auto& name : names) {
-      cell_field(name.c_str(), 1, [&](std::size_t, const Part& part, std::size_t q, int) {
+      // Slot of the variable in each part's state (−1: absent), found once per field.
+      std::vector<int> slot, stride;
+      for (const auto& part : model.parts) {
         const auto own = materials[part.material]->state_names();
         const auto it = std::find(own.begin(), own.end(), name);
-        if (it == own.end()) return 0.0;
-        return part.state[own.size() * q + static_cast<std::size_t>(it - own.begin())];
+        slot.push_back(it == own.end() ? -1 : static_cast<int>(it - own.begin()));
+        stride.push_back(static_cast<int>(own.size()));
+      }
+      cell_field(name.c_str(), 1, [&](std::size_t p, const Part& part, std::size_t q, int) {
+        if (slot[p] < 0) return 0.0;
+        return part.state[static_cast<std::size_t>(stride[p]) * q + static_cast<std::size_t>(slot[p])];
       });
     }
   }

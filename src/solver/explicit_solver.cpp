@@ -43,7 +43,6 @@ void lump_masses(Model& model, const std::vector<std::unique_ptr<Material>>& mat
         for (int a = 0; a < 4; ++a) mass[cn[a]] += rho * v / 4.0;
       } else {
         // Row sums of the consistent mass, ∫ρ N_a dV, by 2×2×2 Gauss (exact for the trilinear map).
-        const auto& ref = hex8_reference();
         double x[8][3];
         for (int a = 0; a < 8; ++a)
           for (int k = 0; k < 3; ++k) x[a][k] = X[3 * cn[a] + k];
@@ -51,11 +50,11 @@ void lump_masses(Model& model, const std::vector<std::unique_ptr<Material>>& mat
           double J[3][3] = {};
           for (int a = 0; a < 8; ++a)
             for (int r = 0; r < 3; ++r)
-              for (int c = 0; c < 3; ++c) J[r][c] += x[a][r] * ref.gauss_dN[p][a][c];
+              for (int c = 0; c < 3; ++c) J[r][c] += x[a][r] * kHex8Gauss.dN[p][a][c];
           const double det = J[0][0] * (J[1][1] * J[2][2] - J[1][2] * J[2][1]) -
                              J[0][1] * (J[1][0] * J[2][2] - J[1][2] * J[2][0]) +
                              J[0][2] * (J[1][0] * J[2][1] - J[1][1] * J[2][0]);
-          for (int a = 0; a < 8; ++a) mass[cn[a]] += rho * ref.gauss_N[p][a] * det;
+          for (int a = 0; a < 8; ++a) mass[cn[a]] += rho * kHex8Gauss.N[p][a] * det;
         }
       }
     }
