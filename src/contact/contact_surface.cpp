@@ -52,6 +52,7 @@ ContactSurface extract_contact_surface(const Model& model) {
     const Part& part = model.parts[p];
     const int npe = nodes_per_element(part.kind);
     for (std::size_t e = 0; e < part.element_count(); ++e) {
+      if (!part.eroded.empty() && part.eroded[e]) continue;  // its faces left with it
       const std::int32_t* cn = &part.connectivity[npe * e];
       auto add = [&](const int* local, int count) {
         Face f{{-1, -1, -1, -1}, count, static_cast<std::int32_t>(p)};

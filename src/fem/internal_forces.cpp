@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <numbers>
+#include <type_traits>
 #include <vector>
 
 #include "fem/hex8_shape.hpp"
@@ -17,6 +19,9 @@ void ForceSums::add(const ForceSums& o) {
   hourglass_work += o.hourglass_work;
   plastic_work += o.plastic_work;
   fracture_work += o.fracture_work;
+  heat += o.heat;
+  eroded_energy += o.eroded_energy;
+  eroded_elements += o.eroded_elements;
   stable_dt = std::min(stable_dt, o.stable_dt);
   if (o.inverted_element >= 0 && (inverted_element < 0 || o.inverted_element < inverted_element))
     inverted_element = o.inverted_element;
@@ -501,19 +506,43 @@ struct Hex8Full {
     ws.volume[i] = volume;
     ws.volume_rate[i] = rate / volume;
     ws.length[i] = hex_length(x, volume);
+    if (part.volumetric == VolumetricTreatment::mean_dilatation) {
+      // B-bar (Hughes 1980; Nagtegaal, Parks & Rice 1974): every point takes the element's
+      // volume-weighted mean dilatation; its deviatoric strain stays its own.
+      const double mean = ws.volume_rate[i] * ctx.dt;
+      for (int p = 0; p < 8; ++p) {
+        double* de = &ws.strain_increment[kTensorSize * (points * i + p)];
+        const double shift = (mean - (de[xx] + de[yy] + de[zz])) / 3.0;
+        de[xx] += shift;
+        de[yy] += shift;
+        de[zz] += shift;
+      }
+    }
     return true;
   }
 
   static void forces(const Part& part, NodeArrays& nd, std::size_t e, const Workspace& ws,
                      std::size_t i, double q) {
     const std::int32_t* cn = &part.connectivity[8 * e];
+    // Mean dilatation: the pressure conjugate to the mean dilatation is the element's
+    // volume-weighted mean pressure p̄, so each point's pressure p_p is replaced by p̄.
+    double mean_pressure = 0.0;
+    const bool bbar = part.volumetric == VolumetricTreatment::mean_dilatation;
+    if (bbar && ws.volume[i] > 0.0) {
+      for (int p = 0; p < 8; ++p) {
+        const double* s = &part.stress[kTensorSize * (points * e + p)];
+        mean_pressure -= ws.geometry[geometry * i + 25 * p + 24] * (s[xx] + s[yy] + s[zz]) / 3.0;
+      }
+      mean_pressure /= ws.volume[i];
+    }
     double f[8][3] = {};
     for (int p = 0; p < 8; ++p) {
       const double* g = &ws.geometry[geometry * i + 25 * p];
       const double* s = &part.stress[kTensorSize * (points * e + p)];
       const double w = g[24];
-      const double S[3][3] = {{s[xx] - q, s[xy], s[zx]}, {s[xy], s[yy] - q, s[yz]},
-                              {s[zx], s[yz], s[zz] - q}};
+      const double qp = bbar ? q + mean_pressure + (s[xx] + s[yy] + s[zz]) / 3.0 : q;
+      const double S[3][3] = {{s[xx] - qp, s[xy], s[zx]}, {s[xy], s[yy] - qp, s[yz]},
+                              {s[zx], s[yz], s[zz] - qp}};
       for (int a = 0; a < 8; ++a)
         for (int r = 0; r < 3; ++r)
           f[a][r] += w * (S[r][0] * g[3 * a] + S[r][1] * g[3 * a + 1] + S[r][2] * g[3 * a + 2]);
@@ -559,17 +588,151 @@ void plane_stress_update(const Material& material, MaterialPointBatch& batch, Wo
   }
 }
 
+/// An eroded element: no strain, no volume, no force, no limit on the step.
 template <class Kernel>
-ForceSums run_part(Part& part, const Material& material, NodeArrays& nodes,
-                   const StepContext& ctx) {
+void skip_element(Part& part, std::size_t e, Workspace& ws, std::size_t i) {
+  constexpr int npts = Kernel::points;
+  std::fill_n(&ws.geometry[Kernel::geometry * i], Kernel::geometry, 0.0);
+  for (int p = 0; p < npts; ++p) {
+    const std::size_t point = npts * i + p;
+    std::fill_n(&ws.strain_increment[kTensorSize * point], kTensorSize, 0.0);
+    std::copy_n(&part.stress[kTensorSize * (npts * e + p)], kTensorSize, &ws.stress_old[kTensorSize * point]);
+    ws.point_volume[point] = 0.0;
+  }
+  ws.volume_rate[i] = 0.0;
+  ws.length[i] = std::numeric_limits<double>::infinity();
+  ws.volume[i] = 0.0;
+  ws.hourglass_work[i] = 0.0;
+  if (!part.hourglass_rate.empty()) std::fill_n(&part.hourglass_rate[12 * e], 12, 0.0);
+}
+
+/// Kinematics of the elements [begin, end) into workspace slots first_slot + (e − begin).
+template <class Kernel>
+void element_kinematics(const StepContext& ctx, Part& part, const NodeArrays& nodes, std::size_t begin,
+                        std::size_t end, Workspace& ws, std::size_t first_slot, double hourglass_scale,
+                        ForceSums& out) {
+  for (std::size_t e = begin; e < end; ++e) {
+    const std::size_t i = first_slot + (e - begin);
+    if (part.eroded[e]) {
+      skip_element<Kernel>(part, e, ws, i);
+      continue;
+    }
+    bool ok;
+    if constexpr (std::is_same_v<Kernel, Hex8Reduced>) {
+      ok = Kernel::kinematics(ctx, part, nodes, e, ws, i, hourglass_scale);
+      out.hourglass_work += ws.hourglass_work[i];
+    } else {
+      ok = Kernel::kinematics(ctx, part, nodes, e, ws, i);
+    }
+    if (!ok && out.inverted_element < 0) out.inverted_element = static_cast<std::int64_t>(e);
+  }
+}
+
+/// Material update of the points of elements [begin, end) (workspace slots from first_slot), the
+/// stress work ∫ σ_mid : Δε dV, the accumulated strain, and erosion of elements whose material
+/// marks a point failed.
+template <class Kernel>
+void update_points(const StepContext& ctx, Part& part, const Material& material, std::size_t begin,
+                   std::size_t end, Workspace& ws, std::size_t first_slot, ForceSums& out) {
   constexpr int npts = Kernel::points;
   const std::size_t state_size = material.state_size();
-  const double rho = material.density();
-  const double c = material.wave_speed();
-  const double hourglass_scale = 0.25 * part.hourglass_coefficient * rho * c;
+  const std::size_t p0 = begin * npts, s0 = first_slot * npts;
+  MaterialPointBatch mp;
+  mp.count = (end - begin) * npts;
+  mp.dt = ctx.dt;
+  mp.strain_increment = ws.strain_increment.data() + kTensorSize * s0;
+  mp.stress = part.stress.data() + kTensorSize * p0;
+  mp.state = part.state.data() + state_size * p0;
+  mp.temperature = part.temperature.data() + p0;
+  mp.volume = ws.point_volume.data() + s0;
+  if (ctx.formulation == Formulation::plane_stress)
+    plane_stress_update(material, mp, workspace, state_size);  // this thread's scratch
+  else
+    material.update(mp);
+  out.plastic_work += mp.plastic_work;
+  out.fracture_work += mp.fracture_work;
+  out.heat += mp.heat;
 
-  std::vector<Batch> batches;
-  std::vector<std::size_t> colour_first_batch;
+  for (std::size_t p = 0; p < mp.count; ++p) {
+    const double* de = &mp.strain_increment[kTensorSize * p];
+    const double* old = &ws.stress_old[kTensorSize * (s0 + p)];
+    double s_mid[kTensorSize];
+    for (int k = 0; k < kTensorSize; ++k) s_mid[k] = 0.5 * (old[k] + mp.stress[kTensorSize * p + k]);
+    out.stress_work += double_contraction(s_mid, de) * mp.volume[p];
+    double* eps = &part.strain[kTensorSize * (p0 + p)];
+    for (int k = 0; k < kTensorSize; ++k) eps[k] += de[k];
+  }
+
+  // Eroded elements stay stress-free (a total-form equation of state would otherwise restore a
+  // pressure from their frozen volumetric strain).
+  for (std::size_t e = begin; e < end; ++e)
+    if (part.eroded[e]) std::fill_n(&part.stress[kTensorSize * npts * e], kTensorSize * npts, 0.0);
+
+  const int failure = material.failure_state_index();
+  if (failure < 0) return;
+  const ElasticModuli m = material.elastic();
+  for (std::size_t e = begin; e < end; ++e) {
+    if (part.eroded[e]) continue;
+    bool failed = false;
+    for (int q = 0; q < npts; ++q)
+      failed = failed || part.state[state_size * (npts * e + q) + static_cast<std::size_t>(failure)] >= 1.0;
+    if (!failed) continue;
+    // Erosion: the element leaves the force computation; the elastic energy it stored,
+    // p²/2K + s:s/4G per unit volume, leaves the body with it and is booked as eroded.
+    part.eroded[e] = 1;
+    ++out.eroded_elements;
+    for (int q = 0; q < npts; ++q) {
+      double* s = &part.stress[kTensorSize * (npts * e + q)];
+      const double p = -(s[xx] + s[yy] + s[zz]) / 3.0;
+      const double dev_sq = (s[xx] + p) * (s[xx] + p) + (s[yy] + p) * (s[yy] + p) +
+                            (s[zz] + p) * (s[zz] + p) + 2.0 * (s[xy] * s[xy] + s[yz] * s[yz] + s[zx] * s[zx]);
+      out.eroded_energy += (p * p / (2.0 * m.bulk) + dev_sq / (4.0 * m.shear)) *
+                           ws.point_volume[npts * (first_slot + e - begin) + q];
+      std::fill_n(s, kTensorSize, 0.0);
+    }
+    if (!part.hourglass_rate.empty()) std::fill_n(&part.hourglass_rate[12 * e], 12, 0.0);
+  }
+}
+
+/// Bulk viscosity, stable step and nodal forces of elements [begin, end); `pressure_shift`
+/// (may be null) adds a per-slot pressure to the element's stress in the force (used by the
+/// averaged nodal pressure).
+template <class Kernel>
+void element_forces(const StepContext& ctx, Part& part, NodeArrays& nodes, double rho, double c,
+                    std::size_t begin, std::size_t end, const Workspace& ws, std::size_t first_slot,
+                    const double* pressure_shift, ForceSums& out) {
+  double stable = out.stable_dt;
+  for (std::size_t e = begin; e < end; ++e) {
+    const std::size_t i = first_slot + (e - begin);
+    const double rate = ws.volume_rate[i];
+    const double l = ws.length[i];
+    // Bulk viscosity (von Neumann–Richtmyer quadratic + Landshoff linear), in compression only.
+    double q = 0.0, qs = 0.0;
+    if (rate < 0.0) {
+      q = rho * l * (ctx.q_quadratic * l * rate * rate - ctx.q_linear * c * rate);
+      qs = ctx.q_linear * c - ctx.q_quadratic * l * rate;
+    }
+    // Work of the viscous forces over [t_n−1, t_n], where the velocities were v_n−1/2: the
+    // trapezoid of the forces at both ends (the same split as every nodal force).
+    double& q_prev = part.bulk_viscosity[e];
+    out.viscous_work += -0.5 * (q_prev + q) * rate * ws.volume[i] * ctx.dt;
+    part.volume[e] = ws.volume[i];
+    if (part.eroded[e]) {
+      q_prev = 0.0;
+      continue;
+    }
+    q_prev = q;
+    // Stable step with bulk viscosity (Q + sqrt(Q² + c²) replaces c).
+    stable = std::min(stable, l / (qs + std::sqrt(qs * qs + c * c)));
+    Kernel::forces(part, nodes, e, ws, i, q + (pressure_shift ? pressure_shift[i] : 0.0));
+  }
+  out.stable_dt = stable;
+}
+
+/// Batches of at most kBatch elements within each colour; first batch of each colour.
+void make_batches(const Part& part, std::vector<Batch>& batches, std::vector<std::size_t>& colour_first_batch) {
+  batches.clear();
+  colour_first_batch.clear();
   for (std::size_t col = 0; col < part.colour_count(); ++col) {
     colour_first_batch.push_back(batches.size());
     for (std::size_t b = part.colour_begin[col]; b < static_cast<std::size_t>(part.colour_begin[col + 1]);
@@ -577,8 +740,23 @@ ForceSums run_part(Part& part, const Material& material, NodeArrays& nodes,
       batches.push_back({b, std::min<std::size_t>(b + kBatch, part.colour_begin[col + 1])});
   }
   colour_first_batch.push_back(batches.size());
+}
+
+template <class Kernel>
+ForceSums run_part(Part& part, const Material& material, NodeArrays& nodes,
+                   const StepContext& ctx) {
+  constexpr int npts = Kernel::points;
+  const double rho = material.density();
+  const double c = material.wave_speed();
+  const double hourglass_scale = 0.25 * part.hourglass_coefficient * rho * c;
+
+  std::vector<Batch> batches;
+  std::vector<std::size_t> colour_first_batch;
+  make_batches(part, batches, colour_first_batch);
   std::vector<ForceSums> sums(batches.size());
 
+  // One pass per colour: kinematics, material and forces of a batch together, while its
+  // scratch is in cache. Elements of one colour share no node, so batches scatter in parallel.
   for (std::size_t col = 0; col + 1 < colour_first_batch.size(); ++col) {
     const auto first = static_cast<std::ptrdiff_t>(colour_first_batch[col]);
     const auto last = static_cast<std::ptrdiff_t>(colour_first_batch[col + 1]);
@@ -589,67 +767,138 @@ ForceSums run_part(Part& part, const Material& material, NodeArrays& nodes,
       Workspace& ws = workspace;
       const std::size_t n = batch.end - batch.begin;
       ws.size_for(n, n * npts, Kernel::geometry);
-      for (std::size_t i = 0; i < n; ++i) {
-        bool ok;
-        if constexpr (std::is_same_v<Kernel, Hex8Reduced>)
-          ok = Kernel::kinematics(ctx, part, nodes, batch.begin + i, ws, i, hourglass_scale);
-        else
-          ok = Kernel::kinematics(ctx, part, nodes, batch.begin + i, ws, i);
-        if (!ok && out.inverted_element < 0)
-          out.inverted_element = static_cast<std::int64_t>(batch.begin + i);
-      }
-      if constexpr (std::is_same_v<Kernel, Hex8Reduced>) {
-        for (std::size_t i = 0; i < n; ++i) out.hourglass_work += ws.hourglass_work[i];
-      }
-      const std::size_t p0 = batch.begin * npts;
-      MaterialPointBatch mp;
-      mp.count = n * npts;
-      mp.dt = ctx.dt;
-      mp.strain_increment = ws.strain_increment.data();
-      mp.stress = part.stress.data() + kTensorSize * p0;
-      mp.state = part.state.data() + state_size * p0;
-      mp.temperature = part.temperature.data() + p0;
-      mp.volume = ws.point_volume.data();
-      if (ctx.formulation == Formulation::plane_stress)
-        plane_stress_update(material, mp, ws, state_size);
-      else
-        material.update(mp);
-      out.plastic_work += mp.plastic_work;
-      out.fracture_work += mp.fracture_work;
-
-      for (std::size_t p = 0; p < mp.count; ++p) {
-        const double* de = &ws.strain_increment[kTensorSize * p];
-        double s_mid[kTensorSize];
-        for (int k = 0; k < kTensorSize; ++k)
-          s_mid[k] = 0.5 * (ws.stress_old[kTensorSize * p + k] + mp.stress[kTensorSize * p + k]);
-        out.stress_work += double_contraction(s_mid, de) * ws.point_volume[p];
-        double* eps = &part.strain[kTensorSize * (p0 + p)];
-        for (int k = 0; k < kTensorSize; ++k) eps[k] += de[k];
-      }
-
-      double stable = out.stable_dt;
-      for (std::size_t i = 0; i < n; ++i) {
-        const double rate = ws.volume_rate[i];
-        const double l = ws.length[i];
-        // Bulk viscosity (von Neumann–Richtmyer quadratic + Landshoff linear), in compression only.
-        double q = 0.0, qs = 0.0;
-        if (rate < 0.0) {
-          q = rho * l * (ctx.q_quadratic * l * rate * rate - ctx.q_linear * c * rate);
-          qs = ctx.q_linear * c - ctx.q_quadratic * l * rate;
-        }
-        // Work of the viscous forces over [t_n−1, t_n], where the velocities were v_n−1/2: the
-        // trapezoid of the forces at both ends (the same split as every nodal force).
-        double& q_prev = part.bulk_viscosity[batch.begin + i];
-        out.viscous_work += -0.5 * (q_prev + q) * rate * ws.volume[i] * ctx.dt;
-        q_prev = q;
-        // Stable step with bulk viscosity (Q + sqrt(Q² + c²) replaces c).
-        stable = std::min(stable, l / (qs + std::sqrt(qs * qs + c * c)));
-        part.volume[batch.begin + i] = ws.volume[i];
-        Kernel::forces(part, nodes, batch.begin + i, ws, i, q);
-      }
-      out.stable_dt = stable;
+      element_kinematics<Kernel>(ctx, part, nodes, batch.begin, batch.end, ws, 0, hourglass_scale, out);
+      update_points<Kernel>(ctx, part, material, batch.begin, batch.end, ws, 0, out);
+      element_forces<Kernel>(ctx, part, nodes, rho, c, batch.begin, batch.end, ws, 0, nullptr, out);
     }
   }
+  ForceSums total;
+  for (const auto& s : sums) total.add(s);
+  return total;
+}
+
+/// Scratch of the averaged-nodal-pressure pass, for a whole part (the passes need every
+/// element's kinematics before any element's force). Used by one part at a time.
+struct NodalAveragingScratch {
+  Workspace elements;
+  std::vector<double> node_rate, node_volume, node_pressure, pressure_shift;
+};
+NodalAveragingScratch nodal_scratch;
+
+/// tri3 and tet4 with averaged nodal pressure (after Bonet & Burton 1998). With V_a = Σ_e V_e/n
+/// and V̇_a = Σ_e V_e tr D_e / n the nodal volume and its rate, each element takes the dilatation
+///   d̄_e = (1/n) Σ_a∈e V̇_a / V_a
+/// in place of its own tr D_e, and in the force the pressure
+///   p̄_e = (1/n) Σ_a∈e p̃_a,   p̃_a = Σ_e∋a V_e p_e / (n V_a),
+/// in place of its own p_e. The two averages are adjoint: Σ_e V_e p̄_e tr D_e = Σ_e V_e p_e d̄_e,
+/// so the forces do exactly the work the material's stress does on the averaged strain (the
+/// energy balance closes as for the standard element). One constraint per node instead of one per
+/// element removes the volumetric locking of constant-strain elements in plastic flow.
+/// Share of the element's own dilatation and pressure kept in the averaged-nodal-pressure
+/// elements (the rest is the nodal average). Pure averaging (0) leaves the element-wise
+/// "checkerboard" of dilatations that averages to zero at every node without volumetric
+/// stiffness; in severe plastic flow (a 287 m/s steel Taylor bar) elements then collapse near the
+/// axis. A small share restores a stiffness α K against that mode only (cf. the stabilised nodal
+/// integration of Puso & Solberg 2006); 0.1 survives that case and changes the Taylor-bar length
+/// by less than 0.5 % at 190–208 m/s (docs/theory/elements_and_kinematics.md).
+constexpr double kElementShare = 0.1;
+
+template <class Kernel>
+ForceSums run_part_nodal_pressure(Part& part, const Material& material, NodeArrays& nodes,
+                                  const StepContext& ctx) {
+  constexpr int npe = Kernel::nodes;
+  const double rho = material.density();
+  const double c = material.wave_speed();
+  const std::size_t ne = part.element_count(), nn = nodes.count();
+  NodalAveragingScratch& sc = nodal_scratch;
+  Workspace& ws = sc.elements;
+  ws.size_for(ne, ne, Kernel::geometry);
+  sc.node_rate.assign(nn, 0.0);
+  sc.node_volume.assign(nn, 0.0);
+  sc.node_pressure.assign(nn, 0.0);
+  sc.pressure_shift.assign(ne, 0.0);
+
+  std::vector<Batch> batches;
+  std::vector<std::size_t> colour_first_batch;
+  make_batches(part, batches, colour_first_batch);
+  std::vector<ForceSums> sums(batches.size());
+  const auto nb = static_cast<std::ptrdiff_t>(batches.size());
+
+  // Per colour, batches in parallel: no two elements of a colour share a node, so the nodal sums
+  // are formed in colour order whatever the thread count.
+  auto per_colour = [&](auto&& body) {
+    for (std::size_t col = 0; col + 1 < colour_first_batch.size(); ++col) {
+      const auto first = static_cast<std::ptrdiff_t>(colour_first_batch[col]);
+      const auto last = static_cast<std::ptrdiff_t>(colour_first_batch[col + 1]);
+#pragma omp parallel for schedule(static)
+      for (std::ptrdiff_t bi = first; bi < last; ++bi) body(batches[bi], sums[bi]);
+    }
+  };
+
+  // 1. Kinematics of every element; nodal volume and volume rate.
+#pragma omp parallel for schedule(static)
+  for (std::ptrdiff_t bi = 0; bi < nb; ++bi)
+    element_kinematics<Kernel>(ctx, part, nodes, batches[bi].begin, batches[bi].end, ws,
+                               batches[bi].begin, 0.0, sums[bi]);
+  per_colour([&](const Batch& b, ForceSums&) {
+    for (std::size_t e = b.begin; e < b.end; ++e) {
+      const double v = ws.volume[e] / npe, r = ws.volume[e] * ws.volume_rate[e] / npe;
+      for (int a = 0; a < npe; ++a) {
+        const std::int32_t n = part.connectivity[npe * e + a];
+        sc.node_volume[n] += v;
+        sc.node_rate[n] += r;
+      }
+    }
+  });
+
+  // 2. Averaged dilatation, material update; element pressures to the nodes.
+#pragma omp parallel for schedule(static)
+  for (std::ptrdiff_t bi = 0; bi < nb; ++bi) {
+    const Batch b = batches[bi];
+    for (std::size_t e = b.begin; e < b.end; ++e) {
+      if (!(ws.volume[e] > 0.0)) continue;
+      double mean = 0.0;
+      for (int a = 0; a < npe; ++a) {
+        const std::int32_t n = part.connectivity[npe * e + a];
+        mean += sc.node_rate[n] / sc.node_volume[n];
+      }
+      mean /= npe;
+      double* de = &ws.strain_increment[kTensorSize * e];
+      const double shift = (1.0 - kElementShare) * (mean - ws.volume_rate[e]) * ctx.dt / 3.0;
+      de[xx] += shift;
+      de[yy] += shift;
+      de[zz] += shift;
+    }
+    update_points<Kernel>(ctx, part, material, b.begin, b.end, ws, b.begin, sums[bi]);
+  }
+  per_colour([&](const Batch& b, ForceSums&) {
+    for (std::size_t e = b.begin; e < b.end; ++e) {
+      const double* s = &part.stress[kTensorSize * e];
+      const double weighted = -ws.volume[e] * (s[xx] + s[yy] + s[zz]) / (3.0 * npe);
+      for (int a = 0; a < npe; ++a) sc.node_pressure[part.connectivity[npe * e + a]] += weighted;
+    }
+  });
+
+  // 3. Forces with the averaged pressure: σ + (p_e − p̄_e) I, i.e. a pressure shift p̄_e − p_e.
+#pragma omp parallel for schedule(static)
+  for (std::ptrdiff_t bi = 0; bi < nb; ++bi) {
+    const Batch b = batches[bi];
+    for (std::size_t e = b.begin; e < b.end; ++e) {
+      if (!(ws.volume[e] > 0.0)) continue;
+      double mean = 0.0;
+      for (int a = 0; a < npe; ++a) {
+        const std::int32_t n = part.connectivity[npe * e + a];
+        mean += sc.node_pressure[n] / sc.node_volume[n];
+      }
+      const double* s = &part.stress[kTensorSize * e];
+      sc.pressure_shift[e] = (1.0 - kElementShare) * (mean / npe + (s[xx] + s[yy] + s[zz]) / 3.0);
+    }
+  }
+  per_colour([&](const Batch& b, ForceSums& out) {
+    element_forces<Kernel>(ctx, part, nodes, rho, c, b.begin, b.end, ws, b.begin,
+                           sc.pressure_shift.data(), out);
+  });
+
   ForceSums total;
   for (const auto& s : sums) total.add(s);
   return total;
@@ -659,9 +908,14 @@ ForceSums run_part(Part& part, const Material& material, NodeArrays& nodes,
 
 ForceSums add_internal_forces(Part& part, const Material& material, NodeArrays& nodes,
                               const StepContext& ctx) {
+  const bool nodal = part.volumetric == VolumetricTreatment::average_nodal_pressure;
   switch (part.kind) {
-    case ElementKind::tri3: return run_part<Tri3>(part, material, nodes, ctx);
-    case ElementKind::tet4: return run_part<Tet4>(part, material, nodes, ctx);
+    case ElementKind::tri3:
+      return nodal ? run_part_nodal_pressure<Tri3>(part, material, nodes, ctx)
+                   : run_part<Tri3>(part, material, nodes, ctx);
+    case ElementKind::tet4:
+      return nodal ? run_part_nodal_pressure<Tet4>(part, material, nodes, ctx)
+                   : run_part<Tet4>(part, material, nodes, ctx);
     case ElementKind::hex8_reduced: return run_part<Hex8Reduced>(part, material, nodes, ctx);
     case ElementKind::hex8: return run_part<Hex8Full>(part, material, nodes, ctx);
   }
@@ -734,6 +988,7 @@ void colour_elements(Part& part, std::size_t node_count) {
   permute(part.volume, 1);
   permute(part.bulk_viscosity, 1);
   permute(part.hourglass_rate, 12);
+  permute(part.eroded, 1);
   part.colour_begin.assign(colours + 1, 0);
   for (std::size_t e = 0; e < ne; ++e) part.colour_begin[colour[e] + 1]++;
   for (int c = 0; c < colours; ++c) part.colour_begin[c + 1] += part.colour_begin[c];

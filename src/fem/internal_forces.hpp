@@ -25,6 +25,9 @@ struct ForceSums {
   double hourglass_work = 0;  ///< hourglass control dissipation
   double plastic_work = 0;    ///< from the material
   double fracture_work = 0;   ///< from the material
+  double heat = 0;            ///< the part of plastic_work that became heat
+  double eroded_energy = 0;   ///< elastic energy of the elements eroded in this step
+  std::int64_t eroded_elements = 0;  ///< elements eroded in this step
   double stable_dt = std::numeric_limits<double>::infinity();  ///< min over elements
   std::int64_t inverted_element = -1;  ///< first element with non-positive volume, or -1
 

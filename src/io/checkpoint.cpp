@@ -22,13 +22,14 @@ void visit_scalars(SolverState& s, OutputCursor& c, F&& f) {
   f(s.dt_next);
   f(s.stable_dt);
   f(s.initial_dt);
+  f(s.eroded_elements);
   f(s.pending_external);
   f(s.pending_damping);
   f(s.pending_contact);
   f(s.pending_wall);
   auto& e = s.energy;
   for (double* v : {&e.kinetic, &e.stress_work, &e.external_work, &e.viscosity, &e.hourglass,
-                    &e.damping, &e.plastic, &e.fracture, &e.contact_work, &e.wall_work, &e.friction, &e.initial})
+                    &e.damping, &e.plastic, &e.fracture, &e.contact_work, &e.wall_work, &e.friction, &e.initial, &e.heat, &e.eroded})
     f(*v);
   f(c.next_frame);
   f(c.next_history);

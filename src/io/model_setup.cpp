@@ -148,6 +148,17 @@ Simulation build_simulation(Scenario& sc, const MeshData& mesh) {
     part.name = pin.name;
     part.kind = kind;
     part.hourglass_coefficient = pin.hourglass_coefficient;
+    part.volumetric = pin.volumetric;
+    const bool constant_strain = kind == ElementKind::tri3 || kind == ElementKind::tet4;
+    if ((pin.volumetric == VolumetricTreatment::average_nodal_pressure && !constant_strain) ||
+        (pin.volumetric == VolumetricTreatment::mean_dilatation && kind != ElementKind::hex8))
+      throw InputError(file, pin.line, "parts." + pin.name + ".volumetric",
+                       std::string("'") +
+                           (pin.volumetric == VolumetricTreatment::mean_dilatation ? "mean_dilatation"
+                                                                                   : "average_nodal_pressure") +
+                           "' does not apply to " + name_of(kind) +
+                           " elements: average_nodal_pressure is for tri3 and tet4, mean_dilatation "
+                           "for hex8 (hex8_reduced has a single, mean dilatation already)");
     for (std::size_t m = 0; m < sc.materials.size(); ++m)
       if (sc.materials[m].name == pin.material) part.material = static_cast<int>(m);
     part.connectivity = block.connectivity;

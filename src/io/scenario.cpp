@@ -160,6 +160,10 @@ KeyList part_keys() {
       .at_least(0)
       .at_most(0.5)
       .defaults_to("0.1");
+  k.choice("volumetric", {"standard", "average_nodal_pressure", "mean_dilatation"},
+           "treatment of the dilatation against volumetric locking in plastic flow: "
+           "average_nodal_pressure for tri3/tet4, mean_dilatation (B-bar) for hex8")
+      .defaults_to("standard");
   return k;
 }
 
@@ -647,6 +651,15 @@ Scenario read_scenario(const std::filesystem::path& path) {
                               name_of(sc.formulation) + "' (2D: tri3; 3D: tet4, hex8, hex8_reduced)");
     }
     part.hourglass_coefficient = s.number("hourglass_coefficient");
+    if (auto v = s.choice("volumetric")) {
+      part.volumetric = *v == "average_nodal_pressure" ? VolumetricTreatment::average_nodal_pressure
+                        : *v == "mean_dilatation"      ? VolumetricTreatment::mean_dilatation
+                                                       : VolumetricTreatment::standard;
+      if (part.volumetric == VolumetricTreatment::average_nodal_pressure &&
+          sc.formulation == Formulation::plane_stress)
+        s.fail("volumetric", "average_nodal_pressure is for plane strain, axisymmetric and 3D "
+                             "models; plane stress has no volumetric constraint to relieve");
+    }
     sc.parts.push_back(std::move(part));
   }
   std::vector<std::string> part_names;

@@ -31,6 +31,7 @@ struct PartInput {
   std::string material;
   std::optional<ElementKind> element;  ///< absent: chosen from the mesh's cell type
   double hourglass_coefficient = 0.1;
+  VolumetricTreatment volumetric = VolumetricTreatment::standard;
   int line = 0;
 };
 

@@ -30,6 +30,7 @@ struct MaterialPointBatch {
   // Energy dissipated in this increment by the whole batch (J); added to by the model.
   double plastic_work = 0;
   double fracture_work = 0;
+  double heat = 0;  ///< the part of plastic_work that became heat (J)
 };
 
 struct ElasticModuli {
@@ -50,6 +51,9 @@ class Material {
   std::size_t state_size() const { return state_names().size(); }
   /// Initial values of the history variables of `points` points (zero by default).
   virtual void initialise(double* state, std::size_t points) const;
+  /// The history variable that marks failure: a point whose state[index] ≥ 1 has failed and its
+  /// element is eroded (removed from the force computation). −1: the model never fails points.
+  virtual int failure_state_index() const { return -1; }
   /// σ_n+1 from σ_n and the strain increment, for every point of the batch.
   virtual void update(MaterialPointBatch& batch) const = 0;
 

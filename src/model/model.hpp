@@ -22,6 +22,16 @@ enum class ElementKind : std::uint8_t {
   hex8_reduced,  ///< 8-node hexahedron, one point (uniform gradient) + viscous hourglass control
 };
 
+/// How an element treats the volumetric part of the deformation. Nearly incompressible flow
+/// (metal plasticity) locks constant-strain triangles and tetrahedra and fully integrated
+/// hexahedra; the remedies replace each element's dilatation and pressure by averages
+/// (docs/theory/elements_and_kinematics.md, "Volumetric locking").
+enum class VolumetricTreatment : std::uint8_t {
+  standard,                ///< the element's own dilatation at each point
+  average_nodal_pressure,  ///< tri3/tet4: dilatation and pressure averaged through the nodes
+  mean_dilatation,         ///< hex8: B-bar, the element's mean dilatation at all 8 points
+};
+
 int nodes_per_element(ElementKind kind);
 int points_per_element(ElementKind kind);  ///< integration points
 int dimension_of(ElementKind kind);
@@ -61,6 +71,7 @@ struct Part {
   ElementKind kind = ElementKind::tri3;
   int material = 0;                 ///< index into the run's material list
   double hourglass_coefficient = 0.1;
+  VolumetricTreatment volumetric = VolumetricTreatment::standard;
 
   std::vector<std::int32_t> connectivity;  ///< nodes_per_element per element
   std::vector<std::int32_t> colour_begin;  ///< colour c holds elements [colour_begin[c], colour_begin[c+1])
@@ -76,6 +87,9 @@ struct Part {
   /// coefficients c·q_α (12 per element).
   std::vector<double> bulk_viscosity;
   std::vector<double> hourglass_rate;
+  /// 1 for an element removed by erosion (its material failed): it carries no stress and adds
+  /// no force; its nodes keep their mass. One per element.
+  std::vector<std::int32_t> eroded;
 
   std::size_t element_count() const {
     return connectivity.size() / static_cast<std::size_t>(nodes_per_element(kind));
@@ -151,6 +165,7 @@ struct Model {
       f(prefix + "volume", p.volume);
       f(prefix + "bulk_viscosity", p.bulk_viscosity);
       f(prefix + "hourglass_rate", p.hourglass_rate);
+      f(prefix + "eroded", p.eroded);
     }
   }
 };

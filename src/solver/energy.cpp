@@ -13,12 +13,14 @@ double EnergyBalance::relative_error() const {
 
 std::vector<std::string> EnergyBalance::column_names() {
   return {"kinetic", "internal", "external_work", "viscosity", "hourglass", "damping",
-          "plastic", "fracture", "contact",       "friction",  "energy_error"};
+          "plastic", "heat",     "fracture",      "eroded",    "contact",
+          "friction", "energy_error"};
 }
 
 std::vector<double> EnergyBalance::column_values() const {
   return {kinetic, internal(), external_work, viscosity, hourglass, damping,
-          plastic, fracture,   contact(),     friction,  relative_error()};
+          plastic, heat,       fracture,      eroded,    contact(),
+          friction, relative_error()};
 }
 
 }  // namespace shard

@@ -19,6 +19,8 @@ struct EnergyBalance {
   double contact_work = 0;    ///< work done on the nodes by contact and wall forces
   double wall_work = 0;       ///< work of moving walls on the bodies (part of external_work)
   double friction = 0;        ///< dissipated by friction (contact and walls)
+  double heat = 0;            ///< the part of `plastic` that became heat (β W_p); not a separate sink
+  double eroded = 0;          ///< elastic energy carried away by eroded elements
   double initial = 0;         ///< kinetic energy at t = 0 (the models start stress-free)
 
   /// Recoverable (elastic) internal energy: stress work less what the material dissipated.
@@ -27,7 +29,9 @@ struct EnergyBalance {
   /// what friction dissipated and what moving walls put in. The penalty springs' elastic energy
   /// plus the penalty method's discretisation error; it returns to ~0 when bodies separate.
   double contact() const { return wall_work - contact_work - friction; }
-  double dissipated() const { return viscosity + hourglass + damping + plastic + fracture + friction; }
+  double dissipated() const {
+    return viscosity + hourglass + damping + plastic + fracture + friction + eroded;
+  }
   /// kinetic + internal + dissipated − external work − initial
   double residual() const {
     return kinetic + internal() + contact() + dissipated() - external_work - initial;

@@ -132,6 +132,13 @@ void ExplicitSolver::compute_forces() {
   E.hourglass += total.hourglass_work;
   E.plastic += total.plastic_work;
   E.fracture += total.fracture_work;
+  E.heat += total.heat;
+  E.eroded += total.eroded_energy;
+  if (total.eroded_elements > 0) {
+    state_.eroded_elements += total.eroded_elements;
+    // The eroded elements' faces leave the contact surface and the faces they covered join it.
+    if (contact_) contact_->rebuild(model_);
+  }
 
   applied_.clear();
   add_pressure_forces(model_, loads_, state_.time, applied_);
@@ -153,8 +160,12 @@ void ExplicitSolver::compute_forces() {
 
   // Contact springs may lower the stable step by up to the stated fraction (the automatic
   // penalty is built for that bound, docs/theory/contact.md): take it off before the safety factor.
-  state_.stable_dt = total.stable_dt;
-  if (contact_) state_.stable_dt *= 1.0 - contact_->settings().time_step_reduction;
+  const double reduction = contact_ ? 1.0 - contact_->settings().time_step_reduction : 1.0;
+  // With no element left to limit it (all eroded), the step stays what it was: free nodes fly on.
+  const double element_dt = std::isfinite(total.stable_dt) || state_.stable_dt == 0
+                                ? total.stable_dt
+                                : state_.stable_dt / reduction;
+  state_.stable_dt = element_dt * reduction;
   double dt = settings_.time_step_safety * state_.stable_dt;
   if (settings_.max_time_step > 0) dt = std::min(dt, settings_.max_time_step);
   const double remaining = settings_.end_time - state_.time;

@@ -34,6 +34,7 @@ struct SolverState {
   double dt_next = 0;      ///< Δt_n+1/2, chosen in the force phase
   double stable_dt = 0;    ///< the element stable step at t_n (before the safety factor)
   double initial_dt = 0;   ///< the first step's Δt, to detect a collapsing step
+  std::int64_t eroded_elements = 0;  ///< elements removed by erosion so far
   EnergyBalance energy;    ///< every term through t_n
   /// Work of the nodal forces at t_n over [t_n, t_n+1/2]: booked with the next step, so that
   /// all terms of `energy` end at t_n (see docs/theory/time_integration_and_energy.md).

@@ -231,6 +231,7 @@ RunSummary run_scenario(const std::filesystem::path& file, const RunOptions& opt
       << ",\n  \"element_steps_per_second\": "
       << (wall > 0 ? steps * static_cast<double>(sim.model.element_count()) / wall : 0.0)
       << ",\n  \"particle_steps_per_second\": 0"
+      << ",\n  \"eroded_elements\": " << s.eroded_elements
       << ",\n  \"energy_balance_error\": " << s.energy.relative_error()
       << ",\n  \"energy\": {";
     const auto names = EnergyBalance::column_names();

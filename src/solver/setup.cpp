@@ -15,6 +15,7 @@ void prepare_part(Part& part, const Material& material, std::size_t node_count,
   part.volume.assign(part.element_count(), 0.0);
   part.bulk_viscosity.assign(part.element_count(), 0.0);
   part.hourglass_rate.assign(part.kind == ElementKind::hex8_reduced ? 12 * part.element_count() : 0, 0.0);
+  part.eroded.assign(part.element_count(), 0);
   colour_elements(part, node_count);
 }
 

@@ -25,6 +25,13 @@ struct ElasticRun {
     for (auto& p : model.parts) prepare_part(p, *materials[0], model.nodes.count(), 293.15);
   }
 
+  /// Any material (one, for every part).
+  ElasticRun(Model m, std::unique_ptr<Material> material, double temperature = 293.15)
+      : model(std::move(m)) {
+    materials.push_back(std::move(material));
+    for (auto& p : model.parts) prepare_part(p, *materials[0], model.nodes.count(), temperature);
+  }
+
   int table(double value) {
     loads.tables.push_back(TimeTable::constant(value));
     return static_cast<int>(loads.tables.size()) - 1;
@@ -36,13 +43,17 @@ struct ElasticRun {
   }
 
   /// Runs to end_time; calls `each_step(solver)` after every force phase (state at t_n).
-  void run(const std::function<void(const ExplicitSolver&)>& each_step = {}) {
+  /// `after_step(solver)` is called after each advance, when every energy term ends at the same
+  /// time (t_n+1 less the pending half step): the place to check the energy balance.
+  void run(const std::function<void(const ExplicitSolver&)>& each_step = {},
+           const std::function<void(const ExplicitSolver&)>& after_step = {}) {
     ExplicitSolver solver(model, materials, loads, settings);
     solver.initialise();
     while (true) {
       solver.compute_forces();
       if (each_step) each_step(solver);
       solver.advance();
+      if (after_step) after_step(solver);
       energy = solver.state().energy;
       steps = solver.state().step;
       max_error = std::max(max_error, std::abs(energy.relative_error()));
