@@ -539,6 +539,85 @@ def save(figure, output, dpi):
     print(f"wrote {output}")
 
 
+# ---- profile of an axial body (Taylor bar) ---------------------------------------------------------
+
+def read_profile_csv(path):
+    """(radius, axial) arrays in m from a csv of r,z rows (header lines start with '#' or a letter)."""
+    rows = []
+    try:
+        with open(path) as f:
+            for number, line in enumerate(f, 1):
+                text = line.strip()
+                if not text or text[0] == "#" or text[0].isalpha():
+                    continue
+                try:
+                    rows.append([float(v) for v in text.split(",")[:2]])
+                except ValueError as error:
+                    raise PlotError(f"{path}:{number}: expected 'r,z' numbers, got '{text}'") from error
+    except OSError as error:
+        raise PlotError(f"cannot read {path}: {error}") from error
+    if not rows:
+        raise PlotError(f"{path} holds no r,z rows")
+    data = np.asarray(rows)
+    return data[:, 0], data[:, 1]
+
+
+def deformed_profile(mesh, bins):
+    """Outer profile of a body of revolution: x = r, y = z for 2D frames (axisymmetric), the
+    radius from the z axis for 3D ones. The nodes are binned by their *reference* axial position
+    (slices of the undeformed bar, so that every slice holds surface nodes whatever the
+    deformation); each slice gives its node of largest current radius. Also returns the final
+    length (axial extent: the bar may have bounced off the anvil) and the largest diameter."""
+    points = np.asarray(mesh.points)
+    if "displacement" not in mesh.point_data:
+        raise PlotError("the frame has no 'displacement' field: add it to output.fields")
+    reference = points - np.asarray(mesh.point_data["displacement"])
+    planar = np.ptp(points[:, 2]) == 0.0
+    def radial_axial(p):
+        return (p[:, 0], p[:, 1]) if planar else (np.hypot(p[:, 0], p[:, 1]), p[:, 2])
+    radius, axial = radial_axial(points)
+    _, axial0 = radial_axial(reference)
+    edges = np.linspace(axial0.min(), axial0.max(), bins + 1)
+    which = np.clip(np.digitize(axial0, edges) - 1, 0, bins - 1)
+    r, z = [], []
+    for b in range(bins):
+        members = np.flatnonzero(which == b)
+        if members.size:
+            k = members[np.argmax(radius[members])]
+            r.append(radius[k])
+            z.append(axial[k] - axial.min())
+    order = np.argsort(z)
+    return np.asarray(r)[order], np.asarray(z)[order], axial.max() - axial.min(), 2 * radius.max()
+
+
+def plot_profile(args):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    figure, axes = plt.subplots(figsize=(4.5, 6))
+    for run in args.inputs:
+        args.input = run
+        vtu, time, label = pick_frame(args)
+        mesh = read_mesh(vtu)
+        r, z, length, diameter = deformed_profile(mesh, args.bins)
+        axes.plot(r * 1e3, z * 1e3, "-", label=f"{run_name(run)}: L {length * 1e3:.2f} mm, "
+                                               f"D {diameter * 1e3:.2f} mm")
+    if args.measured:
+        mr, mz = read_profile_csv(args.measured)
+        axes.plot(mr * args.measured_scale * 1e3, mz * args.measured_scale * 1e3, "ko",
+                  markersize=4, label=args.measured_label)
+    axes.set_xlabel("radius [mm]")
+    axes.set_ylabel("distance from the impact face [mm]")
+    axes.set_aspect("equal")
+    axes.set_xlim(left=0)
+    axes.set_ylim(bottom=0)
+    axes.grid(alpha=0.3)
+    axes.legend(fontsize=7, loc="center left")
+    axes.set_title(args.title or "final profile")
+    save(figure, args.output, args.dpi)
+
+
 # ---- command line --------------------------------------------------------------------------------
 
 def parse_arguments(argv):
@@ -656,6 +735,23 @@ mean of their corners.""")
                        help="inches (default: from the body's aspect ratio)")
     field.add_argument("--dpi", type=int, default=150, help="resolution (default: %(default)s)")
     field.set_defaults(run=plot_field)
+
+    profile = commands.add_parser(
+        "profile", help="outer radius against axial position (Taylor bar) vs measured points",
+        description="Draw the outer profile (largest radius of the nodes in slices along the axis) "
+                    "of the chosen frame of one or more runs of a body of revolution: axisymmetric "
+                    "(x = r, y = z) or 3D (axis z), with measured r,z points from a csv.")
+    profile.add_argument("inputs", nargs="+", metavar="OUTDIR", help="run folders or .pvd/.vtu files")
+    profile.add_argument("--frame", metavar="N|last", help="frame to draw (default last)")
+    profile.add_argument("--measured", metavar="CSV", help="r,z rows of a measured profile")
+    profile.add_argument("--measured-scale", type=float, default=1e-3,
+                         help="metres per unit of the csv (default %(default)s: mm)")
+    profile.add_argument("--measured-label", default="measured", help="legend of the measured points")
+    profile.add_argument("--bins", type=int, default=60, help="slices along the axis (default %(default)s)")
+    profile.add_argument("-o", "--output", default="profile.png", help="image file (default %(default)s)")
+    profile.add_argument("--title", help="plot title")
+    profile.add_argument("--dpi", type=int, default=150, help="resolution (default: %(default)s)")
+    profile.set_defaults(run=plot_profile)
 
     info = commands.add_parser(
         "info", help="list the frames and the fields of a frame",
