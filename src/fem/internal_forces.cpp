@@ -851,18 +851,23 @@ ForceSums run_part_nodal_pressure(Part& part, const Material& material, NodeArra
     }
   });
 
+  // Mean over an element's nodes of a nodal sum per nodal volume (V̇_a/V_a, p̃_a).
+  auto element_mean = [&](std::size_t e, const std::vector<double>& nodal_sum) {
+    double mean = 0.0;
+    for (int a = 0; a < npe; ++a) {
+      const std::int32_t n = part.connectivity[npe * e + a];
+      mean += nodal_sum[n] / sc.node_volume[n];
+    }
+    return mean / npe;
+  };
+
   // 2. Averaged dilatation, material update; element pressures to the nodes.
 #pragma omp parallel for schedule(static)
   for (std::ptrdiff_t bi = 0; bi < nb; ++bi) {
     const Batch b = batches[bi];
     for (std::size_t e = b.begin; e < b.end; ++e) {
       if (!(ws.volume[e] > 0.0)) continue;
-      double mean = 0.0;
-      for (int a = 0; a < npe; ++a) {
-        const std::int32_t n = part.connectivity[npe * e + a];
-        mean += sc.node_rate[n] / sc.node_volume[n];
-      }
-      mean /= npe;
+      const double mean = element_mean(e, sc.node_rate);
       double* de = &ws.strain_increment[kTensorSize * e];
       const double shift = (1.0 - kElementShare) * (mean - ws.volume_rate[e]) * ctx.dt / 3.0;
       de[xx] += shift;
@@ -885,13 +890,9 @@ ForceSums run_part_nodal_pressure(Part& part, const Material& material, NodeArra
     const Batch b = batches[bi];
     for (std::size_t e = b.begin; e < b.end; ++e) {
       if (!(ws.volume[e] > 0.0)) continue;
-      double mean = 0.0;
-      for (int a = 0; a < npe; ++a) {
-        const std::int32_t n = part.connectivity[npe * e + a];
-        mean += sc.node_pressure[n] / sc.node_volume[n];
-      }
+      const double mean = element_mean(e, sc.node_pressure);
       const double* s = &part.stress[kTensorSize * e];
-      sc.pressure_shift[e] = (1.0 - kElementShare) * (mean / npe + (s[xx] + s[yy] + s[zz]) / 3.0);
+      sc.pressure_shift[e] = (1.0 - kElementShare) * (mean + (s[xx] + s[yy] + s[zz]) / 3.0);
     }
   }
   per_colour([&](const Batch& b, ForceSums& out) {

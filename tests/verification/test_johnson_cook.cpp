@@ -25,6 +25,7 @@
 
 #include "material/johnson_cook.hpp"
 #include "support/model_runner.hpp"
+#include "support/rotation.hpp"
 #include "support/velocity_field.hpp"
 
 namespace shard {
@@ -187,7 +188,7 @@ void check_tension(double beta, const char* label) {
 TEST(JohnsonCook, UniaxialTensionIsothermal) { check_tension(0.0, "isothermal"); }
 TEST(JohnsonCook, UniaxialTensionAdiabatic) { check_tension(0.9, "adiabatic"); }
 
-using Mat3 = std::array<std::array<double, 3>, 3>;
+using testing::Mat3;
 
 Mat3 multiply(const Mat3& a, const Mat3& b) {
   Mat3 c{};
@@ -208,20 +209,6 @@ Mat3 exponential(const Mat3& a) {  // series; |a| ≤ 0.2 here
       for (int j = 0; j < 3; ++j) sum[i][j] += term[i][j];
   }
   return sum;
-}
-
-Mat3 rotation_about(const std::array<double, 3>& n, double angle) {
-  const double c = std::cos(angle), s = std::sin(angle);
-  Mat3 Q;
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) Q[i][j] = (i == j ? c : 0.0) + (1 - c) * n[i] * n[j];
-  Q[0][1] -= s * n[2];
-  Q[1][0] += s * n[2];
-  Q[0][2] += s * n[1];
-  Q[2][0] -= s * n[1];
-  Q[1][2] -= s * n[0];
-  Q[2][1] += s * n[0];
-  return Q;
 }
 
 struct ReturnResult {
@@ -252,7 +239,7 @@ ReturnResult drive(const Mat3& L, bool rotate, int load_steps, int hold_steps) {
       for (double& v : r) v *= tl;
     const Mat3 F = exponential(Lt);
     if (!rotate || t <= load_steps * dt) return F;
-    return multiply(rotation_about(axis, omega * (t - load_steps * dt)), F);
+    return multiply(testing::rotation(axis, omega * (t - load_steps * dt)), F);
   };
   std::vector<double> times(steps);
   for (int n = 0; n < steps; ++n) times[n] = (n + 0.5) * dt;
@@ -295,15 +282,9 @@ TEST(JohnsonCook, RadialReturnStaysOnYieldSurfaceAndIsObjective) {
   // in both runs, plastically, and the comparison covers that too.
   const ReturnResult hold = drive(L, false, 1000, 1000);
   const ReturnResult turned = drive(L, true, 1000, 1000);
-  const Mat3 Q = rotation_about({1.0 / 3, 2.0 / 3, 2.0 / 3}, 0.5 * std::numbers::pi);
+  const Mat3 Q = testing::rotation({1.0 / 3, 2.0 / 3, 2.0 / 3}, 0.5 * std::numbers::pi);
   const auto& s = hold.stress;
-  const double S[3][3] = {{s[xx], s[xy], s[zx]}, {s[xy], s[yy], s[yz]}, {s[zx], s[yz], s[zz]}};
-  double R[3][3] = {};
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j)
-      for (int k = 0; k < 3; ++k)
-        for (int l = 0; l < 3; ++l) R[i][j] += Q[i][k] * S[k][l] * Q[j][l];
-  const std::array<double, kTensorSize> expected = {R[0][0], R[1][1], R[2][2], R[0][1], R[1][2], R[2][0]};
+  const auto expected = testing::rotate(Q, s);
   const double scale = von_mises(s.data());
   double err = 0;
   for (int k = 0; k < kTensorSize; ++k) err = std::max(err, std::abs(turned.stress[k] - expected[k]) / scale);

@@ -29,37 +29,15 @@
 #include <numbers>
 
 #include "support/model_runner.hpp"
+#include "support/rotation.hpp"
 #include "support/velocity_field.hpp"
 
 namespace shard {
 namespace {
 
-using Mat3 = std::array<std::array<double, 3>, 3>;
-
-/// Rotation by `angle` about the unit axis n (Rodrigues).
-Mat3 rotation(const std::array<double, 3>& n, double angle) {
-  const double c = std::cos(angle), s = std::sin(angle);
-  Mat3 Q;
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) Q[i][j] = (i == j ? c : 0.0) + (1 - c) * n[i] * n[j];
-  Q[0][1] -= s * n[2];
-  Q[1][0] += s * n[2];
-  Q[0][2] += s * n[1];
-  Q[2][0] -= s * n[1];
-  Q[1][2] -= s * n[0];
-  Q[2][1] += s * n[0];
-  return Q;
-}
-
-std::array<double, kTensorSize> rotate(const Mat3& Q, const std::array<double, kTensorSize>& s) {
-  const double S[3][3] = {{s[xx], s[xy], s[zx]}, {s[xy], s[yy], s[yz]}, {s[zx], s[yz], s[zz]}};
-  double R[3][3] = {};
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j)
-      for (int k = 0; k < 3; ++k)
-        for (int l = 0; l < 3; ++l) R[i][j] += Q[i][k] * S[k][l] * Q[j][l];
-  return {R[0][0], R[1][1], R[2][2], R[0][1], R[1][2], R[2][0]};
-}
+using testing::Mat3;
+using testing::rotate;
+using testing::rotation;
 
 double trace(const double* s) { return s[xx] + s[yy] + s[zz]; }
 double von_mises(const double* s) {
