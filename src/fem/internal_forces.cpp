@@ -794,14 +794,6 @@ NodalAveragingScratch nodal_scratch;
 /// so the forces do exactly the work the material's stress does on the averaged strain (the
 /// energy balance closes as for the standard element). One constraint per node instead of one per
 /// element removes the volumetric locking of constant-strain elements in plastic flow.
-/// Share of the element's own dilatation and pressure kept in the averaged-nodal-pressure
-/// elements (the rest is the nodal average). Pure averaging (0) leaves the element-wise
-/// "checkerboard" of dilatations that averages to zero at every node without volumetric
-/// stiffness; in severe plastic flow (a 287 m/s steel Taylor bar) elements then collapse near the
-/// axis. A small share restores a stiffness α K against that mode only (cf. the stabilised nodal
-/// integration of Puso & Solberg 2006); 0.1 survives that case and changes the Taylor-bar length
-/// by less than 0.5 % at 190–208 m/s (docs/theory/elements_and_kinematics.md).
-constexpr double kElementShare = 0.1;
 
 template <class Kernel>
 ForceSums run_part_nodal_pressure(Part& part, const Material& material, NodeArrays& nodes,
@@ -869,7 +861,7 @@ ForceSums run_part_nodal_pressure(Part& part, const Material& material, NodeArra
       if (!(ws.volume[e] > 0.0)) continue;
       const double mean = element_mean(e, sc.node_rate);
       double* de = &ws.strain_increment[kTensorSize * e];
-      const double shift = (1.0 - kElementShare) * (mean - ws.volume_rate[e]) * ctx.dt / 3.0;
+      const double shift = (1.0 - kNodalPressureElementShare) * (mean - ws.volume_rate[e]) * ctx.dt / 3.0;
       de[xx] += shift;
       de[yy] += shift;
       de[zz] += shift;
@@ -892,7 +884,7 @@ ForceSums run_part_nodal_pressure(Part& part, const Material& material, NodeArra
       if (!(ws.volume[e] > 0.0)) continue;
       const double mean = element_mean(e, sc.node_pressure);
       const double* s = &part.stress[kTensorSize * e];
-      sc.pressure_shift[e] = (1.0 - kElementShare) * (mean + (s[xx] + s[yy] + s[zz]) / 3.0);
+      sc.pressure_shift[e] = (1.0 - kNodalPressureElementShare) * (mean + (s[xx] + s[yy] + s[zz]) / 3.0);
     }
   }
   per_colour([&](const Batch& b, ForceSums& out) {

@@ -34,6 +34,17 @@ struct ForceSums {
   void add(const ForceSums& o);
 };
 
+/// Share of the element's own dilatation and pressure kept in the averaged-nodal-pressure
+/// elements (the rest is the nodal average). Pure averaging (0) leaves the element-wise
+/// "checkerboard" of dilatations that averages to zero at every node without volumetric
+/// stiffness; in severe plastic flow (a 287 m/s steel Taylor bar) elements then collapse near the
+/// axis. A share α restores a stiffness α²K against that mode only (α of the dilatation, α of the
+/// pressure; cf. the stabilised nodal integration of Puso & Solberg 2006): 0.01 K, which locks
+/// like a standard element with K' = α²K (measured, tests/verification/test_volumetric_locking.cpp).
+/// 0.1 survives that case and changes the Taylor-bar length by less than 0.5 % at 190–208 m/s
+/// (docs/theory/elements_and_kinematics.md, section 11).
+inline constexpr double kNodalPressureElementShare = 0.1;
+
 /// Updates stresses and state of every point of `part` with the velocities in `nodes.v` over
 /// `ctx.dt`, on the current positions `nodes.x`, and subtracts the internal forces from
 /// `nodes.force`. The result is the same for any number of OpenMP threads.
