@@ -19,6 +19,7 @@
 
 #include <omp.h>
 
+#include "../tests/support/mca_samples.hpp"
 #include "particle/mca_stepper.hpp"
 #include "particle/packing.hpp"
 
@@ -38,16 +39,7 @@ ParticleSystem sample(int cells) {
   const double side = cells * spec.size * 1.4142135623730951;
   spec.hi[0] = spec.hi[1] = spec.hi[2] = side;
   ParticleSystem ps = build_packing(spec, {m});
-  BondLaw law;
-  law.criterion = BondCriterion::drucker_prager;
-  law.sigma_t = 300e6;
-  law.sigma_c = 3000e6;
-  law.breaking = BondBreaking::unstable;
-  law.crack_speed = 3000;
-  law.friction = 0.3;
-  ps.bond_laws = {law};
-  ps.set_bond_law(0, 0, 0);
-  finish_sample(ps);
+  testing::bond_drucker_prager(ps, 300e6, 3000e6, 3000, 0.3);
   return ps;
 }
 

@@ -631,11 +631,22 @@ void element_kinematics(const StepContext& ctx, Part& part, const NodeArrays& no
 /// Material update of the points of elements [begin, end) (workspace slots from first_slot), the
 /// stress work ∫ σ_mid : Δε dV, the accumulated strain, and erosion of elements whose material
 /// marks a point failed.
+/// What the point update needs of a material beyond update(), looked up once per part and step
+/// (state_names() builds strings: not something to call per batch).
+struct MaterialLayout {
+  std::size_t state_size;
+  int failure_index;
+  ElasticModuli moduli;
+  explicit MaterialLayout(const Material& m)
+      : state_size(m.state_size()), failure_index(m.failure_state_index()), moduli(m.elastic()) {}
+};
+
 template <class Kernel>
-void update_points(const StepContext& ctx, Part& part, const Material& material, std::size_t begin,
-                   std::size_t end, Workspace& ws, std::size_t first_slot, ForceSums& out) {
+void update_points(const StepContext& ctx, Part& part, const Material& material,
+                   const MaterialLayout& layout, std::size_t begin, std::size_t end, Workspace& ws,
+                   std::size_t first_slot, ForceSums& out) {
   constexpr int npts = Kernel::points;
-  const std::size_t state_size = material.state_size();
+  const std::size_t state_size = layout.state_size;
   const std::size_t p0 = begin * npts, s0 = first_slot * npts;
   MaterialPointBatch mp;
   mp.count = (end - begin) * npts;
@@ -668,9 +679,9 @@ void update_points(const StepContext& ctx, Part& part, const Material& material,
   for (std::size_t e = begin; e < end; ++e)
     if (part.eroded[e]) std::fill_n(&part.stress[kTensorSize * npts * e], kTensorSize * npts, 0.0);
 
-  const int failure = material.failure_state_index();
+  const int failure = layout.failure_index;
   if (failure < 0) return;
-  const ElasticModuli m = material.elastic();
+  const ElasticModuli& m = layout.moduli;
   for (std::size_t e = begin; e < end; ++e) {
     if (part.eroded[e]) continue;
     bool failed = false;
@@ -746,6 +757,7 @@ template <class Kernel>
 ForceSums run_part(Part& part, const Material& material, NodeArrays& nodes,
                    const StepContext& ctx) {
   constexpr int npts = Kernel::points;
+  const MaterialLayout layout(material);
   const double rho = material.density();
   const double c = material.wave_speed();
   const double hourglass_scale = 0.25 * part.hourglass_coefficient * rho * c;
@@ -768,7 +780,7 @@ ForceSums run_part(Part& part, const Material& material, NodeArrays& nodes,
       const std::size_t n = batch.end - batch.begin;
       ws.size_for(n, n * npts, Kernel::geometry);
       element_kinematics<Kernel>(ctx, part, nodes, batch.begin, batch.end, ws, 0, hourglass_scale, out);
-      update_points<Kernel>(ctx, part, material, batch.begin, batch.end, ws, 0, out);
+      update_points<Kernel>(ctx, part, material, layout, batch.begin, batch.end, ws, 0, out);
       element_forces<Kernel>(ctx, part, nodes, rho, c, batch.begin, batch.end, ws, 0, nullptr, out);
     }
   }
@@ -799,6 +811,7 @@ template <class Kernel>
 ForceSums run_part_nodal_pressure(Part& part, const Material& material, NodeArrays& nodes,
                                   const StepContext& ctx) {
   constexpr int npe = Kernel::nodes;
+  const MaterialLayout layout(material);
   const double rho = material.density();
   const double c = material.wave_speed();
   const std::size_t ne = part.element_count(), nn = nodes.count();
@@ -866,7 +879,7 @@ ForceSums run_part_nodal_pressure(Part& part, const Material& material, NodeArra
       de[yy] += shift;
       de[zz] += shift;
     }
-    update_points<Kernel>(ctx, part, material, b.begin, b.end, ws, b.begin, sums[bi]);
+    update_points<Kernel>(ctx, part, material, layout, b.begin, b.end, ws, b.begin, sums[bi]);
   }
   per_colour([&](const Batch& b, ForceSums&) {
     for (std::size_t e = b.begin; e < b.end; ++e) {

@@ -149,11 +149,9 @@ inline double criterion_value(const BondLaw& law, const double* T) {
   return 0;
 }
 
-/// Pair stress tensor of eq. (16) in the global frame (3×3 row-major): the central and shear
-/// specific forces of the pair, and the components across the pair interpolated from the
-/// averaged stresses of the two automata (weights q_ji/r and q_ij/r).
-template <int D>
-void pair_tensor(const ParticleSystem& ps, std::size_t p, const double* n, double* T) {
+/// The averaged stresses of the pair's two automata interpolated to the contact point (weights
+/// q_ji/r and q_ij/r; half the sizes before the first step), 6 components.
+inline void interpolated_pair_stress(const ParticleSystem& ps, std::size_t p, double* S) {
   const PairList& P = ps.pairs;
   const int i = P.i[p], j = P.j[p];
   double qi = P.q_ij[p], qj = P.q_ji[p];
@@ -164,9 +162,19 @@ void pair_tensor(const ParticleSystem& ps, std::size_t p, const double* n, doubl
   const double wi = qj / (qi + qj), wj = qi / (qi + qj);
   const double* a = &ps.stress[6 * i];
   const double* b = &ps.stress[6 * j];
+  for (int k = 0; k < 6; ++k) S[k] = wi * a[k] + wj * b[k];
+}
+
+/// Pair stress tensor of eq. (16) in the global frame (3×3 row-major): the central and shear
+/// specific forces of the pair, and the components across the pair interpolated from the
+/// averaged stresses of the two automata (weights q_ji/r and q_ij/r).
+template <int D>
+void pair_tensor(const ParticleSystem& ps, std::size_t p, const double* n, double* T) {
+  const PairList& P = ps.pairs;
+  double A[6];
+  interpolated_pair_stress(ps, p, A);
+  const double xx = A[0], yy = A[1], zz = A[2], xy = A[3], yz = A[4], xz = A[5];
   double S[9];
-  const double xx = wi * a[0] + wj * b[0], yy = wi * a[1] + wj * b[1], zz = wi * a[2] + wj * b[2];
-  const double xy = wi * a[3] + wj * b[3], yz = wi * a[4] + wj * b[4], xz = wi * a[5] + wj * b[5];
   S[0] = xx, S[1] = xy, S[2] = xz, S[3] = xy, S[4] = yy, S[5] = yz, S[6] = xz, S[7] = yz, S[8] = zz;
   double n3[3] = {n[0], n[1], D == 3 ? n[2] : 0.0};
   double tv[3];
@@ -191,17 +199,8 @@ void pair_tensor(const ParticleSystem& ps, std::size_t p, const double* n, doubl
 template <int D>
 inline void pair_invariants(const ParticleSystem& ps, std::size_t p, const double* n, double& mean, double& eq) {
   const PairList& P = ps.pairs;
-  const int i = P.i[p], j = P.j[p];
-  double qi = P.q_ij[p], qj = P.q_ji[p];
-  if (qi + qj <= 0) {
-    qi = 0.5 * ps.d[i];
-    qj = 0.5 * ps.d[j];
-  }
-  const double wi = qj / (qi + qj), wj = qi / (qi + qj);
-  const double* a = &ps.stress[6 * i];
-  const double* b = &ps.stress[6 * j];
   double S[6];
-  for (int k = 0; k < 6; ++k) S[k] = wi * a[k] + wj * b[k];
+  interpolated_pair_stress(ps, p, S);
   const double nz = D == 3 ? n[2] : 0.0;
   const double Sn[3] = {S[0] * n[0] + S[3] * n[1] + S[5] * nz, S[3] * n[0] + S[1] * n[1] + S[4] * nz,
                         S[5] * n[0] + S[4] * n[1] + S[2] * nz};

@@ -37,6 +37,22 @@ inline ParticleSystem mca_box(Lattice lattice, double d, double nx, double ny, d
   return ps;
 }
 
+/// Bonds a built packing of one material with a Drucker–Prager law that breaks at a constant
+/// crack speed (unstable mode) and gives broken pairs Amontons friction, and finishes it.
+inline void bond_drucker_prager(ParticleSystem& ps, double sigma_t, double sigma_c, double crack_speed,
+                                double friction = 0.3) {
+  BondLaw law;
+  law.criterion = BondCriterion::drucker_prager;
+  law.sigma_t = sigma_t;
+  law.sigma_c = sigma_c;
+  law.breaking = BondBreaking::unstable;
+  law.crack_speed = crack_speed;
+  law.friction = friction;
+  ps.bond_laws = {law};
+  ps.set_bond_law(0, 0, 0);
+  finish_sample(ps);
+}
+
 /// Linear regression slope of ys on xs.
 inline double slope(const std::vector<double>& xs, const std::vector<double>& ys) {
   double mx = 0, my = 0;

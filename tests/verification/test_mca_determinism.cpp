@@ -30,16 +30,7 @@ Result run(int threads) {
   spec.size = 1e-3;
   spec.hi[0] = spec.hi[1] = spec.hi[2] = 12e-3;
   ParticleSystem ps = build_packing(spec, {m});
-  BondLaw law;
-  law.criterion = BondCriterion::drucker_prager;
-  law.sigma_t = 100e6;
-  law.sigma_c = 800e6;
-  law.breaking = BondBreaking::unstable;
-  law.crack_speed = 3000;
-  law.friction = 0.3;
-  ps.bond_laws = {law};
-  ps.set_bond_law(0, 0, 0);
-  finish_sample(ps);
+  testing::bond_drucker_prager(ps, 100e6, 800e6, 3000, 0.3);
   MCAStepper stepper(ps, 0.5);
   VelocityBC bottom, top;
   bottom.automata = boundary_layer(ps, 2, false, 1e-6);

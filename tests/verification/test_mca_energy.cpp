@@ -68,16 +68,7 @@ TEST(MCAEnergy, FractureBooksBreaking) {
     spec.plane = PlaneMode::plane_stress;
     spec.thickness = 1e-3;
     ParticleSystem s = build_packing(spec, {m});
-    BondLaw law;
-    law.criterion = BondCriterion::drucker_prager;
-    law.sigma_t = 70e6;
-    law.sigma_c = 700e6;
-    law.breaking = BondBreaking::unstable;
-    law.crack_speed = 100;
-    law.friction = 0.3;
-    s.bond_laws = {law};
-    s.set_bond_law(0, 0, 0);
-    finish_sample(s);
+    testing::bond_drucker_prager(s, 70e6, 700e6, 100, 0.3);
     return s;
   }();
   const double T = testing::transit_time(m, 40e-3);
