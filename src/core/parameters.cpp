@@ -128,10 +128,11 @@ std::string closest_match(const std::string& word, const std::vector<std::string
   std::size_t best_distance = std::max<std::size_t>(2, word.size() / 3) + 1;
   for (const auto& c : candidates) {
     // A key that contains the word, or is contained in it, is a likely intent too
-    // ("young" for "youngs_modulus").
+    // ("young" for "youngs_modulus"), though a near spelling wins over it
+    // ("boundary_conditions", not "particle_boundary_conditions", for "boundary_condition").
     std::size_t d = edit_distance(word, c);
     if (word.size() >= 4 && (c.find(word) != std::string::npos || word.find(c) != std::string::npos))
-      d = std::min<std::size_t>(d, 1);
+      d = std::min<std::size_t>(d, 2);
     if (d < best_distance) {
       best_distance = d;
       best = c;

@@ -29,12 +29,25 @@ void visit_scalars(SolverState& s, OutputCursor& c, F&& f) {
   f(s.pending_wall);
   auto& e = s.energy;
   for (double* v : {&e.kinetic, &e.stress_work, &e.external_work, &e.viscosity, &e.hourglass,
-                    &e.damping, &e.plastic, &e.fracture, &e.contact_work, &e.wall_work, &e.friction, &e.initial, &e.heat, &e.eroded})
+                    &e.damping, &e.plastic, &e.fracture, &e.contact_work, &e.wall_work, &e.friction, &e.initial, &e.heat, &e.eroded,
+                    &e.particle_elastic, &e.particle_friction})
     f(*v);
   f(c.next_frame);
   f(c.next_history);
   f(c.next_checkpoint);
   f(c.history_bytes);
+}
+
+/// Type tag of a checkpoint array, so that a reader never reinterprets one element type as another.
+template <class T>
+constexpr std::uint8_t type_code() {
+  if constexpr (std::is_same_v<T, double>) return 1;
+  else if constexpr (std::is_same_v<T, std::int32_t>) return 2;
+  else if constexpr (std::is_same_v<T, std::int16_t>) return 3;
+  else {
+    static_assert(sizeof(T) == 1, "checkpoint arrays hold double, int32, int16 or 1-byte values");
+    return 4;
+  }
 }
 
 class Writer {
@@ -51,7 +64,7 @@ class Writer {
   template <class T>
   void array(const std::string& name, const std::vector<T>& a) {
     text(name);
-    raw<std::uint8_t>(std::is_same_v<T, double> ? 1 : 2);
+    raw<std::uint8_t>(type_code<T>());
     raw<std::uint64_t>(a.size());
     out_.write(reinterpret_cast<const char*>(a.data()), static_cast<std::streamsize>(a.size() * sizeof(T)));
   }
@@ -83,7 +96,7 @@ class Reader {
     const std::string got = text();
     if (got != name) fail("expected array '" + name + "', found '" + got + "' (a checkpoint of another model?)");
     const auto type = raw<std::uint8_t>();
-    if (type != (std::is_same_v<T, double> ? 1 : 2)) fail("array '" + name + "' has the wrong type");
+    if (type != type_code<T>()) fail("array '" + name + "' has the wrong type");
     const auto n = raw<std::uint64_t>();
     a.resize(n);
     in_.read(reinterpret_cast<char*>(a.data()), static_cast<std::streamsize>(n * sizeof(T)));

@@ -2,9 +2,11 @@
 
 #include <algorithm>
 #include <map>
+#include <tuple>
 #include <sstream>
 
 #include "core/error.hpp"
+#include "particle/packing.hpp"
 #include "solver/setup.hpp"
 
 namespace shard {
@@ -33,6 +35,7 @@ std::vector<int> Simulation::part_materials() const {
 }
 
 MeshData load_scenario_mesh(const Scenario& sc) {
+  if (!sc.has_mesh) return MeshData{};  // particle parts only
   GmshOptions options;
   options.scale = sc.mesh_unit;
   options.mesh_size = sc.mesh_size > 0 ? sc.mesh_size / sc.mesh_unit : 0.0;
@@ -91,6 +94,105 @@ const MeshGroup& find_group(const Scenario& sc, const MeshData& mesh, const std:
                            : std::string("; ") + dimension_word(wanted_dim) +
                                  " groups of the mesh: " + group_list(mesh, wanted_dim);
   throw InputError(shown_path(sc.file), line, key, reason);
+}
+
+}  // namespace
+
+namespace {
+
+/// Particle parts from their packing specifications: materials by region, inclusions,
+/// interphases, pores, then bonding; and the constraints of particle_boundary_conditions.
+void build_particle_parts(const Scenario& sc, Simulation& sim) {
+  Model& model = sim.model;
+  const int dim = sc.dim();
+  const std::string file = shown_path(sc.file);
+  std::vector<MCAMaterial> materials;
+  for (const auto& m : sc.automaton_materials) materials.push_back(m.material);
+  auto index_of = [&](const std::string& name) {
+    for (std::size_t m = 0; m < sc.automaton_materials.size(); ++m)
+      if (sc.automaton_materials[m].name == name) return static_cast<int>(m);
+    return -1;
+  };
+  for (const auto& in : sc.particle_parts) {
+    const std::string path = "particles." + in.name;
+    PackingSpec spec = in.packing;
+    spec.material = index_of(in.material);
+    ParticlePart part;
+    part.name = in.name;
+    part.time_step_safety = in.time_step_safety;
+    part.contact_update_interval = in.contact_update_interval;
+    part.contact_skin = in.contact_skin;
+    ParticleSystem& ps = part.system;
+    ps = build_packing(spec, materials);
+    if (ps.count() == 0) throw InputError(file, in.line, path, "the sample box holds no automaton");
+    for (const auto& [name, region] : in.material_regions)
+      assign_material(ps, [&](const double* x) { return region.contains(x, dim); }, index_of(name));
+    // Bond laws before the interphase, which copies them onto its graded materials.
+    for (const auto& b : sc.bonds) {
+      ps.bond_laws.push_back(b.law);
+      ps.set_bond_law(index_of(b.material_a), index_of(b.material_b), static_cast<int>(ps.bond_laws.size()) - 1);
+    }
+    if (in.inclusions) {
+      InclusionSpec inc = *in.inclusions;
+      inc.material = index_of(in.inclusion_material);
+      const int made = add_inclusions(ps, inc);
+      if (made == 0)
+        throw InputError(file, in.line, path + ".inclusions",
+                         "no inclusion fits the sample (diameter larger than the sample?)");
+      if (in.interphase) {
+        InterphaseSpec g = *in.interphase;
+        g.inclusion_material = inc.material;
+        g.matrix_material = spec.material;
+        add_interphase(ps, g);
+      }
+    }
+    if (in.pores) add_pores(ps, *in.pores);
+    finish_sample(ps, spec.bond_tolerance);
+    for (std::size_t i = 0; i < ps.count(); ++i)
+      for (int k = 0; k < dim; ++k) ps.v[dim * i + k] = in.velocity[k];
+    part.x0 = ps.x;
+    part.x_old = ps.x;
+    part.dtheta.assign(ps.count() * ps.rot_dim(), 0.0);
+    model.particle_parts.push_back(std::move(part));
+  }
+
+  // Conditions on regions: one constraint per (automaton, component); a later entry overrides.
+  std::map<std::tuple<int, std::int32_t, int>, std::pair<int, int>> constraint;  // → (table, group)
+  for (std::size_t c = 0; c < sc.particle_conditions.size(); ++c) {
+    const auto& in = sc.particle_conditions[c];
+    int p = 0;
+    while (model.particle_parts[p].name != in.part) ++p;
+    const ParticleSystem& ps = model.particle_parts[p].system;
+    ParticleGroup group;
+    group.name = in.name;
+    group.part = p;
+    (void)ps;
+    if (in.region.kind == RegionInput::Kind::side) {
+      for (int a : boundary_layer(ps, in.region.axis, in.region.at_max, in.region.depth)) group.automata.push_back(a);
+    } else {
+      for (std::size_t i = 0; i < ps.count(); ++i)
+        if (in.region.contains(&ps.x[dim * i], dim)) group.automata.push_back(static_cast<std::int32_t>(i));
+    }
+    if (group.automata.empty())
+      throw InputError(file, in.line, "particle_boundary_conditions[" + std::to_string(c + 1) + "].region",
+                       "the region holds no automaton of part '" + in.part + "'");
+    const int g = static_cast<int>(sim.loads.particle_groups.size());
+    for (int k = 0; k < 3; ++k) {
+      if (!in.velocity[k]) continue;
+      sim.loads.tables.push_back(*in.velocity[k]);
+      for (auto a : group.automata) constraint[{p, a, k}] = {static_cast<int>(sim.loads.tables.size()) - 1, g};
+    }
+    if (in.fix_rotation) {
+      sim.loads.tables.push_back(TimeTable::constant(0.0));
+      for (auto a : group.automata)
+        for (int r = 0; r < ps.rot_dim(); ++r)
+          constraint[{p, a, dim + r}] = {static_cast<int>(sim.loads.tables.size()) - 1, g};
+    }
+    sim.loads.particle_groups.push_back(std::move(group));
+  }
+  for (const auto& [key, value] : constraint)
+    sim.loads.particle_constraints.push_back(
+        {std::get<0>(key), std::get<1>(key), std::get<2>(key), value.first, value.second});
 }
 
 }  // namespace
@@ -309,6 +411,8 @@ Simulation build_simulation(Scenario& sc, const MeshData& mesh) {
     }
     sim.contact = cs;
   }
+
+  build_particle_parts(sc, sim);
 
   SolverSettings& s = sim.settings;
   s.gravity = sc.gravity;

@@ -11,9 +11,14 @@
 
 #include "core/error.hpp"
 #include "core/units.hpp"
+#include "io/scenario_particles.hpp"
+#include "io/scenario_section.hpp"
 #include "material/material.hpp"
 
 namespace shard {
+
+using scenario_detail::line_of;
+using scenario_detail::Section;
 
 // ---------------------------------------------------------------------------------------------
 // The schema: every key, declared once.
@@ -29,12 +34,19 @@ KeyList top_keys() {
   k.add("title", ValueKind::text, "a line describing the scenario").defaults_to("\"\"");
   k.add("analysis", ValueKind::section, "formulation, end time, time step, viscosity, damping")
       .must_be_given();
-  k.add("mesh", ValueKind::section, "the Gmsh geometry or mesh file").must_be_given();
+  k.add("mesh", ValueKind::section, "the Gmsh geometry or mesh file (needed by `parts`)");
   k.add("materials", ValueKind::section, "named materials: `<name>: {model: ..., ...}`")
       .must_be_given();
   k.add("parts", ValueKind::section,
-        "named parts: a physical group of the mesh + a material + an element formulation")
-      .must_be_given();
+        "named parts: a physical group of the mesh + a material + an element formulation "
+        "(a scenario has parts, particles or both)");
+  k.add("bonds", ValueKind::list, "bond laws between automaton materials (docs/theory/mca.md)")
+      .defaults_to("[]");
+  k.add("particles", ValueKind::section,
+        "named particle parts: packed samples of movable cellular automata (docs/theory/mca.md)");
+  k.add("particle_boundary_conditions", ValueKind::list,
+        "fixed or prescribed motion of regions of automata, and monitors")
+      .defaults_to("[]");
   k.add("initial_conditions", ValueKind::list, "initial velocity per part").defaults_to("[]");
   k.add("boundary_conditions", ValueKind::list,
         "fixed, symmetry and prescribed-velocity conditions on physical groups")
@@ -231,229 +243,6 @@ KeyList output_keys() {
 // Reading
 // ---------------------------------------------------------------------------------------------
 
-int line_of(const YAML::Node& node) { return node.IsDefined() ? node.Mark().line + 1 : 0; }
-
-/// One map section of the scenario under validation.
-class Section {
- public:
-  Section(const YAML::Node& node, const std::string& file, std::string path, const KeyList& keys,
-          YAML::Node resolved, int parent_line)
-      // An optional section that is absent arrives as an invalid node from yaml-cpp; treat it
-      // as empty (null) so that its defaults apply instead of yaml-cpp throwing InvalidNode.
-      : node_(node.IsDefined() ? node : YAML::Node()), file_(file), path_(std::move(path)),
-        keys_(keys), resolved_(resolved),
-        line_(node.IsDefined() && !node.IsNull() ? line_of(node) : parent_line),
-        parent_line_(parent_line) {
-    if (node_.IsDefined() && !node_.IsNull() && !node_.IsMap())
-      throw InputError(file_, line_, path_, "expected a map of keys (key: value), got " + shape(node_));
-    if (node_.IsMap()) {
-      for (auto it = node_.begin(); it != node_.end(); ++it) {
-        const std::string key = it->first.as<std::string>();
-        if (key_lines_.count(key))
-          throw InputError(file_, line_of(it->first), key_path(key),
-                           "'" + key + "' is given twice (first at line " +
-                               std::to_string(key_lines_[key]) + "); keep one");
-        key_lines_[key] = line_of(it->first);
-        if (!keys_.find(key)) {
-          std::string reason = "unknown key '" + key + "'";
-          const std::string close = closest_match(key, keys_.names());
-          if (!close.empty()) reason += " (did you mean '" + close + "'?)";
-          reason += "; keys here: ";
-          const auto names = keys_.names();
-          for (std::size_t i = 0; i < names.size(); ++i) reason += (i ? ", " : "") + names[i];
-          throw InputError(file_, line_of(it->first), key_path(key), reason);
-        }
-      }
-    }
-    for (const auto& spec : keys_.keys())
-      if (spec.required && !has(spec.name))
-        // At the line naming the section ("analysis:"), where the key belongs.
-        throw InputError(file_, parent_line_ > 0 ? parent_line_ : line_, key_path(spec.name),
-                         "missing required key '" + spec.name + "' (" + spec.doc + "; " +
-                             spec.type_text() + ")");
-  }
-
-  static std::string shape(const YAML::Node& n) {
-    if (n.IsMap()) return "a map";
-    if (n.IsSequence())
-      return "a list of " + std::to_string(n.size()) + (n.size() == 1 ? " entry" : " entries");
-    if (n.IsScalar()) return "'" + n.Scalar() + "'";
-    return "nothing";
-  }
-
-  bool has(const std::string& key) const {
-    return node_.IsMap() && node_[key].IsDefined() && !node_[key].IsNull();
-  }
-  int line() const { return line_; }
-  int line(const std::string& key) const {
-    auto it = key_lines_.find(key);
-    return it == key_lines_.end() ? line_ : it->second;
-  }
-  std::string key_path(const std::string& key) const {
-    return path_.empty() ? key : path_ + "." + key;
-  }
-  YAML::Node value(const std::string& key) const { return node_[key]; }
-  YAML::Node resolved() const { return resolved_; }
-  const std::string& file() const { return file_; }
-  const std::string& path() const { return path_; }
-
-  [[noreturn]] void fail(const std::string& key, const std::string& reason) const {
-    throw InputError(file_, line(key), key_path(key), reason);
-  }
-
-  const KeySpec& spec(const std::string& key) const {
-    const KeySpec* s = keys_.find(key);
-    SHARD_ASSERT(s, "undeclared key " << key);
-    return *s;
-  }
-
-  /// A quantity: given, or the declared default (`fallback` when the default is derived).
-  double number(const std::string& key, std::optional<double> fallback = {}) {
-    const KeySpec& s = spec(key);
-    double v;
-    if (has(key)) {
-      v = parse_number(value(key), s, key);
-    } else if (fallback) {
-      v = *fallback;
-    } else {
-      SHARD_ASSERT(s.default_text, "key " << key << " has no default");
-      v = parse_quantity_as(*s.default_text, s.dimension);
-    }
-    resolved_[key] = v;
-    return v;
-  }
-
-  std::optional<double> optional_number(const std::string& key) {
-    if (!has(key)) return std::nullopt;
-    return number(key);
-  }
-
-  double parse_number(const YAML::Node& n, const KeySpec& s, const std::string& key) const {
-    if (!n.IsScalar()) fail(key, "expected a " + s.type_text() + ", got " + shape(n));
-    double v;
-    try {
-      v = parse_quantity_as(n.Scalar(), s.dimension);
-    } catch (const std::invalid_argument& e) {
-      fail(key, e.what());
-    }
-    if (!s.in_range(v))
-      fail(key, "value " + n.Scalar() + " is out of range: must be " + s.range_text() +
-                    (s.dimension == dim::none ? "" : " (in " + s.dimension.si_unit() + ")"));
-    return v;
-  }
-
-  std::int64_t integer(const std::string& key) {
-    const KeySpec& s = spec(key);
-    std::string text = has(key) ? value(key).Scalar() : *s.default_text;
-    if (has(key) && !value(key).IsScalar()) fail(key, "expected an integer, got " + shape(value(key)));
-    std::int64_t v = 0;
-    std::size_t used = 0;
-    try {
-      v = std::stoll(text, &used);
-    } catch (...) {
-      used = 0;
-    }
-    if (used != text.size() || text.empty()) fail(key, "expected an integer, got '" + text + "'");
-    if (!s.in_range(static_cast<double>(v)))
-      fail(key, "value " + text + " is out of range: must be " + s.range_text());
-    resolved_[key] = v;
-    return v;
-  }
-
-  std::string text(const std::string& key, const std::string& fallback = "") {
-    std::string v = fallback;
-    if (has(key)) {
-      if (!value(key).IsScalar()) fail(key, "expected text, got " + shape(value(key)));
-      v = value(key).Scalar();
-    }
-    resolved_[key] = v;
-    return v;
-  }
-
-  std::optional<std::string> choice(const std::string& key) {
-    const KeySpec& s = spec(key);
-    if (!has(key)) return std::nullopt;
-    if (!value(key).IsScalar()) fail(key, "expected " + s.type_text() + ", got " + shape(value(key)));
-    const std::string v = value(key).Scalar();
-    if (std::find(s.choices.begin(), s.choices.end(), v) == s.choices.end()) {
-      std::string reason = "'" + v + "' is not " + s.type_text();
-      const std::string close = closest_match(v, s.choices);
-      if (!close.empty()) reason += " (did you mean '" + close + "'?)";
-      fail(key, reason);
-    }
-    resolved_[key] = v;
-    return v;
-  }
-
-  TimeTable table(const std::string& key) {
-    const KeySpec& s = spec(key);
-    const YAML::Node n = value(key);
-    TimeTable t;
-    if (n.IsScalar()) {
-      t = TimeTable::constant(parse_number(n, s, key));
-      resolved_[key] = t.values[0];
-      return t;
-    }
-    if (!n.IsSequence() || n.size() == 0)
-      fail(key, "expected " + s.type_text() + ", got " + shape(n));
-    KeySpec time_spec;
-    time_spec.dimension = dim::time;
-    time_spec.name = key;
-    YAML::Node out(YAML::NodeType::Sequence);
-    for (std::size_t i = 0; i < n.size(); ++i) {
-      const YAML::Node row = n[i];
-      if (!row.IsSequence() || row.size() != 2)
-        throw InputError(file_, line_of(row), key_path(key),
-                         "each row of a time table is [time, value], got " + shape(row));
-      const double time = parse_number(row[0], time_spec, key);
-      const double value = parse_number(row[1], s, key);
-      if (!t.times.empty() && !(time > t.times.back()))
-        throw InputError(file_, line_of(row), key_path(key),
-                         "the times of a time table must increase from row to row: row " +
-                             std::to_string(i + 1) + " has time '" + row[0].Scalar() +
-                             "', not later than row " + std::to_string(i) + " ('" +
-                             n[i - 1][0].Scalar() + "')");
-      t.times.push_back(time);
-      t.values.push_back(value);
-      YAML::Node r(YAML::NodeType::Sequence);
-      r.SetStyle(YAML::EmitterStyle::Flow);
-      r.push_back(time);
-      r.push_back(value);
-      out.push_back(r);
-    }
-    resolved_[key] = out;
-    return t;
-  }
-
-  std::vector<double> vector(const std::string& key, std::size_t size) {
-    const KeySpec& s = spec(key);
-    const YAML::Node n = value(key);
-    if (!n.IsSequence() || n.size() != size)
-      fail(key, "expected a list of " + std::to_string(size) + " " + s.dimension.name() +
-                    " components, one per axis of this " + std::to_string(size) + "D model (e.g. [" +
-                    s.dimension.example() + ", 0" + (size == 3 ? ", 0" : "") + "]), got " + shape(n));
-    std::vector<double> v;
-    YAML::Node out(YAML::NodeType::Sequence);
-    out.SetStyle(YAML::EmitterStyle::Flow);
-    for (std::size_t i = 0; i < size; ++i) {
-      v.push_back(parse_number(n[i], s, key));
-      out.push_back(v.back());
-    }
-    resolved_[key] = out;
-    return v;
-  }
-
- private:
-  YAML::Node node_;
-  std::string file_;
-  std::string path_;
-  const KeyList& keys_;
-  YAML::Node resolved_;
-  int line_;
-  int parent_line_;
-  std::map<std::string, int> key_lines_;
-};
-
 Formulation formulation_from(const std::string& s) {
   if (s == "plane_strain") return Formulation::plane_strain;
   if (s == "plane_stress") return Formulation::plane_stress;
@@ -548,8 +337,16 @@ Scenario read_scenario(const std::filesystem::path& path) {
   const std::vector<std::string> components =
       dim == 3 ? std::vector<std::string>{"x", "y", "z"} : std::vector<std::string>{"x", "y"};
 
-  // mesh
+  // mesh: needed by finite-element parts; a scenario of particle parts alone has none
+  if (!top.has("parts") && !top.has("particles"))
+    throw InputError(file, 1, "parts",
+                     "a scenario needs 'parts' (finite elements on a mesh), 'particles' (movable "
+                     "cellular automata) or both");
+  if (top.has("parts") && !top.has("mesh"))
+    throw InputError(file, top.line("parts"), "mesh", "missing required key 'mesh': 'parts' are physical groups of a mesh");
+  sc.has_mesh = top.has("mesh");
   const KeyList m_keys = mesh_keys();
+  if (sc.has_mesh) {
   Section mesh(top.value("mesh"), file, "mesh", m_keys, sc.resolved["mesh"], top.line("mesh"));
   sc.mesh_line = mesh.line("file");
   std::filesystem::path mesh_file = mesh.text("file");
@@ -561,6 +358,7 @@ Scenario read_scenario(const std::filesystem::path& path) {
                           "' not found (a relative path is taken from the scenario file's folder)");
   sc.mesh_unit = mesh.number("unit");
   sc.mesh_size = mesh.optional_number("size").value_or(0.0);
+  }
 
   // materials
   const YAML::Node materials = top.value("materials");
@@ -586,13 +384,24 @@ Scenario read_scenario(const std::filesystem::path& path) {
                          return s;
                        }() + ")");
     mat.model = body["model"].Scalar();
+    if (mat.model == "automaton") {
+      for (const auto& other : sc.automaton_materials)
+        if (other.name == mat.name)
+          throw InputError(file, mat.line, path, "a second material named '" + mat.name + "'");
+      sc.automaton_materials.push_back(scenario_detail::read_automaton_material(
+          body, file, mat.name, mat.line, sc.resolved["materials"][mat.name]));
+      continue;
+    }
     const MaterialModelInfo* info = MaterialRegistry::find(mat.model);
     if (!info) {
       std::string reason = "unknown material model '" + mat.model + "'";
-      const std::string close = closest_match(mat.model, MaterialRegistry::names());
+      auto candidates = MaterialRegistry::names();
+      candidates.push_back("automaton");
+      const std::string close = closest_match(mat.model, candidates);
       if (!close.empty()) reason += " (did you mean '" + close + "'?)";
       reason += "; models: ";
-      const auto models = MaterialRegistry::names();
+      auto models = MaterialRegistry::names();
+      models.push_back("automaton");
       for (std::size_t i = 0; i < models.size(); ++i) reason += (i ? ", " : "") + models[i];
       throw InputError(file, line_of(body["model"]), path + ".model", reason);
     }
@@ -621,11 +430,11 @@ Scenario read_scenario(const std::filesystem::path& path) {
   for (const auto& m : sc.materials) material_names.push_back(m.name);
 
   // parts
-  const YAML::Node parts = top.value("parts");
-  if (!parts.IsMap() || parts.size() == 0)
+  const YAML::Node parts = top.value_or_null("parts");
+  if (top.has("parts") && (!parts.IsMap() || parts.size() == 0))
     top.fail("parts", "expected a map of named parts, e.g.\n  parts:\n    plate: {group: plate, material: alumina, element: tri3}");
   const KeyList p_keys = part_keys();
-  for (auto it = parts.begin(); it != parts.end(); ++it) {
+  for (auto it = parts.IsMap() ? parts.begin() : YAML::const_iterator(); parts.IsMap() && it != parts.end(); ++it) {
     PartInput part;
     part.name = it->first.as<std::string>();
     part.line = line_of(it->first);
@@ -637,6 +446,10 @@ Scenario read_scenario(const std::filesystem::path& path) {
     Section s(it->second, file, "parts." + part.name, p_keys, sc.resolved["parts"][part.name], part.line);
     part.group = s.text("group", part.name);
     part.material = s.text("material");
+    for (const auto& a : sc.automaton_materials)
+      if (a.name == part.material)
+        s.fail("material", "'" + part.material + "' is an automaton material (model: automaton); "
+                           "it is for particle parts, not for elements");
     if (std::find(material_names.begin(), material_names.end(), part.material) == material_names.end()) {
       std::string reason = "no material named '" + part.material + "'";
       const std::string close = closest_match(part.material, material_names);
@@ -899,6 +712,8 @@ Scenario read_scenario(const std::filesystem::path& path) {
     sc.resolved["walls"] = out;
   }
 
+  scenario_detail::read_particle_sections(top, sc);
+
   // output
   const KeyList o_keys = output_keys();
   Section out(top.value("output"), file, "output", o_keys, sc.resolved["output"], top.line("output"));
@@ -934,7 +749,7 @@ Scenario read_scenario(const std::filesystem::path& path) {
 }
 
 std::vector<SchemaSection> scenario_schema() {
-  return {{"(top level)", "the sections of a scenario file", top_keys()},
+  std::vector<SchemaSection> schema{{"(top level)", "the sections of a scenario file", top_keys()},
           {"analysis", "what is solved and how", analysis_keys()},
           {"mesh", "the geometry or mesh (Gmsh)", mesh_keys()},
           {"parts.<name>", "a part: elements of one physical group with one material", part_keys()},
@@ -946,6 +761,8 @@ std::vector<SchemaSection> scenario_schema() {
           {"contact.material_friction[]", "friction of a pair of materials", material_friction_keys()},
           {"walls[]", "a rigid plane", wall_keys()},
           {"output", "what is written to the output folder", output_keys()}};
+  for (auto& section : scenario_detail::particle_schema()) schema.push_back(std::move(section));
+  return schema;
 }
 
 namespace {

@@ -15,6 +15,7 @@
 #include "core/parameters.hpp"
 #include "core/time_table.hpp"
 #include "model/model.hpp"
+#include "particle/packing.hpp"
 
 namespace shard {
 
@@ -86,6 +87,58 @@ struct WallInput {
   int line = 0;
 };
 
+/// A material of movable cellular automata (`model: automaton`).
+struct AutomatonMaterialInput {
+  std::string name;
+  MCAMaterial material;
+  int line = 0;
+};
+
+/// The bond law between automata of two materials (the order of the two does not matter).
+struct BondInput {
+  std::string material_a, material_b;
+  BondLaw law;
+  int line = 0;
+};
+
+/// A region of a particle sample: a box, a ball (disc in 2D), or the layer at one side of the
+/// sample's bounding box.
+struct RegionInput {
+  enum class Kind { everywhere, box, ball, side } kind = Kind::everywhere;
+  std::array<double, 3> lo{0, 0, 0}, hi{0, 0, 0}, centre{0, 0, 0};
+  double radius = 0;
+  int axis = 0;
+  bool at_max = false;
+  double depth = 0;  ///< side: automata whose centre is within this of the extreme
+  bool contains(const double* x, int dim) const;
+};
+
+struct ParticlePartInput {
+  std::string name;
+  int line = 0;
+  PackingSpec packing;              ///< lattice, size, box, angle (materials by index later)
+  std::string material;
+  std::vector<std::pair<std::string, RegionInput>> material_regions;
+  std::optional<InclusionSpec> inclusions;
+  std::string inclusion_material;
+  std::optional<PoreSpec> pores;
+  std::optional<InterphaseSpec> interphase;
+  double time_step_safety = 0.25;
+  int contact_update_interval = 0;
+  double contact_skin = 0;
+  std::array<double, 3> velocity{0, 0, 0};
+};
+
+/// Conditions on a region of automata: fixed or prescribed velocity components (`rotation`
+/// holds the angular velocity at zero), or none: a monitor whose mean displacement is reported.
+struct ParticleBoundaryInput {
+  std::string name, part;
+  RegionInput region;
+  std::array<std::optional<TimeTable>, 3> velocity;
+  bool fix_rotation = false;
+  int line = 0;
+};
+
 struct Scenario {
   std::filesystem::path file;
   std::string title;
@@ -107,7 +160,12 @@ struct Scenario {
   double mesh_unit = 1;             ///< m per coordinate unit of the file
   int mesh_line = 0;
 
+  bool has_mesh = true;  ///< false for a scenario of particle parts only
   std::vector<MaterialInput> materials;
+  std::vector<AutomatonMaterialInput> automaton_materials;
+  std::vector<BondInput> bonds;
+  std::vector<ParticlePartInput> particle_parts;
+  std::vector<ParticleBoundaryInput> particle_conditions;
   std::vector<PartInput> parts;
   std::vector<InitialVelocityInput> initial_velocities;
   std::vector<BoundaryConditionInput> boundary_conditions;

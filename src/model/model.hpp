@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "particle/particle_system.hpp"
+
 namespace shard {
 
 /// How the 2D or 3D continuum is idealised (scenario key analysis.formulation).
@@ -126,11 +128,27 @@ struct ContactState {
   std::vector<double> penalty_time_step;
 };
 
+/// A part of movable cellular automata (docs/theory/mca.md): bonded particles integrated in the
+/// same time loop as the elements. Besides the automata and pairs, the leapfrog needs the
+/// positions at the start of the last increment and the rotation increments over it, which the
+/// pair kinematics of eqs. (11)-(13) of the MCA paper are built on.
+struct ParticlePart {
+  std::string name;
+  ParticleSystem system;
+  double time_step_safety = 0.25;  ///< multiplies mca_stable_time_step()
+  int contact_update_interval = 0;  ///< steps between searches for new contacts (0: never)
+  double contact_skin = 0;          ///< unlinked pairs further apart than this are dropped
+  std::vector<double> x0;      ///< positions at t = 0 (for displacements)
+  std::vector<double> x_old;   ///< positions at t_n−1 (dim per automaton)
+  std::vector<double> dtheta;  ///< rotation increments over [t_n−1, t_n] (rot_dim per automaton)
+};
+
 struct Model {
   Formulation formulation = Formulation::plane_strain;
   double thickness = 1.0;  ///< out-of-plane thickness for plane strain / plane stress
   NodeArrays nodes;
   std::vector<Part> parts;
+  std::vector<ParticlePart> particle_parts;
   std::vector<NodeSet> node_sets;
   std::vector<FacetSet> facet_sets;
   ContactState contact;
@@ -140,7 +158,8 @@ struct Model {
   const NodeSet* find_node_set(const std::string& name) const;
   const FacetSet* find_facet_set(const std::string& name) const;
 
-  /// Calls f(name, vector&) for every array of state (double and int32 vectors), in a fixed
+  /// Calls f(name, vector&) for every array of state (vectors of double, int32, int16 and of
+  /// the uint8 pair state), in a fixed
   /// order. Checkpoints are written and read through this, so adding an array here is all a
   /// new piece of state needs to survive a restart.
   template <class Visitor>
@@ -166,6 +185,50 @@ struct Model {
       f(prefix + "bulk_viscosity", p.bulk_viscosity);
       f(prefix + "hourglass_rate", p.hourglass_rate);
       f(prefix + "eroded", p.eroded);
+    }
+    // Every array of a particle part that changes during a run, pairs included: broken bonds,
+    // k_link and the pair stresses must never be lost across a restart.
+    for (auto& pp : particle_parts) {
+      const std::string prefix = "particles." + pp.name + ".";
+      ParticleSystem& s = pp.system;
+      f(prefix + "x_old", pp.x_old);
+      f(prefix + "dtheta", pp.dtheta);
+      f(prefix + "x", s.x);
+      f(prefix + "v", s.v);
+      f(prefix + "force", s.force);
+      f(prefix + "theta", s.theta);
+      f(prefix + "omega", s.omega);
+      f(prefix + "torque", s.torque);
+      f(prefix + "stress", s.stress);
+      f(prefix + "sigma_mean", s.sigma_mean);
+      f(prefix + "sigma_mean_old", s.sigma_mean_old);
+      f(prefix + "sigma_mean_used", s.sigma_mean_used);
+      f(prefix + "stress_int", s.stress_int);
+      f(prefix + "plastic_strain", s.plastic_strain);
+      f(prefix + "fabric_index", s.fabric_index);
+      f(prefix + "fabric", s.fabric);
+      f(prefix + "fabric_inv", s.fabric_inv);
+      PairList& q = s.pairs;
+      f(prefix + "pair.i", q.i);
+      f(prefix + "pair.j", q.j);
+      f(prefix + "pair.r0", q.r0);
+      f(prefix + "pair.area", q.area);
+      f(prefix + "pair.kappa", q.kappa);
+      f(prefix + "pair.xi_ij", q.xi_ij);
+      f(prefix + "pair.xi_ji", q.xi_ji);
+      f(prefix + "pair.eta", q.eta);
+      f(prefix + "pair.tau", q.tau);
+      f(prefix + "pair.tau_c", q.tau_c);
+      f(prefix + "pair.phi", q.phi);
+      f(prefix + "pair.k_link", q.k_link);
+      f(prefix + "pair.eps_onset", q.eps_onset);
+      f(prefix + "pair.state", q.state);
+      f(prefix + "pair.law", q.law);
+      f(prefix + "pair.force", q.force);
+      f(prefix + "pair.normal", q.normal);
+      f(prefix + "pair.q_ij", q.q_ij);
+      f(prefix + "pair.q_ji", q.q_ji);
+      f(prefix + "pair.torque_rel", q.torque_rel);
     }
   }
 };

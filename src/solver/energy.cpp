@@ -20,7 +20,7 @@ std::vector<std::string> EnergyBalance::column_names() {
 std::vector<double> EnergyBalance::column_values() const {
   return {kinetic, internal(), external_work, viscosity, hourglass, damping,
           plastic, heat,       fracture,      eroded,    contact(),
-          friction, relative_error()};
+          friction + particle_friction, relative_error()};
 }
 
 }  // namespace shard

@@ -22,15 +22,20 @@ struct EnergyBalance {
   double heat = 0;            ///< the part of `plastic` that became heat (β W_p); not a separate sink
   double eroded = 0;          ///< elastic energy carried away by eroded elements
   double initial = 0;         ///< kinetic energy at t = 0 (the models start stress-free)
+  /// Particle parts (MCA): the elastic energy stored in the automata and pairs now (a state
+  /// function, not accumulated), and the Amontons sliding of their unlinked pairs. Their plastic
+  /// work and bond-breaking release are in `plastic` and `fracture` (and in stress_work).
+  double particle_elastic = 0;
+  double particle_friction = 0;
 
   /// Recoverable (elastic) internal energy: stress work less what the material dissipated.
-  double internal() const { return stress_work - plastic - fracture; }
+  double internal() const { return stress_work - plastic - fracture + particle_elastic; }
   /// Contact ("sliding interface") energy: what the contact forces took from the nodes, less
   /// what friction dissipated and what moving walls put in. The penalty springs' elastic energy
   /// plus the penalty method's discretisation error; it returns to ~0 when bodies separate.
   double contact() const { return wall_work - contact_work - friction; }
   double dissipated() const {
-    return viscosity + hourglass + damping + plastic + fracture + friction + eroded;
+    return viscosity + hourglass + damping + plastic + fracture + friction + particle_friction + eroded;
   }
   /// kinetic + internal + dissipated − external work − initial
   double residual() const {

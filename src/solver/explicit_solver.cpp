@@ -2,11 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <sstream>
 
 #include "core/error.hpp"
 #include "fem/hex8_shape.hpp"
+#include "solver/particle_integration.hpp"
 
 namespace shard {
 
@@ -87,9 +89,22 @@ void ExplicitSolver::initialise() {
     }
     for (int k = 0; k < dim; ++k) kinetic += 0.5 * m * model_.nodes.v[dim * i + k] * model_.nodes.v[dim * i + k];
   }
+  for (const auto& c : loads_.particle_constraints) {
+    ParticleSystem& ps = model_.particle_parts[c.part].system;
+    const bool rot = c.component >= ps.dim;
+    (rot ? ps.omega : ps.v)[(rot ? ps.rot_dim() : ps.dim) * c.automaton + (rot ? c.component - ps.dim : c.component)] =
+        loads_.tables[c.table].at(0.0);
+  }
+  kinetic += particle_kinetic_energy();
   state_ = SolverState{};
   state_.energy.initial = kinetic;
   state_.energy.kinetic = kinetic;
+}
+
+double ExplicitSolver::particle_kinetic_energy() const {
+  double kinetic = 0;
+  for (const ParticlePart& pp : model_.particle_parts) kinetic += mca_kinetic_energy(pp.system);
+  return kinetic;
 }
 
 bool ExplicitSolver::finished() const {
@@ -134,6 +149,25 @@ void ExplicitSolver::compute_forces() {
   E.fracture += total.fracture_work;
   E.heat += total.heat;
   E.eroded += total.eroded_energy;
+  // Particle parts: forces at t_n, the dissipation of the increment, the stored elastic energy
+  // (a state function) and each part's limit on the next step.
+  double particle_dt = std::numeric_limits<double>::infinity();
+  particle_scratch_.resize(model_.particle_parts.size());
+  double particle_elastic = 0;
+  for (std::size_t p = 0; p < model_.particle_parts.size(); ++p) {
+    ParticlePart& pp = model_.particle_parts[p];
+    const MCADissipation d =
+        particle_forces(pp, state_.step, state_.dt_half, settings_.gravity, particle_scratch_[p]);
+    // The pair forces did the plastic and breaking work beyond what they store: stress work.
+    E.stress_work += d.plastic + d.breaking;
+    E.plastic += d.plastic;
+    E.fracture += d.breaking;
+    E.particle_friction += d.friction;
+    particle_elastic += mca_elastic_energy(pp.system);
+    if (pp.system.count() > 0) particle_dt = std::min(particle_dt, particle_time_step_limit(pp));
+  }
+  E.particle_elastic = particle_elastic;
+
   if (total.eroded_elements > 0) {
     state_.eroded_elements += total.eroded_elements;
     // The eroded elements' faces leave the contact surface and the faces they covered join it.
@@ -167,6 +201,7 @@ void ExplicitSolver::compute_forces() {
                                 : state_.stable_dt / reduction;
   state_.stable_dt = element_dt * reduction;
   double dt = settings_.time_step_safety * state_.stable_dt;
+  dt = std::min(dt, particle_dt);
   if (settings_.max_time_step > 0) dt = std::min(dt, settings_.max_time_step);
   const double remaining = settings_.end_time - state_.time;
   if (remaining > 0 && remaining < 1.000001 * dt) dt = remaining;  // land on end_time
@@ -216,6 +251,25 @@ void ExplicitSolver::advance() {
     external_back += reaction * back * V[dof];
     external_ahead += reaction * ahead * vp;
     F[dof] = f_needed;
+  }
+  // The same for prescribed velocities and angular velocities of automata; the reactions are
+  // summed per group for the history (load-displacement curves of virtual tests).
+  particle_reactions_.assign(6 * loads_.particle_groups.size(), 0.0);
+  for (const auto& c : loads_.particle_constraints) {
+    ParticleSystem& ps = model_.particle_parts[c.part].system;
+    const bool rot = c.component >= ps.dim;
+    const std::size_t slot =
+        static_cast<std::size_t>(rot ? ps.rot_dim() : ps.dim) * c.automaton + (rot ? c.component - ps.dim : c.component);
+    double& f = (rot ? ps.torque : ps.force)[slot];
+    double& v = (rot ? ps.omega : ps.v)[slot];
+    const double m = rot ? ps.inertia[c.automaton] : ps.mass[c.automaton];
+    const double vp = loads_.tables[c.table].at(t_half);
+    const double f_needed = m * (vp / d2 - d1 * v) / dt_n;
+    const double reaction = f_needed - f;
+    external_back += reaction * back * v;
+    external_ahead += reaction * ahead * vp;
+    f = f_needed;
+    particle_reactions_[6 * c.group + c.component] += reaction;
   }
   for (const auto& [dof, f] : applied_) {
     const double m = M[dof / dim];
@@ -300,6 +354,25 @@ void ExplicitSolver::advance() {
     damp_ahead += in[2];
     external_back += in[3];
     external_ahead += in[4];
+  }
+  for (ParticlePart& pp : model_.particle_parts) {
+    // New contacts between automata that were not neighbours (fragments meeting), found at t_n
+    // before the drift, as the stand-alone MCA stepper does.
+    if (pp.contact_update_interval > 0 && state_.step > 0 && state_.step % pp.contact_update_interval == 0)
+      pp.system.update_contacts(pp.contact_skin);
+    const ParticleAdvanceSums ps = advance_particles(pp, dt_n, dt_next, alpha, g, back, ahead);
+    if (ps.bad_automaton >= 0) {
+      std::ostringstream out;
+      out << "the velocity of automaton " << ps.bad_automaton << " of particle part '" << pp.name
+          << "' is not finite at t = " << state_.time << " s, step " << state_.step
+          << " (the run has become unstable: lower the part's time_step_safety)";
+      throw RunError(out.str());
+    }
+    kinetic += ps.kinetic;
+    damp_back += ps.damping_back;
+    damp_ahead += ps.damping_ahead;
+    external_back += ps.gravity_back;
+    external_ahead += ps.gravity_ahead;
   }
   auto& E = state_.energy;
   E.kinetic = kinetic;

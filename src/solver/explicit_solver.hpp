@@ -11,6 +11,7 @@
 #include "fem/internal_forces.hpp"
 #include "material/material.hpp"
 #include "model/model.hpp"
+#include "particle/mca.hpp"
 #include "solver/energy.hpp"
 #include "solver/loads.hpp"
 
@@ -65,6 +66,9 @@ class ExplicitSolver {
   const SolverState& state() const { return state_; }
   SolverState& state() { return state_; }
   const SolverSettings& settings() const { return settings_; }
+  /// Reaction of the prescribed velocities on each particle group at the last advance: 6 slots
+  /// per group (translation components, then rotation components), N or N m.
+  const std::vector<double>& particle_group_reactions() const { return particle_reactions_; }
 
  private:
   Model& model_;
@@ -72,9 +76,12 @@ class ExplicitSolver {
   const Loads& loads_;
   SolverSettings settings_;
   SolverState state_;
+  double particle_kinetic_energy() const;
   std::vector<std::pair<std::int64_t, double>> applied_;  // (dof, force) of pressure loads
   std::vector<double> chunk_sums_;
   ContactSystem* contact_ = nullptr;
+  std::vector<MCAScratch> particle_scratch_;
+  std::vector<double> particle_reactions_;
 };
 
 /// Lumped (row-sum) nodal masses of every part, added into model.nodes.mass.

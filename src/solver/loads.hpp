@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "core/time_table.hpp"
@@ -22,10 +23,29 @@ struct PressureLoad {
   int table;
 };
 
+/// A velocity component prescribed on an automaton of a particle part: translation components
+/// 0..dim−1, rotation components dim..dim+rot_dim−1 (angular velocity).
+struct ParticleConstraint {
+  int part;  ///< index into Model::particle_parts
+  std::int32_t automaton;
+  int component;
+  int table;
+  int group;  ///< index into Loads::particle_groups (for the reaction reported in the history)
+};
+
+/// A named set of constrained automata whose reaction and mean displacement are reported.
+struct ParticleGroup {
+  std::string name;
+  int part = 0;
+  std::vector<std::int32_t> automata;
+};
+
 struct Loads {
   std::vector<TimeTable> tables;
   std::vector<VelocityConstraint> constraints;  ///< at most one per (node, component)
   std::vector<PressureLoad> pressures;
+  std::vector<ParticleConstraint> particle_constraints;  ///< at most one per (automaton, component)
+  std::vector<ParticleGroup> particle_groups;
 };
 
 /// Adds the nodal forces of every pressure load at time t to model.nodes.force, and appends

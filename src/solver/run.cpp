@@ -19,6 +19,7 @@
 #include "io/checkpoint.hpp"
 #include "io/frame_output.hpp"
 #include "io/model_setup.hpp"
+#include "io/particle_frame.hpp"
 #include "io/vtu_writer.hpp"
 
 namespace shard {
@@ -141,6 +142,13 @@ std::string check_scenario(const std::filesystem::path& file) {
     out << "  part '" << part.name << "': " << part.element_count() << " " << name_of(part.kind)
         << ", material '" << sim.materials[part.material]->name() << "' ("
         << sim.materials[part.material]->model() << ")\n";
+  for (const auto& pp : sim.model.particle_parts) {
+    const auto& ps = pp.system;
+    out << "  particle part '" << pp.name << "': " << ps.count() << " automata, " << ps.pairs.count()
+        << " bonded pairs, materials:";
+    for (const auto& m : ps.materials) out << " " << m.name;
+    out << "\n";
+  }
   const double dt = solver.state().dt_next;
   out << "  initial time step " << format_time(dt) << ", about "
       << static_cast<long long>(std::ceil(sim.settings.end_time / dt)) << " steps to "
@@ -166,6 +174,8 @@ RunSummary run_scenario(const std::filesystem::path& file, const RunOptions& opt
   OutputCursor cursor;
   if (options.restart) {
     read_checkpoint(*options.restart, sim.model, solver.state(), cursor, fingerprint);
+    // The pair lists may have grown (new contacts): the adjacency is derived from them.
+    for (auto& pp : sim.model.particle_parts) pp.system.build_adjacency();
   } else {
     solver.initialise();
   }
@@ -188,7 +198,16 @@ RunSummary run_scenario(const std::filesystem::path& file, const RunOptions& opt
     for (const auto& w : contact->settings().walls)
       for (int k = 0; k < dim; ++k) extra_columns.push_back("wall_" + w.name + "_force_" + axes[k]);
   }
+  // Regions of automata with conditions or monitors: the reaction on them and their mean
+  // displacement, for load-displacement curves of virtual tests.
+  for (const auto& g : sim.loads.particle_groups) {
+    for (int k = 0; k < dim; ++k) extra_columns.push_back("reaction_" + g.name + "_" + axes[k]);
+    for (int k = 0; k < dim; ++k) extra_columns.push_back("displacement_" + g.name + "_" + axes[k]);
+  }
+  for (const auto& pp : sim.model.particle_parts) extra_columns.push_back("linked_bonds_" + pp.name);
   PvdCollection pvd(dir / "frames.pvd");
+  std::vector<PvdCollection> particle_pvd;
+  for (const auto& pp : sim.model.particle_parts) particle_pvd.emplace_back(dir / ("particles_" + pp.name + ".pvd"));
   std::ofstream history;
   if (options.restart) {
     if (!std::filesystem::exists(history_path) ||
@@ -199,6 +218,10 @@ RunSummary run_scenario(const std::filesystem::path& file, const RunOptions& opt
     std::filesystem::resize_file(history_path, cursor.history_bytes);
     if (std::filesystem::exists(dir / "frames.pvd")) pvd = PvdCollection::read(dir / "frames.pvd");
     pvd.keep_first(static_cast<std::size_t>(cursor.next_frame));
+    for (auto& c : particle_pvd) {
+      if (std::filesystem::exists(c.path())) c = PvdCollection::read(c.path());
+      c.keep_first(static_cast<std::size_t>(cursor.next_frame));
+    }
     history.open(history_path, std::ios::app);
   } else {
     history.open(history_path, std::ios::trunc);
@@ -217,6 +240,8 @@ RunSummary run_scenario(const std::filesystem::path& file, const RunOptions& opt
   const auto start = Clock::now();
   const std::int64_t first_step = solver.state().step;
   std::string status = "completed", message;
+  std::size_t particles = 0;
+  for (const auto& pp : sim.model.particle_parts) particles += pp.system.count();
   auto write_summary = [&]() {
     const double wall = std::chrono::duration<double>(Clock::now() - start).count();
     const auto& s = solver.state();
@@ -227,10 +252,11 @@ RunSummary run_scenario(const std::filesystem::path& file, const RunOptions& opt
       << ",\n  \"scenario\": " << json_string(sc.file.string()) << ",\n  \"steps\": " << s.step
       << ",\n  \"end_time\": " << s.time - s.dt_half << ",\n  \"wall_seconds\": " << wall
       << ",\n  \"threads\": " << threads << ",\n  \"elements\": " << sim.model.element_count()
-      << ",\n  \"nodes\": " << sim.model.nodes.count() << ",\n  \"particles\": 0"
+      << ",\n  \"nodes\": " << sim.model.nodes.count() << ",\n  \"particles\": " << particles
       << ",\n  \"element_steps_per_second\": "
       << (wall > 0 ? steps * static_cast<double>(sim.model.element_count()) / wall : 0.0)
-      << ",\n  \"particle_steps_per_second\": 0"
+      << ",\n  \"particle_steps_per_second\": "
+      << (wall > 0 ? steps * static_cast<double>(particles) / wall : 0.0)
       << ",\n  \"eroded_elements\": " << s.eroded_elements
       << ",\n  \"energy_balance_error\": " << s.energy.relative_error()
       << ",\n  \"energy\": {";
@@ -238,7 +264,25 @@ RunSummary run_scenario(const std::filesystem::path& file, const RunOptions& opt
     const auto values = s.energy.column_values();
     for (std::size_t i = 0; i < names.size(); ++i)
       j << (i ? ", " : "") << json_string(names[i]) << ": " << values[i];
-    j << "},\n  \"peak_memory_mb\": " << peak_memory_mb() << "\n}\n";
+    j << "}";
+    // Where each region of automata started: gauge lengths for strains from its displacement.
+    if (!sim.loads.particle_groups.empty()) {
+      j << ",\n  \"particle_groups\": {";
+      for (std::size_t gi = 0; gi < sim.loads.particle_groups.size(); ++gi) {
+        const auto& g = sim.loads.particle_groups[gi];
+        const auto& pp = sim.model.particle_parts[g.part];
+        j << (gi ? ", " : "") << json_string(g.name) << ": {\"automata\": " << g.automata.size()
+          << ", \"initial_centroid\": [";
+        for (int k = 0; k < dim; ++k) {
+          double c = 0;
+          for (auto a : g.automata) c += pp.x0[dim * a + k];
+          j << (k ? ", " : "") << c / static_cast<double>(g.automata.size());
+        }
+        j << "]}";
+      }
+      j << "}";
+    }
+    j << ",\n  \"peak_memory_mb\": " << peak_memory_mb() << "\n}\n";
     write_text_atomically(dir / "summary.json", j.str());
   };
 
@@ -256,8 +300,18 @@ RunSummary run_scenario(const std::filesystem::path& file, const RunOptions& opt
           VtuField p{"contact_pressure", 1, contact->nodal_pressure(sim.model)};
           frame.point_fields.push_back(std::move(p));
         }
-        write_vtu(dir / name, frame);
-        pvd.add(t, name);
+        if (!sim.model.parts.empty()) {
+          write_vtu(dir / name, frame);
+          pvd.add(t, name);
+        }
+        for (std::size_t p = 0; p < sim.model.particle_parts.size(); ++p) {
+          const auto& pp = sim.model.particle_parts[p];
+          char pname[160];
+          std::snprintf(pname, sizeof pname, "particles_%s_%05lld.vtu", pp.name.c_str(),
+                        static_cast<long long>(cursor.next_frame));
+          write_vtu(dir / pname, make_particle_frame(pp, t));
+          particle_pvd[p].add(t, pname);
+        }
         cursor.next_frame = static_cast<std::int64_t>(std::floor(t / out.frame_interval * (1 + 1e-9))) + 1;
       }
       const std::int64_t step = s.step;
@@ -270,6 +324,28 @@ RunSummary run_scenario(const std::filesystem::path& file, const RunOptions& opt
         for (double v : s.energy.column_values()) {
           std::snprintf(buffer, sizeof buffer, ",%.12e", v);
           history << buffer;
+        }
+        const auto& reactions = solver.particle_group_reactions();
+        for (std::size_t gi = 0; gi < sim.loads.particle_groups.size(); ++gi) {
+          const auto& g = sim.loads.particle_groups[gi];
+          const auto& pp = sim.model.particle_parts[g.part];
+          for (int k = 0; k < dim; ++k) {
+            std::snprintf(buffer, sizeof buffer, ",%.12e", reactions.empty() ? 0.0 : reactions[6 * gi + k]);
+            history << buffer;
+          }
+          // x_old holds the positions at t_n once the step has advanced to t_n+1.
+          for (int k = 0; k < dim; ++k) {
+            double u = 0;
+            for (auto a : g.automata) u += pp.x_old[dim * a + k] - pp.x0[dim * a + k];
+            std::snprintf(buffer, sizeof buffer, ",%.12e", u / static_cast<double>(g.automata.size()));
+            history << buffer;
+          }
+        }
+        for (const auto& pp : sim.model.particle_parts) {
+          // Pairs still fully linked (k_link = 1); the bonds broken so far are the drop from row 1.
+          std::int64_t linked = 0;
+          for (PairState st : pp.system.pairs.state) linked += st == PairState::linked;
+          history << ',' << linked;
         }
         if (contact) {
           for (const auto* values : {&contact->pair_forces(), &contact->wall_forces()})

@@ -1,0 +1,75 @@
+#include "io/particle_frame.hpp"
+
+#include <cmath>
+
+namespace shard {
+
+VtuGrid make_particle_frame(const ParticlePart& part, double time) {
+  const ParticleSystem& ps = part.system;
+  const std::size_t n = ps.count(), np = ps.pairs.count();
+  const int D = ps.dim, R = ps.rot_dim(), T = ps.tau_dim();
+  VtuGrid g;
+  g.points.assign(3 * n, 0.0);
+  for (std::size_t i = 0; i < n; ++i)
+    for (int k = 0; k < D; ++k) g.points[3 * i + k] = ps.x[D * i + k];
+  g.connectivity.reserve(n + 2 * np);
+  for (std::size_t i = 0; i < n; ++i) {
+    g.connectivity.push_back(static_cast<std::int64_t>(i));
+    g.offsets.push_back(static_cast<std::int64_t>(g.connectivity.size()));
+    g.types.push_back(VtkCellType::vertex);
+  }
+  for (std::size_t p = 0; p < np; ++p) {
+    g.connectivity.push_back(ps.pairs.i[p]);
+    g.connectivity.push_back(ps.pairs.j[p]);
+    g.offsets.push_back(static_cast<std::int64_t>(g.connectivity.size()));
+    g.types.push_back(VtkCellType::line);
+  }
+
+  auto vector_field = [&](const char* name, const std::vector<double>& a, const std::vector<double>* base) {
+    VtuField f{name, 3, std::vector<double>(3 * n, 0.0)};
+    for (std::size_t i = 0; i < n; ++i)
+      for (int k = 0; k < D; ++k) f.values[3 * i + k] = a[D * i + k] - (base ? (*base)[D * i + k] : 0.0);
+    g.point_fields.push_back(std::move(f));
+  };
+  vector_field("displacement", ps.x, &part.x0);
+  vector_field("velocity", ps.v, nullptr);
+  {
+    // 2D: the rotation angle about z; 3D: the rotation vector.
+    VtuField f{"rotation", R == 1 ? 1 : 3, std::vector<double>(R * n, 0.0)};
+    for (std::size_t i = 0; i < R * n; ++i) f.values[i] = ps.theta[i];
+    g.point_fields.push_back(std::move(f));
+  }
+  {
+    // Our slots are xx yy zz xy yz xz, ParaView's xx yy zz xy yz xz: the same.
+    VtuField f{"stress", 6, std::vector<double>(ps.stress.begin(), ps.stress.begin() + 6 * n)};
+    g.point_fields.push_back(std::move(f));
+  }
+  auto scalar = [&](const char* name, auto value) {
+    VtuField f{name, 1, std::vector<double>(n, 0.0)};
+    for (std::size_t i = 0; i < n; ++i) f.values[i] = value(i);
+    g.point_fields.push_back(std::move(f));
+  };
+  scalar("pressure", [&](std::size_t i) { return -ps.sigma_mean[i]; });
+  scalar("stress_intensity", [&](std::size_t i) { return ps.stress_int[i]; });
+  scalar("plastic_strain", [&](std::size_t i) { return ps.plastic_strain[i]; });
+  scalar("material", [&](std::size_t i) { return static_cast<double>(ps.material[i]); });
+  scalar("diameter", [&](std::size_t i) { return ps.d[i]; });
+
+  auto cell_scalar = [&](const char* name, double vertex_value, auto value) {
+    VtuField f{name, 1, std::vector<double>(n + np, vertex_value)};
+    for (std::size_t p = 0; p < np; ++p) f.values[n + p] = value(p);
+    g.cell_fields.push_back(std::move(f));
+  };
+  cell_scalar("bond_state", -1.0, [&](std::size_t p) { return static_cast<double>(ps.pairs.state[p]); });
+  cell_scalar("k_link", 0.0, [&](std::size_t p) { return ps.pairs.k_link[p]; });
+  cell_scalar("bond_normal_stress", 0.0, [&](std::size_t p) { return ps.pairs.eta[p]; });
+  cell_scalar("bond_shear_stress", 0.0, [&](std::size_t p) {
+    double s = 0;
+    for (int k = 0; k < T; ++k) s += ps.pairs.tau[T * p + k] * ps.pairs.tau[T * p + k];
+    return std::sqrt(s);
+  });
+  g.field_data.push_back({"TimeValue", 1, {time}});
+  return g;
+}
+
+}  // namespace shard
