@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "fem/hex8_shape.hpp"
+#include "fem/nonlocal_average.hpp"
 #include "fem/tensor_ops.hpp"
 
 namespace shard {
@@ -39,6 +40,7 @@ struct Workspace {
   std::vector<double> strain_increment;  // per point, kTensorSize
   std::vector<double> stress_old;        // per point, rotated σ_n
   std::vector<double> point_volume;      // per point
+  std::vector<double> band_width;        // per point: MaterialPointBatch::characteristic_length
   std::vector<double> geometry;          // per element, kernel-specific
   std::vector<double> volume_rate;       // per element: tr D
   std::vector<double> length;            // per element: characteristic length
@@ -53,6 +55,7 @@ struct Workspace {
     grow(strain_increment, points * kTensorSize);
     grow(stress_old, points * kTensorSize);
     grow(point_volume, points);
+    grow(band_width, points);
     grow(geometry, elements * geometry_per_element);
     grow(volume_rate, elements);
     grow(length, elements);
@@ -641,6 +644,25 @@ struct MaterialLayout {
       : state_size(m.state_size()), failure_index(m.failure_state_index()), moduli(m.elastic()) {}
 };
 
+/// The crack-band width of the points of the element in workspace slot i (0 for an eroded or
+/// inverted element): the size of a square (tri3: sqrt(2A), exact for the right triangles of a
+/// split square), a cube (hexahedra: V^(1/3)) or a Kuhn cube (tet4: (6V)^(1/3), six tetrahedra
+/// to a cube) of the element's measure (docs/theory/rotating_crack.md, section 2).
+template <class Kernel>
+double band_width(const StepContext& ctx, const Workspace& ws, std::size_t i) {
+  const double v = ws.volume[i];
+  if (!(v > 0.0)) return 0.0;
+  if constexpr (std::is_same_v<Kernel, Tri3>) {
+    const double rbar = ws.geometry[Tri3::geometry * i + 7];  // > 0 only when axisymmetric
+    const double area = rbar > 0.0 ? v / (2.0 * std::numbers::pi * rbar) : v / ctx.thickness;
+    return std::sqrt(2.0 * area);
+  } else if constexpr (std::is_same_v<Kernel, Tet4>) {
+    return std::cbrt(6.0 * v);
+  } else {
+    return std::cbrt(v);
+  }
+}
+
 template <class Kernel>
 void update_points(const StepContext& ctx, Part& part, const Material& material,
                    const MaterialLayout& layout, std::size_t begin, std::size_t end, Workspace& ws,
@@ -648,6 +670,8 @@ void update_points(const StepContext& ctx, Part& part, const Material& material,
   constexpr int npts = Kernel::points;
   const std::size_t state_size = layout.state_size;
   const std::size_t p0 = begin * npts, s0 = first_slot * npts;
+  for (std::size_t i = first_slot; i < first_slot + (end - begin); ++i)
+    std::fill_n(&ws.band_width[npts * i], npts, band_width<Kernel>(ctx, ws, i));
   MaterialPointBatch mp;
   mp.count = (end - begin) * npts;
   mp.dt = ctx.dt;
@@ -656,6 +680,7 @@ void update_points(const StepContext& ctx, Part& part, const Material& material,
   mp.state = part.state.data() + state_size * p0;
   mp.temperature = part.temperature.data() + p0;
   mp.volume = ws.point_volume.data() + s0;
+  mp.characteristic_length = ws.band_width.data() + s0;
   if (ctx.formulation == Formulation::plane_stress)
     plane_stress_update(material, mp, workspace, state_size);  // this thread's scratch
   else
@@ -915,17 +940,26 @@ ForceSums run_part_nodal_pressure(Part& part, const Material& material, NodeArra
 ForceSums add_internal_forces(Part& part, const Material& material, NodeArrays& nodes,
                               const StepContext& ctx) {
   const bool nodal = part.volumetric == VolumetricTreatment::average_nodal_pressure;
+  ForceSums sums;
   switch (part.kind) {
     case ElementKind::tri3:
-      return nodal ? run_part_nodal_pressure<Tri3>(part, material, nodes, ctx)
+      sums = nodal ? run_part_nodal_pressure<Tri3>(part, material, nodes, ctx)
                    : run_part<Tri3>(part, material, nodes, ctx);
+      break;
     case ElementKind::tet4:
-      return nodal ? run_part_nodal_pressure<Tet4>(part, material, nodes, ctx)
+      sums = nodal ? run_part_nodal_pressure<Tet4>(part, material, nodes, ctx)
                    : run_part<Tet4>(part, material, nodes, ctx);
-    case ElementKind::hex8_reduced: return run_part<Hex8Reduced>(part, material, nodes, ctx);
-    case ElementKind::hex8: return run_part<Hex8Full>(part, material, nodes, ctx);
+      break;
+    case ElementKind::hex8_reduced: sums = run_part<Hex8Reduced>(part, material, nodes, ctx); break;
+    case ElementKind::hex8: sums = run_part<Hex8Full>(part, material, nodes, ctx); break;
   }
-  return {};
+  // Part-level pass of materials with a non-local history variable (src/fem/nonlocal_average.hpp),
+  // on the state just updated.
+  if (const auto* nonlocal = dynamic_cast<const NonlocalAveraging*>(&material)) {
+    const NonlocalSpec spec = nonlocal->nonlocal_spec();
+    if (spec.length > 0) average_nonlocal(part, nodes, spec, material.state_size());
+  }
+  return sums;
 }
 
 double element_measure(const Part& part, const NodeArrays& nodes, std::size_t e,

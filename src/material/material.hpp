@@ -7,6 +7,7 @@
 
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -26,6 +27,10 @@ struct MaterialPointBatch {
   double* state = nullptr;                 ///< state_size() per point, updated in place
   double* temperature = nullptr;           ///< one per point, updated in place (adiabatic heating)
   const double* volume = nullptr;          ///< one per point: the volume it represents (for energies)
+  /// One per point: the element's size across a crack band (tri3 sqrt(2A), tet4 (6V)^(1/3),
+  /// hexahedra V^(1/3)), for softening laws normalised by a fracture energy; 0 for an eroded
+  /// element. Other models ignore it.
+  const double* characteristic_length = nullptr;
 
   // Energy dissipated in this increment by the whole batch (J); added to by the model.
   double plastic_work = 0;
@@ -54,6 +59,19 @@ class Material {
   /// The history variable that marks failure: a point whose state[index] ≥ 1 has failed and its
   /// element is eroded (removed from the force computation). −1: the model never fails points.
   virtual int failure_state_index() const { return -1; }
+  /// Where a model that drives discrete crack insertion keeps its failure map
+  /// (docs/theory/crack_insertion.md): the point failure factor F (a point has failed at F ≥ 1),
+  /// the first of dim components of the crack normal, the recoverable energy per unit volume Ψ
+  /// (−1: none kept), and the history variables zeroed when a failed element is re-initialised
+  /// after a crack passes.
+  struct FailureMapSlots {
+    int factor = -1;
+    int normal = -1;
+    int energy_density = -1;
+    std::vector<int> reset;
+  };
+  /// Empty for a model that does not crack discretely.
+  virtual std::optional<FailureMapSlots> failure_map_slots() const { return std::nullopt; }
   /// σ_n+1 from σ_n and the strain increment, for every point of the batch.
   virtual void update(MaterialPointBatch& batch) const = 0;
 

@@ -1,0 +1,540 @@
+#include "fracture/crack_insertion.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+#include <string>
+#include <unordered_map>
+#include <unordered_set>
+
+#include "fem/internal_forces.hpp"
+
+namespace shard {
+
+namespace {
+
+std::uint64_t edge_key(std::int32_t a, std::int32_t b) {
+  if (a > b) std::swap(a, b);
+  return static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32 | static_cast<std::uint32_t>(b);
+}
+
+/// One live triangle seen from one of its nodes p: it spans the angle from edge p–a to edge
+/// p–b counter-clockwise (a, b in the order that makes the triangle positive on x0).
+struct FanEntry {
+  std::int32_t part;
+  std::int32_t element;
+  std::int32_t local;   ///< p's slot in the element's connectivity
+  std::int32_t a, b;
+  std::int64_t global;  ///< element number over all parts (the deterministic order)
+};
+
+/// The live triangles around a chosen set of nodes: (node, global element · 4 + slot) pairs in
+/// increasing order. Only the nodes an update can touch are collected, so an update costs two
+/// sequential passes over the connectivity and nothing per node of the mesh. A node's fan is
+/// then read from the connectivity on demand.
+struct Fans {
+  const Model* model = nullptr;
+  std::vector<std::int64_t> part_begin;  ///< global number of each part's first element
+  std::vector<std::pair<std::int32_t, std::int64_t>> corners;
+
+  std::span<const std::pair<std::int32_t, std::int64_t>> corners_of(std::int32_t node) const {
+    const auto lo = std::lower_bound(corners.begin(), corners.end(), std::pair{node, std::int64_t{-1}});
+    auto hi = lo;
+    while (hi != corners.end() && hi->first == node) ++hi;
+    return {lo, hi};
+  }
+
+  /// The global numbers of the triangles that held `node` when the fans were built (valid after
+  /// the connectivity has been renumbered).
+  std::vector<std::int64_t> elements_of(std::int32_t node) const {
+    std::vector<std::int64_t> out;
+    for (const auto& c : corners_of(node)) out.push_back(c.second >> 2);
+    return out;
+  }
+
+  /// The fan of `node` on the current connectivity, in increasing element order.
+  std::vector<FanEntry> of(std::int32_t node) const {
+    const double* X0 = model->nodes.x0.data();
+    std::vector<FanEntry> fan;
+    for (const auto& [n, corner] : corners_of(node)) {
+      const std::int64_t global = corner >> 2;
+      const int local = static_cast<int>(corner & 3);
+      const std::size_t p = std::upper_bound(part_begin.begin(), part_begin.end(), global) - part_begin.begin() - 1;
+      const std::size_t e = static_cast<std::size_t>(global - part_begin[p]);
+      const std::int32_t* cn = &model->parts[p].connectivity[3 * e];
+      const double area2 = (X0[2 * cn[1]] - X0[2 * cn[0]]) * (X0[2 * cn[2] + 1] - X0[2 * cn[0] + 1]) -
+                           (X0[2 * cn[2]] - X0[2 * cn[0]]) * (X0[2 * cn[1] + 1] - X0[2 * cn[0] + 1]);
+      std::int32_t a = cn[(local + 1) % 3], b = cn[(local + 2) % 3];
+      if (area2 < 0) std::swap(a, b);
+      fan.push_back({static_cast<std::int32_t>(p), static_cast<std::int32_t>(e), local, a, b, global});
+    }
+    return fan;
+  }
+};
+
+/// Calls visit(element connectivity, global element number) for every live tri3 element.
+template <class Visit>
+void for_each_live_triangle(const Model& model, const std::vector<std::int64_t>& part_begin, Visit&& visit) {
+  for (std::size_t p = 0; p < model.parts.size(); ++p) {
+    const Part& part = model.parts[p];
+    if (part.kind != ElementKind::tri3) continue;
+    const std::size_t ne = part.element_count();
+    for (std::size_t e = 0; e < ne; ++e) {
+      if (!part.eroded.empty() && part.eroded[e]) continue;
+      visit(&part.connectivity[3 * e], part_begin[p] + static_cast<std::int64_t>(e));
+    }
+  }
+}
+
+/// The fans of the nodes marked in `wanted` (and, with `with_neighbours`, of every node that
+/// shares a live triangle with a marked node).
+Fans build_fans(const Model& model, std::vector<char> wanted, bool with_neighbours) {
+  Fans fans;
+  fans.model = &model;
+  fans.part_begin.assign(model.parts.size() + 1, 0);
+  for (std::size_t p = 0; p < model.parts.size(); ++p)
+    fans.part_begin[p + 1] = fans.part_begin[p] + static_cast<std::int64_t>(model.parts[p].element_count());
+  if (with_neighbours) {
+    std::vector<char> grown = wanted;
+    for_each_live_triangle(model, fans.part_begin, [&](const std::int32_t* cn, std::int64_t) {
+      if (wanted[cn[0]] || wanted[cn[1]] || wanted[cn[2]]) grown[cn[0]] = grown[cn[1]] = grown[cn[2]] = 1;
+    });
+    wanted = std::move(grown);
+  }
+  for_each_live_triangle(model, fans.part_begin, [&](const std::int32_t* cn, std::int64_t global) {
+    for (int i = 0; i < 3; ++i)
+      if (wanted[cn[i]]) fans.corners.emplace_back(cn[i], global * 4 + i);
+  });
+  std::sort(fans.corners.begin(), fans.corners.end());
+  return fans;
+}
+
+/// The wedges of one node's fan: triangles joined across the edges p–r that two of them share
+/// and that are not cut. next[i] is the entry CCW after entry i across edge p–b_i (−1: a free or
+/// cut edge), prev[j] the reverse; group[i] numbers the wedges in order of their lowest element.
+struct Wedges {
+  std::vector<int> next, prev, group;
+  int count = 0;
+  bool manifold = true;  ///< false: an edge shared by more than two triangles around the node
+  bool loop() const {     ///< one wedge closing all around the node
+    return count == 1 && std::all_of(next.begin(), next.end(), [](int n) { return n >= 0; });
+  }
+};
+
+Wedges wedges_of(std::int32_t p, std::span<const FanEntry> fan,
+                 const std::unordered_set<std::uint64_t>& cut) {
+  const int m = static_cast<int>(fan.size());
+  Wedges w;
+  w.next.assign(m, -1);
+  w.prev.assign(m, -1);
+  for (int i = 0; i < m; ++i)
+    for (int j = 0; j < m; ++j) {
+      if (i == j || fan[i].b != fan[j].a) continue;
+      if (w.next[i] >= 0 || w.prev[j] >= 0) w.manifold = false;
+      if (cut.count(edge_key(p, fan[i].b))) continue;
+      w.next[i] = j;
+      w.prev[j] = i;
+    }
+  // Wedges are the connected runs; number them in order of their lowest element, which is the
+  // order in which the entries were built.
+  w.group.assign(m, -1);
+  for (int i = 0; i < m; ++i) {
+    if (w.group[i] >= 0) continue;
+    const int g = w.count++;
+    w.group[i] = g;
+    for (int j = w.next[i]; j >= 0 && w.group[j] < 0; j = w.next[j]) w.group[j] = g;
+    for (int j = w.prev[i]; j >= 0 && w.group[j] < 0; j = w.prev[j]) w.group[j] = g;
+  }
+  return w;
+}
+
+/// Row sum of the lumped mass of triangle `f` at its corner, as lump_masses computes it, on x0.
+double corner_mass(const Model& model, const FanEntry& f, double density) {
+  const Part& part = model.parts[f.part];
+  const std::int32_t* cn = &part.connectivity[3 * static_cast<std::size_t>(f.element)];
+  const double* X = model.nodes.x0.data();
+  const double x1 = X[2 * cn[0]], y1 = X[2 * cn[0] + 1], x2 = X[2 * cn[1]], y2 = X[2 * cn[1] + 1],
+               x3 = X[2 * cn[2]], y3 = X[2 * cn[2] + 1];
+  const double area = std::abs(0.5 * ((x2 - x1) * (y3 - y1) - (x3 - x1) * (y2 - y1)));
+  if (model.formulation == Formulation::axisymmetric) {
+    const double r[3] = {x1, x2, x3};
+    const int a = f.local;
+    return 2.0 * std::numbers::pi * density * area * (2.0 * r[a] + r[(a + 1) % 3] + r[(a + 2) % 3]) / 12.0;
+  }
+  return density * area * model.thickness / 3.0;
+}
+
+double angle_between(const double* u, const double* v) {
+  return std::atan2(u[0] * v[1] - u[1] * v[0], u[0] * v[0] + u[1] * v[1]);
+}
+
+void require_planar(const Model& model, const char* what) {
+  if (model.dim() != 2)
+    throw std::invalid_argument(std::string(what) +
+                                ": discrete crack insertion is implemented for 2D (tri3) models only");
+}
+
+}  // namespace
+
+namespace {
+
+/// split_nodes on fans already built from the connectivity as it is.
+std::vector<std::int32_t> split_on_fans(Model& model, const Fans& fans, std::span<const double> density,
+                                        std::span<const std::array<std::int32_t, 2>> edges) {
+  std::unordered_set<std::uint64_t> cut;
+  std::vector<std::int32_t> touched;
+  for (const auto& e : edges) {
+    cut.insert(edge_key(e[0], e[1]));
+    touched.push_back(e[0]);
+    touched.push_back(e[1]);
+  }
+  std::sort(touched.begin(), touched.end());
+  touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
+
+  // Every wedge structure is found on the connectivity before any node is renumbered: the
+  // renumbering at one end of an edge must not hide the edge from the node at its other end.
+  struct Split {
+    std::int32_t node;
+    std::vector<FanEntry> fan;
+    Wedges wedges;
+  };
+  std::vector<Split> splits;
+  for (const std::int32_t p : touched) {
+    std::vector<FanEntry> fan = fans.of(p);
+    Wedges w = wedges_of(p, fan, cut);
+    if (w.count >= 2) splits.push_back({p, std::move(fan), std::move(w)});
+  }
+
+  auto& nodes = model.nodes;
+  const int dim = model.dim();
+  std::vector<std::int32_t> parent;
+  for (const Split& s : splits) {
+    const std::int32_t p = s.node;
+    const auto& fan = s.fan;
+    std::vector<double> share(s.wedges.count, 0.0);
+    for (std::size_t i = 0; i < fan.size(); ++i)
+      share[s.wedges.group[i]] += corner_mass(model, fan[i], density[fan[i].part]);
+    double total = 0;
+    for (double c : share) total += c;
+    for (double& c : share) c = total > 0 ? c / total : 1.0 / s.wedges.count;
+
+    // Wedge 0 (the lowest element) keeps p; wedge g ≥ 1 gets the node first + g − 1. The parent
+    // keeps the remainder of the mass and force, so that the parts sum to the whole.
+    const std::size_t first = nodes.count();
+    const double m = nodes.mass[p];
+    double given_mass = 0, given_force[3] = {0, 0, 0};
+    for (int g = 1; g < s.wedges.count; ++g) {
+      for (int k = 0; k < dim; ++k) {
+        nodes.x0.push_back(nodes.x0[dim * p + k]);
+        nodes.x.push_back(nodes.x[dim * p + k]);
+        nodes.v.push_back(nodes.v[dim * p + k]);
+        const double f = share[g] * nodes.force[dim * p + k];
+        nodes.force.push_back(f);
+        given_force[k] += f;
+      }
+      nodes.mass.push_back(share[g] * m);
+      given_mass += share[g] * m;
+      parent.push_back(p);
+    }
+    nodes.mass[p] = m - given_mass;
+    for (int k = 0; k < dim; ++k) nodes.force[dim * p + k] -= given_force[k];
+    for (std::size_t i = 0; i < fan.size(); ++i) {
+      const int g = s.wedges.group[i];
+      if (g == 0) continue;
+      Part& part = model.parts[fan[i].part];
+      part.connectivity[3 * static_cast<std::size_t>(fan[i].element) + fan[i].local] =
+          static_cast<std::int32_t>(first + g - 1);
+    }
+  }
+  return parent;
+}
+
+}  // namespace
+
+std::vector<std::int32_t> split_nodes(Model& model, std::span<const double> density,
+                                      std::span<const std::array<std::int32_t, 2>> edges) {
+  require_planar(model, "split_nodes");
+  if (density.size() != model.parts.size())
+    throw std::invalid_argument("split_nodes: one density per part is needed");
+  std::vector<char> ends(model.nodes.count(), 0);
+  for (const auto& e : edges) ends[e[0]] = ends[e[1]] = 1;
+  return split_on_fans(model, build_fans(model, std::move(ends), false), density, edges);
+}
+
+CrackInsertion insert_cracks(Model& model, std::span<const CrackingPart> parts,
+                             std::span<const double> nodal_factor, std::span<const double> nodal_normal,
+                             const CrackInsertionSettings& settings) {
+  require_planar(model, "insert_cracks");
+  const std::size_t nn = model.nodes.count();
+  if (parts.size() != model.parts.size() || nodal_factor.size() != nn || nodal_normal.size() != 2 * nn)
+    throw std::invalid_argument(
+        "insert_cracks: expected one CrackingPart per part, one factor and 2 normal components per node");
+  CrackInsertion out;
+  out.first_new_node = nn;
+  const double threshold = settings.failure_threshold;
+
+  std::vector<std::int32_t> failed;
+  for (std::size_t i = 0; i < nn; ++i)
+    if (nodal_factor[i] >= threshold) failed.push_back(static_cast<std::int32_t>(i));
+  if (failed.empty()) return out;
+  // The most failed node chooses first; its neighbours then continue its crack.
+  std::stable_sort(failed.begin(), failed.end(),
+                   [&](std::int32_t a, std::int32_t b) { return nodal_factor[a] > nodal_factor[b]; });
+
+  // The edges opened run from a failed node to a neighbour: those are all the nodes to look at.
+  std::vector<char> wanted(nn, 0);
+  for (const auto p : failed) wanted[p] = 1;
+  const Fans fans = build_fans(model, std::move(wanted), true);
+  const double* X = model.nodes.x.data();
+  std::unordered_set<std::uint64_t> cut;
+  auto open = [&](std::int32_t p, std::int32_t r) {
+    cut.insert(edge_key(p, r));
+    out.opened_edges.push_back({p, r});
+  };
+
+  for (const std::int32_t p : failed) {
+    const std::vector<FanEntry> fan = fans.of(p);
+    const Wedges w = wedges_of(p, fan, cut);
+    const double* n = &nodal_normal[2 * p];
+    const double t[2] = {-n[1], n[0]};  // the crack line, normal to the fracture direction
+    bool incident_cut = false;
+    for (const auto& f : fan) incident_cut = incident_cut || cut.count(edge_key(p, f.b)) > 0;
+    if (w.count >= 2 && incident_cut) {  // the crack already passes through p
+      out.cracked_nodes.push_back(p);
+      continue;
+    }
+    if (fan.empty() || w.count != 1 || !w.manifold || !(t[0] * t[0] + t[1] * t[1] > 0)) {
+      out.skipped_nodes.push_back(p);
+      continue;
+    }
+    // An edge p–b_i can open if both triangles that share it belong to cracking parts.
+    auto can_open = [&](int i) {
+      return w.next[i] >= 0 && parts[fan[i].part].cracks && parts[fan[w.next[i]].part].cracks;
+    };
+    auto direction_to = [&](std::int32_t r, double* d) {
+      d[0] = X[2 * r] - X[2 * p];
+      d[1] = X[2 * r + 1] - X[2 * p + 1];
+      const double l = std::hypot(d[0], d[1]);
+      d[0] /= l;
+      d[1] /= l;
+    };
+
+    if (w.loop()) {
+      // Interior node: the crack passes through p, so it leaves along two edges, the best
+      // aligned with +t and with −t (paper, Figure 4(c): the failure plane through the node).
+      int best[2] = {-1, -1};
+      double score[2] = {-2, -2};
+      for (int side = 0; side < 2; ++side)
+        for (int i = 0; i < static_cast<int>(fan.size()); ++i) {
+          if (!can_open(i) || (side == 1 && i == best[0])) continue;
+          double d[2];
+          direction_to(fan[i].b, d);
+          const double c = (side == 0 ? 1.0 : -1.0) * (d[0] * t[0] + d[1] * t[1]);
+          if (c > score[side]) {
+            score[side] = c;
+            best[side] = i;
+          }
+        }
+      if (best[0] < 0 || best[1] < 0) {
+        out.skipped_nodes.push_back(p);
+        continue;
+      }
+      open(p, fan[best[0]].b);
+      open(p, fan[best[1]].b);
+      out.cracked_nodes.push_back(p);
+      continue;
+    }
+
+    // One wedge bounded by two free edges: the free boundary, a crack tip (the two faces of the
+    // crack that ends here) or one face of a crack. The crack line enters the material on one
+    // side only; it is the direction ±t deepest inside the wedge (farthest, in angle, from its
+    // bounding edges): into the body at a boundary node, ahead of the crack at a tip.
+    int start = 0;
+    while (w.prev[start] >= 0) ++start;
+    std::vector<int> order;
+    for (int i = start; i >= 0; i = w.next[i]) order.push_back(i);
+    double d_start[2];
+    direction_to(fan[order.front()].a, d_start);
+    std::vector<double> phi(order.size());  // angle of edge p–b of each triangle, from d_start
+    double sum = 0;
+    for (std::size_t k = 0; k < order.size(); ++k) {
+      double da[2], db[2];
+      direction_to(fan[order[k]].a, da);
+      direction_to(fan[order[k]].b, db);
+      sum += angle_between(da, db);
+      phi[k] = sum;
+    }
+    const double wedge = sum, two_pi = 2.0 * std::numbers::pi;
+    auto depth = [&](const double* s) {
+      double a = angle_between(d_start, s);
+      if (a < 0) a += two_pi;
+      return a <= wedge ? std::min(a, wedge - a) : -std::min(a - wedge, two_pi - a);
+    };
+    const double minus_t[2] = {-t[0], -t[1]};
+    const double* s = depth(t) >= depth(minus_t) ? t : minus_t;
+    const double s_depth = depth(s);
+    double phi_s = angle_between(d_start, s);
+    if (phi_s < 0) phi_s += two_pi;
+    int best = -1;
+    double best_gap = 0;
+    for (std::size_t k = 0; k + 1 < order.size(); ++k) {
+      if (!can_open(order[k])) continue;
+      const double gap = std::abs(phi[k] - phi_s);
+      if (best < 0 || gap < best_gap) {
+        best = order[k];
+        best_gap = gap;
+      }
+    }
+    if (!(s_depth > 0) || best < 0) {
+      out.skipped_nodes.push_back(p);
+      continue;
+    }
+    open(p, fan[best].b);
+    out.cracked_nodes.push_back(p);
+  }
+
+  std::vector<double> density(parts.size());
+  for (std::size_t i = 0; i < parts.size(); ++i) density[i] = parts[i].density;
+  out.parent = split_on_fans(model, fans, density, out.opened_edges);
+
+  // Re-initialise the failed elements around each cracked node: their damage has become the
+  // discrete crack (paper, "Discrete fracture insertion": failed elements heal and their state
+  // is reinitialised). The stored elastic energy they give up is reported for the balance.
+  std::vector<std::int64_t> seen;
+  for (const std::int32_t p : out.cracked_nodes)
+    for (const std::int64_t g : fans.elements_of(p)) seen.push_back(g);
+  std::sort(seen.begin(), seen.end());
+  seen.erase(std::unique(seen.begin(), seen.end()), seen.end());
+  const std::vector<std::int64_t>& offset = fans.part_begin;
+  for (const std::int64_t g : seen) {
+    const std::size_t pi = std::upper_bound(offset.begin(), offset.end(), g) - offset.begin() - 1;
+    const CrackingPart& cp = parts[pi];
+    if (!cp.cracks || cp.factor_index < 0) continue;
+    Part& part = model.parts[pi];
+    const std::size_t e = static_cast<std::size_t>(g - offset[pi]);
+    const int npts = points_per_element(part.kind);
+    const std::size_t state_size = part.point_count() > 0 ? part.state.size() / part.point_count() : 0;
+    bool element_failed = false;
+    for (int q = 0; q < npts; ++q)
+      element_failed = element_failed ||
+                       part.state[state_size * (npts * e + q) + cp.factor_index] >= threshold;
+    if (!element_failed) continue;
+    const double volume =
+        std::abs(element_measure(part, model.nodes, e, model.formulation, model.thickness)) / npts;
+    for (int q = 0; q < npts; ++q) {
+      double* s = &part.stress[kTensorSize * (npts * e + q)];
+      const double pressure = -(s[xx] + s[yy] + s[zz]) / 3.0;
+      const double dev_sq = (s[xx] + pressure) * (s[xx] + pressure) + (s[yy] + pressure) * (s[yy] + pressure) +
+                            (s[zz] + pressure) * (s[zz] + pressure) +
+                            2.0 * (s[xy] * s[xy] + s[yz] * s[yz] + s[zx] * s[zx]);
+      double* state = &part.state[state_size * (npts * e + q)];
+      if (cp.energy_density_index >= 0)
+        out.released_energy += state[cp.energy_density_index] * volume;
+      else if (cp.moduli.bulk > 0 && cp.moduli.shear > 0)
+        out.released_energy += (pressure * pressure / (2.0 * cp.moduli.bulk) + dev_sq / (4.0 * cp.moduli.shear)) * volume;
+      std::fill_n(s, kTensorSize, 0.0);
+      state[cp.factor_index] = 0.0;
+      if (cp.energy_density_index >= 0) state[cp.energy_density_index] = 0.0;
+      for (const int k : cp.reset_indices) state[k] = 0.0;
+    }
+    ++out.reinitialised_elements;
+  }
+  return out;
+}
+
+void extend_node_data(Model& model, std::span<const std::int32_t> parent, std::size_t first_new_node) {
+  const std::size_t nn = model.nodes.count();
+  if (parent.empty()) return;
+  if (first_new_node + parent.size() != nn)
+    throw std::invalid_argument("extend_node_data: the parents do not match the nodes added");
+  const int dim = model.dim();
+
+  // New ids are larger than every id in a set, so appending them in order keeps it sorted.
+  for (NodeSet& set : model.node_sets)
+    for (std::size_t i = 0; i < parent.size(); ++i)
+      if (std::binary_search(set.nodes.begin(), set.nodes.end(), parent[i]))
+        set.nodes.push_back(static_cast<std::int32_t>(first_new_node + i));
+
+  // Facets: a boundary segment lies on exactly one triangle; if that triangle now holds a copy of
+  // one of its nodes, the segment must follow (pressure loads act on the segment's nodes). Only
+  // segments at a split node can have changed, and only edges at a split node or copy are looked
+  // up, so this costs one pass over the connectivity.
+  if (dim == 2) {
+    std::unordered_map<std::int32_t, std::vector<std::int32_t>> copies;  // parent → itself, copies
+    for (std::size_t i = 0; i < parent.size(); ++i) {
+      auto& c = copies[parent[i]];
+      if (c.empty()) c.push_back(parent[i]);
+      c.push_back(static_cast<std::int32_t>(first_new_node + i));
+    }
+    std::vector<char> involved(nn, 0);
+    for (const auto& [p, c] : copies)
+      for (const auto n : c) involved[n] = 1;
+    std::unordered_set<std::uint64_t> edges;
+    for (const Part& part : model.parts) {
+      if (part.kind != ElementKind::tri3) continue;
+      for (std::size_t e = 0; e < part.element_count(); ++e) {
+        if (!part.eroded.empty() && part.eroded[e]) continue;
+        const std::int32_t* cn = &part.connectivity[3 * e];
+        for (int i = 0; i < 3; ++i) {
+          const std::int32_t a = cn[i], b = cn[(i + 1) % 3];
+          if (involved[a] || involved[b]) edges.insert(edge_key(a, b));
+        }
+      }
+    }
+    auto candidates = [&](std::int32_t n) {
+      const auto it = copies.find(n);
+      return it == copies.end() ? std::vector<std::int32_t>{n} : it->second;
+    };
+    for (FacetSet& set : model.facet_sets) {
+      if (set.nodes_per_facet != 2) continue;
+      for (std::size_t f = 0; f + 1 < set.nodes.size(); f += 2) {
+        std::int32_t& a = set.nodes[f];
+        std::int32_t& b = set.nodes[f + 1];
+        if (!involved[a] && !involved[b]) continue;
+        if (edges.count(edge_key(a, b))) continue;
+        bool found = false;
+        for (const std::int32_t ca : candidates(a)) {
+          for (const std::int32_t cb : candidates(b))
+            if (edges.count(edge_key(ca, cb))) {
+              a = ca;
+              b = cb;
+              found = true;
+              break;
+            }
+          if (found) break;
+        }
+      }
+    }
+  }
+
+  // Contact history: per node, so it grows with zeros for the new nodes. The wall-major layout
+  // of wall_tangential (wall w, node s at (w·n + s)·dim) is rebuilt for the new node count.
+  auto& c = model.contact;
+  const std::size_t old_n = first_new_node;
+  if (c.tangential.size() == dim * old_n) c.tangential.resize(dim * nn, 0.0);
+  if (old_n > 0 && !c.wall_tangential.empty() && c.wall_tangential.size() % (dim * old_n) == 0) {
+    const std::size_t walls = c.wall_tangential.size() / (dim * old_n);
+    std::vector<double> grown(walls * dim * nn, 0.0);
+    for (std::size_t w = 0; w < walls; ++w)
+      std::copy_n(&c.wall_tangential[w * dim * old_n], dim * old_n, &grown[w * dim * nn]);
+    c.wall_tangential = std::move(grown);
+  }
+}
+
+bool colouring_is_valid(const Part& part) {
+  const int npe = nodes_per_element(part.kind);
+  std::int32_t max_node = -1;
+  for (const auto n : part.connectivity) max_node = std::max(max_node, n);
+  std::vector<std::int64_t> stamp(static_cast<std::size_t>(max_node + 1), -1);
+  for (std::size_t c = 0; c < part.colour_count(); ++c)
+    for (std::int32_t e = part.colour_begin[c]; e < part.colour_begin[c + 1]; ++e)
+      for (int a = 0; a < npe; ++a) {
+        auto& s = stamp[part.connectivity[static_cast<std::size_t>(npe) * e + a]];
+        if (s == static_cast<std::int64_t>(c)) return false;
+        s = static_cast<std::int64_t>(c);
+      }
+  return true;
+}
+
+}  // namespace shard

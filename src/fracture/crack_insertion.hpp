@@ -1,0 +1,104 @@
+// Discrete crack insertion between 3-node triangles by node splitting (inter-element fracture of
+// Cottrell, Yu, Wei & Owen 2003, "Discrete fracture insertion"): a node whose failure factor
+// reaches 1 is split along the element edges best aligned with the crack line; new nodes, no new
+// elements. Theory and rules: docs/theory/crack_insertion.md.
+//
+// Call between steps (after ExplicitSolver::advance, before the next compute_forces). After an
+// insertion that added nodes the caller must:
+//   1. extend_node_data(model, insertion)     node sets, facet sets, contact history arrays;
+//   2. copy every velocity constraint of a parent node to its new nodes (Loads::constraints);
+//   3. ContactSystem::rebuild(model)           the crack faces are free faces now;
+//   4. book insertion.released_energy as fracture energy (EnergyBalance::fracture).
+// Element colouring stays valid (no recolouring): see split_nodes.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "material/material.hpp"
+#include "model/model.hpp"
+
+namespace shard {
+
+/// What crack insertion needs to know of one part (Model::parts order).
+struct CrackingPart {
+  bool cracks = false;  ///< a tri3 part whose elements may be separated by a crack
+  double density = 0;   ///< ρ of the part's material: splits the lumped masses (every tri3 part)
+  ElasticModuli moduli; ///< for the elastic energy freed by re-initialising failed elements
+  int factor_index = -1;  ///< state index of the point failure factor F (failed: F ≥ threshold)
+  /// State variables set to 0 when a failed element is re-initialised, besides F (always reset).
+  std::vector<int> reset_indices;
+  /// State index of the recoverable energy per unit volume Ψ, if the material keeps it (−1: the
+  /// released energy is taken as the elastic energy of the stress, p²/2K + s:s/4G). For a
+  /// softening material Ψ is what the balance counts as stored, so it is the exact amount freed.
+  /// It is set to 0 with the stress.
+  int energy_density_index = -1;
+};
+
+struct CrackInsertionSettings {
+  double failure_threshold = 1.0;  ///< F̄ at which a node fails, and F at which a point has failed
+};
+
+/// The outcome of one topological update.
+struct CrackInsertion {
+  std::size_t first_new_node = 0;     ///< the node count before the update
+  std::vector<std::int32_t> parent;   ///< node first_new_node + i is a copy of parent[i]
+  std::vector<std::array<std::int32_t, 2>> opened_edges;  ///< (node ids before the update)
+  std::vector<std::int32_t> cracked_nodes;  ///< failed nodes a crack now passes through or ends at
+  std::vector<std::int32_t> skipped_nodes;  ///< failed nodes where no edge could be opened
+  std::size_t reinitialised_elements = 0;
+  /// Recoverable energy of the re-initialised points, whose stress was set to 0 (Ψ·V, or
+  /// p²/2K + s:s/4G · V): the damage "coalesced into the crack"; book it as fracture energy.
+  double released_energy = 0;
+
+  std::size_t new_node_count() const { return parent.size(); }
+};
+
+/// Inserts cracks at every node with nodal_factor ≥ threshold, in one topological update:
+/// the edges to open are chosen node by node (largest F̄ first, then lowest id), each node seeing
+/// the edges already chosen in this update (so that a line of failed nodes makes one crack),
+/// then all nodes are split at once by split_nodes. `nodal_normal` holds dim components per node:
+/// the crack normal (max principal, softening direction); the crack line is perpendicular to it.
+/// Rules (docs/theory/crack_insertion.md, "Insertion rules"):
+///  - a node whose live triangles close a full loop around it (interior, uncracked) opens two
+///    edges, the best aligned with +t and with −t (t the crack line);
+///  - a node on the free boundary, at a crack tip, or on one face of a crack opens one edge: the
+///    one closest to the direction ±t that lies deepest inside the material around the node;
+///    none when the crack line does not enter the material there (skipped);
+///  - a node already separated (by edges chosen at its neighbours) opens nothing more.
+/// Only edges between two elements of cracking parts open. Failed elements (a point with
+/// F ≥ threshold) that hold a cracked node are then re-initialised: zero stress, F and the
+/// part's reset_indices set to 0.
+CrackInsertion insert_cracks(Model& model, std::span<const CrackingPart> parts,
+                             std::span<const double> nodal_factor, std::span<const double> nodal_normal,
+                             const CrackInsertionSettings& settings = {});
+
+/// The topological core: opens the given element edges (node pairs of edges shared by two live
+/// tri3 elements) and splits every node they touch into one node per wedge of its triangles
+/// that the opened and already free edges separate. Each new node keeps its parent's x0, x, v;
+/// the parent's mass (and force) is divided in proportion to the wedges' own lumped-mass
+/// contributions (computed as lump_masses does, on x0; `density` per part), so mass and momentum
+/// are conserved. The wedge with the lowest element keeps the parent id. Returns the parents of
+/// the new nodes (node first_new_node + i is a copy of parent[i]), in increasing parent order.
+/// Colouring stays valid: an element gets a copy of a node only if it held the node, so two
+/// elements share a node afterwards only if they shared one before.
+std::vector<std::int32_t> split_nodes(Model& model, std::span<const double> density,
+                                      std::span<const std::array<std::int32_t, 2>> edges);
+
+/// Extends the Model's per-node data to the nodes added by an insertion: a new node joins every
+/// node set its parent is in (sets stay sorted); a facet of a facet set whose element now holds
+/// a copy of one of its nodes is renumbered to the copy; the contact history arrays
+/// (ContactState::tangential, wall_tangential) get zero entries for the new nodes (a new surface
+/// node starts with no stick: its parent keeps its own).
+void extend_node_data(Model& model, std::span<const std::int32_t> parent, std::size_t first_new_node);
+inline void extend_node_data(Model& model, const CrackInsertion& insertion) {
+  extend_node_data(model, insertion.parent, insertion.first_new_node);
+}
+
+/// True if no two elements of one colour of `part` share a node (the invariant the parallel
+/// force scatter relies on).
+bool colouring_is_valid(const Part& part);
+
+}  // namespace shard

@@ -1,0 +1,41 @@
+// Fragments: the pieces a body has broken into, as connected components of its live elements
+// through shared nodes (union–find). Theory: docs/theory/crack_insertion.md, "Fragments".
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <filesystem>
+#include <vector>
+
+#include "model/model.hpp"
+
+namespace shard {
+
+struct Fragment {
+  std::int32_t id = 0;
+  std::int64_t elements = 0;            ///< live elements
+  double mass = 0;                      ///< Σ nodal lumped mass, each node once
+  std::array<double, 3> centroid{};     ///< centre of mass Σ m x / Σ m (current positions)
+  std::array<double, 3> velocity{};     ///< Σ m v / Σ m
+  double kinetic_energy = 0;            ///< Σ ½ m v² over its nodes (translation and the rest)
+};
+
+struct Fragments {
+  std::vector<Fragment> list;  ///< ordered by id
+  /// The fragment of every node, −1 for a node that no live element holds (such a node is in
+  /// no fragment: it carries the mass of eroded elements, not a piece of the body).
+  std::vector<std::int32_t> node_fragment;
+  /// The fragment of every element, per part (−1: eroded).
+  std::vector<std::vector<std::int32_t>> element_fragment;
+};
+
+/// The connected components of the live (not eroded) elements of all parts, joined through the
+/// nodes they share. Fragment ids are 0, 1, ... in order of each fragment's lowest element
+/// (parts in order, elements in storage order), so they are the same in every run.
+Fragments find_fragments(const Model& model);
+
+/// Writes `fragments.csv`: id,elements,mass,centroid_x,centroid_y[,centroid_z],
+/// velocity_x,velocity_y[,velocity_z],kinetic_energy (SI units, full precision).
+void write_fragments_csv(const std::filesystem::path& path, const std::vector<Fragment>& fragments, int dim);
+
+}  // namespace shard

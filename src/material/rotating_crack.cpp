@@ -1,0 +1,413 @@
+#include "material/rotating_crack.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <stdexcept>
+
+#include "material/linear_elastic.hpp"
+#include "model/model.hpp"
+
+namespace shard {
+
+namespace {
+
+/// An open crack keeps at least this fraction of f_t as a residual stress, beyond the end of the
+/// softening curve: the secant stiffness s(κ)/κ then stays positive, so that the crack strain of
+/// every open crack can be read back from the stress (see update). A constant residual keeps that
+/// read-back to a fixed relative precision, |σ|_max ε_mach / (1e-6 f_t) (1e-8 at 40 f_t); one
+/// that fell with the opening would amplify the round-off of the other stress components without
+/// bound. The work it adds, 1e-6 f_t per unit volume and unit opening strain, is 2e-6 κ/ε_c of
+/// G_f/h = f_t ε_c/2: 0.2 % for a crack opened to a thousand times ε_c.
+constexpr double kResidual = 1e-6;
+/// Exponential softening f_t [exp(−e/ε_s) − r e/ε_c] ends at ε_c = ε_s ln(1/r), where the
+/// exponential alone has fallen to r f_t; the linear term r e/ε_c brings it to zero there.
+constexpr double kExponentialEnd = 0.01;
+/// Area under the exponential curve in units of f_t ε_s: (1 − r) − r ln(1/r)/2.
+const double kExponentialArea = (1.0 - kExponentialEnd) - 0.5 * kExponentialEnd * std::log(1.0 / kExponentialEnd);
+
+/// The softening curve of one band width.
+struct Curve {
+  SofteningCurve type;
+  double ft, end, scale;  // f_t, ε_c, ε_s (exponential)
+
+  double stress(double e) const {
+    double s;
+    if (type == SofteningCurve::linear)
+      s = ft * (1.0 - e / end);
+    else
+      s = e < end ? ft * (std::exp(-e / scale) - kExponentialEnd * e / end) : 0.0;
+    return std::max(s, kResidual * ft);
+  }
+  /// Secant stiffness s(κ)/κ of the crack, +∞ for an intact point.
+  double secant(double kappa) const {
+    return kappa > 0.0 ? stress(kappa) / kappa : std::numeric_limits<double>::infinity();
+  }
+};
+
+/// Eigenvalues (descending) and unit eigenvectors (rows) of a symmetric tensor in Voigt storage.
+/// In-plane closed form when the yz and zx components vanish (every 2D point), cyclic Jacobi
+/// otherwise.
+void principal(const double* t, double value[3], double vector[3][3]) {
+  if (t[yz] == 0.0 && t[zx] == 0.0) {
+    const double mean = 0.5 * (t[xx] + t[yy]), half = 0.5 * (t[xx] - t[yy]);
+    const double radius = std::hypot(half, t[xy]);
+    const double theta = 0.5 * std::atan2(t[xy], half);
+    const double c = std::cos(theta), s = std::sin(theta);
+    double v[3][3] = {{c, s, 0}, {-s, c, 0}, {0, 0, 1}};
+    double d[3] = {mean + radius, mean - radius, t[zz]};
+    int order[3] = {0, 1, 2};
+    std::sort(order, order + 3, [&](int a, int b) { return d[a] > d[b]; });
+    for (int i = 0; i < 3; ++i) {
+      value[i] = d[order[i]];
+      for (int k = 0; k < 3; ++k) vector[i][k] = v[order[i]][k];
+    }
+    return;
+  }
+  double a[3][3] = {{t[xx], t[xy], t[zx]}, {t[xy], t[yy], t[yz]}, {t[zx], t[yz], t[zz]}};
+  double v[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};  // columns: eigenvectors
+  const double scale = std::abs(a[0][0]) + std::abs(a[1][1]) + std::abs(a[2][2]) +
+                       std::abs(a[0][1]) + std::abs(a[1][2]) + std::abs(a[0][2]);
+  for (int sweep = 0; sweep < 50; ++sweep) {
+    const double off = std::abs(a[0][1]) + std::abs(a[1][2]) + std::abs(a[0][2]);
+    if (off <= 1e-16 * scale) break;
+    for (int p = 0; p < 2; ++p)
+      for (int q = p + 1; q < 3; ++q) {
+        if (a[p][q] == 0.0) continue;
+        // Rotation that zeroes a[p][q] (Golub & Van Loan, algorithm 8.4.1).
+        const double tau = (a[q][q] - a[p][p]) / (2.0 * a[p][q]);
+        const double tt = (tau >= 0 ? 1.0 : -1.0) / (std::abs(tau) + std::sqrt(1.0 + tau * tau));
+        const double c = 1.0 / std::sqrt(1.0 + tt * tt), s = tt * c;
+        for (int k = 0; k < 3; ++k) {  // A ← A J
+          const double akp = a[k][p], akq = a[k][q];
+          a[k][p] = c * akp - s * akq;
+          a[k][q] = s * akp + c * akq;
+        }
+        for (int k = 0; k < 3; ++k) {  // A ← Jᵀ A
+          const double apk = a[p][k], aqk = a[q][k];
+          a[p][k] = c * apk - s * aqk;
+          a[q][k] = s * apk + c * aqk;
+        }
+        for (int k = 0; k < 3; ++k) {  // V ← V J
+          const double vkp = v[k][p], vkq = v[k][q];
+          v[k][p] = c * vkp - s * vkq;
+          v[k][q] = s * vkp + c * vkq;
+        }
+      }
+  }
+  int order[3] = {0, 1, 2};
+  std::sort(order, order + 3, [&](int i, int j) { return a[i][i] > a[j][j]; });
+  for (int i = 0; i < 3; ++i) {
+    value[i] = a[order[i]][order[i]];
+    for (int k = 0; k < 3; ++k) vector[i][k] = v[k][order[i]];
+  }
+}
+
+/// The largest eigenvalue of a symmetric tensor (closed form: in-plane, or the trigonometric
+/// solution of the characteristic cubic, Smith 1961).
+double major_principal(const double* t) {
+  if (t[yz] == 0.0 && t[zx] == 0.0)
+    return std::max(0.5 * (t[xx] + t[yy]) + std::hypot(0.5 * (t[xx] - t[yy]), t[xy]), t[zz]);
+  const double p1 = t[xy] * t[xy] + t[yz] * t[yz] + t[zx] * t[zx];
+  const double q = (t[xx] + t[yy] + t[zz]) / 3.0;
+  const double dx = t[xx] - q, dy = t[yy] - q, dz = t[zz] - q;
+  const double p = std::sqrt((dx * dx + dy * dy + dz * dz + 2.0 * p1) / 6.0);
+  if (!(p > 0.0)) return q;
+  const double bxx = dx / p, byy = dy / p, bzz = dz / p, bxy = t[xy] / p, byz = t[yz] / p, bzx = t[zx] / p;
+  const double det = bxx * (byy * bzz - byz * byz) - bxy * (bxy * bzz - byz * bzx) + bzx * (bxy * byz - byy * bzx);
+  const double phi = std::acos(std::clamp(0.5 * det, -1.0, 1.0)) / 3.0;
+  return q + 2.0 * p * std::cos(phi);
+}
+
+/// The crack opening strains e_i along the principal axes of a trial total strain with
+/// principal "uncracked stresses" a_i = λ tr ε + 2G ε_i (descending). With crack strains e_i the
+/// principal stresses are σ_i = a_i − λ Σe − 2G e_i.
+struct CrackProblem {
+  double lambda, two_g;
+  double a[3];
+
+  /// Directions first..2 on the secant σ_i = k e_i (an open crack: e_i > 0) or closed (e_i = 0,
+  /// σ_i ≤ 0), with the crack strains of the directions before `first` fixed and summing to
+  /// `fixed`. Returns Σe and writes e[first..2]. The open set is a leading run of the
+  /// descending a_i, of length m: Σe = E(m) = (fixed (k + 2G) + Σ_open a_i)/(k + 2G + mλ),
+  /// e_i = (a_i − λE)/(k + 2G). Adding a direction j changes E by (a_j − λE(m))/(k + 2G + (m+1)λ),
+  /// so the solution is the largest m whose last open direction has e > 0 (the next one then
+  /// has a_j ≤ λE): one test per m, which stays decisive when a direction sits on the boundary
+  /// a_j ≈ λE and round-off would fail both of two tests.
+  double secant(double k, int first, double fixed, double e[3]) const {
+    for (int i = first; i < 3; ++i) e[i] = 0.0;
+    if (std::isinf(k)) return fixed;
+    const int count = 3 - first;
+    for (int m = count; m > 0; --m) {
+      double sum = 0.0;
+      for (int i = first; i < first + m; ++i) sum += a[i];
+      const double E = (fixed * (k + two_g) + sum) / (k + two_g + m * lambda);
+      if (!(a[first + m - 1] - lambda * E > 0.0)) continue;
+      for (int i = first; i < first + m; ++i) e[i] = (a[i] - lambda * E) / (k + two_g);
+      return E;
+    }
+    return fixed;
+  }
+
+  /// Stress of the major direction, loading on the curve with κ' = e_0 and the others on the
+  /// secant s(κ')/κ', less s(κ'): the function whose root is the new history.
+  double loading_residual(const Curve& curve, double kappa, double e[3]) const {
+    e[0] = kappa;
+    const double E = secant(curve.secant(kappa), 1, kappa, e);
+    return a[0] - lambda * E - two_g * kappa - curve.stress(kappa);
+  }
+
+  /// The new history κ' ∈ (κ, a_0/(λ + 2G)] with σ_0 = s(κ') (the root is bracketed: the
+  /// residual is positive at κ, where the secant trial already overshot, and negative where the
+  /// major direction would carry no stress). Regula falsi, Illinois variant.
+  double load(const Curve& curve, double kappa, double e[3]) const {
+    double lo = kappa, hi = std::max(a[0] / (lambda + two_g), kappa);
+    double glo = loading_residual(curve, lo, e), ghi = loading_residual(curve, hi, e);
+    for (int grow = 0; ghi > 0.0 && grow < 60; ++grow) {
+      lo = hi;
+      glo = ghi;
+      hi *= 2.0;
+      ghi = loading_residual(curve, hi, e);
+    }
+    if (!(glo > 0.0)) return lo;
+    double x = hi;
+    int side = 0;
+    for (int it = 0; it < 200; ++it) {
+      x = (lo * ghi - hi * glo) / (ghi - glo);
+      if (!(x > lo && x < hi)) x = 0.5 * (lo + hi);
+      const double g = loading_residual(curve, x, e);
+      if (g > 0.0) {
+        lo = x;
+        glo = g;
+        if (side == 1) ghi *= 0.5;
+        side = 1;
+      } else {
+        hi = x;
+        ghi = g;
+        if (side == -1) glo *= 0.5;
+        side = -1;
+      }
+      if (std::abs(g) <= 1e-14 * std::max(curve.ft, std::abs(a[0])) || hi - lo <= 1e-15 * hi) break;
+    }
+    return x;
+  }
+};
+
+}  // namespace
+
+std::vector<std::string> RotatingCrack::state_names() const {
+  return {"max_crack_strain", "failure_factor", "nonlocal_failure_factor", "crack_normal_x",
+          "crack_normal_y",   "crack_normal_z", "crack_angle",             "energy_density",
+          "point_volume",     "band_width"};
+}
+
+std::optional<Material::FailureMapSlots> RotatingCrack::failure_map_slots() const {
+  // A failed element that a discrete crack now bounds starts again intact: no history, no map
+  // entry, no direction (an intact point has no say in the nodal crack axis).
+  return FailureMapSlots{failure_factor,
+                         crack_normal_x,
+                         energy_density,
+                         {max_crack_strain, nonlocal_failure_factor, crack_normal_x, crack_normal_y,
+                          crack_normal_z, crack_angle}};
+}
+
+double RotatingCrack::critical_crack_strain(double h) const {
+  if (p_.softening == SofteningCurve::linear) return 2.0 * p_.fracture_energy / (p_.tensile_strength * h);
+  const double scale = p_.fracture_energy / (p_.tensile_strength * h * kExponentialArea);
+  return scale * std::log(1.0 / kExponentialEnd);
+}
+
+double RotatingCrack::softening_stress(double opening, double h) const {
+  const double end = critical_crack_strain(h);
+  const Curve curve{p_.softening, p_.tensile_strength, end, end / std::log(1.0 / kExponentialEnd)};
+  return curve.stress(opening);
+}
+
+void RotatingCrack::update(MaterialPointBatch& batch) const {
+  if (batch.count > 0 && batch.characteristic_length == nullptr)
+    throw std::logic_error("rotating_crack: the element kernel gave no characteristic_length");
+  const double K = p_.moduli.bulk, G = p_.moduli.shear;
+  const double lambda = p_.moduli.lame(), two_g = 2.0 * G;
+  const double ft = p_.tensile_strength;
+  const bool local = !(p_.nonlocal_length > 0);
+  // ε = C⁻¹σ = (σ − (λ/3K) tr σ I) / 2G; Ψ_e = ½ σ : C⁻¹σ.
+  const double nu_ratio = lambda / (3.0 * K);
+  auto compliance = [&](const double* s, double* e) {
+    const double t = nu_ratio * (s[xx] + s[yy] + s[zz]);
+    e[xx] = (s[xx] - t) / two_g;
+    e[yy] = (s[yy] - t) / two_g;
+    e[zz] = (s[zz] - t) / two_g;
+    e[xy] = s[xy] / two_g;
+    e[yz] = s[yz] / two_g;
+    e[zx] = s[zx] / two_g;
+  };
+  auto elastic_energy = [&](const double* s) {
+    const double tr = s[xx] + s[yy] + s[zz];
+    const double ss = s[xx] * s[xx] + s[yy] * s[yy] + s[zz] * s[zz] +
+                      2.0 * (s[xy] * s[xy] + s[yz] * s[yz] + s[zx] * s[zx]);
+    return (ss - nu_ratio * tr * tr) / (2.0 * two_g);
+  };
+
+  for (std::size_t q = 0; q < batch.count; ++q) {
+    const double* de = batch.strain_increment + kTensorSize * q;
+    double* s = batch.stress + kTensorSize * q;
+    double* hs = batch.state + slot_count * q;
+    const double kappa = hs[max_crack_strain];
+    // The band width is the element's size when its crack opens, kept from then on: the
+    // softening curve of a crack does not change as the opening stretches the element.
+    const double h = kappa > 0.0 ? hs[band_width] : batch.characteristic_length[q];
+    const double volumetric = lambda * (de[xx] + de[yy] + de[zz]);
+
+    // Intact and staying below f_t: plain elasticity.
+    if (kappa == 0.0 || !(h > 0.0)) {
+      double trial[kTensorSize];
+      for (int k = 0; k < kTensorSize; ++k) trial[k] = s[k] + two_g * de[k] + (k < 3 ? volumetric : 0.0);
+      if (!(h > 0.0) || major_principal(trial) <= ft) {
+        std::copy_n(trial, kTensorSize, s);
+        hs[energy_density] = elastic_energy(s);
+        hs[point_volume] = batch.volume[q];
+        if (local) hs[nonlocal_failure_factor] = hs[failure_factor];
+        continue;
+      }
+    }
+
+    const double end = critical_crack_strain(h);
+    const Curve curve{p_.softening, ft, end, end / std::log(1.0 / kExponentialEnd)};
+    double old[kTensorSize];
+    std::copy_n(s, kTensorSize, old);
+
+    // Trial total strain ε = C⁻¹σ_n + ε_cr,n + Δε. Every open crack lies on its secant,
+    // σ_i = k(κ) e_i, and a closed one carries no tension, so ε_cr,n = ⟨σ_n⟩₊ / k(κ): read back
+    // from the stress the kernel has just rotated, which makes the crack strain objective.
+    double eps[kTensorSize];
+    compliance(s, eps);
+    if (kappa > 0.0) {
+      double sv[3], sd[3][3];
+      principal(s, sv, sd);
+      const double k = curve.secant(kappa);
+      for (int i = 0; i < 3; ++i) {
+        if (!(sv[i] > 0.0)) continue;
+        const double e = sv[i] / k;
+        eps[xx] += e * sd[i][0] * sd[i][0];
+        eps[yy] += e * sd[i][1] * sd[i][1];
+        eps[zz] += e * sd[i][2] * sd[i][2];
+        eps[xy] += e * sd[i][0] * sd[i][1];
+        eps[yz] += e * sd[i][1] * sd[i][2];
+        eps[zx] += e * sd[i][2] * sd[i][0];
+      }
+    }
+    for (int k = 0; k < kTensorSize; ++k) eps[k] += de[k];
+
+    // Principal axes of the total strain: the crack axes (rotating crack, coaxial).
+    double ev[3], axis[3][3];
+    principal(eps, ev, axis);
+    CrackProblem problem{lambda, two_g, {}};
+    const double trace = ev[0] + ev[1] + ev[2];
+    for (int i = 0; i < 3; ++i) problem.a[i] = lambda * trace + two_g * ev[i];
+    double e[3] = {0, 0, 0};
+    double kappa_new = kappa;
+    bool loading = kappa == 0.0;  // intact points reach this line only past f_t
+    if (!loading) {
+      problem.secant(curve.secant(kappa), 0, 0.0, e);
+      loading = e[0] > kappa;
+    }
+    if (loading) {
+      kappa_new = problem.load(curve, kappa, e);
+      problem.loading_residual(curve, kappa_new, e);  // e at the root
+    }
+    const double sum = e[0] + e[1] + e[2];
+    double sigma[3];
+    for (int i = 0; i < 3; ++i) sigma[i] = problem.a[i] - lambda * sum - two_g * e[i];
+    for (int k = 0; k < kTensorSize; ++k) s[k] = 0.0;
+    double crack_energy = 0.0;
+    for (int i = 0; i < 3; ++i) {
+      const double* n = axis[i];
+      s[xx] += sigma[i] * n[0] * n[0];
+      s[yy] += sigma[i] * n[1] * n[1];
+      s[zz] += sigma[i] * n[2] * n[2];
+      s[xy] += sigma[i] * n[0] * n[1];
+      s[yz] += sigma[i] * n[1] * n[2];
+      s[zx] += sigma[i] * n[2] * n[0];
+      crack_energy += 0.5 * sigma[i] * e[i];
+    }
+
+    // Dissipation = stress work − change of the recoverable energy (elastic + open cracks), the
+    // stress work as the kernel books it, ½(σ_n + σ_n+1) : Δε V_n+1. The energy is Ψ V with the
+    // volume of each end of the step: the volume of an opening crack band grows by the opening
+    // strain, and Ψ_n+1 V_n+1 − Ψ_n V_n+1 would lose Σ Ψ ΔV from the balance.
+    const double energy = elastic_energy(s) + crack_energy;
+    double work = 0.0;
+    for (int k = 0; k < kTensorSize; ++k) work += (k < 3 ? 0.5 : 1.0) * (old[k] + s[k]) * de[k];
+    const double v = batch.volume[q];
+    batch.fracture_work += work * v - (energy * v - hs[energy_density] * hs[point_volume]);
+    hs[energy_density] = energy;
+    hs[point_volume] = v;
+
+    hs[max_crack_strain] = kappa_new;
+    hs[band_width] = h;
+    hs[failure_factor] = kappa_new / end;
+    if (local) hs[nonlocal_failure_factor] = hs[failure_factor];
+    if (e[0] > 0.0) {
+      const double* n = axis[0];
+      int largest = 0;
+      for (int k = 1; k < 3; ++k)
+        if (std::abs(n[k]) > std::abs(n[largest])) largest = k;
+      const double sign = n[largest] < 0.0 ? -1.0 : 1.0;
+      hs[crack_normal_x] = sign * n[0];
+      hs[crack_normal_y] = sign * n[1];
+      hs[crack_normal_z] = sign * n[2];
+      // The crack line t = (−n_y, n_x): its angle to x, folded into (−π/2, π/2].
+      double angle = std::atan2(n[0], -n[1]);
+      if (angle > 0.5 * std::numbers::pi) angle -= std::numbers::pi;
+      if (angle <= -0.5 * std::numbers::pi) angle += std::numbers::pi;
+      hs[crack_angle] = angle;
+    }
+  }
+}
+
+KeyList RotatingCrack::parameters() {
+  KeyList keys = LinearElastic::parameters();
+  keys.quantity("tensile_strength", dim::pressure, "f_t: the major principal stress at which a crack opens")
+      .above(0)
+      .must_be_given();
+  keys.quantity("fracture_energy", dim::energy_per_area,
+                "G_f: energy dissipated per unit crack area (e.g. 24.7 J/m^2); the softening curve "
+                "is scaled by the element's crack-band width to dissipate it")
+      .above(0)
+      .must_be_given();
+  keys.choice("softening", {"linear", "exponential"}, "shape of the tensile softening curve")
+      .defaults_to("linear");
+  keys.quantity("nonlocal_length", dim::length,
+                "ℓ: the failure factor is averaged over the points of the part within ℓ "
+                "(bell weight); 0: local")
+      .at_least(0)
+      .defaults_to("0");
+  return keys;
+}
+
+RotatingCrackParameters RotatingCrack::from(const ParameterValues& v) {
+  RotatingCrackParameters p;
+  p.moduli = LinearElastic::moduli_from(v);
+  p.tensile_strength = v.number("tensile_strength");
+  p.fracture_energy = v.number("fracture_energy");
+  p.softening = v.texts.count("softening") && v.texts.at("softening") == "exponential"
+                    ? SofteningCurve::exponential
+                    : SofteningCurve::linear;
+  p.nonlocal_length = v.number("nonlocal_length");
+  return p;
+}
+
+namespace {
+const bool registered = MaterialRegistry::add(
+    {"rotating_crack",
+     "rotating smeared crack, tensile softening normalised by the fracture energy over the crack "
+     "band (Cope et al. 1980; Bažant & Oh 1983); failure factor and crack direction map, optional "
+     "non-local average; no erosion",
+     "docs/theory/rotating_crack.md", &RotatingCrack::parameters,
+     [](const std::string& name, const ParameterValues& v) -> std::unique_ptr<Material> {
+       return std::make_unique<RotatingCrack>(name, v.number("density"), RotatingCrack::from(v));
+     }});
+}  // namespace
+
+}  // namespace shard

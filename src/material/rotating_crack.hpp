@@ -1,0 +1,80 @@
+// Rotating smeared crack with tensile softening (Cope, Rao, Clark & Norris 1980) normalised by the
+// fracture energy over the crack band (Bažant & Oh 1983), as used for ceramics under impact by
+// Cottrell, Yu, Wei & Owen (2003):
+//   - isotropic elasticity until the major principal stress reaches f_t;
+//   - then crack opening strains e_i along the principal axes of the current total strain, with
+//     the normal stress on each open crack following the softening curve s(e) on loading and the
+//     secant back to the origin on unloading; one history variable, κ = the largest crack
+//     opening strain reached, for every direction, so the softening turns with the axes;
+//   - the area under s is G_f/h for an element of crack-band width h (energy per crack area G_f
+//     whatever the element size); a closed crack carries compression at full stiffness;
+//   - failure map: F = κ/ε_c (ε_c: the opening strain at which s reaches zero) and the crack
+//     normal, optionally averaged over a non-local length (src/fem/nonlocal_average.hpp).
+// Elements are never eroded (failure_state_index −1): discrete crack insertion reads the map.
+// Theory note: docs/theory/rotating_crack.md.
+#pragma once
+
+#include <cstdint>
+
+#include "fem/nonlocal_average.hpp"
+#include "material/material.hpp"
+
+namespace shard {
+
+enum class SofteningCurve : std::uint8_t { linear, exponential };
+
+struct RotatingCrackParameters {
+  ElasticModuli moduli;
+  double tensile_strength = 0;  ///< f_t (Pa)
+  double fracture_energy = 0;   ///< G_f (J/m²)
+  SofteningCurve softening = SofteningCurve::linear;
+  double nonlocal_length = 0;   ///< ℓ (m); 0: the failure map is local
+};
+
+class RotatingCrack final : public Material, public NonlocalAveraging {
+ public:
+  /// Slots of the per-point history variables.
+  enum Slot : int {
+    max_crack_strain = 0,     ///< κ: the largest crack opening strain reached (history)
+    failure_factor,           ///< F = κ/ε_c(h), local (≥ 1: the crack carries no more tension)
+    nonlocal_failure_factor,  ///< F̄: F averaged over nonlocal_length (= F when local)
+    crack_normal_x,           ///< unit normal of the major crack (softening direction); 0 while
+    crack_normal_y,           ///< intact. Sign: the largest component positive. Kept while the
+    crack_normal_z,           ///< crack is closed.
+    crack_angle,              ///< 2D: angle of the crack line (⟂ normal) to x, in (−π/2, π/2]
+    energy_density,           ///< Ψ: recoverable energy per unit volume, elastic + open cracks
+    point_volume,             ///< V at the last update (for the energy change Ψ_n+1 V_n+1 − Ψ_n V_n)
+    band_width,               ///< h of the crack band, fixed when the crack opens (m)
+    slot_count
+  };
+
+  RotatingCrack(std::string name, double density, RotatingCrackParameters p)
+      : Material(std::move(name), density), p_(p) {}
+
+  std::string_view model() const override { return "rotating_crack"; }
+  ElasticModuli elastic() const override { return p_.moduli; }
+  std::vector<std::string> state_names() const override;
+  int failure_state_index() const override { return -1; }
+  std::optional<FailureMapSlots> failure_map_slots() const override;
+  void update(MaterialPointBatch& batch) const override;
+  NonlocalSpec nonlocal_spec() const override {
+    return {p_.nonlocal_length, failure_factor, nonlocal_failure_factor};
+  }
+
+  const RotatingCrackParameters& parameters_in_use() const { return p_; }
+
+  /// ε_c: the crack opening strain at which the softening curve of a band of width h reaches
+  /// zero (linear: 2 G_f/(f_t h)).
+  double critical_crack_strain(double band_width) const;
+  /// s(e): the normal stress an open crack carries at opening strain e on the softening curve of
+  /// a band of width h (f_t at e = 0).
+  double softening_stress(double opening, double band_width) const;
+
+  static KeyList parameters();
+  static RotatingCrackParameters from(const ParameterValues& values);
+
+ private:
+  RotatingCrackParameters p_;
+};
+
+}  // namespace shard

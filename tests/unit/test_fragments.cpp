@@ -1,0 +1,177 @@
+// Fragments: connected components of the live elements through shared nodes
+// (src/fracture/fragments.hpp, docs/theory/crack_insertion.md "Fragments").
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include <unistd.h>
+
+#include "fracture/fragments.hpp"
+#include "support/contact_models.hpp"
+#include "support/model_runner.hpp"
+
+namespace shard {
+namespace {
+
+constexpr double kRho = 3150, kE = 400e9, kNu = 0.15;
+
+Model box_model(ElementKind kind, std::array<int, 3> cells, std::array<double, 3> size, double distortion = 0) {
+  BoxMesh box;
+  box.kind = kind;
+  box.cells = cells;
+  box.size = size;
+  box.distortion = distortion;
+  return make_box_model(kind == ElementKind::tri3 ? Formulation::plane_strain : Formulation::three_d, box);
+}
+
+testing::ElasticRun prepared(Model model) {
+  testing::ElasticRun run(std::move(model), kRho, kE, kNu);
+  lump_masses(run.model, run.materials);
+  return run;
+}
+
+TEST(Fragments, IntactPlateIsOneFragment) {
+  // Lumped tri3 masses are a third of each triangle's mass at each corner, so Σ m x is ρt∫x dA:
+  // the centroid is the plate's centre even on a distorted mesh. A spin about the centre adds
+  // no momentum: the velocity is the translation, and the kinetic energy exceeds ½MV².
+  const double L = 0.4, H = 0.3, V[2] = {3.0, -4.0}, omega = 50.0;
+  auto run = prepared(box_model(ElementKind::tri3, {4, 3, 1}, {L, H, 1}, 0.3));
+  Model& model = run.model;
+  for (std::size_t i = 0; i < model.nodes.count(); ++i) {
+    const double dx = model.nodes.x[2 * i] - L / 2, dy = model.nodes.x[2 * i + 1] - H / 2;
+    model.nodes.v[2 * i] = V[0] - omega * dy;
+    model.nodes.v[2 * i + 1] = V[1] + omega * dx;
+  }
+  const auto f = find_fragments(model);
+  ASSERT_EQ(f.list.size(), 1u);
+  const double M = kRho * L * H * model.thickness;
+  EXPECT_EQ(f.list[0].id, 0);
+  EXPECT_EQ(f.list[0].elements, 24);
+  EXPECT_NEAR(f.list[0].mass, M, 1e-12 * M);
+  EXPECT_NEAR(f.list[0].centroid[0], L / 2, 1e-12 * L);
+  EXPECT_NEAR(f.list[0].centroid[1], H / 2, 1e-12 * L);
+  EXPECT_NEAR(f.list[0].velocity[0], V[0], 1e-12 * 5.0);
+  EXPECT_NEAR(f.list[0].velocity[1], V[1], 1e-12 * 5.0);
+  EXPECT_GT(f.list[0].kinetic_energy, 0.5 * M * 25.0 * (1 + 1e-3));
+  for (auto id : f.node_fragment) EXPECT_EQ(id, 0);
+
+  // Pure translation: exactly ½MV².
+  for (std::size_t i = 0; i < model.nodes.count(); ++i) {
+    model.nodes.v[2 * i] = V[0];
+    model.nodes.v[2 * i + 1] = V[1];
+  }
+  EXPECT_NEAR(find_fragments(model).list[0].kinetic_energy, 0.5 * M * 25.0, 1e-12 * M * 25.0);
+}
+
+TEST(Fragments, SeparatePartsAreSeparateFragmentsInElementOrder) {
+  Model model = box_model(ElementKind::tri3, {3, 2, 1}, {0.3, 0.2, 1});
+  testing::append_model(model, box_model(ElementKind::tri3, {2, 2, 1}, {0.1, 0.1, 1}), {1.0, 0, 0}, "b_", 0);
+  for (std::size_t i = 0; i < model.nodes.count(); ++i) model.nodes.v[2 * i] = model.nodes.x0[2 * i] > 0.5 ? -7.0 : 2.0;
+  auto run = prepared(std::move(model));
+  const auto f = find_fragments(run.model);
+  ASSERT_EQ(f.list.size(), 2u);
+  EXPECT_EQ(f.list[0].elements, 12);  // the first part holds element 0
+  EXPECT_EQ(f.list[1].elements, 8);
+  EXPECT_NEAR(f.list[0].mass, kRho * 0.06, 1e-12 * kRho * 0.06);
+  EXPECT_NEAR(f.list[1].mass, kRho * 0.01, 1e-12 * kRho * 0.01);
+  EXPECT_NEAR(f.list[0].velocity[0], 2.0, 1e-12);
+  EXPECT_NEAR(f.list[1].velocity[0], -7.0, 1e-12);
+  EXPECT_NEAR(f.list[1].centroid[0], 1.05, 1e-12);
+  for (std::size_t e = 0; e < f.element_fragment[1].size(); ++e) EXPECT_EQ(f.element_fragment[1][e], 1);
+}
+
+TEST(Fragments, ErodedElementsDoNotConnect) {
+  // A 4 × 1 strip of unit cells (two triangles each). Eroding the second column leaves two
+  // pieces; eroding the third as well leaves the nodes at x = 2 on eroded elements only: they
+  // belong to no fragment. Lumped masses by hand, in units of ρt/6 (one triangle corner):
+  // each end piece 9, the orphan nodes 6 (the 24 corners of the strip in all).
+  auto run = prepared(box_model(ElementKind::tri3, {4, 1, 1}, {4, 1, 1}));
+  Model& model = run.model;
+  Part& part = model.parts[0];
+  auto column = [&](std::size_t e) { return static_cast<int>(testing::element_centroid(model, part, e, 0)); };
+  for (std::size_t e = 0; e < part.element_count(); ++e) part.eroded[e] = column(e) == 1;
+  auto f = find_fragments(model);
+  ASSERT_EQ(f.list.size(), 2u);
+  EXPECT_EQ(f.list[0].elements + f.list[1].elements, 6);
+
+  for (std::size_t e = 0; e < part.element_count(); ++e) part.eroded[e] = column(e) == 1 || column(e) == 2;
+  f = find_fragments(model);
+  ASSERT_EQ(f.list.size(), 2u);
+  const double corner = kRho * model.thickness / 6;
+  for (const auto& fragment : f.list) {
+    EXPECT_EQ(fragment.elements, 2);
+    EXPECT_NEAR(fragment.mass, 9 * corner, 1e-12 * corner);
+  }
+  double orphan_mass = 0;
+  for (std::size_t i = 0; i < model.nodes.count(); ++i) {
+    const bool at_two = model.nodes.x0[2 * i] == 2.0;
+    EXPECT_EQ(f.node_fragment[i] < 0, at_two) << "node " << i;
+    if (f.node_fragment[i] < 0) orphan_mass += model.nodes.mass[i];
+  }
+  EXPECT_NEAR(orphan_mass, 6 * corner, 1e-12 * corner);
+  // Ids follow the lowest (storage order) element of each fragment.
+  std::vector<std::size_t> lowest(f.list.size(), part.element_count());
+  for (std::size_t e = 0; e < part.element_count(); ++e) {
+    const auto id = f.element_fragment[0][e];
+    EXPECT_EQ(id < 0, part.eroded[e] != 0);
+    if (id >= 0) lowest[id] = std::min(lowest[id], e);
+  }
+  EXPECT_LT(lowest[0], lowest[1]);
+}
+
+TEST(Fragments, HexahedraInThreeDimensions) {
+  auto run = prepared(box_model(ElementKind::hex8, {2, 3, 2}, {0.2, 0.3, 0.1}, 0.2));
+  const auto f = find_fragments(run.model);
+  ASSERT_EQ(f.list.size(), 1u);
+  EXPECT_EQ(f.list[0].elements, 12);
+  EXPECT_NEAR(f.list[0].mass, kRho * 0.006, 1e-12 * kRho * 0.006);
+}
+
+TEST(Fragments, CsvHeaderAndRoundTrip) {
+  Fragment a;
+  a.id = 0;
+  a.elements = 12;
+  a.mass = 0.1 / 3;
+  a.centroid = {1.0 / 7, 2.0 / 9, 0.0};
+  a.velocity = {-3.25, 1e-17, 0.0};
+  a.kinetic_energy = 2.0 / 3;
+  Fragment b = a;
+  b.id = 1;
+  b.elements = 4;
+  b.centroid[2] = 5.5;
+  const auto dir = std::filesystem::temp_directory_path() / ("shard_fragments_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  write_fragments_csv(dir / "f2.csv", {a, b}, 2);
+  write_fragments_csv(dir / "f3.csv", {a, b}, 3);
+  std::ifstream in2(dir / "f2.csv"), in3(dir / "f3.csv");
+  std::string header, row;
+  std::getline(in2, header);
+  EXPECT_EQ(header, "id,elements,mass,centroid_x,centroid_y,velocity_x,velocity_y,kinetic_energy");
+  std::getline(in2, row);
+  std::vector<double> values;
+  std::stringstream fields(row);
+  for (std::string v; std::getline(fields, v, ',');) values.push_back(std::stod(v));
+  ASSERT_EQ(values.size(), 8u);
+  EXPECT_EQ(values[0], 0);
+  EXPECT_EQ(values[1], 12);
+  EXPECT_EQ(values[2], a.mass);  // full precision: the same double back
+  EXPECT_EQ(values[3], a.centroid[0]);
+  EXPECT_EQ(values[4], a.centroid[1]);
+  EXPECT_EQ(values[5], a.velocity[0]);
+  EXPECT_EQ(values[6], a.velocity[1]);
+  EXPECT_EQ(values[7], a.kinetic_energy);
+  std::getline(in2, row);
+  EXPECT_EQ(row.substr(0, 4), "1,4,");
+  EXPECT_FALSE(std::getline(in2, row));
+  std::getline(in3, header);
+  EXPECT_EQ(header,
+            "id,elements,mass,centroid_x,centroid_y,centroid_z,velocity_x,velocity_y,velocity_z,kinetic_energy");
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace shard
