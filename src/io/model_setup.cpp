@@ -166,7 +166,6 @@ void build_particle_parts(const Scenario& sc, Simulation& sim) {
     ParticleGroup group;
     group.name = in.name;
     group.part = p;
-    (void)ps;
     if (in.region.kind == RegionInput::Kind::side) {
       for (int a : boundary_layer(ps, in.region.axis, in.region.at_max, in.region.depth)) group.automata.push_back(a);
     } else {

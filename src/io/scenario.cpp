@@ -19,6 +19,7 @@ namespace shard {
 
 using scenario_detail::line_of;
 using scenario_detail::Section;
+using scenario_detail::velocity_component_keys;
 
 // ---------------------------------------------------------------------------------------------
 // The schema: every key, declared once.
@@ -199,7 +200,9 @@ KeyList boundary_condition_keys() {
   return k;
 }
 
-KeyList velocity_component_keys() {
+}  // namespace
+
+KeyList scenario_detail::velocity_component_keys() {
   KeyList k;
   for (const char* c : {"x", "y", "z"}) {
     KeySpec& s = k.add(c, ValueKind::table, std::string("velocity along ") + c);
@@ -207,6 +210,8 @@ KeyList velocity_component_keys() {
   }
   return k;
 }
+
+namespace {
 
 KeyList load_keys() {
   KeyList k;

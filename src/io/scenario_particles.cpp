@@ -124,15 +124,6 @@ KeyList particle_condition_keys() {
   return k;
 }
 
-KeyList velocity_keys() {
-  KeyList k;
-  for (const char* c : {"x", "y", "z"}) {
-    KeySpec& s = k.add(c, ValueKind::table, std::string("velocity along ") + c);
-    s.dimension = dim::velocity;
-  }
-  return k;
-}
-
 [[noreturn]] void no_such(Section& s, const std::string& key, const std::string& what,
                           const std::string& name, const std::vector<std::string>& names) {
   std::string reason = "no " + what + " named '" + name + "'";
@@ -423,7 +414,7 @@ void read_particle_sections(Section& top, Scenario& sc) {
 
   // conditions on regions of automata
   static const KeyList c_keys = particle_condition_keys();
-  static const KeyList v_keys = velocity_keys();
+  static const KeyList v_keys = velocity_component_keys();
   const YAML::Node conditions = top.value_or_null("particle_boundary_conditions");
   if (conditions.IsDefined() && !conditions.IsNull() && !conditions.IsSequence())
     top.fail("particle_boundary_conditions", "expected a list (entries starting with '- ')");
@@ -493,7 +484,7 @@ std::vector<SchemaSection> particle_schema() {
           {"particle_boundary_conditions[]", "fixed or prescribed motion of a region of automata, or a monitor",
            particle_condition_keys()},
           {"particle_boundary_conditions[].region", "a box, a ball or a side layer", region_keys()},
-          {"particle_boundary_conditions[].velocity", "prescribed velocity components", velocity_keys()}};
+          {"particle_boundary_conditions[].velocity", "prescribed velocity components", velocity_component_keys()}};
 }
 
 }  // namespace shard::scenario_detail

@@ -18,6 +18,9 @@
 
 namespace shard::scenario_detail {
 
+/// The keys of a prescribed velocity: x, y, z, each a velocity or a time table.
+KeyList velocity_component_keys();
+
 inline int line_of(const YAML::Node& node) { return node.IsDefined() ? node.Mark().line + 1 : 0; }
 
 /// One map section of the scenario under validation.

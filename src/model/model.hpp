@@ -138,6 +138,10 @@ struct ParticlePart {
   double time_step_safety = 0.25;  ///< multiplies mca_stable_time_step()
   int contact_update_interval = 0;  ///< steps between searches for new contacts (0: never)
   double contact_skin = 0;          ///< unlinked pairs further apart than this are dropped
+  /// The velocity-Verlet bound of the pairs (mca_stable_time_step): it depends only on the
+  /// pairs' areas, lengths and materials, so it is computed again only when pairs are added or
+  /// dropped (0: to be computed). Not checkpointed: recomputed from the same pairs.
+  double stable_time_step = 0;
   std::vector<double> x0;      ///< positions at t = 0 (for displacements)
   std::vector<double> x_old;   ///< positions at t_n−1 (dim per automaton)
   std::vector<double> dtheta;  ///< rotation increments over [t_n−1, t_n] (rot_dim per automaton)

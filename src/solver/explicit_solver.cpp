@@ -16,6 +16,21 @@ namespace {
 /// Nodes per chunk of the nodal update. Sums are formed per chunk and then added in chunk order,
 /// so the energies are the same, bit for bit, for any number of threads.
 constexpr std::size_t kNodeChunk = 2048;
+
+/// The degree of freedom a particle constraint holds: its velocity, force and inertia
+/// (translation components 0..dim−1, rotation components after them).
+struct ConstrainedDof {
+  double& velocity;
+  double& force;
+  double inertia;
+};
+ConstrainedDof constrained_dof(ParticleSystem& ps, const ParticleConstraint& c) {
+  const bool rot = c.component >= ps.dim;
+  const std::size_t slot = static_cast<std::size_t>(rot ? ps.rot_dim() : ps.dim) * c.automaton +
+                           (rot ? c.component - ps.dim : c.component);
+  return {(rot ? ps.omega : ps.v)[slot], (rot ? ps.torque : ps.force)[slot],
+          rot ? ps.inertia[c.automaton] : ps.mass[c.automaton]};
+}
 }  // namespace
 
 void lump_masses(Model& model, const std::vector<std::unique_ptr<Material>>& materials) {
@@ -89,12 +104,8 @@ void ExplicitSolver::initialise() {
     }
     for (int k = 0; k < dim; ++k) kinetic += 0.5 * m * model_.nodes.v[dim * i + k] * model_.nodes.v[dim * i + k];
   }
-  for (const auto& c : loads_.particle_constraints) {
-    ParticleSystem& ps = model_.particle_parts[c.part].system;
-    const bool rot = c.component >= ps.dim;
-    (rot ? ps.omega : ps.v)[(rot ? ps.rot_dim() : ps.dim) * c.automaton + (rot ? c.component - ps.dim : c.component)] =
-        loads_.tables[c.table].at(0.0);
-  }
+  for (const auto& c : loads_.particle_constraints)
+    constrained_dof(model_.particle_parts[c.part].system, c).velocity = loads_.tables[c.table].at(0.0);
   kinetic += particle_kinetic_energy();
   state_ = SolverState{};
   state_.energy.initial = kinetic;
@@ -256,13 +267,10 @@ void ExplicitSolver::advance() {
   // summed per group for the history (load-displacement curves of virtual tests).
   particle_reactions_.assign(6 * loads_.particle_groups.size(), 0.0);
   for (const auto& c : loads_.particle_constraints) {
-    ParticleSystem& ps = model_.particle_parts[c.part].system;
-    const bool rot = c.component >= ps.dim;
-    const std::size_t slot =
-        static_cast<std::size_t>(rot ? ps.rot_dim() : ps.dim) * c.automaton + (rot ? c.component - ps.dim : c.component);
-    double& f = (rot ? ps.torque : ps.force)[slot];
-    double& v = (rot ? ps.omega : ps.v)[slot];
-    const double m = rot ? ps.inertia[c.automaton] : ps.mass[c.automaton];
+    const ConstrainedDof dof = constrained_dof(model_.particle_parts[c.part].system, c);
+    double& f = dof.force;
+    double& v = dof.velocity;
+    const double m = dof.inertia;
     const double vp = loads_.tables[c.table].at(t_half);
     const double f_needed = m * (vp / d2 - d1 * v) / dt_n;
     const double reaction = f_needed - f;
@@ -359,7 +367,10 @@ void ExplicitSolver::advance() {
     // New contacts between automata that were not neighbours (fragments meeting), found at t_n
     // before the drift, as the stand-alone MCA stepper does.
     if (pp.contact_update_interval > 0 && state_.step > 0 && state_.step % pp.contact_update_interval == 0)
+    {
       pp.system.update_contacts(pp.contact_skin);
+      pp.stable_time_step = 0;  // the pairs changed: the bound is computed again
+    }
     const ParticleAdvanceSums ps = advance_particles(pp, dt_n, dt_next, alpha, g, back, ahead);
     if (ps.bad_automaton >= 0) {
       std::ostringstream out;

@@ -32,8 +32,9 @@ MCADissipation particle_forces(ParticlePart& part, std::int64_t step, double dt_
   return diss;
 }
 
-double particle_time_step_limit(const ParticlePart& part) {
-  return part.time_step_safety * mca_stable_time_step(part.system);
+double particle_time_step_limit(ParticlePart& part) {
+  if (part.stable_time_step == 0) part.stable_time_step = mca_stable_time_step(part.system);
+  return part.time_step_safety * part.stable_time_step;
 }
 
 ParticleAdvanceSums advance_particles(ParticlePart& part, double dt_n, double dt_next, double alpha,

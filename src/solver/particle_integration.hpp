@@ -17,8 +17,9 @@ namespace shard {
 MCADissipation particle_forces(ParticlePart& part, std::int64_t step, double dt_half,
                                const std::array<double, 3>& gravity, MCAScratch& scratch);
 
-/// The part's limit on the step: time_step_safety × the velocity-Verlet bound.
-double particle_time_step_limit(const ParticlePart& part);
+/// The part's limit on the step: time_step_safety × the velocity-Verlet bound (cached in the
+/// part until its pairs change).
+double particle_time_step_limit(ParticlePart& part);
 
 /// Sums of one advance of a particle part, formed in fixed-size blocks (thread-count independent).
 struct ParticleAdvanceSums {
