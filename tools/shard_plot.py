@@ -1,14 +1,18 @@
 #!/usr/bin/python3
-"""Quick-look plots of shard output: the energy history and one field of one frame.
+"""Quick-look plots of shard output: the energy history, one field of one frame, and for particle
+(MCA) parts the figures of a virtual test and the broken-bond network.
 
 Runs with Debian's /usr/bin/python3 and its python3-matplotlib, python3-numpy and python3-meshio;
 draws with matplotlib's Agg backend, so no display is needed.
 """
 
 import argparse
+import ast
 import csv
+import json
 import math
 import os
+import re
 import sys
 import xml.etree.ElementTree as ET
 
@@ -18,7 +22,9 @@ matplotlib.use("Agg")  # before pyplot: plots are files, there may be no display
 
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
-from matplotlib.collections import PolyCollection  # noqa: E402
+from matplotlib.collections import EllipseCollection, LineCollection, PolyCollection  # noqa: E402
+from matplotlib.lines import Line2D  # noqa: E402
+from matplotlib.patches import Patch  # noqa: E402
 from matplotlib.tri import Triangulation  # noqa: E402
 from mpl_toolkits.axes_grid1 import make_axes_locatable  # noqa: E402
 
@@ -618,13 +624,554 @@ def plot_profile(args):
     save(figure, args.output, args.dpi)
 
 
+# ---- virtual tests of particle samples (MCA) -----------------------------------------------------
+
+LENGTH_UNITS = {"m": 1.0, "cm": 1e-2, "mm": 1e-3, "um": 1e-6, "µm": 1e-6, "nm": 1e-9}
+QUANTITY = re.compile(r"((?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*(µm|um|mm|cm|nm|m)?(?:\^(\d))?")
+
+
+def length_expression(text, option):
+    """An area or length such as '60um*1um', '24 um * 1 um' or '6e-11' (SI) as a float in SI.
+
+    Numbers may carry a length unit (m, cm, mm, um or µm, nm), optionally with a power
+    ('um^2'); they combine with + - * / and parentheses."""
+    def to_si(match):
+        value = float(match.group(1))
+        unit = match.group(2)
+        if unit:
+            value *= LENGTH_UNITS[unit] ** int(match.group(3) or 1)
+        return repr(value)
+
+    expression = QUANTITY.sub(to_si, text)
+    try:
+        tree = ast.parse(expression, mode="eval")
+    except SyntaxError as error:
+        raise PlotError(f"{option} '{text}': not an expression of lengths such as "
+                        "60um*1um") from error
+
+    def evaluate(node):
+        if isinstance(node, ast.Expression):
+            return evaluate(node.body)
+        if isinstance(node, ast.Constant) and isinstance(node.value, (int, float)):
+            return float(node.value)
+        if isinstance(node, ast.UnaryOp) and isinstance(node.op, (ast.UAdd, ast.USub)):
+            value = evaluate(node.operand)
+            return value if isinstance(node.op, ast.UAdd) else -value
+        arithmetic = (ast.Add, ast.Sub, ast.Mult, ast.Div)
+        if isinstance(node, ast.BinOp) and isinstance(node.op, arithmetic):
+            left, right = evaluate(node.left), evaluate(node.right)
+            if isinstance(node.op, ast.Add):
+                return left + right
+            if isinstance(node.op, ast.Sub):
+                return left - right
+            if isinstance(node.op, ast.Mult):
+                return left * right
+            return left / right
+        raise PlotError(f"{option} '{text}': only numbers with length units, + - * / and "
+                        "parentheses are allowed")
+
+    try:
+        value = evaluate(tree)
+    except ZeroDivisionError as error:
+        raise PlotError(f"{option} '{text}' divides by zero") from error
+    if not value > 0:
+        raise PlotError(f"{option} '{text}' must be positive (got {value:g})")
+    return value
+
+
+def read_summary(folder):
+    path = os.path.join(folder, "summary.json")
+    try:
+        with open(path) as stream:
+            return json.load(stream)
+    except OSError as error:
+        raise PlotError(f"cannot read {path}: {error.strerror}") from error
+    except json.JSONDecodeError as error:
+        raise PlotError(f"{path} is not valid JSON: {error}") from error
+
+
+def group_column(columns, kind, group, axis, path):
+    name = f"{kind}_{group}_{axis}"
+    if name not in columns:
+        groups = sorted({c.split("_", 1)[1].rsplit("_", 1)[0] for c in columns
+                         if c.startswith("reaction_")})
+        raise PlotError(f"no column {name} in {path}; the particle groups are: "
+                        f"{', '.join(groups) or 'none'}")
+    return columns[name]
+
+
+def group_centroid(summary, group, folder):
+    groups = summary.get("particle_groups", {})
+    if group not in groups:
+        raise PlotError(f"{folder}/summary.json has no particle group '{group}' "
+                        f"(groups: {', '.join(groups) or 'none'})")
+    return np.asarray(groups[group]["initial_centroid"], dtype=float)
+
+
+def smooth(values, window):
+    """Centred moving average over `window` samples (1 or less: unchanged); the ends use the
+    samples there are."""
+    if window <= 1:
+        return values
+    kernel = np.ones(window)
+    total = np.convolve(values, kernel, mode="same")
+    count = np.convolve(np.ones_like(values), kernel, mode="same")
+    return total / count
+
+
+def failure_point(x, y, start, level):
+    """x where y, after index `start`, falls below `level` for good (it stays below up to the
+    end of the run), linearly interpolated, and the index after it; (None, None) if it does not.
+    Taking the last fall rather than the first keeps the dips of an oscillating load (a dynamic
+    test rings when a crack runs) from counting as failure."""
+    above = np.flatnonzero(y[start:] >= level)
+    last = start + above[-1] if above.size else start
+    if last >= len(y) - 1:
+        return None, None
+    k = last + 1
+    x0, x1, y0, y1 = x[k - 1], x[k], y[k - 1], y[k]
+    t = (y0 - level) / (y0 - y1) if y0 != y1 else 1.0
+    return x0 + t * (x1 - x0), k
+
+
+def linear_part(strain, stress, peak_index, low, high):
+    """Indices before the peak whose stress lies between low and high times the peak: the
+    initial linear part, from its first entry into the band to its first exit."""
+    peak = stress[peak_index]
+    band = (stress[:peak_index + 1] >= low * peak) & (stress[:peak_index + 1] <= high * peak)
+    inside = np.flatnonzero(band)
+    if inside.size < 2:
+        return None
+    first = inside[0]
+    last = first
+    while last + 1 <= peak_index and band[last + 1]:
+        last += 1
+    return np.arange(first, last + 1) if last > first else None
+
+
+def virtual_test(args):
+    folder = args.folder
+    if not os.path.isdir(folder):
+        raise PlotError(f"no such run folder: {folder}")
+    path = find_history(folder)
+    columns = read_history(path)
+    summary = read_summary(folder)
+    axis_name = args.axis
+    axis = "xyz".index(axis_name)
+
+    def optional(text, option):
+        return length_expression(text, option) if text else None
+
+    area = optional(args.area, "--area")
+    args.depth_value = optional(args.depth, "--depth")
+    args.thickness_value = optional(args.thickness, "--thickness")
+    ligament = optional(args.ligament_area, "--ligament-area") or area
+    if not args.bending and area is None:
+        raise PlotError("--area is needed (stress = load / area); only --bending can go without")
+
+    time = columns["time"]
+    load_true = group_column(columns, "reaction", args.load, axis_name, path)
+    u_load = group_column(columns, "displacement", args.load, axis_name, path)
+    u_support = np.mean([group_column(columns, "displacement", s, axis_name, path)
+                         for s in args.support], axis=0)
+    c_load = group_centroid(summary, args.load, folder)
+    c_support = np.mean([group_centroid(summary, s, folder) for s in args.support], axis=0)
+    gauge_signed = c_load[axis] - c_support[axis]
+    if abs(gauge_signed) <= 0:
+        raise PlotError(f"groups '{args.load}' and {args.support} start at the same {axis_name}: "
+                        "no gauge length between them")
+    displacement_true = u_load - u_support
+    strain_true = displacement_true / gauge_signed
+
+    # Load and displacement taken positive in the direction of the test (compression, tension or
+    # the mandrel's push), fixed by the sign of the load at its largest magnitude.
+    load_smooth = smooth(load_true, args.smooth)
+    peak_true = int(np.argmax(np.abs(load_smooth)))
+    sign = 1.0 if load_smooth[peak_true] >= 0 else -1.0
+    load = sign * load_smooth
+    disp_sign = 1.0 if displacement_true[peak_true] * sign >= 0 else -1.0
+    displacement = disp_sign * sign * displacement_true
+    strain = displacement / abs(gauge_signed)
+    peak = int(np.argmax(load))
+    peak_load = float(load[peak])
+    if not peak_load > 0:
+        raise PlotError(f"the load on '{args.load}' stays zero: nothing to evaluate")
+    ultimate_disp, ultimate_index = failure_point(displacement, load, peak,
+                                                  args.failure * peak_load)
+    # The first fall below half the peak: where the main crack has run (the load may hang on
+    # at a lower level afterwards, on bridging ligaments or friction).
+    below_half = np.flatnonzero(load[peak:] < 0.5 * peak_load)
+    half_disp = None
+    if below_half.size:
+        k = peak + below_half[0]
+        t = (load[k - 1] - 0.5 * peak_load) / (load[k - 1] - load[k])
+        half_disp = float(displacement[k - 1] + t * (displacement[k] - displacement[k - 1]))
+    end = ultimate_index if ultimate_index is not None else len(load) - 1
+    work = float(np.trapz(load[:end + 1], displacement[:end + 1]))
+    if ultimate_index is not None and end > 0:  # the last piece only up to the crossing itself
+        work -= 0.5 * (load[end] + load[end - 1]) * (displacement[end] - ultimate_disp)
+
+    results = {
+        "run": os.path.abspath(folder),
+        "load_group": args.load,
+        "support_groups": list(args.support),
+        "axis": axis_name,
+        "gauge_length_m": abs(gauge_signed),
+        "peak_load_N": peak_load,
+        "displacement_at_peak_m": float(displacement[peak]),
+        "ultimate_displacement_m": None if ultimate_disp is None else float(ultimate_disp),
+        "failure_level": args.failure,
+        "half_load_displacement_m": half_disp,
+        "work_to_failure_J": work,
+        "failed": ultimate_index is not None,
+        "end_time_s": float(time[-1]),
+    }
+    fit = linear_part(displacement, load, peak, args.fit_range[0], args.fit_range[1])
+    if fit is not None:
+        stiffness = float(np.polyfit(displacement[fit], load[fit], 1)[0])
+        results["stiffness_N_per_m"] = stiffness
+    lines = [f"run {folder}: load on '{args.load}' against its displacement relative to "
+             f"{', '.join(args.support)} along {axis_name}"]
+    if area is not None:
+        stress = load / area
+        results["area_m2"] = area
+        results["strength_Pa"] = peak_load / area
+        lines.append(f"  strength (peak load / area)    {peak_load / area / 1e6:10.4g} MPa"
+                     f"   (peak load {peak_load:.4g} N)")
+    else:
+        lines.append(f"  peak load                      {peak_load:10.4g} N")
+
+    if args.bending:
+        others = [k for k in range(len(c_load)) if k != axis]
+        if len(args.support) != 2:
+            raise PlotError("--bending needs two --support groups (the span is between them)")
+        c_a, c_b = (group_centroid(summary, s, folder) for s in args.support)
+        span = float(np.linalg.norm((c_b - c_a)[others]))
+        results["span_m"] = span
+        results["test"] = "three_point_bending"
+        deflection_peak = float(displacement[peak])
+        results["deflection_at_peak_m"] = deflection_peak
+        results["deflection_at_failure_m"] = results["ultimate_displacement_m"]
+        angle = lambda d: math.degrees(2.0 * math.atan(2.0 * d / span))  # noqa: E731
+        results["bending_angle_at_peak_deg"] = angle(deflection_peak)
+        lines.append(f"  span between supports          {span * 1e6:10.4g} µm")
+        lines.append(f"  peak force                     {peak_load:10.4g} N"
+                     + (f"  ({peak_load / args.thickness_value:.4g} N/m of thickness)"
+                        if args.thickness_value else ""))
+        lines.append(f"  deflection at peak             {deflection_peak * 1e6:10.4g} µm"
+                     f"   (bending angle {angle(deflection_peak):.3g}°)")
+        if half_disp is not None:
+            results["deflection_at_half_load_m"] = half_disp
+            results["bending_angle_at_half_load_deg"] = angle(half_disp)
+            lines.append(f"  deflection at half load        {half_disp * 1e6:10.4g} µm"
+                         f"   (bending angle {angle(half_disp):.3g}°; first fall below 50 % of "
+                         "peak)")
+        if ultimate_disp is not None:
+            results["bending_angle_at_failure_deg"] = angle(ultimate_disp)
+            lines.append(f"  deflection at failure          {ultimate_disp * 1e6:10.4g} µm"
+                         f"   (bending angle {angle(ultimate_disp):.3g}°; load below "
+                         f"{args.failure:.0%} of peak)")
+        else:
+            lines.append(f"  deflection at failure          not reached (load stays above "
+                         f"{args.failure:.0%} of peak up to {displacement[-1] * 1e6:.4g} µm)")
+        if args.depth_value and args.thickness_value:
+            h, b = args.depth_value, args.thickness_value
+            flexural = 3.0 * peak_load * span / (2.0 * b * h * h)
+            results["flexural_strength_Pa"] = flexural
+            lines.append(f"  flexural strength 3FL/(2bh²)   {flexural / 1e6:10.4g} MPa")
+            if "stiffness_N_per_m" in results:
+                modulus = results["stiffness_N_per_m"] * span ** 3 / (4.0 * b * h ** 3)
+                results["flexural_modulus_Pa"] = modulus
+                lines.append(f"  flexural modulus FL³/(4bh³δ)   {modulus / 1e9:10.4g} GPa")
+            if ultimate_disp is not None:
+                results["flexural_strain_at_failure"] = 6.0 * h * ultimate_disp / span ** 2
+                strain_at_failure = results["flexural_strain_at_failure"]
+                lines.append(f"  outer-fibre strain at failure  {strain_at_failure:10.4g}"
+                             "   (6hδ/L²)")
+    else:
+        results["test"] = "uniaxial"
+        results["strain_at_peak"] = float(strain[peak])
+        lines.append(f"  strain at peak                 {strain[peak]:10.4g}"
+                     f"   (gauge length {abs(gauge_signed) * 1e6:.4g} µm)")
+        if ultimate_disp is not None:
+            results["ultimate_strain"] = ultimate_disp / abs(gauge_signed)
+            lines.append(f"  ultimate strain                {results['ultimate_strain']:10.4g}"
+                         f"   (load below {args.failure:.0%} of peak)")
+        else:
+            results["ultimate_strain"] = None
+            lines.append(f"  ultimate strain                not reached (load stays above "
+                         f"{args.failure:.0%} of peak up to strain {strain[-1]:.4g})")
+        if fit is not None:
+            modulus = float(np.polyfit(strain[fit], stress[fit], 1)[0])
+            results["young_modulus_Pa"] = modulus
+            lines.append(f"  Young's modulus (fit {args.fit_range[0]:.0%}–{args.fit_range[1]:.0%}"
+                         f" of peak) {modulus / 1e9:8.4g} GPa   ({fit.size} samples)")
+        else:
+            lines.append("  Young's modulus                too few samples in the fit band "
+                         "(--fit-range)")
+        if args.lateral:
+            a, b = args.lateral
+            lateral_axes = [k for k in range(len(c_load)) if k != axis]
+            c_a, c_b = group_centroid(summary, a, folder), group_centroid(summary, b, folder)
+            k = max(lateral_axes, key=lambda k: abs(c_b[k] - c_a[k]))
+            width = c_b[k] - c_a[k]
+            u_a = group_column(columns, "displacement", a, "xyz"[k], path)
+            u_b = group_column(columns, "displacement", b, "xyz"[k], path)
+            lateral_strain = (u_b - u_a) / width
+            if fit is not None:
+                nu = -float(np.polyfit(strain_true[fit], lateral_strain[fit], 1)[0])
+                results["poisson_ratio"] = nu
+                lines.append(f"  Poisson's ratio                {nu:10.4g}   ('{a}' to '{b}' along "
+                             f"{'xyz'[k]}, {abs(width) * 1e6:.4g} µm apart)")
+    if ligament is not None:
+        energy = work / ligament
+        results["ligament_area_m2"] = ligament
+        results["fracture_energy_J_per_m2"] = energy
+        lines.append(f"  work to failure                {work:10.4g} J"
+                     f"   per ligament area {energy:.4g} J/m²"
+                     + ("" if ultimate_index is not None else "  (to the end of the run)"))
+    else:
+        lines.append(f"  work to failure                {work:10.4g} J"
+                     + ("" if ultimate_index is not None else "  (to the end of the run)"))
+    print("\n".join(lines))
+
+    figure, axes = plt.subplots(figsize=(7, 4.5))
+    axes.plot(displacement * 1e6, load, color="tab:blue", label="load")
+    axes.plot(displacement[peak] * 1e6, peak_load, "o", color="tab:red",
+              label=f"peak {peak_load:.3g} N")
+    if fit is not None:
+        slope = results["stiffness_N_per_m"]
+        intercept = float(np.polyfit(displacement[fit], load[fit], 1)[1])
+        span_u = np.array([displacement[fit[0]], displacement[peak]])
+        axes.plot(span_u * 1e6, slope * span_u + intercept, "--", color="0.4",
+                  label="initial linear part")
+    if ultimate_disp is not None:
+        axes.axvline(ultimate_disp * 1e6, color="tab:red", linestyle=":",
+                     label=f"failure at {ultimate_disp * 1e6:.3g} µm")
+    axes.set_xlabel(("mandrel deflection" if args.bending else "displacement") + " [µm]")
+    axes.set_ylabel("load [N]")
+    axes.grid(True, alpha=0.3)
+    axes.legend(loc="best", fontsize="small")
+    if area is not None:
+        right = axes.secondary_yaxis("right", functions=(lambda f: f / area / 1e6,
+                                                         lambda s: s * area * 1e6))
+        right.set_ylabel("load / area [MPa]")
+    if not args.bending:
+        top = axes.secondary_xaxis("top", functions=(lambda u: u * 1e-6 / abs(gauge_signed),
+                                                     lambda e: e * abs(gauge_signed) * 1e6))
+        top.set_xlabel("strain")
+    axes.set_title(args.title or run_name(path))
+    output = args.output or os.path.join(folder, "virtual_test.png")
+    save(figure, output, args.dpi)
+    json_path = args.json or os.path.join(folder, "virtual_test.json")
+    try:
+        with open(json_path, "w") as stream:
+            json.dump(results, stream, indent=2)
+            stream.write("\n")
+    except OSError as error:
+        raise PlotError(f"cannot write {json_path}: {error.strerror}") from error
+    print(f"wrote {json_path}")
+
+
+# ---- automata and their broken bonds (MCA frames) ------------------------------------------------
+
+BOND_LINKED, BOND_BREAKING, BOND_UNLINKED = 0, 1, 2
+
+
+def particle_frame(path, part, frame):
+    """The particle frame to draw: a .vtu as given, or from a run folder (or a particles_*.pvd)
+    the chosen frame of the part's collection."""
+    if os.path.isfile(path) and path.endswith(".vtu"):
+        return path
+    if os.path.isdir(path):
+        collections = sorted(f for f in os.listdir(path)
+                             if f.startswith("particles_") and f.endswith(".pvd"))
+        if part:
+            wanted = f"particles_{part}.pvd"
+            if wanted not in collections:
+                raise PlotError(f"no {wanted} in {path} (has: {', '.join(collections) or 'none'})")
+            collections = [wanted]
+        if not collections:
+            raise PlotError(f"no particles_*.pvd in {path}")
+        if len(collections) > 1:
+            raise PlotError(f"{path} has several particle parts ({', '.join(collections)}): "
+                            "choose one with --part")
+        path = os.path.join(path, collections[0])
+    if not (os.path.isfile(path) and path.endswith(".pvd")):
+        raise PlotError("expected a particles_*.vtu frame, a particles_*.pvd or a run folder: "
+                        + path)
+    frames = read_pvd(path)
+    choice = frame or "last"
+    try:
+        index = len(frames) - 1 if choice == "last" else int(choice)
+    except ValueError as error:
+        raise PlotError(f"--frame must be a number or 'last', not '{choice}'") from error
+    if index < 0:
+        index += len(frames)
+    if not 0 <= index < len(frames):
+        raise PlotError(f"--frame {choice}: {path} has frames 0 to {len(frames) - 1}")
+    return frames[index][1]
+
+
+def automaton_material_names(vtu):
+    """Names of the automaton materials by index, from the run's resolved.yaml: the materials
+    with model 'automaton' in file order, then the graded interphase materials the sample
+    builder appends (<matrix>_interphase_<level>). Empty if it cannot tell."""
+    folder = os.path.dirname(os.path.abspath(vtu))
+    path = os.path.join(folder, "resolved.yaml")
+    try:
+        import yaml
+        with open(path) as stream:
+            resolved = yaml.safe_load(stream) or {}
+    except (ImportError, OSError, Exception):  # a plot without names is still a plot
+        return []
+    names = [name for name, body in (resolved.get("materials") or {}).items()
+             if isinstance(body, dict) and body.get("model") == "automaton"]
+    part = re.match(r"particles_(.+)_\d+\.vtu$", os.path.basename(vtu))
+    body = (resolved.get("particles") or {}).get(part.group(1) if part else "", {}) or {}
+    if isinstance(body.get("interphase"), dict):
+        levels = int(body["interphase"].get("levels", 3))
+        names += [f"{body.get('material')}_interphase_{level}" for level in range(levels)]
+    return names
+
+
+def read_particle_frame(vtu):
+    """(points n×2 or n×3, displacement, diameter, material index, bonds m×2, state, k_link)."""
+    mesh = read_mesh(vtu)
+    for name in ("diameter", "material", "displacement"):
+        if name not in mesh.point_data:
+            raise PlotError(f"{vtu} is not a particle frame (no point field '{name}'); "
+                            f"available {describe_fields(mesh)}")
+    bonds, state, k_link = [], [], []
+    for b, block in enumerate(mesh.cells):
+        if block.type == "line":
+            bonds.append(block.data)
+            state.append(np.asarray(mesh.cell_data["bond_state"][b]))
+            k_link.append(np.asarray(mesh.cell_data["k_link"][b]))
+    bonds = np.vstack(bonds) if bonds else np.zeros((0, 2), dtype=int)
+    state = np.concatenate(state).astype(int) if state else np.zeros(0, dtype=int)
+    k_link = np.concatenate(k_link) if k_link else np.zeros(0)
+    return (np.asarray(mesh.points, dtype=float), np.asarray(mesh.point_data["displacement"]),
+            np.asarray(mesh.point_data["diameter"], dtype=float),
+            np.asarray(mesh.point_data["material"]).astype(int), bonds, state, k_link,
+            frame_time(mesh))
+
+
+def bond_statistics(material, names, bonds, state):
+    """Bonds and broken bonds (breaking or unlinked) per pair of material names."""
+    def name(m):
+        return names[m] if 0 <= m < len(names) else f"material_{m}"
+
+    table = {}
+    for (i, j), s in zip(bonds, state):
+        a, b = sorted((name(material[i]), name(material[j])))
+        entry = table.setdefault(f"{a}-{b}", {"bonds": 0, "broken": 0, "breaking": 0})
+        entry["bonds"] += 1
+        entry["broken"] += int(s == BOND_UNLINKED)
+        entry["breaking"] += int(s == BOND_BREAKING)
+    total_broken = sum(e["broken"] + e["breaking"] for e in table.values())
+    for entry in table.values():
+        failed = entry["broken"] + entry["breaking"]
+        entry["share_of_broken"] = failed / total_broken if total_broken else 0.0
+        entry["fraction_broken"] = failed / entry["bonds"] if entry["bonds"] else 0.0
+    return dict(sorted(table.items())), total_broken
+
+
+def plot_particles(args):
+    vtu = particle_frame(args.input, args.part, args.frame)
+    points, displacement, diameter, material, bonds, state, _, time = read_particle_frame(vtu)
+    names = automaton_material_names(vtu)
+    xy = points[:, :2] - (displacement[:, :2] if args.undeformed else 0.0)
+    scale = 1e6  # draw in µm
+
+    if args.window:
+        x0, x1, y0, y1 = (value * 1e-6 for value in args.window)
+        if not (x1 > x0 and y1 > y0):
+            raise PlotError("--window needs XMIN < XMAX and YMIN < YMAX (µm)")
+        margin = diameter.max()
+        shown = ((xy[:, 0] >= x0 - margin) & (xy[:, 0] <= x1 + margin)
+                 & (xy[:, 1] >= y0 - margin) & (xy[:, 1] <= y1 + margin))
+        keep = shown[bonds[:, 0]] | shown[bonds[:, 1]] if len(bonds) else np.zeros(0, dtype=bool)
+        statistics = (material, bonds, state)  # the table is of the whole frame
+        bonds, state = bonds[keep], state[keep]
+    else:
+        statistics = (material, bonds, state)
+    figure_width = args.width
+    extent = np.ptp(xy, axis=0) + diameter.max()
+    if args.window:
+        extent = np.array([x1 - x0, y1 - y0]) + diameter.max()
+    height = args.height or float(np.clip(figure_width * extent[1] / max(extent[0], 1e-300) + 1.2,
+                                          2.5, 12.0))
+    figure, axes = plt.subplots(figsize=(figure_width, height))
+    palette = ["#b0b0b0", "#3a6ea5", "#e0a030", "#6aa84f", "#8e7cc3", "#c27ba0", "#76a5af",
+               "#a61c00", "#f6b26b", "#999999"]
+    present = sorted(set(material.tolist()))
+    colours = {m: palette[k % len(palette)] for k, m in enumerate(present)}
+    if names:  # the same colour for a material however many others the frame holds
+        colours = {m: palette[m % len(palette)] for m in present}
+    discs = EllipseCollection(diameter * scale, diameter * scale, np.zeros(len(diameter)),
+                              units="xy", offsets=xy * scale, offset_transform=axes.transData,
+                              facecolors=[colours[m] for m in material], edgecolors="none")
+    axes.add_collection(discs)
+    handles = [Patch(color=colours[m], label=names[m] if m < len(names) else f"material {m}")
+               for m in present]
+    if not args.no_bonds:
+        for wanted, colour, label in ((BOND_UNLINKED, "red", "broken bond"),
+                                      (BOND_BREAKING, "orange", "breaking bond")):
+            chosen = bonds[state == wanted]
+            if chosen.size:
+                segments = xy[chosen] * scale
+                axes.add_collection(LineCollection(segments, colors=colour,
+                                                   linewidths=args.line_width))
+                handles.append(Line2D([], [], color=colour, label=f"{label} ({len(chosen)})"))
+    if args.window:
+        axes.set_xlim(args.window[0], args.window[1])
+        axes.set_ylim(args.window[2], args.window[3])
+    else:
+        axes.set_xlim(xy[:, 0].min() * scale - diameter.max() * scale,
+                      xy[:, 0].max() * scale + diameter.max() * scale)
+        axes.set_ylim(xy[:, 1].min() * scale - diameter.max() * scale,
+                      xy[:, 1].max() * scale + diameter.max() * scale)
+    axes.set_aspect("equal")
+    axes.set_xlabel("x [µm]")
+    axes.set_ylabel("y [µm]")
+    axes.legend(handles=handles, loc="upper center", ncol=min(len(handles), 5), fontsize="small",
+                bbox_to_anchor=(0.5, -0.18 if height < 5 else -0.1), frameon=False)
+    title = args.title or run_name(vtu)
+    when = f"t = {time * 1e6:.4g} µs" if time is not None else os.path.basename(vtu)
+    axes.set_title(f"{title}\n{when}" + (", undeformed" if args.undeformed else ""),
+                   fontsize="medium")
+    save(figure, args.output, args.dpi)
+
+    all_bonds = statistics[1]
+    table, total = bond_statistics(statistics[0], names, all_bonds, statistics[2])
+    print(f"{os.path.relpath(vtu)}: {len(points)} automata, {len(all_bonds)} pairs, {total} "
+          "broken or breaking")
+    print(f"  {'pair':28s} {'bonds':>7s} {'broken':>7s} {'breaking':>8s} {'share':>7s} "
+          f"{'of kind':>8s}")
+    for key, entry in table.items():
+        print(f"  {key:28s} {entry['bonds']:7d} {entry['broken']:7d} {entry['breaking']:8d} "
+              f"{entry['share_of_broken']:7.1%} {entry['fraction_broken']:8.2%}")
+    if args.json:
+        try:
+            with open(args.json, "w") as stream:
+                json.dump({"frame": os.path.abspath(vtu), "time_s": time,
+                           "automata": int(len(points)), "pairs": int(len(all_bonds)),
+                           "broken_or_breaking": int(total), "by_pair": table}, stream, indent=2)
+                stream.write("\n")
+        except OSError as error:
+            raise PlotError(f"cannot write {args.json}: {error.strerror}") from error
+        print(f"wrote {args.json}")
+
+
 # ---- command line --------------------------------------------------------------------------------
 
 def parse_arguments(argv):
     parser = argparse.ArgumentParser(
         prog=PROG,
         formatter_class=argparse.RawDescriptionHelpFormatter,
-        description="Quick-look PNG plots of a shard run: energy history and field frames.",
+        description="Quick-look PNG plots of a shard run: energy history and field frames; the "
+                    "figures of virtual tests of particle (MCA) samples and their broken bonds.",
         epilog="""examples:
   %(prog)s energy runs/taylor                      energy balance -> energy.png
   %(prog)s field runs/taylor --field von_mises     last frame, deformed shape
@@ -633,6 +1180,8 @@ def parse_arguments(argv):
   %(prog)s field runs/taylor --field displacement --scale 10 --view yz
   %(prog)s field runs/taylor/frames/frame_000010.vtu --field plastic_strain
   %(prog)s info runs/taylor                        frames, times and field names
+  %(prog)s virtual-test runs/comp --load top --support bottom --lateral left right --area 60um*1um
+  %(prog)s particles runs/bend --out cracks.png     automata by material, broken bonds in red
 
 A run folder holds history.csv (energy) and frames.pvd listing the .vtu frames (field, info).
 Errors print one line to stderr and exit with status 2.""")
@@ -752,6 +1301,101 @@ mean of their corners.""")
     profile.add_argument("--title", help="plot title")
     profile.add_argument("--dpi", type=int, default=150, help="resolution (default: %(default)s)")
     profile.set_defaults(run=plot_profile)
+
+    test = commands.add_parser(
+        "virtual-test", formatter_class=argparse.RawDescriptionHelpFormatter,
+        help="figures of a virtual test of a particle sample (E, ν, strength, fracture energy)",
+        description="""Evaluate a virtual test of a particle (MCA) sample from its run folder.
+
+The load is the reaction on the --load group (history.csv: reaction_<load>_<axis>); the
+displacement is that group's mean displacement minus the mean of the --support groups' along
+--axis; the gauge length is the distance between their initial centroids (summary.json,
+particle_groups). Both are taken positive in the direction of the test (compression, tension, the
+mandrel's push). Stress = load / --area.
+
+Printed and written to RUN/virtual_test.json (plot: RUN/virtual_test.png):
+  Young's modulus    slope of stress against strain over the initial linear part: the first
+                     stretch before the peak whose load lies in --fit-range of the peak
+  Poisson's ratio    −(lateral strain)/(axial strain) over the same stretch, the lateral strain
+                     from the displacements of the two --lateral monitor groups
+  strength           peak load / area, and the strain at the peak
+  ultimate strain    where the load falls below --failure (10 %) of the peak after the peak and
+                     stays below to the end of the run (dips of a ringing load do not count)
+  fracture energy    work of the load up to that point (or the end) / --ligament-area
+                     (default: --area)
+--bending (three-point bending, two --support groups): the peak force, the mandrel deflection
+at the peak, where the load first falls below half the peak (the main crack has run) and at
+failure, the bending angle 2·atan(2δ/L) over the span L between the supports, and with
+--depth and --thickness the flexural strength 3FL/(2bh²), modulus
+FL³/(4bh³δ) and outer-fibre strain at failure 6hδ/L².
+
+Lengths and areas are expressions of numbers with units: 60um*1um, '24 um', 6e-11 (SI).""",
+        epilog="""examples:
+  %(prog)s out/compression --load top --support bottom --lateral left right --area 60um*1um
+  %(prog)s out/tension --load right --support left --axis x --area 20um*1um
+  %(prog)s out/bend --load mandrel --support support_left support_right --bending \\
+      --area 20um*1um --depth 24um --thickness 1um""")
+    test.add_argument("folder", metavar="RUN", help="run folder (history.csv, summary.json)")
+    test.add_argument("--load", required=True, metavar="NAME",
+                      help="particle group whose reaction is the load (the moving grip, mandrel)")
+    test.add_argument("--support", required=True, nargs="+", metavar="NAME",
+                      help="the group(s) the displacement is measured from (fixed grip, supports)")
+    test.add_argument("--lateral", nargs=2, metavar=("A", "B"),
+                      help="two monitor groups on opposite lateral faces, for Poisson's ratio")
+    test.add_argument("--area", metavar="EXPR",
+                      help="area the load is divided by, e.g. 60um*1um (sample width × thickness)")
+    test.add_argument("--axis", choices=("x", "y", "z"), default="y",
+                      help="loading axis (default: %(default)s)")
+    test.add_argument("--ligament-area", metavar="EXPR",
+                      help="area of the fracture ligament for the fracture energy "
+                           "(default: --area)")
+    test.add_argument("--bending", action="store_true",
+                      help="three-point bending: report force and deflection (two supports)")
+    test.add_argument("--depth", metavar="EXPR", help="bending: sample depth h, e.g. 24um")
+    test.add_argument("--thickness", metavar="EXPR", help="bending: sample thickness b, e.g. 1um")
+    test.add_argument("--fit-range", nargs=2, type=float, default=(0.1, 0.4), metavar=("LO", "HI"),
+                      help="band of the peak load for the linear fit (default: 0.1 0.4)")
+    test.add_argument("--failure", type=float, default=0.1,
+                      help="failure when the load falls below this fraction of the peak "
+                           "(default: %(default)s)")
+    test.add_argument("--smooth", type=int, default=1, metavar="N",
+                      help="moving average of the load over N history rows (default: none)")
+    test.add_argument("-o", "--output", help="plot (default: RUN/virtual_test.png)")
+    test.add_argument("--json", help="figures (default: RUN/virtual_test.json)")
+    test.add_argument("--title", help="plot title (default: the run folder's name)")
+    test.add_argument("--dpi", type=int, default=120, help="resolution (default: %(default)s)")
+    test.set_defaults(run=virtual_test)
+
+    particles = commands.add_parser(
+        "particles", formatter_class=argparse.RawDescriptionHelpFormatter,
+        help="automata coloured by material and broken bonds as red lines (MCA frame)",
+        description="""Draw a particle frame: the automata as discs of their size, coloured by
+material (names from the run's resolved.yaml), and the broken bonds (unlinked pairs) as red
+lines, breaking ones in orange. Prints the bonds and broken bonds per pair of materials, the
+share of all broken bonds each pair kind takes, and the fraction of that kind broken; --json
+writes the same table.
+
+The frame: a particles_<part>_NNNNN.vtu, a particles_<part>.pvd, or a run folder (its only
+particle part, or --part), with --frame (default last).""")
+    particles.add_argument("input", metavar="FRAME.vtu|RUN", help="particle frame or run folder")
+    particles.add_argument("--part", help="particle part, when a run folder has several")
+    particles.add_argument("--frame", metavar="N|last", help="frame of a .pvd/run (default last)")
+    particles.add_argument("--undeformed", action="store_true",
+                           help="draw the automata where they started (x − displacement)")
+    particles.add_argument("--no-bonds", action="store_true", help="automata only")
+    particles.add_argument("--window", nargs=4, type=float, metavar=("XMIN", "XMAX", "YMIN", "YMAX"),
+                           help="draw only this part of the sample (µm); the table is of all")
+    particles.add_argument("--line-width", type=float, default=0.8,
+                           help="width of the bond lines in points (default: %(default)s)")
+    particles.add_argument("--json", help="write the bond table to this file")
+    particles.add_argument("-o", "--out", "--output", dest="output", default="particles.png",
+                           help="image file (default: %(default)s)")
+    particles.add_argument("--title", help="title (default: the run folder's name)")
+    particles.add_argument("--width", type=float, default=10.0,
+                           help="inches (default: %(default)s)")
+    particles.add_argument("--height", type=float, help="inches (default: from the sample's shape)")
+    particles.add_argument("--dpi", type=int, default=120, help="resolution (default: %(default)s)")
+    particles.set_defaults(run=plot_particles)
 
     info = commands.add_parser(
         "info", help="list the frames and the fields of a frame",
