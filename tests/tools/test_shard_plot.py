@@ -1,0 +1,112 @@
+#!/usr/bin/python3
+"""CI test of tools/shard_plot.py on real shard runs (ctest label "cli").
+
+Runs the two virtual tests of examples/mca_virtual_tests/ with the shard executable and checks
+what the plotting tool reads from them:
+- virtual-test on the plane-strain compression: Young's modulus E/(1 - nu^2) = 320 GPa and
+  lateral ratio nu/(1 - nu) = 1/3 within 3 % (the closed form of an isotropic plane-strain
+  sample, docs/theory/mca.md), its figures written to JSON and a picture;
+- virtual-test on the tension to failure: the peak load equals the largest reaction in
+  history.csv, and the run is found to have failed;
+- particles on the last tension frame: the broken-bond count equals the pairs that the history's
+  linked_bonds column says were lost;
+- a misspelt group name stops with exit status 2 (bad input, as argparse) and names the groups there are.
+
+Usage: test_shard_plot.py SHARD_EXECUTABLE SOURCE_DIR WORK_DIR
+"""
+
+import csv
+import json
+import os
+import shutil
+import subprocess
+import sys
+
+
+def fail(message):
+    print(f"FAIL: {message}")
+    sys.exit(1)
+
+
+def check_close(name, value, expected, tolerance):
+    error = (value - expected) / expected
+    print(f"{name}: {value:.6g} against {expected:.6g} ({error:+.3%}, tolerance {tolerance:.1g})")
+    if not abs(error) <= tolerance:
+        fail(f"{name} is off by {error:+.3%}")
+
+
+def run(command):
+    print("$", " ".join(command))
+    result = subprocess.run(command, capture_output=True, text=True)
+    print(result.stdout, end="")
+    print(result.stderr, end="")
+    return result
+
+
+def history_column(folder, name):
+    with open(os.path.join(folder, "history.csv")) as stream:
+        rows = list(csv.DictReader(stream))
+    return [float(row[name]) for row in rows]
+
+
+def main():
+    shard, source, work = sys.argv[1:4]
+    plot = [sys.executable, os.path.join(source, "tools", "shard_plot.py")]
+    examples = os.path.join(source, "examples", "mca_virtual_tests")
+    shutil.rmtree(work, ignore_errors=True)
+    os.makedirs(work)
+
+    # Plane-strain compression: E and nu of the input material, E = 300 GPa, nu = 0.25.
+    compression = os.path.join(work, "compression")
+    if run([shard, "run", os.path.join(examples, "compression_2d.yaml"), "-o", compression,
+            "--threads", "1", "--quiet"]).returncode != 0:
+        fail("the compression run failed")
+    if run(plot + ["virtual-test", compression, "--load", "top", "--support", "bottom",
+                   "--lateral", "left", "right", "--area", "60um*1um"]).returncode != 0:
+        fail("virtual-test on the compression run failed")
+    with open(os.path.join(compression, "virtual_test.json")) as stream:
+        figures = json.load(stream)
+    young, poisson = 300e9, 0.25
+    check_close("plane-strain modulus", figures["young_modulus_Pa"], young / (1 - poisson**2), 0.03)
+    check_close("lateral ratio", figures["poisson_ratio"], poisson / (1 - poisson), 0.03)
+    if not os.path.getsize(os.path.join(compression, "virtual_test.png")) > 0:
+        fail("no virtual_test.png")
+
+    # Tension to failure: the tool's peak and broken bonds against the history itself.
+    tension = os.path.join(work, "tension")
+    if run([shard, "run", os.path.join(examples, "tension_2d.yaml"), "-o", tension,
+            "--threads", "1", "--quiet"]).returncode != 0:
+        fail("the tension run failed")
+    if run(plot + ["virtual-test", tension, "--load", "right", "--support", "left",
+                   "--axis", "x", "--area", "20um*1um"]).returncode != 0:
+        fail("virtual-test on the tension run failed")
+    with open(os.path.join(tension, "virtual_test.json")) as stream:
+        figures = json.load(stream)
+    largest = max(abs(f) for f in history_column(tension, "reaction_right_x"))
+    check_close("peak load against history", figures["peak_load_N"], largest, 1e-9)
+    if not figures["failed"]:
+        fail("the tension sample did not fail by the tool's reading")
+
+    bonds_json = os.path.join(work, "bonds.json")
+    if run(plot + ["particles", tension, "--json", bonds_json,
+                   "--out", os.path.join(work, "bonds.png")]).returncode != 0:
+        fail("particles on the tension run failed")
+    with open(bonds_json) as stream:
+        table = json.load(stream)
+    linked = history_column(tension, "linked_bonds_sample")
+    lost = int(round(linked[0] - linked[-1]))
+    print(f"broken bonds: {table['broken_or_breaking']} in the frame, {lost} lost by the history")
+    if lost <= 0 or table["broken_or_breaking"] != lost:
+        fail("the broken-bond count disagrees with the history")
+
+    # A misspelt group: a clear error, not a traceback.
+    result = run(plot + ["virtual-test", tension, "--load", "rigth", "--support", "left",
+                         "--axis", "x", "--area", "20um*1um"])
+    if result.returncode != 2 or "right" not in result.stderr + result.stdout \
+            or "Traceback" in result.stderr:
+        fail("a misspelt group name did not give a clear error")
+    print("PASS")
+
+
+if __name__ == "__main__":
+    main()
