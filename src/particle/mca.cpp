@@ -41,16 +41,25 @@ inline void cross(const double* a, const double* b, double* c) {
   c[2] = a[0] * b[1] - a[1] * b[0];
 }
 
-/// Rotates v by the smallest rotation taking unit vector a onto unit vector b (Rodrigues).
-inline void rotate_min(const double* a, const double* b, double* v) {
-  double k[3], kv[3];
-  cross(a, b, k);
-  const double c = dot(a, b, 3);
-  if (c <= -0.999999) return;  // half-turn in one step: not a physical step
-  cross(k, v, kv);
-  const double kk = dot(k, v, 3) / (1 + c);
-  for (int q = 0; q < 3; ++q) v[q] = c * v[q] + kv[q] + k[q] * kk;
-}
+/// The smallest rotation taking unit vector a onto unit vector b (Rodrigues), set up once and
+/// applied to the several vectors a pair carries along.
+struct MinimalRotation {
+  double k[3], c, inv;  // k = a × b, c = a·b, inv = 1/(1 + c)
+  bool half_turn;       // a half-turn in one step is not a physical step: leave vectors alone
+  MinimalRotation(const double* a, const double* b) {
+    cross(a, b, k);
+    c = dot(a, b, 3);
+    half_turn = c <= -0.999999;
+    inv = half_turn ? 0.0 : 1 / (1 + c);
+  }
+  void apply(double* v) const {
+    if (half_turn) return;
+    double kv[3];
+    cross(k, v, kv);
+    const double kk = dot(k, v, 3) * inv;
+    for (int q = 0; q < 3; ++q) v[q] = c * v[q] + kv[q] + k[q] * kk;
+  }
+};
 
 /// 2 tan(|θ|/2)/|θ|: scales a rotation increment so that w × p is exactly the displacement of
 /// the mid-step point p under the rotation (Cayley form); keeps rigid rotations stress-free.
@@ -269,11 +278,13 @@ void pair_pass(ParticleSystem& ps, const std::vector<double>& x_old, const std::
     const double lo = std::sqrt(dot(ro, ro, D)), ln = std::sqrt(dot(rn, rn, D));
     const double lm = std::sqrt(dot(rm, rm, D));
     const double dr = dot(du, rm, D) * 2 / (ln + lo);  // = ln − lo, without cancellation
+    // One division per length, not per component: this loop is most of a particle step.
+    const double inv_lo = 1 / lo, inv_ln = 1 / ln, inv_lm = 1 / lm;
     double no[3] = {0, 0, 0}, nn[3] = {0, 0, 0}, nm[3] = {0, 0, 0};
     for (int a = 0; a < D; ++a) {
-      no[a] = ro[a] / lo;
-      nn[a] = rn[a] / ln;
-      nm[a] = rm[a] / lm;
+      no[a] = ro[a] * inv_lo;
+      nn[a] = rn[a] * inv_ln;
+      nm[a] = rm[a] * inv_lm;
     }
     const double k_old = P.k_link[p];
     const BondLaw* law = P.law[p] >= 0 ? &ps.bond_laws[P.law[p]] : nullptr;
@@ -309,7 +320,8 @@ void pair_pass(ParticleSystem& ps, const std::vector<double>& x_old, const std::
     // pair's rotation taken from the positions and each automaton's rotation from dtheta.
     const double ci = s.many_body[ps.material[i]], cj = s.many_body[ps.material[j]];
     double qi = Ri * (1 + P.xi_ij[p]), qj = Rj * (1 + P.xi_ji[p]);
-    const double li = qi / (qi + qj), lj = qj / (qi + qj);
+    const double inv_q = 1 / (qi + qj);
+    const double li = qi * inv_q, lj = qj * inv_q;
     const double shear_k = 2 * Gi * Gj / (Gj * Ri + Gi * Rj);  // Δτ per Δl, eq. (13) split as (8)
     double slip[3] = {0, 0, 0}, tc_old[3] = {0, 0, 0};  // tangential displacement, contact shear before
     if constexpr (D == 2) {
@@ -335,9 +347,10 @@ void pair_pass(ParticleSystem& ps, const std::vector<double>& x_old, const std::
       double* tauc = &P.tau_c[3 * p];
       double* phi = &P.phi[3 * p];
       const bool contact_part = P.state[p] != PairState::linked;  // τ_c is zero while linked
-      rotate_min(no, nn, tau);
-      if (contact_part) rotate_min(no, nn, tauc);
-      rotate_min(no, nn, phi);
+      const MinimalRotation turn(no, nn);
+      turn.apply(tau);
+      if (contact_part) turn.apply(tauc);
+      turn.apply(phi);
       const double twist = dot(w, nn, 3);
       double nt[3], ntc[3] = {0, 0, 0};
       cross(nn, tau, nt);
@@ -414,8 +427,9 @@ void pair_pass(ParticleSystem& ps, const std::vector<double>& x_old, const std::
     // the relative-rotation torque of eq. (14), linked part only.
     qi = Ri * (1 + P.xi_ij[p]);
     qj = Rj * (1 + P.xi_ji[p]);
-    P.q_ij[p] = ln * qi / (qi + qj);
-    P.q_ji[p] = ln * qj / (qi + qj);
+    const double scale = ln / (qi + qj);
+    P.q_ij[p] = qi * scale;
+    P.q_ji[p] = qj * scale;
     double F[3];
     pair_force<D>(P, p, nn, F);
     for (int a = 0; a < D; ++a) {
