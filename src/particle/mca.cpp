@@ -510,7 +510,6 @@ MCADissipation forces_impl(ParticleSystem& ps, const std::vector<double>& x_old,
     any_plastic = any_plastic || ps.materials[m].plastic();
   }
   s.mean_increment.resize(n);
-  s.return_factor.assign(n, 1.0);
 
   // 0. predictor of the mean stress at the end of the step (linear extrapolation of the last
   // two steps); the pair forces receive its increment over what they already hold. The
@@ -536,6 +535,7 @@ MCADissipation forces_impl(ParticleSystem& ps, const std::vector<double>& x_old,
 
   std::vector<double> plastic_pairs(nbp, 0.0);
   if (any_plastic) {
+    s.return_factor.assign(n, 1.0);
     // B. trial averaged stress and Wilkins return, eq. (15)
     std::vector<double>& mean3 = s.trial_mean;
     mean3.assign(n, 0.0);

@@ -85,11 +85,16 @@ void MCAStepper::step() {
   if (contact_interval_ > 0 && steps_ > 0 && steps_ % contact_interval_ == 0) ps_.update_contacts(contact_skin_);
   kick(0.5 * dt);
   apply_bcs(time_ + 0.5 * dt);
-  x_old_ = ps_.x;
+  // x_old_ is filled in the same parallel pass: a serial copy of every position held the 2-thread
+  // speed-up of the benchmark at 1.77x (1.85-1.94x without it).
+  x_old_.resize(n * D);
   dtheta_.resize(n * R);
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
-    for (int a = 0; a < D; ++a) ps_.x[D * i + a] += dt * ps_.v[D * i + a];
+    for (int a = 0; a < D; ++a) {
+      x_old_[D * i + a] = ps_.x[D * i + a];
+      ps_.x[D * i + a] += dt * ps_.v[D * i + a];
+    }
     for (int a = 0; a < R; ++a) {
       dtheta_[R * i + a] = dt * ps_.omega[R * i + a];
       ps_.theta[R * i + a] += dtheta_[R * i + a];
