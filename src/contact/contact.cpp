@@ -176,6 +176,10 @@ void ContactSystem::find_facet_hits(const Model& model) {
   }
 
   const std::size_t np = model.parts.size();
+  const auto& origin = model.node_origin;
+  auto is_sibling = [&](std::int32_t p, std::int32_t q) {
+    return p != q && static_cast<std::size_t>(std::max(p, q)) < origin.size() && origin[p] == origin[q];
+  };
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < ns; ++i) {
     const std::int32_t s = surface_.nodes[i];
@@ -192,9 +196,14 @@ void ContactSystem::find_facet_hits(const Model& model) {
       const int pf = surface_.facet_part[f];
       if (!settings_.part_pairs[ps * np + pf]) continue;
       const std::int32_t* fn = &F[dim * f];
-      bool own = false;
-      for (int a = 0; a < dim; ++a) own = own || fn[a] == s || (ps == pf && surface_.are_neighbours(i, fn[a]));
-      if (own) continue;
+      // The faces of the node's own element neighbourhood cannot be penetrated by it; a face
+      // that ends at a copy of the node (a crack face across from the node's own) can.
+      bool own = false, sibling = false;
+      for (int a = 0; a < dim; ++a) {
+        own = own || fn[a] == s || (ps == pf && surface_.are_neighbours(i, fn[a]));
+        sibling = sibling || is_sibling(s, fn[a]);
+      }
+      if (own && !(sibling && std::find(fn, fn + dim, s) == fn + dim)) continue;
       Hit hit;
       hit.facet = f;
       if (dim == 2) {
@@ -202,15 +211,69 @@ void ContactSystem::find_facet_hits(const Model& model) {
         const double* b = &X[2 * fn[1]];
         const double tx = b[0] - a[0], ty = b[1] - a[1];
         const double l2 = tx * tx + ty * ty, l = std::sqrt(l2);
+        // Copies of one split node (same Model::node_origin) start on top of each other, so a
+        // copy always sits at a corner of its siblings' wedges. Near such a corner the contact
+        // must follow the true distance to the sibling's surface, which is continuous as the
+        // copy moves around the corner; otherwise a copy switches on at a finite depth and the
+        // penalty returns energy it never stored (docs/theory/contact.md, "Split nodes").
+        const bool sibling_a = is_sibling(s, fn[0]), sibling_b = is_sibling(s, fn[1]);
+        const double xi = ((x[0] - a[0]) * tx + (x[1] - a[1]) * ty) / l2;
+        if (xi < 0.0 && sibling_a) {
+          // Behind a reflex corner of the sibling's wedge (its projection falls on neither
+          // segment): the nearest point of the surface is the corner itself. Found from the
+          // segment that starts at the corner only, so that it is found once.
+          const std::int32_t g = surface_.facet_before[f];
+          if (g < 0) continue;
+          const double* p0 = &X[2 * F[2 * g]];
+          const double ux = a[0] - p0[0], uy = a[1] - p0[1];
+          if (!(ux * ty - uy * tx < 0)) continue;  // a convex corner: outside the body
+          const double lg2 = ux * ux + uy * uy;
+          if (!((x[0] - p0[0]) * ux + (x[1] - p0[1]) * uy > lg2)) continue;  // on g: g's business
+          const double behind_f = (x[0] - a[0]) * ty - (x[1] - a[1]) * tx;
+          const double behind_g = (x[0] - a[0]) * uy - (x[1] - a[1]) * ux;
+          if (!(behind_f < 0 || behind_g < 0)) continue;
+          const double dx = a[0] - x[0], dy = a[1] - x[1], d = std::hypot(dx, dy);
+          if (!(d > 0) || d > 0.5 * std::min(l, std::sqrt(lg2))) continue;
+          hit.normal[0] = dx / d;
+          hit.normal[1] = dy / d;
+          hit.gap = -d;
+          hit.weights[0] = 1;
+          hit.weights[1] = 0;
+          if (hit.gap > best_gap || (hit.gap == best_gap && f < best.facet)) {
+            best_gap = hit.gap;
+            best = hit;
+          }
+          continue;
+        }
         // Only a node whose projection falls on the facet: past a convex corner of the master
         // surface the next facet decides, not this one's extended line.
-        const double xi = ((x[0] - a[0]) * tx + (x[1] - a[1]) * ty) / l2;
         if (xi < 0.0 || xi > 1.0) continue;
         hit.normal[0] = ty / l;
         hit.normal[1] = -tx / l;
-        if (hit.normal[0] * nn[0] + hit.normal[1] * nn[1] >= 0) continue;  // not facing each other
+        // Not facing each other: two bodies' corners that meet must not push each other
+        // sideways. A copy and its sibling's corner are not two bodies' corners: they were one
+        // point, and the test would hide a segment the copy is behind.
+        if (!sibling_a && !sibling_b && hit.normal[0] * nn[0] + hit.normal[1] * nn[1] >= 0) continue;
         hit.gap = (x[0] - a[0]) * hit.normal[0] + (x[1] - a[1]) * hit.normal[1];
         if (hit.gap >= 0 || hit.gap < -0.5 * l) continue;
+        // At a convex corner the body is behind both segments: a node behind this one's line
+        // but in front of the next segment's line is outside, past the corner.
+        auto past_corner = [&](std::int32_t g, const double* corner, bool before) {
+          if (g < 0) return false;
+          // A crack tip: the two faces of the crack that ends here run back to copies of one
+          // node. The body wraps all around the tip (a 360° corner), however the faces lie.
+          const std::int32_t far_g = before ? F[2 * g] : F[2 * g + 1], far_f = before ? fn[1] : fn[0];
+          if (far_g == far_f || is_sibling(far_g, far_f)) return false;
+          const double* p0 = &X[2 * F[2 * g]];
+          const double* p1 = &X[2 * F[2 * g + 1]];
+          const double ux = p1[0] - p0[0], uy = p1[1] - p0[1];
+          // Left turn from the incoming to the outgoing segment: convex (the body on the left).
+          const double turn = before ? ux * ty - uy * tx : tx * uy - ty * ux;
+          if (!(turn > 0)) return false;
+          return (x[0] - corner[0]) * uy - (x[1] - corner[1]) * ux > 0;  // in front of g's line
+        };
+        if (past_corner(surface_.facet_before[f], a, true) || past_corner(surface_.facet_after[f], b, false))
+          continue;
         hit.weights[0] = 1 - xi;
         hit.weights[1] = xi;
       } else {

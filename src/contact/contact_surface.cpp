@@ -122,6 +122,24 @@ ContactSurface extract_contact_surface(const Model& model) {
       s.node_part.push_back(part_of[i]);
       s.node_area.push_back(area[i]);
     }
+  // 2D: the segments on either side of each segment (−1: none, or several at a node where the
+  // surface touches itself).
+  if (dim == 2) {
+    const std::size_t nf = s.facet_count();
+    std::vector<std::int32_t> ending(model.nodes.count(), -1), starting(model.nodes.count(), -1);
+    auto mark = [](std::int32_t& slot, std::int32_t f) { slot = slot == -1 ? f : -2; };
+    for (std::size_t f = 0; f < nf; ++f) {
+      mark(starting[s.facets[2 * f]], static_cast<std::int32_t>(f));
+      mark(ending[s.facets[2 * f + 1]], static_cast<std::int32_t>(f));
+    }
+    s.facet_before.assign(nf, -1);
+    s.facet_after.assign(nf, -1);
+    for (std::size_t f = 0; f < nf; ++f) {
+      const std::int32_t a = s.facets[2 * f], b = s.facets[2 * f + 1];
+      if (starting[a] >= 0 && ending[a] >= 0) s.facet_before[f] = ending[a];
+      if (starting[b] >= 0 && ending[b] >= 0) s.facet_after[f] = starting[b];
+    }
+  }
   // Element neighbourhoods of the surface nodes.
   std::vector<std::int32_t> slot(model.nodes.count(), -1);
   for (std::size_t i = 0; i < s.nodes.size(); ++i) slot[s.nodes[i]] = static_cast<std::int32_t>(i);

@@ -21,6 +21,11 @@ struct ContactSurface {
   /// For self-contact: the nodes that share an element with each surface node (CSR), so that a
   /// node is never found "penetrating" the faces of its own neighbourhood.
   std::vector<std::int32_t> neighbour_begin, neighbours;
+  /// 2D: the segment that ends at each segment's first node and the one that starts at its
+  /// second node (the boundary runs on with the body on its left), −1 where there is none or
+  /// more than one (a node where the surface touches itself). The search uses them to tell
+  /// whether a node behind a segment near its end is inside the body (docs/theory/contact.md).
+  std::vector<std::int32_t> facet_before, facet_after;
 
   int nodes_per_facet() const { return dim; }
   std::size_t facet_count() const { return facets.size() / static_cast<std::size_t>(dim); }

@@ -371,7 +371,30 @@ Simulation build_simulation(Scenario& sc, const MeshData& mesh) {
       if (model.parts[p].name == name) return static_cast<int>(p);
     return -1;
   };
-  if (sc.contact || !sc.walls.empty()) {
+  // Cracking parts: the crack faces they grow must close and slide, so each is in contact
+  // with itself (contact is switched on for them if the scenario has none).
+  std::vector<int> cracking_parts;
+  if (sc.cracking) {
+    for (std::size_t p = 0; p < np; ++p) {
+      const Part& part = model.parts[p];
+      const bool named = std::find(sc.cracking->parts.begin(), sc.cracking->parts.end(), part.name) !=
+                         sc.cracking->parts.end();
+      const bool can = part.kind == ElementKind::tri3 && sim.materials[part.material]->failure_map_slots();
+      if (named && !can)
+        throw InputError(file, sc.cracking->line, "cracking.parts",
+                         "part '" + part.name + "' cannot crack: cracks are inserted in tri3 parts of "
+                         "a material with a failure map (rotating_crack); it has " +
+                             name_of(part.kind) + " elements of '" +
+                             std::string(sim.materials[part.material]->model()) + "'");
+      if (named || (sc.cracking->parts.empty() && can)) cracking_parts.push_back(static_cast<int>(p));
+    }
+    if (cracking_parts.empty())
+      throw InputError(file, sc.cracking->line, "cracking",
+                       "no part can crack: cracks are inserted in tri3 parts of a material with a "
+                       "failure map (rotating_crack)");
+    sim.cracking = CrackGrowthSettings{cracking_parts, sc.cracking->failure_threshold};
+  }
+  if (sc.contact || !sc.walls.empty() || !cracking_parts.empty()) {
     ContactSettings cs;
     cs.part_pairs.assign(np * np, 0);
     cs.friction.assign(nm * nm, FrictionLaw{});
@@ -395,6 +418,15 @@ Simulation build_simulation(Scenario& sc, const MeshData& mesh) {
       }
       cs.penalty_scale = ci.penalty_scale;
       cs.time_step_reduction = ci.time_step_reduction;
+    }
+    for (int p : cracking_parts) {
+      cs.part_pairs[p * np + p] = 1;
+      const std::size_t m = static_cast<std::size_t>(model.parts[p].material);
+      bool given = false;
+      if (sc.contact)
+        for (const auto& f : sc.contact->material_friction)
+          given = given || (f.material_a == sc.materials[m].name && f.material_b == f.material_a);
+      if (!given) cs.friction[m * nm + m] = {sc.cracking->friction, sc.cracking->friction};
     }
     for (const auto& wi : sc.walls) {
       RigidWall w;
@@ -423,6 +455,7 @@ Simulation build_simulation(Scenario& sc, const MeshData& mesh) {
   s.max_time_step = sc.max_time_step;
   if (sim.contact)
     sim.contact_system.emplace(sim.model, *sim.contact, sim.part_materials(), static_cast<int>(nm));
+  if (sim.cracking) sim.crack_growth.emplace(sim.model, sim.materials, *sim.cracking);
   return sim;
 }
 

@@ -10,6 +10,7 @@
 #include "io/scenario.hpp"
 #include "material/material.hpp"
 #include "model/model.hpp"
+#include "solver/crack_growth.hpp"
 #include "solver/explicit_solver.hpp"
 #include "solver/loads.hpp"
 
@@ -22,6 +23,8 @@ struct Simulation {
   SolverSettings settings;
   std::optional<ContactSettings> contact;  ///< contact between parts and/or rigid walls
   std::optional<ContactSystem> contact_system;  ///< built from `contact`; attach it to the solver
+  std::optional<CrackGrowthSettings> cracking;  ///< discrete crack insertion
+  std::optional<CrackGrowth> crack_growth;      ///< built from `cracking`; attach it to the solver
 
   std::vector<int> part_materials() const;
 };

@@ -56,6 +56,8 @@ KeyList top_keys() {
   k.add("contact", ValueKind::section,
         "penalty contact with Coulomb friction between parts (theory: docs/theory/contact.md)");
   k.add("walls", ValueKind::list, "rigid planes, fixed or moving, with friction").defaults_to("[]");
+  k.add("cracking", ValueKind::section,
+        "discrete crack insertion in tri3 parts of a cracking material (docs/theory/crack_insertion.md)");
   k.add("output", ValueKind::section, "frames, history, checkpoints").defaults_to("{}");
   return k;
 }
@@ -123,6 +125,20 @@ KeyList contact_keys() {
       .above(0)
       .below(1)
       .defaults_to("0.1");
+  return k;
+}
+
+KeyList cracking_keys() {
+  KeyList k;
+  k.add("parts", ValueKind::list, "the parts that crack")
+      .defaults_to("every tri3 part whose material has a failure map (rotating_crack)");
+  k.quantity("failure_threshold", dim::none, "nodal failure factor at which a node splits")
+      .above(0)
+      .defaults_to("1");
+  k.quantity("friction", dim::none,
+             "Coulomb coefficient between crack faces (they close and slide in contact)")
+      .at_least(0)
+      .defaults_to("0.25");
   return k;
 }
 
@@ -717,6 +733,31 @@ Scenario read_scenario(const std::filesystem::path& path) {
     sc.resolved["walls"] = out;
   }
 
+  if (top.has("cracking")) {
+    const KeyList k_keys = cracking_keys();
+    Section k(top.value("cracking"), file, "cracking", k_keys, sc.resolved["cracking"], top.line("cracking"));
+    CrackingInput ci;
+    ci.line = top.line("cracking");
+    if (k.has("parts")) {
+      const YAML::Node list = k.value("parts");
+      if (!list.IsSequence()) k.fail("parts", "expected a list of part names, e.g. [plate]");
+      for (const auto& n : list) {
+        const std::string name = n.IsScalar() ? n.Scalar() : "?";
+        if (std::find(part_names.begin(), part_names.end(), name) == part_names.end()) {
+          std::string reason = "no part named '" + name + "'";
+          const std::string close = closest_match(name, part_names);
+          if (!close.empty()) reason += " (did you mean '" + close + "'?)";
+          k.fail("parts", reason);
+        }
+        ci.parts.push_back(name);
+      }
+      sc.resolved["cracking"]["parts"] = list;
+    }
+    ci.failure_threshold = k.number("failure_threshold");
+    ci.friction = k.number("friction");
+    sc.cracking = ci;
+  }
+
   scenario_detail::read_particle_sections(top, sc);
 
   // output
@@ -765,6 +806,7 @@ std::vector<SchemaSection> scenario_schema() {
           {"contact", "contact between parts", contact_keys()},
           {"contact.material_friction[]", "friction of a pair of materials", material_friction_keys()},
           {"walls[]", "a rigid plane", wall_keys()},
+          {"cracking", "discrete crack insertion", cracking_keys()},
           {"output", "what is written to the output folder", output_keys()}};
   for (auto& section : scenario_detail::particle_schema()) schema.push_back(std::move(section));
   return schema;

@@ -139,6 +139,14 @@ struct ParticleBoundaryInput {
   int line = 0;
 };
 
+/// Discrete crack insertion (docs/theory/crack_insertion.md).
+struct CrackingInput {
+  std::vector<std::string> parts;  ///< empty: every tri3 part whose material has a failure map
+  double failure_threshold = 1.0;
+  double friction = 0.25;          ///< Coulomb coefficient between crack faces
+  int line = 0;
+};
+
 struct Scenario {
   std::filesystem::path file;
   std::string title;
@@ -171,6 +179,7 @@ struct Scenario {
   std::vector<BoundaryConditionInput> boundary_conditions;
   std::vector<PressureInput> pressures;
   std::optional<ContactInput> contact;
+  std::optional<CrackingInput> cracking;
   std::vector<WallInput> walls;
   OutputSettings output;
 

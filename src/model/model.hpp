@@ -156,6 +156,9 @@ struct Model {
   std::vector<NodeSet> node_sets;
   std::vector<FacetSet> facet_sets;
   ContactState contact;
+  /// Empty until a crack splits a node; then, per node, the mesh node it is a copy of (itself
+  /// for a mesh node), so that a restart can give the copies their origin's prescribed motion.
+  std::vector<std::int32_t> node_origin;
 
   int dim() const { return nodes.dim; }
   std::size_t element_count() const;
@@ -177,6 +180,10 @@ struct Model {
     f("contact.wall_tangential", contact.wall_tangential);
     f("contact.wall_offset", contact.wall_offset);
     f("contact.penalty_time_step", contact.penalty_time_step);
+    // Cracks add nodes: the sets that name nodes grow with them.
+    f("nodes.origin", node_origin);
+    for (auto& s : node_sets) f("node_set." + s.name, s.nodes);
+    for (auto& s : facet_sets) f("facet_set." + s.name, s.nodes);
     for (auto& p : parts) {
       const std::string prefix = "part." + p.name + ".";
       f(prefix + "connectivity", p.connectivity);

@@ -81,7 +81,7 @@ void lump_masses(Model& model, const std::vector<std::unique_ptr<Material>>& mat
 
 ExplicitSolver::ExplicitSolver(Model& model,
                                const std::vector<std::unique_ptr<Material>>& materials,
-                               const Loads& loads, SolverSettings settings)
+                               Loads& loads, SolverSettings settings)
     : model_(model), materials_(materials), loads_(loads), settings_(settings) {}
 
 void ExplicitSolver::initialise() {
@@ -398,6 +398,9 @@ void ExplicitSolver::advance() {
   state_.dt_half = dt_next;
   state_.time += dt_next;
   state_.step += 1;
+  // Nodes that failed in this step split now, between steps, where mass, momentum and the
+  // positions at t_n+1 carry over to the copies unchanged.
+  if (cracks_) cracks_->update(model_, loads_, contact_, state_.energy);
 }
 
 }  // namespace shard

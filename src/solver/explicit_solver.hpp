@@ -12,6 +12,7 @@
 #include "material/material.hpp"
 #include "model/model.hpp"
 #include "particle/mca.hpp"
+#include "solver/crack_growth.hpp"
 #include "solver/energy.hpp"
 #include "solver/loads.hpp"
 
@@ -46,8 +47,9 @@ struct SolverState {
 
 class ExplicitSolver {
  public:
+  /// `loads` is not const: crack insertion gives new nodes their parents' prescribed velocities.
   ExplicitSolver(Model& model, const std::vector<std::unique_ptr<Material>>& materials,
-                 const Loads& loads, SolverSettings settings);
+                 Loads& loads, SolverSettings settings);
 
   /// Lumped masses, initial energies, and sanity checks (zero masses). Call once on a new run.
   void initialise();
@@ -60,6 +62,9 @@ class ExplicitSolver {
 
   /// Contact between parts and with rigid walls (optional; not owned).
   void attach_contact(ContactSystem* contact) { contact_ = contact; }
+  /// Discrete crack insertion after each step (optional; not owned).
+  void attach_crack_growth(CrackGrowth* cracks) { cracks_ = cracks; }
+  const CrackGrowth* crack_growth() const { return cracks_; }
   const ContactSystem* contact() const { return contact_; }
 
   bool finished() const;
@@ -73,13 +78,14 @@ class ExplicitSolver {
  private:
   Model& model_;
   const std::vector<std::unique_ptr<Material>>& materials_;
-  const Loads& loads_;
+  Loads& loads_;
   SolverSettings settings_;
   SolverState state_;
   double particle_kinetic_energy() const;
   std::vector<std::pair<std::int64_t, double>> applied_;  // (dof, force) of pressure loads
   std::vector<double> chunk_sums_;
   ContactSystem* contact_ = nullptr;
+  CrackGrowth* cracks_ = nullptr;
   std::vector<MCAScratch> particle_scratch_;
   std::vector<double> particle_reactions_;
 };

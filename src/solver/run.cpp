@@ -20,6 +20,7 @@
 #include "io/frame_output.hpp"
 #include "io/model_setup.hpp"
 #include "io/particle_frame.hpp"
+#include "fracture/fragments.hpp"
 #include "io/vtu_writer.hpp"
 
 namespace shard {
@@ -170,12 +171,18 @@ RunSummary run_scenario(const std::filesystem::path& file, const RunOptions& opt
   ExplicitSolver solver(sim.model, sim.materials, sim.loads, sim.settings);
   ContactSystem* contact = sim.contact_system ? &*sim.contact_system : nullptr;
   solver.attach_contact(contact);
+  CrackGrowth* cracks = sim.crack_growth ? &*sim.crack_growth : nullptr;
+  solver.attach_crack_growth(cracks);
   const std::string fingerprint = fingerprint_of(sc);
   OutputCursor cursor;
   if (options.restart) {
     read_checkpoint(*options.restart, sim.model, solver.state(), cursor, fingerprint);
     // The pair lists may have grown (new contacts): the adjacency is derived from them.
     for (auto& pp : sim.model.particle_parts) pp.system.build_adjacency();
+    // Cracks and erosion changed the mesh since set-up: the copies of split nodes get their
+    // origin's prescribed motion, and the contact surface is that of the checkpoint's mesh.
+    CrackGrowth::restore_constraints(sim.model, sim.loads);
+    if (contact) contact->rebuild(sim.model);
   } else {
     solver.initialise();
   }
@@ -186,10 +193,19 @@ RunSummary run_scenario(const std::filesystem::path& file, const RunOptions& opt
                                                    SHARD_VERSION + " (SI units)\n" +
                                                    to_yaml_text(sc.resolved));
   const std::filesystem::path history_path = dir / "history.csv";
-  // Contact forces per part pair and per wall: what load cells and crush tests measure.
+  // Extra history columns, in the order the rows write them.
   std::vector<std::string> extra_columns;
   const char* axes[3] = {"x", "y", "z"};
   const int dim = sim.model.dim();
+  // Regions of automata with conditions or monitors: the reaction on them and their mean
+  // displacement, for load-displacement curves of virtual tests.
+  for (const auto& g : sim.loads.particle_groups) {
+    for (int k = 0; k < dim; ++k) extra_columns.push_back("reaction_" + g.name + "_" + axes[k]);
+    for (int k = 0; k < dim; ++k) extra_columns.push_back("displacement_" + g.name + "_" + axes[k]);
+  }
+  for (const auto& pp : sim.model.particle_parts) extra_columns.push_back("linked_bonds_" + pp.name);
+  if (cracks) extra_columns.push_back("fragments");
+  // Contact forces per part pair and per wall: what load cells and crush tests measure.
   if (contact) {
     for (const auto& [a, b] : contact->reported_pairs())
       for (int k = 0; k < dim; ++k)
@@ -198,13 +214,6 @@ RunSummary run_scenario(const std::filesystem::path& file, const RunOptions& opt
     for (const auto& w : contact->settings().walls)
       for (int k = 0; k < dim; ++k) extra_columns.push_back("wall_" + w.name + "_force_" + axes[k]);
   }
-  // Regions of automata with conditions or monitors: the reaction on them and their mean
-  // displacement, for load-displacement curves of virtual tests.
-  for (const auto& g : sim.loads.particle_groups) {
-    for (int k = 0; k < dim; ++k) extra_columns.push_back("reaction_" + g.name + "_" + axes[k]);
-    for (int k = 0; k < dim; ++k) extra_columns.push_back("displacement_" + g.name + "_" + axes[k]);
-  }
-  for (const auto& pp : sim.model.particle_parts) extra_columns.push_back("linked_bonds_" + pp.name);
   PvdCollection pvd(dir / "frames.pvd");
   std::vector<PvdCollection> particle_pvd;
   for (const auto& pp : sim.model.particle_parts) particle_pvd.emplace_back(dir / ("particles_" + pp.name + ".pvd"));
@@ -347,6 +356,7 @@ RunSummary run_scenario(const std::filesystem::path& file, const RunOptions& opt
           for (PairState st : pp.system.pairs.state) linked += st == PairState::linked;
           history << ',' << linked;
         }
+        if (cracks) history << ',' << find_fragments(sim.model).list.size();
         if (contact) {
           for (const auto* values : {&contact->pair_forces(), &contact->wall_forces()})
             for (double v : *values) {
@@ -391,6 +401,7 @@ RunSummary run_scenario(const std::filesystem::path& file, const RunOptions& opt
   progress.finish();
   history.flush();
   write_summary();
+  if (cracks) write_fragments_csv(dir / "fragments.csv", find_fragments(sim.model).list, dim);
   RunSummary summary;
   summary.steps = solver.state().step;
   summary.end_time = solver.state().time - solver.state().dt_half;

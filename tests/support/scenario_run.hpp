@@ -15,6 +15,7 @@ struct ScenarioRun {
   Scenario scenario;
   Simulation sim;
   ContactSystem* contact = nullptr;  ///< the simulation's contact system, if it has one
+  CrackGrowth* cracks = nullptr;     ///< the simulation's crack insertion, if it has one
   std::unique_ptr<ExplicitSolver> solver;
 
   explicit ScenarioRun(const std::string& file) : scenario(read_scenario(file)) {
@@ -22,6 +23,8 @@ struct ScenarioRun {
     solver = std::make_unique<ExplicitSolver>(sim.model, sim.materials, sim.loads, sim.settings);
     contact = sim.contact_system ? &*sim.contact_system : nullptr;
     solver->attach_contact(contact);
+    cracks = sim.crack_growth ? &*sim.crack_growth : nullptr;
+    solver->attach_crack_growth(cracks);
     solver->initialise();
   }
   void step() {

@@ -1,0 +1,86 @@
+#include "solver/crack_growth.hpp"
+
+#include <algorithm>
+
+#include "core/error.hpp"
+
+namespace shard {
+
+namespace {
+
+/// Appends to `loads` a copy of every constraint of node `from` for node `to` (a linear scan:
+/// insertions are rare next to steps, and constraints need not be sorted).
+void copy_constraints(Loads& loads, std::int32_t from, std::int32_t to) {
+  auto& c = loads.constraints;
+  const std::size_t n = c.size();
+  for (std::size_t k = 0; k < n; ++k)
+    if (c[k].node == from) c.push_back({to, c[k].component, c[k].table});
+}
+
+}  // namespace
+
+CrackGrowth::CrackGrowth(const Model& model, const std::vector<std::unique_ptr<Material>>& materials,
+                         CrackGrowthSettings settings)
+    : settings_(std::move(settings)) {
+  parts_.resize(model.parts.size());
+  for (std::size_t p = 0; p < model.parts.size(); ++p) {
+    const Material& m = *materials[model.parts[p].material];
+    CrackingPart& cp = parts_[p];
+    cp.density = m.density();
+    cp.moduli = m.elastic();
+  }
+  for (int p : settings_.parts) {
+    const Part& part = model.parts[p];
+    const Material& m = *materials[part.material];
+    const auto slots = m.failure_map_slots();
+    SHARD_ASSERT(slots && part.kind == ElementKind::tri3, "part " << part.name << " cannot crack");
+    CrackingPart& cp = parts_[p];
+    cp.cracks = true;
+    cp.factor_index = slots->factor;
+    cp.reset_indices = slots->reset;
+    cp.energy_density_index = slots->energy_density;
+    fields_.push_back({static_cast<std::size_t>(p), PointFailureField{}});
+    normals_.push_back(slots->normal);
+  }
+}
+
+std::size_t CrackGrowth::update(Model& model, Loads& loads, ContactSystem* contact, EnergyBalance& energy) {
+  if (settings_.parts.empty()) return 0;
+  // No node can reach the threshold while no point has (the nodal factor is a weighted mean).
+  bool any = false;
+  for (std::size_t f = 0; f < fields_.size(); ++f) {
+    const Part& part = model.parts[fields_[f].part];
+    const CrackingPart& cp = parts_[fields_[f].part];
+    fields_[f].field = failure_field_from_state(part, cp.factor_index, normals_[f]);
+    any = any || max_point_factor(part, fields_[f].field) >= settings_.failure_threshold;
+  }
+  if (!any) return 0;
+  nodal_failure_map(model, fields_, map_);
+  CrackInsertionSettings s;
+  s.failure_threshold = settings_.failure_threshold;
+  const CrackInsertion ins = insert_cracks(model, parts_, map_.factor, map_.direction, s);
+  energy.fracture += ins.released_energy;
+  if (ins.new_node_count() == 0) return 0;
+  extend_node_data(model, ins);
+  if (model.node_origin.size() < ins.first_new_node) {
+    model.node_origin.resize(ins.first_new_node);
+    for (std::size_t n = 0; n < ins.first_new_node; ++n) model.node_origin[n] = static_cast<std::int32_t>(n);
+  }
+  for (std::size_t i = 0; i < ins.new_node_count(); ++i) {
+    const std::int32_t node = static_cast<std::int32_t>(ins.first_new_node + i);
+    model.node_origin.push_back(model.node_origin[ins.parent[i]]);
+    copy_constraints(loads, ins.parent[i], node);
+  }
+  if (contact) contact->rebuild(model);
+  inserted_ += static_cast<std::int64_t>(ins.new_node_count());
+  return ins.new_node_count();
+}
+
+void CrackGrowth::restore_constraints(const Model& model, Loads& loads) {
+  for (std::size_t n = 0; n < model.node_origin.size(); ++n)
+    if (model.node_origin[n] != static_cast<std::int32_t>(n))
+      copy_constraints(loads, model.node_origin[n], static_cast<std::int32_t>(n));
+
+}
+
+}  // namespace shard

@@ -1,0 +1,23 @@
+// A plate 20 x 10 mm with a sharp V-notch from the left edge at mid-height (tip at x = 4 mm),
+// pulled apart at the top and bottom edges: a mode I crack must grow along y = 5 mm.
+// notched_plate.geo with elements of 0.4 mm instead of 0.25 mm.
+h = 0.4;
+Point(1) = {0, 0, 0, h};
+Point(2) = {20, 0, 0, h};
+Point(3) = {20, 10, 0, h};
+Point(4) = {0, 10, 0, h};
+Point(5) = {0, 5.2, 0, h};
+Point(6) = {4, 5, 0, h};
+Point(7) = {0, 4.8, 0, h};
+Line(1) = {1, 2};
+Line(2) = {2, 3};
+Line(3) = {3, 4};
+Line(4) = {4, 5};
+Line(5) = {5, 6};
+Line(6) = {6, 7};
+Line(7) = {7, 1};
+Curve Loop(1) = {1, 2, 3, 4, 5, 6, 7};
+Plane Surface(1) = {1};
+Physical Surface("plate") = {1};
+Physical Curve("top") = {3};
+Physical Curve("bottom") = {1};
