@@ -70,8 +70,9 @@ def find_history(path):
     return path
 
 
-def read_history(path):
-    """Columns of history.csv as {name: array}, in file order."""
+def read_history(path, key="time"):
+    """Columns of history.csv (or another numeric CSV whose first column is `key`) as
+    {name: array}, in file order."""
     try:
         with open(path, newline="") as stream:
             rows = list(csv.reader(stream))
@@ -80,8 +81,8 @@ def read_history(path):
     if not rows:
         raise PlotError(f"{path} is empty")
     names = [name.strip() for name in rows[0]]
-    if "time" not in names:
-        raise PlotError(f"{path} has no 'time' column (header: {','.join(names)})")
+    if key not in names:
+        raise PlotError(f"{path} has no '{key}' column (header: {','.join(names)})")
     data = []
     for row in rows[1:]:
         # A run killed while writing may leave a short last line: plot what is complete.
@@ -532,6 +533,61 @@ def show_info(args):
           + (f", t = {time * 1e6:.6g} µs" if time is not None else ""))
     print(f"  {len(mesh.points)} points; cells: {counts or 'none'}")
     print(f"  fields: {describe_fields(mesh)}")
+
+
+# ---- fragments -----------------------------------------------------------------------------------
+
+def read_fragments(folder):
+    """fragments.csv of a run (written at its end) as {column: array}."""
+    path = os.path.join(folder, "fragments.csv") if os.path.isdir(folder) else folder
+    if not os.path.isfile(path):
+        raise PlotError(f"no such file: {path} (a run writes it at its end when a part cracks)")
+    columns = read_history(path, key="id")
+    if "mass" not in columns:
+        raise PlotError(f"{path} has no column 'mass': not a fragments.csv")
+    return path, columns
+
+
+def plot_fragments(args):
+    """Mass distribution of the fragments at the end of a run, and their count over time."""
+    path, columns = read_fragments(args.folder)
+    mass = np.sort(np.asarray(columns["mass"], dtype=float))
+    if mass.size == 0 or not mass.sum() > 0:
+        raise PlotError(f"{path} lists no fragment with mass")
+    total = mass.sum()
+    # cumulative mass fraction of the fragments no heavier than m (the sieve curve)
+    passing = np.cumsum(mass) / total
+    kinetic = np.asarray(columns.get("kinetic_energy", np.zeros_like(mass)), dtype=float)
+    largest = mass[-1]
+    print(f"{path}: {mass.size} fragments, total mass {total:.6g} kg; largest {largest:.6g} kg "
+          f"({largest / total:.1%}); median by mass {mass[np.searchsorted(passing, 0.5)]:.4g} kg; "
+          f"kinetic energy {kinetic.sum():.4g} J")
+    history = None
+    if os.path.isdir(args.folder) and os.path.isfile(os.path.join(args.folder, "history.csv")):
+        history = read_history(os.path.join(args.folder, "history.csv"))
+        if "fragments" not in history:
+            history = None
+    figure, panels = plt.subplots(1, 2 if history else 1, figsize=(11 if history else 6, 4.2),
+                                  squeeze=False)
+    axes = panels[0][0]
+    axes.step(mass, passing, where="post", color="tab:blue")
+    axes.set_xscale("log")
+    axes.set_xlabel("fragment mass m [kg]")
+    axes.set_ylabel("mass fraction in fragments ≤ m")
+    axes.set_ylim(0, 1.02)
+    axes.grid(True, which="both", alpha=0.3)
+    axes.set_title(f"{mass.size} fragments, largest {largest / total:.0%} of the mass")
+    if history:
+        axes = panels[0][1]
+        axes.step(np.asarray(history["time"]) * 1e6, history["fragments"], where="post",
+                  color="tab:red")
+        axes.set_xlabel("time [µs]")
+        axes.set_ylabel("fragments")
+        axes.grid(True, alpha=0.3)
+        axes.set_title("fragments over time")
+    figure.suptitle(args.title or run_name(path))
+    output = args.output or os.path.join(os.path.dirname(os.path.abspath(path)), "fragments.png")
+    save(figure, output, args.dpi)
 
 
 def save(figure, output, dpi):
@@ -1405,6 +1461,18 @@ particle part, or --part), with --frame (default last).""")
                       help="run folder (uses OUTDIR/frames.pvd), a .pvd, or one .vtu frame")
     info.add_argument("--frame", metavar="N|last", help="frame to describe (default last)")
     info.set_defaults(run=show_info)
+
+    fragments = commands.add_parser(
+        "fragments", help="mass distribution of the fragments (fragments.csv) and their count",
+        description="Cumulative mass distribution of the fragments at the end of a run "
+                    "(RUN/fragments.csv: mass fraction in fragments no heavier than m, against m), "
+                    "and the fragment count over time from history.csv when it has a 'fragments' "
+                    "column. Prints the count, the largest fragment and the median by mass.")
+    fragments.add_argument("folder", metavar="RUN", help="run folder, or a fragments.csv")
+    fragments.add_argument("-o", "--output", help="image file (default: RUN/fragments.png)")
+    fragments.add_argument("--title", help="title (default: the run folder's name)")
+    fragments.add_argument("--dpi", type=int, default=150, help="resolution (default: %(default)s)")
+    fragments.set_defaults(run=plot_fragments)
     return parser.parse_args(argv)
 
 

@@ -10,6 +10,9 @@ what the plotting tool reads from them:
   history.csv, and the run is found to have failed;
 - particles on the last tension frame: the broken-bond count equals the pairs that the history's
   linked_bonds column says were lost;
+- fragments on a cracking run (tests/data/fracture/notched_plate_coarse.yaml): the fragment
+  masses add up to rho * area * thickness of the notched plate (1e-12), the plate is in at least
+  two pieces, and the count equals the history's last 'fragments' value;
 - a misspelt group name stops with exit status 2 (bad input, as argparse) and names the groups there are.
 
 Usage: test_shard_plot.py SHARD_EXECUTABLE SOURCE_DIR WORK_DIR
@@ -98,6 +101,24 @@ def main():
     print(f"broken bonds: {table['broken_or_breaking']} in the frame, {lost} lost by the history")
     if lost <= 0 or table["broken_or_breaking"] != lost:
         fail("the broken-bond count disagrees with the history")
+
+    # Fragments of a cracked plate: 20 x 10 mm less a V-notch 0.4 mm wide and 4 mm deep, 1 mm
+    # thick, 3900 kg/m^3.
+    plate = os.path.join(work, "notched_plate")
+    if run([shard, "run", os.path.join(source, "tests", "data", "fracture", "notched_plate_coarse.yaml"),
+            "-o", plate, "--threads", "1", "--quiet"]).returncode != 0:
+        fail("the notched plate run failed")
+    if run(plot + ["fragments", plate]).returncode != 0:
+        fail("fragments on the notched plate run failed")
+    with open(os.path.join(plate, "fragments.csv")) as stream:
+        masses = [float(row["mass"]) for row in csv.DictReader(stream)]
+    check_close("fragment masses against rho A t", sum(masses), 3900 * (200e-6 - 0.8e-6) * 1e-3, 1e-12)
+    count = history_column(plate, "fragments")[-1]
+    print(f"fragments: {len(masses)} in fragments.csv, {count:g} in the history")
+    if len(masses) < 2 or count != len(masses):
+        fail("the plate is not in pieces, or the history disagrees with fragments.csv")
+    if not os.path.getsize(os.path.join(plate, "fragments.png")) > 0:
+        fail("no fragments.png")
 
     # A misspelt group: a clear error, not a traceback.
     result = run(plot + ["virtual-test", tension, "--load", "rigth", "--support", "left",
