@@ -78,6 +78,7 @@ class ContactSystem {
     double gap = 0;
     double weights[3] = {0, 0, 0};
     double normal[3] = {0, 0, 0};
+    bool sibling = false;  ///< the facet ends at a copy of the same split node (2D cracks)
   };
   void find_facet_hits(const Model& model);
 

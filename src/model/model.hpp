@@ -122,6 +122,11 @@ struct ContactState {
   std::vector<double> tangential;       ///< stick force of node-to-facet contact, per node
   std::vector<double> wall_tangential;  ///< stick force against each wall: wall-major, per node
   std::vector<double> wall_offset;      ///< displacement of each rigid wall, dim per wall
+  /// Node-to-facet contact, per node: whether the node was in contact in the last step, and the
+  /// penetration (a gap ≤ 0) it carries without force because it was found deeper than the
+  /// step's approach could have taken it (docs/theory/contact.md, "Contact found at depth").
+  std::vector<std::uint8_t> touching;
+  std::vector<double> penetration_offset;
   /// The element stable time step the penalty is built on, fixed at the first contact step (one
   /// value): a penalty that followed the current step would change with the motion of the
   /// critical element and bulk viscosity, and make contact chatter.
@@ -179,6 +184,8 @@ struct Model {
     f("contact.tangential", contact.tangential);
     f("contact.wall_tangential", contact.wall_tangential);
     f("contact.wall_offset", contact.wall_offset);
+    f("contact.touching", contact.touching);
+    f("contact.penetration_offset", contact.penetration_offset);
     f("contact.penalty_time_step", contact.penalty_time_step);
     // Cracks add nodes: the sets that name nodes grow with them.
     f("nodes.origin", node_origin);
