@@ -1,0 +1,101 @@
+#!/usr/bin/python3
+"""Crack front of an edge-on impact run: how far from the impact edge the failed material and
+the inserted cracks reach at each frame, and the front speed.
+
+  examples/sic_edge_on_impact/crack_front.py OUT [--part-id 0] [--edge 0] [--impact 0.1us]
+        [--pictures 1 2 3 4 5]
+
+For every frame of OUT/frames.pvd: the largest x − edge of (a) the cells of the beam whose
+failure factor F = ε_f/ε_f,c has reached 1 (the rotating_crack state), and (b) the nodes on a
+crack face (point field crack_face, when cracks are inserted). The front speed is the slope of a
+straight line through the front positions between 10 % and 90 % of the beam length (least
+squares). Writes OUT/crack_front.json and OUT/crack_front.png; with --pictures, draws the failure
+factor at those times after impact (µs) with tools/shard_plot.py into OUT/failure_<t>us.png.
+Needs Debian's python3-numpy, python3-matplotlib and python3-meshio.
+"""
+import argparse
+import json
+import os
+import subprocess
+import sys
+import xml.etree.ElementTree as ET
+
+import matplotlib
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import meshio  # noqa: E402
+import numpy as np  # noqa: E402
+
+
+def frames(folder):
+    tree = ET.parse(os.path.join(folder, "frames.pvd"))
+    for item in tree.getroot().iter("DataSet"):
+        yield float(item.get("timestep")), os.path.join(folder, item.get("file"))
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("folder", metavar="OUT")
+    parser.add_argument("--part-id", type=int, default=0, help="part number of the beam (cell field 'part')")
+    parser.add_argument("--edge", type=float, default=0.0, help="x of the impact edge [mm]")
+    parser.add_argument("--length", type=float, default=100.0, help="beam length [mm]")
+    parser.add_argument("--impact", type=float, default=0.1, help="time of impact [µs]")
+    parser.add_argument("--pictures", type=float, nargs="*", default=[],
+                        help="times after impact [µs] to draw")
+    args = parser.parse_args()
+    rows = []
+    for time, path in frames(args.folder):
+        mesh = meshio.read(path)
+        cells = mesh.cells[0].data
+        centre = mesh.points[cells].mean(axis=1) * 1e3
+        part = mesh.cell_data["part"][0]
+        failed = (part == args.part_id) & (mesh.cell_data["failure_factor"][0] >= 1)
+        smeared = float(centre[failed, 0].max() - args.edge) if failed.any() else 0.0
+        crack = 0.0
+        cracked_nodes = 0
+        if "crack_face" in mesh.point_data:
+            on_face = mesh.point_data["crack_face"] > 0
+            cracked_nodes = int(on_face.sum())
+            if on_face.any():
+                crack = float(mesh.points[on_face, 0].max() * 1e3 - args.edge)
+        rows.append((time * 1e6, smeared, crack, int(failed.sum()), cracked_nodes))
+    data = np.array(rows)
+    result = {"frames": [dict(zip(("time_us", "failed_front_mm", "crack_front_mm", "failed_cells",
+                                   "crack_face_nodes"), r)) for r in rows]}
+    figure, axes = plt.subplots(figsize=(6.5, 4.2))
+    for column, label, colour in ((1, "failed material (F ≥ 1)", "tab:orange"),
+                                  (2, "inserted cracks", "tab:red")):
+        front = data[:, column]
+        if not front.any():
+            continue
+        axes.plot(data[:, 0] - args.impact, front, "o-", color=colour, label=label)
+        window = (front > 0.1 * args.length) & (front < 0.9 * args.length)
+        if window.sum() >= 2:
+            slope, intercept = np.polyfit(data[window, 0], front[window], 1)
+            key = "failed_front_speed_m_per_s" if column == 1 else "crack_front_speed_m_per_s"
+            result[key] = slope * 1e3
+            print(f"{label}: front speed {slope * 1e3:.0f} m/s over {window.sum()} frames")
+    axes.set_xlabel("time after impact [µs]")
+    axes.set_ylabel("front distance from the impact edge [mm]")
+    axes.grid(True, alpha=0.3)
+    axes.legend()
+    figure.tight_layout()
+    figure.savefig(os.path.join(args.folder, "crack_front.png"), dpi=130)
+    with open(os.path.join(args.folder, "crack_front.json"), "w") as stream:
+        json.dump(result, stream, indent=2)
+    for r in rows:
+        print(f"t = {r[0]:6.2f} us: failed front {r[1]:7.2f} mm, crack front {r[2]:7.2f} mm, "
+              f"{r[3]} failed cells, {r[4]} crack-face nodes")
+    plot = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tools", "shard_plot.py")
+    times = data[:, 0]
+    for after in args.pictures:
+        k = int(np.argmin(np.abs(times - (after + args.impact))))
+        out = os.path.join(args.folder, f"failure_{after:g}us.png")
+        subprocess.run([sys.executable, plot, "field", args.folder, "--field", "failure_factor",
+                        "--frame", str(k), "--vmin", "0", "--vmax", "1", "--cmap", "inferno",
+                        "--title", f"{after:g} µs after impact", "-o", out, "--width", "11"],
+                       check=True)
+
+
+if __name__ == "__main__":
+    main()
