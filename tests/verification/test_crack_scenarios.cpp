@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "support/cli.hpp"
 #include "support/scenario_run.hpp"
 
 namespace shard {
@@ -129,6 +130,39 @@ TEST(CrackScenario, CrackFacesInContactKeepTheEnergyBalance) {
   EXPECT_LT(r.worst_residual, 0.02);
   EXPECT_GT(r.lowest_contact, -0.10);
   EXPECT_LT(r.kinetic, r.external);
+}
+
+// The same plate through the shard command: a run in which nodes split is the same bit for bit
+// with 1 and 2 threads, and when it is stopped mid-growth (20 us: the crack is growing) and
+// restarted from the checkpoint, whose node arrays have grown with the copies. fragments.csv
+// too.
+TEST(CrackScenario, CrackingRunIsIdenticalAcrossThreadsAndRestart) {
+  const std::string scenario = kData + "notched_plate_coarse.yaml";
+  const auto dir = testing::fresh_dir("cracking");
+  const auto one = testing::run_shard("run " + scenario + " --quiet --threads 1 -o " + (dir / "one").string());
+  ASSERT_EQ(one.status, 0) << one.output;
+  const auto two = testing::run_shard("run " + scenario + " --quiet --threads 2 -o " + (dir / "two").string());
+  ASSERT_EQ(two.status, 0) << two.output;
+  const std::string h1 = testing::read_file(dir / "one" / "history.csv");
+  const auto h = testing::read_history(dir / "one" / "history.csv");
+  const double pieces = h.at(h.rows.size() - 1, "fragments");
+  std::printf("cracking run: %g fragments at the end\n", pieces);
+  EXPECT_GE(pieces, 2.0);  // the plate came apart: nodes were split during the run
+  EXPECT_EQ(h1, testing::read_file(dir / "two" / "history.csv"));
+  EXPECT_EQ(testing::read_file(dir / "one" / "frame_00010.vtu"), testing::read_file(dir / "two" / "frame_00010.vtu"));
+  EXPECT_EQ(testing::read_file(dir / "one" / "fragments.csv"), testing::read_file(dir / "two" / "fragments.csv"));
+
+  const auto first = testing::run_shard("run " + scenario + " --quiet --threads 1 --until 20us -o " + (dir / "pieces").string());
+  ASSERT_EQ(first.status, 0) << first.output;
+  const auto early = testing::read_history(dir / "pieces" / "history.csv");
+  EXPECT_LT(early.at(early.rows.size() - 1, "fragments"), pieces);  // stopped before the end of the growth
+  const auto rest = testing::run_shard("run " + scenario + " --quiet --threads 1 -o " + (dir / "pieces").string() +
+                                       " --restart " + (dir / "pieces" / "checkpoint.bin").string());
+  ASSERT_EQ(rest.status, 0) << rest.output;
+  EXPECT_EQ(h1, testing::read_file(dir / "pieces" / "history.csv"));
+  EXPECT_EQ(testing::read_file(dir / "one" / "frame_00010.vtu"), testing::read_file(dir / "pieces" / "frame_00010.vtu"));
+  EXPECT_EQ(testing::read_file(dir / "one" / "fragments.csv"), testing::read_file(dir / "pieces" / "fragments.csv"));
+  std::filesystem::remove_all(dir);
 }
 
 }  // namespace
