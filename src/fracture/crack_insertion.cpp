@@ -293,6 +293,12 @@ CrackInsertion insert_cracks(Model& model, std::span<const CrackingPart> parts,
     out.opened_edges.push_back({p, r});
   };
 
+  // Nodes on a crack already: copies of a split node and the nodes they were split from.
+  std::vector<char> on_crack(nn, 0);
+  if (model.node_origin.size() == nn)
+    for (std::size_t i = 0; i < nn; ++i)
+      if (model.node_origin[i] != static_cast<std::int32_t>(i)) on_crack[i] = on_crack[model.node_origin[i]] = 1;
+
   for (const std::int32_t p : failed) {
     const std::vector<FanEntry> fan = fans.of(p);
     const Wedges w = wedges_of(p, fan, cut);
@@ -321,6 +327,15 @@ CrackInsertion insert_cracks(Model& model, std::span<const CrackingPart> parts,
     };
 
     if (w.loop()) {
+      // An intact interior node next to a crack does not start a crack of its own: the smeared
+      // band ahead of a tip is one or two elements wide, and its nodes a row off the crack line
+      // fail too; the crack reaches them from its tip, or not at all.
+      bool near_crack = false;
+      for (const auto& f : fan) near_crack = near_crack || on_crack[f.b] || on_crack[f.a];
+      if (near_crack) {
+        out.skipped_nodes.push_back(p);
+        continue;
+      }
       // Interior node: the crack passes through p, so it leaves along two edges, the best
       // aligned with +t and with −t (paper, Figure 4(c): the failure plane through the node).
       int best[2] = {-1, -1};
