@@ -54,40 +54,8 @@ PAPER = {
 
 # ---- the sample builder's pores, replayed ---------------------------------------------------------
 
-MASK64 = (1 << 64) - 1
-
-
-class MT19937_64:
-    """std::mt19937_64, which the sample builder draws from (src/particle/packing.cpp)."""
-
-    def __init__(self, seed):
-        self.mt = [0] * 312
-        self.mt[0] = seed & MASK64
-        for i in range(1, 312):
-            prev = self.mt[i - 1]
-            self.mt[i] = (6364136223846793005 * (prev ^ (prev >> 62)) + i) & MASK64
-        self.index = 312
-
-    def _twist(self):
-        mt = self.mt
-        for i in range(312):
-            x = (mt[i] & 0xFFFFFFFF80000000) | (mt[(i + 1) % 312] & 0x7FFFFFFF)
-            xa = x >> 1
-            if x & 1:
-                xa ^= 0xB5026F5AA96619E9
-            mt[i] = mt[(i + 156) % 312] ^ xa
-        self.index = 0
-
-    def __call__(self):
-        if self.index >= 312:
-            self._twist()
-        y = self.mt[self.index]
-        self.index += 1
-        y ^= (y >> 29) & 0x5555555555555555
-        y ^= (y << 17) & 0x71D67FFFEDA60000
-        y ^= (y << 37) & 0xFFF7EEE000000000
-        y ^= y >> 43
-        return y & MASK64
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tools"))
+from mca_replay import MT19937_64  # noqa: E402  (the builder's random draws)
 
 
 def hexagonal_sites(side, d):
@@ -125,7 +93,7 @@ def pore_layout(sites, d, porosity, with_neighbours, seed):
     tries = 0
     while count < target and tries < 100 * n:
         tries += 1
-        c = min(n - 1, int(((rng() >> 11) * 2.0 ** -53) * n))
+        c = min(n - 1, int(rng.uniform01() * n))
         if removed[c]:
             continue
         centres.append(c)

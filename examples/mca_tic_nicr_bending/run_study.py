@@ -56,43 +56,8 @@ FAILURE_LEVEL, SMOOTH = 0.25, 10
 
 # ---- the sample builder's inclusions, replayed ----------------------------------------------------
 
-MASK64 = (1 << 64) - 1
-
-
-class MT19937_64:
-    """std::mt19937_64, which the sample builder draws from (src/particle/packing.cpp)."""
-
-    def __init__(self, seed):
-        self.mt = [0] * 312
-        self.mt[0] = seed & MASK64
-        for i in range(1, 312):
-            prev = self.mt[i - 1]
-            self.mt[i] = (6364136223846793005 * (prev ^ (prev >> 62)) + i) & MASK64
-        self.index = 312
-
-    def _twist(self):
-        mt = self.mt
-        for i in range(312):
-            x = (mt[i] & 0xFFFFFFFF80000000) | (mt[(i + 1) % 312] & 0x7FFFFFFF)
-            xa = x >> 1
-            if x & 1:
-                xa ^= 0xB5026F5AA96619E9
-            mt[i] = mt[(i + 156) % 312] ^ xa
-        self.index = 0
-
-    def __call__(self):
-        if self.index >= 312:
-            self._twist()
-        y = self.mt[self.index]
-        self.index += 1
-        y ^= (y >> 29) & 0x5555555555555555
-        y ^= (y << 17) & 0x71D67FFFEDA60000
-        y ^= (y << 37) & 0xFFF7EEE000000000
-        y ^= y >> 43
-        return y & MASK64
-
-    def uniform01(self):
-        return (self() >> 11) * 2.0 ** -53
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tools"))
+from mca_replay import MT19937_64  # noqa: E402  (the builder's random draws)
 
 
 def hexagonal_sites(width, height, d):
