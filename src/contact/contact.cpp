@@ -180,6 +180,11 @@ void ContactSystem::find_facet_hits(const Model& model) {
   auto is_sibling = [&](std::int32_t p, std::int32_t q) {
     return p != q && static_cast<std::size_t>(std::max(p, q)) < origin.size() && origin[p] == origin[q];
   };
+  // Nodes on crack faces: copies of a split node and the nodes they were split from.
+  split_.assign(origin.size(), 0);
+  for (std::size_t k = 0; k < origin.size(); ++k)
+    if (origin[k] != static_cast<std::int32_t>(k)) split_[k] = split_[origin[k]] = 1;
+  auto on_crack = [&](std::int32_t p) { return static_cast<std::size_t>(p) < split_.size() && split_[p] != 0; };
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < ns; ++i) {
     const std::int32_t s = surface_.nodes[i];
@@ -217,7 +222,7 @@ void ContactSystem::find_facet_hits(const Model& model) {
         // copy moves around the corner; otherwise a copy switches on at a finite depth and the
         // penalty returns energy it never stored (docs/theory/contact.md, "Split nodes").
         const bool sibling_a = is_sibling(s, fn[0]), sibling_b = is_sibling(s, fn[1]);
-        hit.sibling = sibling_a || sibling_b;
+        hit.crack_faces = ps == pf && on_crack(s) && (on_crack(fn[0]) || on_crack(fn[1]));
         const double xi = ((x[0] - a[0]) * tx + (x[1] - a[1]) * ty) / l2;
         if (xi < 0.0 && sibling_a) {
           // Behind a reflex corner of the sibling's wedge (its projection falls on neither
@@ -366,16 +371,16 @@ void ContactSystem::add_forces(Model& model, double time, double dt, double stab
     const double k = penalty(std::min(M[s], facet_mass), stable_dt, r, scale);
     double vn = 0;
     for (int d = 0; d < dim; ++d) vn += vrel[d] * hit.normal[d];
-    // A copy of a split node found in contact with a face that ends at one of its siblings for
-    // the first time should be at most as deep as its approach in this step (the relative normal
-    // velocity times the step; half as much again for the turn of the facet). Deeper, it was
-    // inside the sibling's wedge before the search could see it (where three or more copies
-    // meet): the penalty on the whole depth would return energy it never stored. That excess is
-    // carried as an offset without force, and given up as the node backs out
-    // (docs/theory/contact.md, "Split nodes").
+    // A crack-face node found in contact with another crack face for the first time should be at
+    // most as deep as its approach in this step (the relative normal velocity times the step;
+    // half as much again for the turn of the facet). Deeper, it was inside before the search
+    // could see it (a copy in a sibling's wedge where three or more copies meet, faces of small
+    // fragments round their corners): the penalty on the whole depth would return energy it
+    // never stored. That excess is carried as an offset without force, and given up as the node
+    // backs out (docs/theory/contact.md, "Split nodes").
     if (!touching) {
       const double approach = std::max(0.0, -vn) * dt;
-      offset = hit.sibling && -hit.gap > 1.5 * approach ? std::min(0.0, hit.gap + approach) : 0.0;
+      offset = hit.crack_faces && -hit.gap > 1.5 * approach ? std::min(0.0, hit.gap + approach) : 0.0;
       touching = 1;
     } else {
       offset = std::min(0.0, std::max(offset, hit.gap));

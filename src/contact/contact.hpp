@@ -78,7 +78,7 @@ class ContactSystem {
     double gap = 0;
     double weights[3] = {0, 0, 0};
     double normal[3] = {0, 0, 0};
-    bool sibling = false;  ///< the facet ends at a copy of the same split node (2D cracks)
+    bool crack_faces = false;  ///< node and facet on crack faces of one part (2D cracks)
   };
   void find_facet_hits(const Model& model);
 
@@ -89,6 +89,7 @@ class ContactSystem {
   std::vector<Hit> hits_;                // per surface node
   std::vector<double> normal_force_;     // per surface node, last call (N)
   std::vector<std::int32_t> bin_begin_, bin_facets_, bin_fill_, bin_owners_;
+  std::vector<char> split_;             // per node: on a crack face (scratch of the search)
   std::vector<std::size_t> bin_keys_;  // scratch of the search, kept to avoid per-step allocation
   double bin_size_ = 0;
   std::size_t bin_mask_ = 0;
