@@ -28,10 +28,8 @@ import argparse
 import json
 import math
 import os
-import resource
 import subprocess
 import sys
-import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(os.path.dirname(HERE))
@@ -58,6 +56,7 @@ FAILURE_LEVEL, SMOOTH = 0.25, 10
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tools"))
 from mca_replay import MT19937_64  # noqa: E402  (the builder's random draws)
+from study_run import run_case  # noqa: E402
 
 
 def hexagonal_sites(width, height, d):
@@ -269,19 +268,7 @@ def write_scenarios():
 
 # ---- running and collecting -------------------------------------------------------------------------
 
-def run(shard, path, folder, force):
-    summary = os.path.join(folder, "summary.json")
-    if not force and os.path.isfile(summary):
-        with open(summary) as stream:
-            if json.load(stream).get("status") == "completed":
-                print(f"  {os.path.relpath(folder)}: done before, kept (--force reruns)")
-                return
-    start, cpu = time.time(), resource.getrusage(resource.RUSAGE_CHILDREN).ru_utime
-    subprocess.run([shard, "run", path, "-o", folder, "--quiet", "--threads", "1"], check=True)
-    wall, cpu = time.time() - start, resource.getrusage(resource.RUSAGE_CHILDREN).ru_utime - cpu
-    with open(os.path.join(folder, "run_time.json"), "w") as stream:
-        json.dump({"wall_s": wall, "cpu_s": cpu}, stream)
-    print(f"  {os.path.relpath(folder)}: {wall:.0f} s wall, {cpu:.0f} s CPU", flush=True)
+run = run_case  # tools/study_run.py
 
 
 def evaluate(folder):
