@@ -21,6 +21,7 @@ ContactSystem::ContactSystem(const Model& model, ContactSettings settings,
 
 void ContactSystem::rebuild(const Model& model) {
   surface_ = extract_contact_surface(model);
+  crack_face_ = model.crack_face_nodes();  // changes only when cracks split nodes, then rebuild
   hits_.assign(surface_.nodes.size(), Hit{});
   normal_force_.assign(surface_.nodes.size(), 0.0);
   const int dim = model.dim();
@@ -180,11 +181,7 @@ void ContactSystem::find_facet_hits(const Model& model) {
   auto is_sibling = [&](std::int32_t p, std::int32_t q) {
     return p != q && static_cast<std::size_t>(std::max(p, q)) < origin.size() && origin[p] == origin[q];
   };
-  // Nodes on crack faces: copies of a split node and the nodes they were split from.
-  split_.assign(origin.size(), 0);
-  for (std::size_t k = 0; k < origin.size(); ++k)
-    if (origin[k] != static_cast<std::int32_t>(k)) split_[k] = split_[origin[k]] = 1;
-  auto on_crack = [&](std::int32_t p) { return static_cast<std::size_t>(p) < split_.size() && split_[p] != 0; };
+  auto on_crack = [&](std::int32_t p) { return crack_face_[p] != 0; };
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < ns; ++i) {
     const std::int32_t s = surface_.nodes[i];

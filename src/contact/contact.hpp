@@ -89,7 +89,7 @@ class ContactSystem {
   std::vector<Hit> hits_;                // per surface node
   std::vector<double> normal_force_;     // per surface node, last call (N)
   std::vector<std::int32_t> bin_begin_, bin_facets_, bin_fill_, bin_owners_;
-  std::vector<char> split_;             // per node: on a crack face (scratch of the search)
+  std::vector<char> crack_face_;        // per node: on a crack face (Model::crack_face_nodes)
   std::vector<std::size_t> bin_keys_;  // scratch of the search, kept to avoid per-step allocation
   double bin_size_ = 0;
   std::size_t bin_mask_ = 0;

@@ -294,10 +294,7 @@ CrackInsertion insert_cracks(Model& model, std::span<const CrackingPart> parts,
   };
 
   // Nodes on a crack already: copies of a split node and the nodes they were split from.
-  std::vector<char> on_crack(nn, 0);
-  if (model.node_origin.size() == nn)
-    for (std::size_t i = 0; i < nn; ++i)
-      if (model.node_origin[i] != static_cast<std::int32_t>(i)) on_crack[i] = on_crack[model.node_origin[i]] = 1;
+  const std::vector<char> on_crack = model.crack_face_nodes();
 
   for (const std::int32_t p : failed) {
     const std::vector<FanEntry> fan = fans.of(p);

@@ -49,10 +49,8 @@ VtuGrid make_frame(const Model& model, const std::vector<std::unique_ptr<Materia
   if (!model.node_origin.empty()) {
     // After cracks split nodes: 1 on the nodes of crack faces (the copies and their origins),
     // so that a threshold on it in ParaView shows the crack paths.
-    VtuField f{"crack_face", 1, std::vector<double>(nn, 0.0)};
-    for (std::size_t i = 0; i < model.node_origin.size(); ++i)
-      if (model.node_origin[i] != static_cast<std::int32_t>(i)) f.values[i] = f.values[model.node_origin[i]] = 1;
-    grid.point_fields.push_back(std::move(f));
+    const std::vector<char> on_face = model.crack_face_nodes();
+    grid.point_fields.push_back({"crack_face", 1, std::vector<double>(on_face.begin(), on_face.end())});
   }
 
   // Cell fields: the mean over each element's integration points.

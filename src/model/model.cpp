@@ -52,6 +52,13 @@ std::size_t Model::element_count() const {
   return n;
 }
 
+std::vector<char> Model::crack_face_nodes() const {
+  std::vector<char> on_face(nodes.count(), 0);
+  for (std::size_t i = 0; i < node_origin.size() && i < on_face.size(); ++i)
+    if (node_origin[i] != static_cast<std::int32_t>(i)) on_face[i] = on_face[node_origin[i]] = 1;
+  return on_face;
+}
+
 const NodeSet* Model::find_node_set(const std::string& name) const {
   for (const auto& s : node_sets)
     if (s.name == name) return &s;

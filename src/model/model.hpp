@@ -167,6 +167,9 @@ struct Model {
 
   int dim() const { return nodes.dim; }
   std::size_t element_count() const;
+  /// Per node, 1 on a crack face (a copy of a split node, or the node it was split from), from
+  /// node_origin; all 0 before any crack.
+  std::vector<char> crack_face_nodes() const;
   const NodeSet* find_node_set(const std::string& name) const;
   const FacetSet* find_facet_set(const std::string& name) const;
 

@@ -133,6 +133,7 @@ inline double pair_energy(double S, double k, double eta, double tau2, double ta
 /// Drucker–Prager (eq. (17)) or von Mises from the pair tensor's mean and equivalent stress.
 inline double invariant_criterion_value(const BondLaw& law, double mean, double eq) {
   if (law.criterion == BondCriterion::von_mises) return eq / law.sigma_vm;
+  // eq. (17): σ_eq 0.5(a + 1) + σ_mean 1.5(a − 1) = σ_c, a = σ_c/σ_t (tension positive)
   const double ratio = law.sigma_c / law.sigma_t;
   return (eq * 0.5 * (ratio + 1) + mean * 1.5 * (ratio - 1)) / law.sigma_c;
 }
@@ -145,13 +146,9 @@ inline double criterion_value(const BondLaw& law, const double* T) {
   switch (law.criterion) {
     case BondCriterion::none:
       return 0;
-    case BondCriterion::drucker_prager: {
-      // eq. (17): σ_eq 0.5(a + 1) + σ_mean 1.5(a − 1) = σ_c, a = σ_c/σ_t (tension positive)
-      const double ratio = law.sigma_c / law.sigma_t;
-      return (eq * 0.5 * (ratio + 1) + mean * 1.5 * (ratio - 1)) / law.sigma_c;
-    }
+    case BondCriterion::drucker_prager:
     case BondCriterion::von_mises:
-      return eq / law.sigma_vm;
+      return invariant_criterion_value(law, mean, eq);
     case BondCriterion::mohr_coulomb:
       return mohr_coulomb_value(law, T);
   }
