@@ -324,6 +324,7 @@ void ContactSystem::add_forces(Model& model, double time, double dt, double stab
   if (model.contact.tangential.size() != dim * nn) model.contact.tangential.assign(dim * nn, 0.0);
   if (model.contact.touching.size() != nn) model.contact.touching.assign(nn, 0);
   if (model.contact.penetration_offset.size() != nn) model.contact.penetration_offset.assign(nn, 0.0);
+  if (model.contact.loaded_gap.size() != nn) model.contact.loaded_gap.assign(nn, 0.0);
   const std::size_t nw = settings_.walls.size();
   if (model.contact.wall_tangential.size() != nw * dim * nn) model.contact.wall_tangential.assign(nw * dim * nn, 0.0);
   if (model.contact.wall_offset.size() != nw * dim) model.contact.wall_offset.assign(nw * dim, 0.0);
@@ -356,16 +357,23 @@ void ContactSystem::add_forces(Model& model, double time, double dt, double stab
       for (int d = 0; d < dim; ++d) T[d] = 0;
       touching = 0;
       offset = 0;
+      model.contact.loaded_gap[s] = 0;
       continue;
     }
     const std::int32_t* fn = &F[dim * hit.facet];
-    double facet_mass = 0, vrel[3] = {0, 0, 0};
-    for (int a = 0; a < dim; ++a) facet_mass += hit.weights[a] * M[fn[a]];
+    // The spring moves the node and the facet's nodes in proportion 1 : w_a, so it adds
+    // k (1/M_s + Σ w_a²/M_a) ≤ k (1/M_s + 1/min M_a) to ω²: the bound uses the lightest corner,
+    // not the facet's mean mass (a light copy at a crack corner beside a heavy node would
+    // otherwise see a spring far stiffer than its own stable step allows), and holds wherever the
+    // node projects on the facet, so k does not change as it slides.
+    double lightest = M[fn[0]], vrel[3] = {0, 0, 0};
+    for (int a = 1; a < dim; ++a) lightest = std::min(lightest, M[fn[a]]);
+    const double pair_mass = 2.0 / (1.0 / M[s] + 1.0 / lightest);
     for (int d = 0; d < dim; ++d) {
       vrel[d] = V[dim * s + d];
       for (int a = 0; a < dim; ++a) vrel[d] -= hit.weights[a] * V[dim * fn[a] + d];
     }
-    const double k = penalty(std::min(M[s], facet_mass), stable_dt, r, scale);
+    const double k = penalty(pair_mass, stable_dt, r, scale);
     double vn = 0;
     for (int d = 0; d < dim; ++d) vn += vrel[d] * hit.normal[d];
     // A crack-face node found in contact with another crack face for the first time should be at
@@ -375,13 +383,23 @@ void ContactSystem::add_forces(Model& model, double time, double dt, double stab
     // fragments round their corners): the penalty on the whole depth would return energy it
     // never stored. That excess is carried as an offset without force, and given up as the node
     // backs out (docs/theory/contact.md, "Split nodes").
+    // The same holds for a node already in contact whose depth jumps by more than its approach:
+    // its hit moved to a facet it was already behind (another fragment's face in a pile of
+    // fragments, the far side of a corner). The depth the penalty acts on may grow from the last
+    // step's by the approach, not jump; without this, fragments pressed together pump energy
+    // into each other.
+    const double approach = std::max(0.0, -vn) * dt;
+    double& loaded = model.contact.loaded_gap[s];
     if (!touching) {
-      const double approach = std::max(0.0, -vn) * dt;
-      offset = hit.crack_faces && -hit.gap > 1.5 * approach ? std::min(0.0, hit.gap + approach) : 0.0;
+      offset = 0;
+      loaded = 0;
       touching = 1;
     } else {
       offset = std::min(0.0, std::max(offset, hit.gap));
     }
+    if (hit.crack_faces && -(hit.gap - offset) > -loaded + 1.5 * approach)
+      offset = std::min(0.0, hit.gap - loaded + approach);
+    loaded = hit.gap - offset;
     const double fn_mag = -k * (hit.gap - offset);
     max_penetration_ = std::max(max_penetration_, -hit.gap);
     double vt[3];

@@ -527,6 +527,7 @@ void extend_node_data(Model& model, std::span<const std::int32_t> parent, std::s
   if (c.tangential.size() == dim * old_n) c.tangential.resize(dim * nn, 0.0);
   if (c.touching.size() == old_n) c.touching.resize(nn, 0);
   if (c.penetration_offset.size() == old_n) c.penetration_offset.resize(nn, 0.0);
+  if (c.loaded_gap.size() == old_n) c.loaded_gap.resize(nn, 0.0);
   if (old_n > 0 && !c.wall_tangential.empty() && c.wall_tangential.size() % (dim * old_n) == 0) {
     const std::size_t walls = c.wall_tangential.size() / (dim * old_n);
     std::vector<double> grown(walls * dim * nn, 0.0);

@@ -127,6 +127,9 @@ struct ContactState {
   /// step's approach could have taken it (docs/theory/contact.md, "Contact found at depth").
   std::vector<std::uint8_t> touching;
   std::vector<double> penetration_offset;
+  /// The depth the penalty acted on in the last step (gap − offset, ≤ 0), per node: a crack-face
+  /// contact may deepen by about the step's approach from there, not jump.
+  std::vector<double> loaded_gap;
   /// The element stable time step the penalty is built on, fixed at the first contact step (one
   /// value): a penalty that followed the current step would change with the motion of the
   /// critical element and bulk viscosity, and make contact chatter.
@@ -189,6 +192,7 @@ struct Model {
     f("contact.wall_offset", contact.wall_offset);
     f("contact.touching", contact.touching);
     f("contact.penetration_offset", contact.penetration_offset);
+    f("contact.loaded_gap", contact.loaded_gap);
     f("contact.penalty_time_step", contact.penalty_time_step);
     // Cracks add nodes: the sets that name nodes grow with them.
     f("nodes.origin", node_origin);
