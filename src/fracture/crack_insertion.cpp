@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <unordered_map>
@@ -73,6 +74,15 @@ struct Fans {
   }
 };
 
+/// The global number of each part's first element (elements numbered over all parts in order),
+/// and the total at the end.
+std::vector<std::int64_t> part_begin_of(const Model& model) {
+  std::vector<std::int64_t> begin(model.parts.size() + 1, 0);
+  for (std::size_t p = 0; p < model.parts.size(); ++p)
+    begin[p + 1] = begin[p] + static_cast<std::int64_t>(model.parts[p].element_count());
+  return begin;
+}
+
 /// Calls visit(element connectivity, global element number) for every live tri3 element.
 template <class Visit>
 void for_each_live_triangle(const Model& model, const std::vector<std::int64_t>& part_begin, Visit&& visit) {
@@ -92,9 +102,7 @@ void for_each_live_triangle(const Model& model, const std::vector<std::int64_t>&
 Fans build_fans(const Model& model, std::vector<char> wanted, bool with_neighbours) {
   Fans fans;
   fans.model = &model;
-  fans.part_begin.assign(model.parts.size() + 1, 0);
-  for (std::size_t p = 0; p < model.parts.size(); ++p)
-    fans.part_begin[p + 1] = fans.part_begin[p] + static_cast<std::int64_t>(model.parts[p].element_count());
+  fans.part_begin = part_begin_of(model);
   if (with_neighbours) {
     std::vector<char> grown = wanted;
     for_each_live_triangle(model, fans.part_begin, [&](const std::int32_t* cn, std::int64_t) {
@@ -109,6 +117,77 @@ Fans build_fans(const Model& model, std::vector<char> wanted, bool with_neighbou
   std::sort(fans.corners.begin(), fans.corners.end());
   return fans;
 }
+
+/// Sizes the pieces an opened edge would cut off (the minimum-fragment rule): the live triangles
+/// near the failed nodes, joined across the edges they share, are walked breadth-first from one
+/// side of a candidate edge, never crossing an edge already cut (in the mesh: no shared edge; in
+/// this update: `cut`) or the candidate. Only triangles within `rings` + 1 node rings of a failed
+/// node are collected, enough for a walk of `rings` elements to see every neighbour it has.
+class PieceSizer {
+ public:
+  PieceSizer(const Model& model, std::vector<std::int64_t> part_begin, std::vector<char> near, int rings)
+      : model_(&model), part_begin_(std::move(part_begin)) {
+    for (int r = 0; r <= rings; ++r) {
+      std::vector<char> grown = near;
+      for_each_live_triangle(model, part_begin_, [&](const std::int32_t* cn, std::int64_t) {
+        if (near[cn[0]] || near[cn[1]] || near[cn[2]]) grown[cn[0]] = grown[cn[1]] = grown[cn[2]] = 1;
+      });
+      near = std::move(grown);
+    }
+    for_each_live_triangle(model, part_begin_, [&](const std::int32_t* cn, std::int64_t global) {
+      if (!(near[cn[0]] || near[cn[1]] || near[cn[2]])) return;
+      for (int i = 0; i < 3; ++i) {
+        auto& sides = edges_.try_emplace(edge_key(cn[i], cn[(i + 1) % 3]), std::array<std::int64_t, 2>{-1, -1})
+                          .first->second;
+        (sides[0] < 0 ? sides[0] : sides[1]) = global;
+      }
+    });
+  }
+
+  /// True if opening edge a–b (with the edges in `cut`) leaves at least `min_elements` live
+  /// triangles edge-connected to each of its two sides (or the two sides still connected).
+  bool leaves_large_pieces(std::int32_t a, std::int32_t b, const std::unordered_set<std::uint64_t>& cut,
+                           int min_elements) const {
+    const auto it = edges_.find(edge_key(a, b));
+    if (it == edges_.end() || it->second[1] < 0) return true;
+    const std::uint64_t candidate = edge_key(a, b);
+    for (int side = 0; side < 2; ++side)
+      if (!reaches(it->second[side], it->second[1 - side], candidate, cut, min_elements)) return false;
+    return true;
+  }
+
+ private:
+  const std::int32_t* connectivity(std::int64_t global) const {
+    const auto& pb = part_begin_;
+    const std::size_t p = std::upper_bound(pb.begin(), pb.end(), global) - pb.begin() - 1;
+    return &model_->parts[p].connectivity[3 * static_cast<std::size_t>(global - pb[p])];
+  }
+
+  /// Walks from `start`: true once `min_elements` triangles are found or `other` is reached.
+  bool reaches(std::int64_t start, std::int64_t other, std::uint64_t candidate,
+               const std::unordered_set<std::uint64_t>& cut, int min_elements) const {
+    std::vector<std::int64_t> found{start};
+    for (std::size_t k = 0; k < found.size(); ++k) {
+      if (static_cast<int>(found.size()) >= min_elements) return true;
+      const std::int32_t* cn = connectivity(found[k]);
+      for (int i = 0; i < 3; ++i) {
+        const std::uint64_t key = edge_key(cn[i], cn[(i + 1) % 3]);
+        if (key == candidate || cut.count(key)) continue;
+        const auto it = edges_.find(key);
+        if (it == edges_.end()) continue;
+        const std::int64_t next = it->second[0] == found[k] ? it->second[1] : it->second[0];
+        if (next < 0) continue;
+        if (next == other) return true;
+        if (std::find(found.begin(), found.end(), next) == found.end()) found.push_back(next);
+      }
+    }
+    return static_cast<int>(found.size()) >= min_elements;
+  }
+
+  const Model* model_;
+  std::vector<std::int64_t> part_begin_;
+  std::unordered_map<std::uint64_t, std::array<std::int64_t, 2>> edges_;
+};
 
 /// The wedges of one node's fan: triangles joined across the edges p–r that two of them share
 /// and that are not cut. next[i] is the entry CCW after entry i across edge p–b_i (−1: a free or
@@ -285,12 +364,32 @@ CrackInsertion insert_cracks(Model& model, std::span<const CrackingPart> parts,
   // The edges opened run from a failed node to a neighbour: those are all the nodes to look at.
   std::vector<char> wanted(nn, 0);
   for (const auto p : failed) wanted[p] = 1;
+  std::optional<PieceSizer> sizer;
+  const int min_fragment = settings.min_fragment_elements;
+  if (min_fragment > 1) sizer.emplace(model, part_begin_of(model), wanted, min_fragment);
   const Fans fans = build_fans(model, std::move(wanted), true);
   const double* X = model.nodes.x.data();
   std::unordered_set<std::uint64_t> cut;
   auto open = [&](std::int32_t p, std::int32_t r) {
     cut.insert(edge_key(p, r));
     out.opened_edges.push_back({p, r});
+  };
+  // The minimum-fragment rule: every edge in `edges` may open together (with those of `cut`).
+  auto leaves_large_pieces = [&](std::initializer_list<std::int32_t> ends, std::int32_t p) {
+    if (!sizer) return true;
+    std::unordered_set<std::uint64_t> trial = cut;
+    for (const std::int32_t r : ends) trial.insert(edge_key(p, r));
+    for (const std::int32_t r : ends) {
+      trial.erase(edge_key(p, r));
+      const bool ok = sizer->leaves_large_pieces(p, r, trial, min_fragment);
+      trial.insert(edge_key(p, r));
+      if (!ok) return false;
+    }
+    return true;
+  };
+  auto refuse = [&](std::int32_t p) {
+    out.skipped_nodes.push_back(p);
+    ++out.small_fragment_refusals;
   };
 
   // Nodes on a crack already: copies of a split node and the nodes they were split from.
@@ -352,6 +451,10 @@ CrackInsertion insert_cracks(Model& model, std::span<const CrackingPart> parts,
         out.skipped_nodes.push_back(p);
         continue;
       }
+      if (!leaves_large_pieces({fan[best[0]].b, fan[best[1]].b}, p)) {
+        refuse(p);
+        continue;
+      }
       open(p, fan[best[0]].b);
       open(p, fan[best[1]].b);
       out.cracked_nodes.push_back(p);
@@ -400,6 +503,10 @@ CrackInsertion insert_cracks(Model& model, std::span<const CrackingPart> parts,
     }
     if (!(s_depth > 0) || best < 0) {
       out.skipped_nodes.push_back(p);
+      continue;
+    }
+    if (!leaves_large_pieces({fan[best].b}, p)) {
+      refuse(p);
       continue;
     }
     open(p, fan[best].b);

@@ -39,6 +39,11 @@ struct CrackingPart {
 
 struct CrackInsertionSettings {
   double failure_threshold = 1.0;  ///< F̄ at which a node fails, and F at which a point has failed
+  /// No edge opens that would cut off a piece of fewer elements than this (1: no limit). A
+  /// fragment of one or two elements is below what the mesh resolves; its material stays a
+  /// smeared crack (open in tension, closed in compression) instead of loose triangles in
+  /// contact with each other.
+  int min_fragment_elements = 1;
 };
 
 /// The outcome of one topological update.
@@ -48,6 +53,9 @@ struct CrackInsertion {
   std::vector<std::array<std::int32_t, 2>> opened_edges;  ///< (node ids before the update)
   std::vector<std::int32_t> cracked_nodes;  ///< failed nodes a crack now passes through or ends at
   std::vector<std::int32_t> skipped_nodes;  ///< failed nodes where no edge could be opened
+  /// Failed nodes skipped because their edge would have cut off a fragment below
+  /// min_fragment_elements (also counted in skipped_nodes).
+  std::size_t small_fragment_refusals = 0;
   std::size_t reinitialised_elements = 0;
   /// Recoverable energy of the re-initialised points, whose stress was set to 0 (Ψ·V, or
   /// p²/2K + s:s/4G · V): the damage "coalesced into the crack"; book it as fracture energy.
@@ -67,7 +75,9 @@ struct CrackInsertion {
 ///  - a node on the free boundary, at a crack tip, or on one face of a crack opens one edge: the
 ///    one closest to the direction ±t that lies deepest inside the material around the node;
 ///    none when the crack line does not enter the material there (skipped);
-///  - a node already separated (by edges chosen at its neighbours) opens nothing more.
+///  - a node already separated (by edges chosen at its neighbours) opens nothing more;
+///  - no edge opens that would cut off fewer than min_fragment_elements elements (edge-connected
+///    live triangles, counting the edges already chosen in this update): the node is skipped.
 /// Only edges between two elements of cracking parts open. Failed elements (a point with
 /// F ≥ threshold) that hold a cracked node are then re-initialised: zero stress, F and the
 /// part's reset_indices set to 0.

@@ -392,7 +392,8 @@ Simulation build_simulation(Scenario& sc, const MeshData& mesh) {
       throw InputError(file, sc.cracking->line, "cracking",
                        "no part can crack: cracks are inserted in tri3 parts of a material with a "
                        "failure map (rotating_crack)");
-    sim.cracking = CrackGrowthSettings{cracking_parts, sc.cracking->failure_threshold};
+    sim.cracking =
+        CrackGrowthSettings{cracking_parts, sc.cracking->failure_threshold, sc.cracking->min_fragment_elements};
   }
   if (sc.contact || !sc.walls.empty() || !cracking_parts.empty()) {
     ContactSettings cs;

@@ -135,6 +135,11 @@ KeyList cracking_keys() {
   k.quantity("failure_threshold", dim::none, "nodal failure factor at which a node splits")
       .above(0)
       .defaults_to("1");
+  k.add("min_fragment_elements", ValueKind::integer,
+        "no crack opens that would cut off a piece of fewer elements (1: no limit); the material of "
+        "smaller pieces stays a smeared crack")
+      .at_least(1)
+      .defaults_to("3");
   k.quantity("friction", dim::none,
              "Coulomb coefficient between crack faces (they close and slide in contact)")
       .at_least(0)
@@ -754,6 +759,7 @@ Scenario read_scenario(const std::filesystem::path& path) {
       sc.resolved["cracking"]["parts"] = list;
     }
     ci.failure_threshold = k.number("failure_threshold");
+    ci.min_fragment_elements = static_cast<int>(k.integer("min_fragment_elements"));
     ci.friction = k.number("friction");
     sc.cracking = ci;
   }

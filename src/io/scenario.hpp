@@ -143,6 +143,7 @@ struct ParticleBoundaryInput {
 struct CrackingInput {
   std::vector<std::string> parts;  ///< empty: every tri3 part whose material has a failure map
   double failure_threshold = 1.0;
+  int min_fragment_elements = 3;   ///< no crack cuts off a piece of fewer elements
   double friction = 0.25;          ///< Coulomb coefficient between crack faces
   int line = 0;
 };

@@ -58,6 +58,7 @@ std::size_t CrackGrowth::update(Model& model, Loads& loads, ContactSystem* conta
   nodal_failure_map(model, fields_, map_);
   CrackInsertionSettings s;
   s.failure_threshold = settings_.failure_threshold;
+  s.min_fragment_elements = settings_.min_fragment_elements;
   const CrackInsertion ins = insert_cracks(model, parts_, map_.factor, map_.direction, s);
   energy.fracture += ins.released_energy;
   if (ins.new_node_count() == 0) return 0;

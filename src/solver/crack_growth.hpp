@@ -21,6 +21,7 @@ namespace shard {
 struct CrackGrowthSettings {
   std::vector<int> parts;          ///< indices of the cracking parts (tri3, a failure-map material)
   double failure_threshold = 1.0;  ///< nodal failure factor at which a node splits
+  int min_fragment_elements = 1;   ///< no crack cuts off a piece of fewer elements (1: no limit)
 };
 
 class CrackGrowth {

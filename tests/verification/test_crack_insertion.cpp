@@ -9,6 +9,9 @@
 //    masses of the cracked mesh;
 //  - a straight line of failed nodes cuts a plate into exactly two fragments whose masses are
 //    ρ·area·t of each side (and the ring masses in axisymmetry) within 1e-12;
+//  - no edge opens that would cut off fewer elements than the minimum fragment size: the cut of
+//    a column of 2·ny triangles is made at a minimum of 2·ny and refused at 2·ny + 1, and a
+//    corner triangle is cut off at a minimum of 1 and not at 2;
 //  - the halves then separate freely: no force crosses the crack, the free half stays at rest
 //    and the pulled half's reaction equals its m·a (an uncracked plate, the control, fails both);
 //  - failed elements around the crack are re-initialised and give up σ²/2E·V.
@@ -451,6 +454,66 @@ TEST(CrackInsertion, StraightLineCutsPlateIntoTwoFragments) {
     EXPECT_EQ(right.elements, 2 * (nx - 2) * ny);
     EXPECT_LT(left.centroid[0], cut);
     EXPECT_GT(right.centroid[0], cut);
+  }
+}
+
+TEST(CrackInsertion, NoCrackCutsOffAFragmentBelowTheMinimumSize) {
+  // A line of failed nodes along x = h would cut off the first column of cells: 2·ny triangles.
+  // With min_fragment_elements = 2·ny the cut is made (two fragments); one more and the edge
+  // that would close it is refused: the crack stops one edge short and the plate stays whole.
+  const int nx = 6, ny = 5;
+  for (const int min_fragment : {2 * ny, 2 * ny + 1}) {
+    auto run = plate(nx, ny, 0.03, 0.02);
+    Model& model = run.model;
+    std::vector<std::int32_t> line;
+    for (int j = 0; j <= ny; ++j) line.push_back(node_id(nx, 1, j));
+    FailedNodes failed(model, line, 1.0, 0.0);
+    CrackInsertionSettings settings;
+    settings.min_fragment_elements = min_fragment;
+    const auto ins = insert_cracks(model, cracking(run), failed.factor, failed.normal, settings);
+    extend_node_data(model, ins);
+    const auto fragments = find_fragments(model);
+    if (min_fragment == 2 * ny) {
+      EXPECT_EQ(ins.opened_edges.size(), static_cast<std::size_t>(ny));
+      EXPECT_EQ(ins.small_fragment_refusals, 0u);
+      ASSERT_EQ(fragments.list.size(), 2u);
+      EXPECT_EQ(std::min(fragments.list[0].elements, fragments.list[1].elements), 2 * ny);
+    } else {
+      EXPECT_EQ(ins.opened_edges.size(), static_cast<std::size_t>(ny - 1));
+      // The last edge is refused from both its ends: the tip below it and the node on y = H.
+      EXPECT_EQ(ins.small_fragment_refusals, 2u);
+      EXPECT_EQ(fragments.list.size(), 1u);
+    }
+    EXPECT_TRUE(colouring_is_valid(model.parts[0]));
+  }
+  // A single corner triangle: failed nodes on both edges of the corner cell would cut off one
+  // element; the default (1) allows it, a minimum of 2 refuses it.
+  for (const int min_fragment : {1, 2}) {
+    auto run = plate(4, 4, 1.0, 1.0);
+    Model& model = run.model;
+    // The cell at the origin is split along its a–c diagonal (0,0)–(1,1): cutting that diagonal
+    // frees the triangle (0,0),(1,0),(1,1) only if the edge (1,0)–(1,1) is cut too.
+    FailedNodes failed(model, {node_id(4, 1, 0)}, 1.0, 0.0);  // vertical crack up from (h, 0)
+    CrackInsertionSettings settings;
+    settings.min_fragment_elements = min_fragment;
+    auto ins = insert_cracks(model, cracking(run), failed.factor, failed.normal, settings);
+    extend_node_data(model, ins);
+    ASSERT_EQ(ins.opened_edges.size(), 1u);
+    // Now the diagonal from the corner: node (0,0) fails with its crack line along (1,1).
+    const double s = std::sqrt(0.5);
+    FailedNodes corner(model, {node_id(4, 0, 0)}, s, -s);
+    ins = insert_cracks(model, cracking(run), corner.factor, corner.normal, settings);
+    extend_node_data(model, ins);
+    const auto fragments = find_fragments(model);
+    std::size_t smallest = model.parts[0].element_count();
+    for (const auto& f : fragments.list) smallest = std::min(smallest, static_cast<std::size_t>(f.elements));
+    if (min_fragment == 1) {
+      EXPECT_EQ(fragments.list.size(), 2u);
+      EXPECT_EQ(smallest, 1u);
+    } else {
+      EXPECT_EQ(fragments.list.size(), 1u);
+      EXPECT_EQ(ins.small_fragment_refusals, 1u);
+    }
   }
 }
 
