@@ -10,7 +10,8 @@ failure factor F = ε_f/ε_f,c has reached 1 (the rotating_crack state), and (b)
 crack face (point field crack_face, when cracks are inserted). The front speed is the slope of a
 straight line through the front positions between 10 % and 90 % of the beam length (least
 squares). Writes OUT/crack_front.json and OUT/crack_front.png; with --pictures, draws the failure
-factor at those times after impact (µs) with tools/shard_plot.py into OUT/failure_<t>us.png.
+factor (or --field crack_face: the crack faces) at those times after impact (µs) with
+tools/shard_plot.py into OUT/failure_<t>us.png (crack_face_<t>us.png).
 Needs Debian's python3-numpy, python3-matplotlib and python3-meshio.
 """
 import argparse
@@ -42,6 +43,9 @@ def main():
     parser.add_argument("--impact", type=float, default=0.1, help="time of impact [µs]")
     parser.add_argument("--pictures", type=float, nargs="*", default=[],
                         help="times after impact [µs] to draw")
+    parser.add_argument("--field", default="failure_factor",
+                        help="field the pictures show (failure_factor, or crack_face for the faces "
+                             "of inserted cracks)")
     args = parser.parse_args()
     rows = []
     for time, path in frames(args.folder):
@@ -90,8 +94,9 @@ def main():
     times = data[:, 0]
     for after in args.pictures:
         k = int(np.argmin(np.abs(times - (after + args.impact))))
-        out = os.path.join(args.folder, f"failure_{after:g}us.png")
-        subprocess.run([sys.executable, plot, "field", args.folder, "--field", "failure_factor",
+        stem = "failure" if args.field == "failure_factor" else args.field
+        out = os.path.join(args.folder, f"{stem}_{after:g}us.png")
+        subprocess.run([sys.executable, plot, "field", args.folder, "--field", args.field,
                         "--frame", str(k), "--vmin", "0", "--vmax", "1", "--cmap", "inferno",
                         "--title", f"{after:g} µs after impact", "-o", out, "--width", "11"],
                        check=True)
