@@ -375,17 +375,17 @@ CrackInsertion insert_cracks(Model& model, std::span<const CrackingPart> parts,
     out.opened_edges.push_back({p, r});
   };
   // The minimum-fragment rule: every edge in `edges` may open together (with those of `cut`).
+  // (The candidates join `cut` for the check and leave it again: the walk never crosses the
+  // candidate it sizes anyway, and copying `cut` would cost its size per failed node.)
   auto leaves_large_pieces = [&](std::initializer_list<std::int32_t> ends, std::int32_t p) {
     if (!sizer) return true;
-    std::unordered_set<std::uint64_t> trial = cut;
-    for (const std::int32_t r : ends) trial.insert(edge_key(p, r));
-    for (const std::int32_t r : ends) {
-      trial.erase(edge_key(p, r));
-      const bool ok = sizer->leaves_large_pieces(p, r, trial, min_fragment);
-      trial.insert(edge_key(p, r));
-      if (!ok) return false;
-    }
-    return true;
+    std::vector<std::uint64_t> added;
+    for (const std::int32_t r : ends)
+      if (cut.insert(edge_key(p, r)).second) added.push_back(edge_key(p, r));
+    bool ok = true;
+    for (const std::int32_t r : ends) ok = ok && sizer->leaves_large_pieces(p, r, cut, min_fragment);
+    for (const std::uint64_t key : added) cut.erase(key);
+    return ok;
   };
   auto refuse = [&](std::int32_t p) {
     out.skipped_nodes.push_back(p);
