@@ -53,30 +53,8 @@ PAPER = {
 # ---- the sample builder's pores, replayed ---------------------------------------------------------
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tools"))
-from mca_replay import MT19937_64  # noqa: E402  (the builder's random draws)
+from mca_replay import MT19937_64, hexagonal_sites  # noqa: E402  (the builder's draws and sites)
 from study_run import run_case  # noqa: E402
-
-
-def hexagonal_sites(side, d):
-    """Centres of the hexagonal packing of the box [0, side]², in the builder's order."""
-    a = ((d, 0.0), (0.5 * d, 0.5 * math.sqrt(3.0) * d))
-    det = a[0][0] * a[1][1] - a[1][0] * a[0][1]
-    inverse = ((a[1][1] / det, -a[1][0] / det), (-a[0][1] / det, a[0][0] / det))
-    low, high = [1 << 40] * 2, [-(1 << 40)] * 2
-    for corner in range(4):
-        c = [side if (corner >> k) & 1 else 0.0 for k in range(2)]
-        f = [inverse[r][0] * c[0] + inverse[r][1] * c[1] for r in range(2)]
-        for k in range(2):
-            low[k] = min(low[k], math.floor(f[k]) - 1)
-            high[k] = max(high[k], math.ceil(f[k]) + 1)
-    tol = 1e-9 * d
-    sites = []
-    for j in range(low[1], high[1] + 1):
-        for i in range(low[0], high[0] + 1):
-            p = (i * a[0][0] + j * a[1][0], i * a[0][1] + j * a[1][1])
-            if all(-tol <= p[k] <= side + tol for k in range(2)):
-                sites.append(p)
-    return sites
 
 
 def pore_layout(sites, d, porosity, with_neighbours, seed):
@@ -120,7 +98,7 @@ def check_replay(folder, diameter, porosity):
     import meshio
     import numpy as np
 
-    sites = hexagonal_sites(SIZE, AUTOMATON)
+    sites = hexagonal_sites(SIZE, SIZE, AUTOMATON)
     removed, _ = pore_layout(sites, AUTOMATON, porosity, diameter == 6, SEED)
     kept = np.asarray([p for p, r in zip(sites, removed) if not r])
     points = meshio.read(frame).points[:, :2]
@@ -188,7 +166,7 @@ def um(value):
 def part_b_scenario(diameter, porosity, variant):
     name, e_factor, s_factor = variant
     d = AUTOMATON
-    sites = hexagonal_sites(SIZE, d)
+    sites = hexagonal_sites(SIZE, SIZE, d)
     _, centres = pore_layout(sites, d, porosity, diameter == 6, SEED)
     pore_radius = (1.05 if diameter == 6 else 0.45) * d
     lining_radius = pore_radius + d  # the next shell out: the automata lining the pore

@@ -55,31 +55,8 @@ FAILURE_LEVEL, SMOOTH = 0.25, 10
 # ---- the sample builder's inclusions, replayed ----------------------------------------------------
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tools"))
-from mca_replay import MT19937_64  # noqa: E402  (the builder's random draws)
+from mca_replay import MT19937_64, hexagonal_sites  # noqa: E402  (the builder's draws and sites)
 from study_run import run_case  # noqa: E402
-
-
-def hexagonal_sites(width, height, d):
-    """Centres of the hexagonal packing of [0, width] × [0, height], in the builder's order."""
-    a = ((d, 0.0), (0.5 * d, 0.5 * math.sqrt(3.0) * d))
-    det = a[0][0] * a[1][1] - a[1][0] * a[0][1]
-    inverse = ((a[1][1] / det, -a[1][0] / det), (-a[0][1] / det, a[0][0] / det))
-    low, high = [1 << 40] * 2, [-(1 << 40)] * 2
-    box = (width, height)
-    for corner in range(4):
-        c = [box[k] if (corner >> k) & 1 else 0.0 for k in range(2)]
-        f = [inverse[r][0] * c[0] + inverse[r][1] * c[1] for r in range(2)]
-        for k in range(2):
-            low[k] = min(low[k], math.floor(f[k]) - 1)
-            high[k] = max(high[k], math.ceil(f[k]) + 1)
-    tol = 1e-9 * d
-    sites = []
-    for j in range(low[1], high[1] + 1):
-        for i in range(low[0], high[0] + 1):
-            p = (i * a[0][0] + j * a[1][0], i * a[0][1] + j * a[1][1])
-            if all(-tol <= p[k] <= box[k] + tol for k in range(2)):
-                sites.append(p)
-    return sites
 
 
 def inclusion_layout(sites, diameter, fraction, seed):
