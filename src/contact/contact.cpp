@@ -219,7 +219,7 @@ void ContactSystem::find_facet_hits(const Model& model) {
         // copy moves around the corner; otherwise a copy switches on at a finite depth and the
         // penalty returns energy it never stored (docs/theory/contact.md, "Split nodes").
         const bool sibling_a = is_sibling(s, fn[0]), sibling_b = is_sibling(s, fn[1]);
-        hit.crack_faces = ps == pf && on_crack(s) && (on_crack(fn[0]) || on_crack(fn[1]));
+        hit.crack_faces = ps == pf && (on_crack(s) || on_crack(fn[0]) || on_crack(fn[1]));
         const double xi = ((x[0] - a[0]) * tx + (x[1] - a[1]) * ty) / l2;
         if (xi < 0.0 && sibling_a) {
           // Behind a reflex corner of the sibling's wedge (its projection falls on neither
@@ -376,11 +376,12 @@ void ContactSystem::add_forces(Model& model, double time, double dt, double stab
     const double k = penalty(pair_mass, stable_dt, r, scale);
     double vn = 0;
     for (int d = 0; d < dim; ++d) vn += vrel[d] * hit.normal[d];
-    // A crack-face node found in contact with another crack face for the first time should be at
-    // most as deep as its approach in this step (the relative normal velocity times the step;
-    // half as much again for the turn of the facet). Deeper, it was inside before the search
-    // could see it (a copy in a sibling's wedge where three or more copies meet, faces of small
-    // fragments round their corners): the penalty on the whole depth would return energy it
+    // A node found in contact with a face of its own part for the first time, either of them on
+    // a crack, should be at most as deep as its approach in this step (the relative normal
+    // velocity times the step; half as much again for the turn of the facet). Deeper, it was
+    // inside before the search could see it (a copy in a sibling's wedge where three or more
+    // copies meet, fragments rounding each other's corners, one fragment's original boundary
+    // behind another's crack face): the penalty on the whole depth would return energy it
     // never stored. That excess is carried as an offset without force, and given up as the node
     // backs out (docs/theory/contact.md, "Split nodes").
     // The same holds for a node already in contact whose depth jumps by more than its approach:

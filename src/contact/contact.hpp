@@ -78,7 +78,7 @@ class ContactSystem {
     double gap = 0;
     double weights[3] = {0, 0, 0};
     double normal[3] = {0, 0, 0};
-    bool crack_faces = false;  ///< node and facet on crack faces of one part (2D cracks)
+    bool crack_faces = false;  ///< node and facet of one part, either on a crack face (2D cracks)
   };
   void find_facet_hits(const Model& model);
 

@@ -627,6 +627,16 @@ void extend_node_data(Model& model, std::span<const std::int32_t> parent, std::s
     }
   }
 
+  // Whose copy each node is (Model::node_origin): a copy of a copy has the first node's origin,
+  // so copies of one node are siblings however often it was split. The contact reads crack faces
+  // from it; the array starts at the first insertion, as the identity.
+  if (model.node_origin.size() < first_new_node) {
+    const std::size_t had = model.node_origin.size();
+    model.node_origin.resize(first_new_node);
+    for (std::size_t n = had; n < first_new_node; ++n) model.node_origin[n] = static_cast<std::int32_t>(n);
+  }
+  for (std::size_t i = 0; i < parent.size(); ++i) model.node_origin.push_back(model.node_origin[parent[i]]);
+
   // Contact history: per node, so it grows with zeros for the new nodes. The wall-major layout
   // of wall_tangential (wall w, node s at (w·n + s)·dim) is rebuilt for the new node count.
   auto& c = model.contact;

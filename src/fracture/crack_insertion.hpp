@@ -5,7 +5,7 @@
 //
 // Call between steps (after ExplicitSolver::advance, before the next compute_forces). After an
 // insertion that added nodes the caller must:
-//   1. extend_node_data(model, insertion)     node sets, facet sets, contact history arrays;
+//   1. extend_node_data(model, insertion)     node sets, facet sets, node origins, contact history;
 //   2. copy every velocity constraint of a parent node to its new nodes (Loads::constraints);
 //   3. ContactSystem::rebuild(model)           the crack faces are free faces now;
 //   4. book insertion.released_energy as fracture energy (EnergyBalance::fracture).
@@ -99,7 +99,8 @@ std::vector<std::int32_t> split_nodes(Model& model, std::span<const double> dens
 
 /// Extends the Model's per-node data to the nodes added by an insertion: a new node joins every
 /// node set its parent is in (sets stay sorted); a facet of a facet set whose element now holds
-/// a copy of one of its nodes is renumbered to the copy; the contact history arrays
+/// a copy of one of its nodes is renumbered to the copy; Model::node_origin records the node each
+/// copy descends from (the crack faces the contact sees); the contact history arrays
 /// (ContactState::tangential, wall_tangential) get zero entries for the new nodes (a new surface
 /// node starts with no stick: its parent keeps its own).
 void extend_node_data(Model& model, std::span<const std::int32_t> parent, std::size_t first_new_node);

@@ -63,15 +63,8 @@ std::size_t CrackGrowth::update(Model& model, Loads& loads, ContactSystem* conta
   energy.fracture += ins.released_energy;
   if (ins.new_node_count() == 0) return 0;
   extend_node_data(model, ins);
-  if (model.node_origin.size() < ins.first_new_node) {
-    model.node_origin.resize(ins.first_new_node);
-    for (std::size_t n = 0; n < ins.first_new_node; ++n) model.node_origin[n] = static_cast<std::int32_t>(n);
-  }
-  for (std::size_t i = 0; i < ins.new_node_count(); ++i) {
-    const std::int32_t node = static_cast<std::int32_t>(ins.first_new_node + i);
-    model.node_origin.push_back(model.node_origin[ins.parent[i]]);
-    copy_constraints(loads, ins.parent[i], node);
-  }
+  for (std::size_t i = 0; i < ins.new_node_count(); ++i)
+    copy_constraints(loads, ins.parent[i], static_cast<std::int32_t>(ins.first_new_node + i));
   if (contact) contact->rebuild(model);
   inserted_ += static_cast<std::int64_t>(ins.new_node_count());
   return ins.new_node_count();
