@@ -108,55 +108,67 @@ void ContactSystem::find_facet_hits(const Model& model) {
   if (nf == 0 || !settings_.any_pairs()) return;
   const double* X = model.nodes.x.data();
   const std::int32_t* F = surface_.facets.data();
-  // Bins: a facet's box grown by the search margin (half the largest facet extent on each side)
-  // is at most twice the largest extent long; a cell 2.5 times the largest extent is longer than
-  // that, so a grown box covers at most 2 cells per direction and a node looks in one cell.
-  double largest = 0;
-  for (std::size_t f = 0; f < nf; ++f)
-    for (int d = 0; d < dim; ++d) {
-      double lo = X[dim * F[dim * f] + d], hi = lo;
-      for (int a = 1; a < dim; ++a) {
-        lo = std::min(lo, X[dim * F[dim * f + a] + d]);
-        hi = std::max(hi, X[dim * F[dim * f + a] + d]);
-      }
-      largest = std::max(largest, hi - lo);
-    }
-  bin_size_ = std::max(2.5 * largest, 1e-12);
-  std::size_t table = 1;
-  while (table < 4 * nf) table <<= 1;
-  bin_mask_ = table - 1;
-  bin_begin_.assign(table + 1, 0);
-  std::vector<std::size_t>& keys = bin_keys_;
-  std::vector<std::int32_t>& owners = bin_owners_;
-  keys.clear();
-  owners.clear();
+  // Bins. A node can be found behind a facet by at most half the facet's length (the depth
+  // limits below), so it lies in the facet's box grown by half the box's diagonal. Each facet is
+  // entered in every cell its grown box touches, and a node looks in its own cell only. The cell
+  // follows the mean facet, not the largest: where an impact stretches one element or a crushed
+  // zone is full of short crack faces, a cell sized by the largest facet held hundreds of facets
+  // for every node. A facet much longer than the cell enters more cells; the cell is kept above
+  // 1/8 of the largest facet so that none enters more than about 10 per direction.
+  facet_box_.resize(2 * 3 * nf);
+  double largest = 0, mean = 0;
   for (std::size_t f = 0; f < nf; ++f) {
-    double lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
-    for (int d = 0; d < dim; ++d) {
+    double* lo = &facet_box_[6 * f];
+    double* hi = lo + 3;
+    double diagonal2 = 0;
+    for (int d = 0; d < 3; ++d) {
+      lo[d] = hi[d] = 0;
+      if (d >= dim) continue;
       lo[d] = hi[d] = X[dim * F[dim * f] + d];
       for (int a = 1; a < dim; ++a) {
         lo[d] = std::min(lo[d], X[dim * F[dim * f + a] + d]);
         hi[d] = std::max(hi[d], X[dim * F[dim * f + a] + d]);
       }
+      diagonal2 += (hi[d] - lo[d]) * (hi[d] - lo[d]);
     }
-    const double margin = 0.5 * largest;
-    std::int64_t c0[3] = {0, 0, 0}, c1[3] = {0, 0, 0};
+    const double diagonal = std::sqrt(diagonal2);
     for (int d = 0; d < dim; ++d) {
-      c0[d] = static_cast<std::int64_t>(std::floor((lo[d] - margin) / bin_size_));
-      c1[d] = static_cast<std::int64_t>(std::floor((hi[d] + margin) / bin_size_));
+      lo[d] -= 0.5 * diagonal;
+      hi[d] += 0.5 * diagonal;
     }
-    std::size_t local[27];
-    int count = 0;
+    largest = std::max(largest, diagonal);
+    mean += diagonal;
+  }
+  mean /= static_cast<double>(nf);
+  bin_size_ = std::max({2.5 * mean, largest / 8.0, 1e-12});
+  std::vector<std::size_t>& keys = bin_keys_;
+  std::vector<std::int32_t>& owners = bin_owners_;
+  keys.clear();
+  owners.clear();
+  std::size_t table = 1;
+  while (table < 4 * nf) table <<= 1;  // collisions only add candidates, never lose one
+  bin_mask_ = table - 1;
+  bin_begin_.assign(table + 1, 0);
+  std::int64_t c0[3] = {0, 0, 0}, c1[3] = {0, 0, 0};
+  std::vector<std::size_t>& local = bin_cells_;
+  for (std::size_t f = 0; f < nf; ++f) {
+    for (int d = 0; d < dim; ++d) {
+      c0[d] = static_cast<std::int64_t>(std::floor(facet_box_[6 * f + d] / bin_size_));
+      c1[d] = static_cast<std::int64_t>(std::floor(facet_box_[6 * f + 3 + d] / bin_size_));
+    }
+    // Two cells of one facet may share a hash slot: enter the facet once per slot.
+    local.clear();
     for (std::int64_t i = c0[0]; i <= c1[0]; ++i)
       for (std::int64_t j = c0[1]; j <= c1[1]; ++j)
-        for (std::int64_t k = c0[2]; k <= c1[2]; ++k) {
-          const std::size_t h = cell_hash(i, j, k, bin_mask_);
-          if (std::find(local, local + count, h) == local + count) local[count++] = h;
-        }
-    for (int c = 0; c < count; ++c) {
-      keys.push_back(local[c]);
+        for (std::int64_t k = c0[2]; k <= c1[2]; ++k) local.push_back(cell_hash(i, j, k, bin_mask_));
+    if (local.size() > 1) {
+      std::sort(local.begin(), local.end());
+      local.erase(std::unique(local.begin(), local.end()), local.end());
+    }
+    for (const std::size_t h : local) {
+      keys.push_back(h);
       owners.push_back(static_cast<std::int32_t>(f));
-      bin_begin_[local[c] + 1]++;
+      bin_begin_[h + 1]++;
     }
   }
   for (std::size_t b = 0; b < table; ++b) bin_begin_[b + 1] += bin_begin_[b];

@@ -91,6 +91,8 @@ class ContactSystem {
   std::vector<std::int32_t> bin_begin_, bin_facets_, bin_fill_, bin_owners_;
   std::vector<char> crack_face_;        // per node: on a crack face (Model::crack_face_nodes)
   std::vector<std::size_t> bin_keys_;  // scratch of the search, kept to avoid per-step allocation
+  std::vector<std::size_t> bin_cells_;  // scratch: the hash slots of one facet
+  std::vector<double> facet_box_;       // scratch: per facet lo[3], hi[3] grown by the search depth
   double bin_size_ = 0;
   std::size_t bin_mask_ = 0;
   double friction_work_ = 0;
