@@ -341,6 +341,10 @@ void ContactSystem::add_forces(Model& model, double time, double dt, double stab
   if (model.contact.wall_tangential.size() != nw * dim * nn) model.contact.wall_tangential.assign(nw * dim * nn, 0.0);
   if (model.contact.wall_offset.size() != nw * dim) model.contact.wall_offset.assign(nw * dim, 0.0);
   friction_work_ = 0;
+  for (const std::int32_t n : stiffened_) row_stiffness_[n] = 0;
+  stiffened_.clear();
+  if (row_stiffness_.size() != nn) row_stiffness_.assign(nn, 0.0);
+  max_frequency2_ = 0;
   applied_.clear();
   max_penetration_ = 0;
   active_ = 0;
@@ -432,6 +436,8 @@ void ContactSystem::add_forces(Model& model, double time, double dt, double stab
     }
     normal_force_[i] = fn_mag;
     ++active_;
+    add_row_stiffness(s, 2.0 * k);
+    for (int a = 0; a < dim; ++a) add_row_stiffness(fn[a], 2.0 * k * hit.weights[a]);
     const int p = ps <= pf ? pair_index(ps, pf) : pair_index(pf, ps);
     if (p >= 0)
       for (int d = 0; d < dim; ++d) pair_force_[dim * p + d] += ps <= pf ? f[d] : -f[d];
@@ -458,6 +464,7 @@ void ContactSystem::add_forces(Model& model, double time, double dt, double stab
       }
       const double k = penalty(2.0 * M[s], stable_dt, r, scale);  // the wall does not move back
       const double fn_mag = -k * gap;
+      add_row_stiffness(s, k);
       max_penetration_ = std::max(max_penetration_, -gap);
       double vrel[3] = {0, 0, 0}, vn = 0;
       for (int d = 0; d < dim; ++d) {
@@ -477,6 +484,13 @@ void ContactSystem::add_forces(Model& model, double time, double dt, double stab
       ++active_;
     }
   }
+  for (const std::int32_t n : stiffened_)
+    if (M[n] > 0) max_frequency2_ = std::max(max_frequency2_, row_stiffness_[n] / M[n]);
+}
+
+void ContactSystem::add_row_stiffness(std::int32_t node, double stiffness) {
+  if (row_stiffness_[node] == 0) stiffened_.push_back(node);
+  row_stiffness_[node] += stiffness;
 }
 
 std::vector<double> ContactSystem::nodal_pressure(const Model& model) const {

@@ -56,6 +56,13 @@ class ContactSystem {
 
   double friction_increment() const { return friction_work_; }  ///< dissipated in this call (J)
   std::size_t active_contacts() const { return active_; }
+  /// Bound on the largest ω² the contact springs of the last call add (1/s²): Gershgorin's
+  /// bound on M⁻¹K, the largest over nodes of the row sum of the springs' stiffness over the
+  /// node's mass (a node-to-facet spring k adds 2k to its node's row and 2k·w_a to corner a's;
+  /// a wall spring k). One spring stays within the step reduction the penalty is built for;
+  /// several on one light node (a small fragment squeezed among others) do not, and the solver
+  /// then shortens the step (docs/theory/contact.md, "Normal force: penalty").
+  double max_frequency_squared() const { return max_frequency2_; }
   /// The deepest penetration (−gap, m) found in the last call, node-to-facet and walls.
   double max_penetration() const { return max_penetration_; }
   /// (dof, force) of every contact and wall force added in the last call, in a fixed order.
@@ -81,6 +88,7 @@ class ContactSystem {
     bool crack_faces = false;  ///< node and facet of one part, either on a crack face (2D cracks)
   };
   void find_facet_hits(const Model& model);
+  void add_row_stiffness(std::int32_t node, double stiffness);
 
   ContactSettings settings_;
   std::vector<int> part_material_;
@@ -98,6 +106,9 @@ class ContactSystem {
   double friction_work_ = 0;
   std::size_t active_ = 0;
   double max_penetration_ = 0;
+  double max_frequency2_ = 0;
+  std::vector<double> row_stiffness_;     // per node: Σ of the springs' row stiffness, this call
+  std::vector<std::int32_t> stiffened_;   // nodes with row_stiffness_ > 0, in the order touched
   std::vector<double> wall_force_, pair_force_;
   std::vector<std::pair<int, int>> pairs_;
   std::vector<std::pair<std::int64_t, double>> applied_;

@@ -211,6 +211,14 @@ void ExplicitSolver::compute_forces() {
                                 ? total.stable_dt
                                 : state_.stable_dt / reduction;
   state_.stable_dt = element_dt * reduction;
+  // Several contact springs on one light node can take ω² past that fraction: bound the step by
+  // ω² ≤ ω_e² + ω_c², with ω_e = 2/Δt_e and ω_c² the contact's Gershgorin bound. One spring of
+  // the automatic penalty gives exactly the reduced step again, so only piles of contacts shorten it.
+  if (contact_ && std::isfinite(element_dt) && contact_->max_frequency_squared() > 0) {
+    const double omega_c2 = contact_->max_frequency_squared();
+    const double contact_dt = element_dt / std::sqrt(1.0 + 0.25 * omega_c2 * element_dt * element_dt);
+    state_.stable_dt = std::min(state_.stable_dt, contact_dt);
+  }
   double dt = settings_.time_step_safety * state_.stable_dt;
   dt = std::min(dt, particle_dt);
   if (settings_.max_time_step > 0) dt = std::min(dt, settings_.max_time_step);

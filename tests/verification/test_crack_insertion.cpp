@@ -626,8 +626,15 @@ TEST(CrackInsertion, HalvesSeparateFreely) {
 /// over the left one so that its original right edge lies `depth` behind the crack face of the
 /// left half (and the left half's crack-face nodes `depth` behind that original edge). Returns
 /// the x force on the right half from the contact after each of three steps of dt: found there
-/// at rest, moved a further δ in at δ/dt, moved 2δ back out at 2δ/dt.
-std::array<double, 3> pieces_found_overlapping(double depth, double delta) {
+/// at rest, moved a further δ in at δ/dt, moved 2δ back out at 2δ/dt; and the contact's bound on
+/// the ω² its springs add in the second step.
+struct OverlapResult {
+  std::array<double, 3> force{};
+  double frequency2 = 0;
+  double frequency2_by_hand = 0;  ///< Gershgorin's row sums of the four springs, from their k
+};
+
+OverlapResult pieces_found_overlapping(double depth, double delta) {
   const int nx = 4, ny = 2;
   const double h = 0.01, L = nx * h, H = ny * h, dt = 1e-7;
   auto run = plate(nx, ny, L, H);
@@ -653,7 +660,8 @@ std::array<double, 3> pieces_found_overlapping(double depth, double delta) {
   settings.part_pairs = {1};
   settings.friction = {FrictionLaw{}};
   ContactSystem contact(model, settings, {0}, 1);
-  std::array<double, 3> force{};
+  OverlapResult r;
+  auto& force = r.force;
   const double moves[3] = {0.0, -delta, 2 * delta};
   for (int step = 0; step < 3; ++step) {
     for (std::size_t i = 0; i < n; ++i)
@@ -665,8 +673,42 @@ std::array<double, 3> pieces_found_overlapping(double depth, double delta) {
     contact.add_forces(model, step * dt, dt, dt);
     for (std::size_t i = 0; i < n; ++i)
       if (right[i]) force[step] += model.nodes.force[2 * i];
+    if (step == 1) r.frequency2 = contact.max_frequency_squared();
+    if (step == 1 && depth == 0) {
+      // The springs when the halves met and moved δ in: the right half's old edge nodes at
+      // y = 0.3h and 1.3h press on the left crack face (segments 0–h and h–2h, at 0.3 of their
+      // length), and the left crack-face nodes at y = h and 2h press on that old edge (segments
+      // 0.3h–1.3h and 1.3h–2.3h, at 0.7). k = (m/4) ω_e² ((1 − r)⁻² − 1), m the harmonic mean of
+      // the node and the lighter corner (docs/theory/contact.md); a spring adds 2k to its node's
+      // row and 2k·w to each corner's.
+      auto at = [&](bool on_right, double y) {
+        for (std::size_t i = 0; i < n; ++i)
+          if (static_cast<bool>(right[i]) == on_right && std::abs(model.nodes.x[2 * i + 1] - y) < 1e-3 * h &&
+              std::abs(model.nodes.x[2 * i] - 2 * h) < 0.01 * h)
+            return static_cast<std::int32_t>(i);
+        ADD_FAILURE() << "no node at y = " << y;
+        return std::int32_t{0};
+      };
+      const std::int32_t L0 = at(false, 0), L1 = at(false, h), L2 = at(false, 2 * h);
+      const std::int32_t R0 = at(true, 0.3 * h), R1 = at(true, 1.3 * h), R2 = at(true, 2.3 * h);
+      const auto& M = model.nodes.mass;
+      const double c = 4.0 / (dt * dt) * (1.0 / (0.9 * 0.9) - 1.0) / 4.0;
+      std::vector<double> row(n, 0.0);
+      auto spring = [&](std::int32_t node, std::int32_t a, std::int32_t b, double wa) {
+        const double m = 2.0 / (1.0 / M[node] + 1.0 / std::min(M[a], M[b]));
+        const double k = m * c;
+        row[node] += 2 * k;
+        row[a] += 2 * k * wa;
+        row[b] += 2 * k * (1 - wa);
+      };
+      spring(R0, L0, L1, 0.7);
+      spring(R1, L1, L2, 0.7);
+      spring(L1, R0, R1, 0.3);
+      spring(L2, R1, R2, 0.3);
+      for (std::size_t i = 0; i < n; ++i) r.frequency2_by_hand = std::max(r.frequency2_by_hand, row[i] / M[i]);
+    }
   }
-  return force;
+  return r;
 }
 
 TEST(CrackInsertion, FragmentsFoundOverlappingOnlyFeelTheirFurtherApproach) {
@@ -677,8 +719,8 @@ TEST(CrackInsertion, FragmentsFoundOverlappingOnlyFeelTheirFurtherApproach) {
   // out gives nothing back (docs/theory/contact.md, "Split nodes"). Fails if either kind of
   // pair is left out of the rule: the found depth (20 δ) would push with 21 times the force.
   const double h = 0.01, delta = 1e-3 * h;
-  const auto deep = pieces_found_overlapping(0.02 * h, delta);
-  const auto met = pieces_found_overlapping(0.0, delta);
+  const auto deep = pieces_found_overlapping(0.02 * h, delta).force;
+  const auto met = pieces_found_overlapping(0.0, delta).force;
   std::printf("[overlap] right half's x contact force: found 0.02 h deep %.3e, %.6e, %.3e N; met at the "
               "surface %.3e, %.6e, %.3e N\n",
               deep[0], deep[1], deep[2], met[0], met[1], met[2]);
@@ -686,6 +728,22 @@ TEST(CrackInsertion, FragmentsFoundOverlappingOnlyFeelTheirFurtherApproach) {
   EXPECT_GT(met[1], 0.0);
   EXPECT_NEAR(deep[1], met[1], 1e-9 * met[1]);
   EXPECT_EQ(deep[2], 0.0);
+}
+
+TEST(CrackInsertion, SpringsPiledOnANodeBoundTheStableStep) {
+  // In the halves that met, each left crack-face node presses on the right half's old edge and
+  // is also a corner of the faces the right half's nodes press on: up to three springs on one
+  // node. The contact's bound on the ω² they add is the largest Gershgorin row sum over mass,
+  // worked out here by hand from the four springs (1e-12); the springs add up, past what one
+  // spring between equal masses adds. The solver shortens its step once the sum passes
+  // ω_e²((1 − r)⁻² − 1), twice that (docs/theory/contact.md, "Normal force: penalty").
+  const double h = 0.01, dt = 1e-7;
+  const auto r = pieces_found_overlapping(0.0, 1e-3 * h);
+  const double one_spring = 4.0 / (dt * dt) * (1.0 / (0.9 * 0.9) - 1.0) / 2.0;  // 2k/m for equal masses
+  std::printf("[piled springs] contact omega^2 bound %.6e 1/s^2, by hand %.6e, one spring between equal "
+              "masses %.4e\n", r.frequency2, r.frequency2_by_hand, one_spring);
+  EXPECT_NEAR(r.frequency2, r.frequency2_by_hand, 1e-12 * r.frequency2_by_hand);
+  EXPECT_GT(r.frequency2, one_spring);
 }
 
 // ---------------------------------------------------------------------------------------------
