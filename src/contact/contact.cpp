@@ -114,7 +114,7 @@ void ContactSystem::find_facet_hits(const Model& model) {
   // follows the mean facet, not the largest: where an impact stretches one element or a crushed
   // zone is full of short crack faces, a cell sized by the largest facet held hundreds of facets
   // for every node. A facet much longer than the cell enters more cells; the cell is kept above
-  // 1/8 of the largest facet so that none enters more than about 10 per direction.
+  // 1/8 of the largest facet so that none enters more than 17 per direction.
   facet_box_.resize(2 * 3 * nf);
   double largest = 0, mean = 0;
   for (std::size_t f = 0; f < nf; ++f) {

@@ -212,8 +212,9 @@ void ExplicitSolver::compute_forces() {
                                 : state_.stable_dt / reduction;
   state_.stable_dt = element_dt * reduction;
   // Several contact springs on one light node can take ω² past that fraction: bound the step by
-  // ω² ≤ ω_e² + ω_c², with ω_e = 2/Δt_e and ω_c² the contact's Gershgorin bound. One spring of
-  // the automatic penalty gives exactly the reduced step again, so only piles of contacts shorten it.
+  // ω² ≤ ω_e² + ω_c², with ω_e = 2/Δt_e and ω_c² the contact's Gershgorin bound. The bound is
+  // conservative: one spring stays within the reduced step, but ordinary two-body contact can
+  // pass it by up to 1.45 times (up to 14 % shorter steps); piles of fragments pass it by 3.7.
   if (contact_ && std::isfinite(element_dt) && contact_->max_frequency_squared() > 0) {
     const double omega_c2 = contact_->max_frequency_squared();
     const double contact_dt = element_dt / std::sqrt(1.0 + 0.25 * omega_c2 * element_dt * element_dt);
