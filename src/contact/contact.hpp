@@ -59,9 +59,10 @@ class ContactSystem {
   /// Bound on the largest ω² the contact springs of the last call add (1/s²): Gershgorin's
   /// bound on M⁻¹K, the largest over nodes of the row sum of the springs' stiffness over the
   /// node's mass (a node-to-facet spring k adds 2k to its node's row and 2k·w_a to corner a's;
-  /// a wall spring k). One spring stays within the step reduction the penalty is built for;
-  /// several on one light node (a small fragment squeezed among others) do not, and the solver
-  /// then shortens the step (docs/theory/contact.md, "Normal force: penalty").
+  /// a wall spring k). The solver shortens its step where this passes the reduction the penalty
+  /// is built for: conservatively in two-body contact (up to 1.45 times that budget), and where
+  /// springs pile up on a light node of a fragment pile (3.7 times) because they must
+  /// (docs/theory/contact.md, "Normal force: penalty").
   double max_frequency_squared() const { return max_frequency2_; }
   /// The deepest penetration (−gap, m) found in the last call, node-to-facet and walls.
   double max_penetration() const { return max_penetration_; }
