@@ -14,7 +14,7 @@
 #include "core/units.hpp"
 #include "io/scenario.hpp"
 #include "material/material.hpp"
-#include "solver/run.hpp"
+#include "app/run.hpp"
 
 namespace {
 

@@ -1,4 +1,4 @@
-#include "solver/run.hpp"
+#include "app/run.hpp"
 
 #include <sys/resource.h>
 #include <unistd.h>
@@ -18,7 +18,7 @@
 #include "core/error.hpp"
 #include "io/checkpoint.hpp"
 #include "io/frame_output.hpp"
-#include "io/model_setup.hpp"
+#include "app/simulation.hpp"
 #include "io/particle_frame.hpp"
 #include "fracture/fragments.hpp"
 #include "io/vtu_writer.hpp"
@@ -130,9 +130,8 @@ Prepared prepare(const std::filesystem::path& file) {
 std::string check_scenario(const std::filesystem::path& file) {
   Prepared p = prepare(file);
   Simulation& sim = p.sim;
-  ExplicitSolver solver(sim.model, sim.materials, sim.loads, sim.settings);
-  ContactSystem* contact = sim.contact_system ? &*sim.contact_system : nullptr;
-  solver.attach_contact(contact);
+  const auto solver_ptr = make_solver(sim);
+  ExplicitSolver& solver = *solver_ptr;
   solver.initialise();
   solver.compute_forces();
   std::ostringstream out;
@@ -140,7 +139,7 @@ std::string check_scenario(const std::filesystem::path& file) {
       << "  " << sim.model.nodes.count() << " nodes, " << sim.model.element_count() << " elements in "
       << sim.model.parts.size() << " part(s), formulation " << name_of(sim.model.formulation) << "\n";
   for (const auto& part : sim.model.parts)
-    out << "  part '" << part.name << "': " << part.element_count() << " " << name_of(part.kind)
+    out << "  part '" << part.name << "': " << part.element_count() << " " << part.type->name
         << ", material '" << sim.materials[part.material]->name() << "' ("
         << sim.materials[part.material]->model() << ")\n";
   for (const auto& pp : sim.model.particle_parts) {
@@ -168,21 +167,19 @@ RunSummary run_scenario(const std::filesystem::path& file, const RunOptions& opt
   Prepared p = prepare(file);
   Scenario& sc = p.scenario;
   Simulation& sim = p.sim;
-  ExplicitSolver solver(sim.model, sim.materials, sim.loads, sim.settings);
-  ContactSystem* contact = sim.contact_system ? &*sim.contact_system : nullptr;
-  solver.attach_contact(contact);
-  CrackGrowth* cracks = sim.crack_growth ? &*sim.crack_growth : nullptr;
-  solver.attach_crack_growth(cracks);
+  const auto solver_ptr = make_solver(sim);
+  ExplicitSolver& solver = *solver_ptr;
+  const ContactSystem* contact = solver.contact();
+  const CrackGrowth* cracks = sim.crack_growth();
   const std::string fingerprint = fingerprint_of(sc);
   OutputCursor cursor;
   if (options.restart) {
     read_checkpoint(*options.restart, sim.model, solver.state(), cursor, fingerprint);
     // The pair lists may have grown (new contacts): the adjacency is derived from them.
     for (auto& pp : sim.model.particle_parts) pp.system.build_adjacency();
-    // Cracks and erosion changed the mesh since set-up: the copies of split nodes get their
-    // origin's prescribed motion, and the contact surface is that of the checkpoint's mesh.
-    CrackGrowth::restore_constraints(sim.model, sim.loads);
-    if (contact) contact->rebuild(sim.model);
+    // Cracks and erosion changed the mesh since set-up: every cache of the topology (the contact
+    // surface, the prescribed degrees of freedom) follows the checkpoint's model.
+    solver.restored();
   } else {
     solver.initialise();
   }
@@ -235,7 +232,7 @@ RunSummary run_scenario(const std::filesystem::path& file, const RunOptions& opt
   } else {
     history.open(history_path, std::ios::trunc);
     history << "time,step,dt";
-    for (const auto& c : EnergyBalance::column_names()) history << ',' << c;
+    for (const auto& c : solver.state().energy.column_names()) history << ',' << c;
     for (const auto& c : extra_columns) history << ',' << c;
     history << '\n';
   }
@@ -269,7 +266,7 @@ RunSummary run_scenario(const std::filesystem::path& file, const RunOptions& opt
       << ",\n  \"eroded_elements\": " << s.eroded_elements
       << ",\n  \"energy_balance_error\": " << s.energy.relative_error()
       << ",\n  \"energy\": {";
-    const auto names = EnergyBalance::column_names();
+    const auto names = s.energy.column_names();
     const auto values = s.energy.column_values();
     for (std::size_t i = 0; i < names.size(); ++i)
       j << (i ? ", " : "") << json_string(names[i]) << ": " << values[i];

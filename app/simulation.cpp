@@ -1,4 +1,4 @@
-#include "io/model_setup.hpp"
+#include "app/simulation.hpp"
 
 #include <algorithm>
 #include <map>
@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "core/error.hpp"
+#include "model/assembly.hpp"
 #include "particle/packing.hpp"
 #include "solver/setup.hpp"
 
@@ -27,6 +28,19 @@ std::string shown_path(const std::filesystem::path& file) {
 }
 
 }  // namespace
+
+CrackGrowth* Simulation::crack_growth() {
+  for (auto& e : events)
+    if (auto* c = dynamic_cast<CrackGrowth*>(e.get())) return c;
+  return nullptr;
+}
+
+std::unique_ptr<ExplicitSolver> make_solver(Simulation& sim) {
+  auto solver = std::make_unique<ExplicitSolver>(sim.model, sim.materials, sim.loads, sim.settings);
+  solver->attach_contact(sim.contact_system ? &*sim.contact_system : nullptr);
+  for (auto& e : sim.events) solver->add_event(*e);
+  return solver;
+}
 
 std::vector<int> Simulation::part_materials() const {
   std::vector<int> m;
@@ -96,6 +110,77 @@ const MeshGroup& find_group(const Scenario& sc, const MeshData& mesh, const std:
   throw InputError(shown_path(sc.file), line, key, reason);
 }
 
+
+/// "triangles", "hexahedra", ...: the cells of a mesh group, in words.
+std::string cell_words(CellType cell) {
+  switch (cell) {
+    case CellType::line2: return "lines";
+    case CellType::tri3: return "triangles";
+    case CellType::quad4: return "quadrilaterals";
+    case CellType::tet4: return "tetrahedra";
+    case CellType::hex8: return "hexahedra";
+  }
+  return "cells";
+}
+
+/// The part of a scenario entry: the cells of its physical group (in mesh node numbers), the
+/// element formulation (chosen from the cells or checked against them) and its material.
+Part part_of(Scenario& sc, const MeshData& mesh, const PartInput& pin) {
+  const std::string file = shown_path(sc.file);
+  const std::string key = "parts." + pin.name + ".group";
+  const MeshGroup& group = find_group(sc, mesh, pin.group, pin.line, key, sc.dim());
+  if (group.blocks.size() != 1) {
+    throw InputError(file, pin.line, key,
+                     "physical group '" + pin.group +
+                         "' mixes cell types; a part holds one element type (split it into "
+                         "several physical groups and parts)");
+  }
+  const CellBlock& block = group.blocks[0];
+  const ElementType* type = default_element_type(block.type);
+  if (!type)
+    throw InputError(file, pin.line, key,
+                     "physical group '" + pin.group + "' is meshed with " + cell_words(block.type) +
+                         ", on which shard builds no element" +
+                         (block.type == CellType::quad4
+                              ? "; remove 'Recombine' from the .geo to mesh it with triangles"
+                              : ""));
+  if (pin.element) {
+    const ElementType& wanted = element_type(*pin.element);
+    if (wanted.cell != block.type) {
+      std::string fitting;
+      for (const auto& n : element_type_names())
+        if (element_type(n).cell == block.type) fitting += (fitting.empty() ? "" : " or ") + n;
+      throw InputError(file, pin.line, "parts." + pin.name + ".element",
+                       "element '" + wanted.name + "' does not fit the cells of group '" + pin.group +
+                           "': it is meshed with " + cell_words(block.type) + " (use " + fitting +
+                           "), or leave 'element' out to take it from the mesh");
+    }
+    type = &wanted;
+  }
+  sc.resolved["parts"][pin.name]["element"] = type->name;
+  Part part;
+  part.name = pin.name;
+  part.type = type;
+  part.hourglass_coefficient = pin.hourglass_coefficient;
+  part.volumetric = pin.volumetric;
+  if (!type->offers(pin.volumetric)) {
+    std::string offers;
+    for (const auto t : {VolumetricTreatment::average_nodal_pressure, VolumetricTreatment::mean_dilatation}) {
+      std::string by;
+      for (const auto& n : element_type_names())
+        if (element_type(n).offers(t)) by += (by.empty() ? "" : " and ") + n;
+      offers += (offers.empty() ? "" : ", ") + std::string(name_of(t)) + " is for " + (by.empty() ? "none" : by);
+    }
+    throw InputError(file, pin.line, "parts." + pin.name + ".volumetric",
+                     std::string("'") + name_of(pin.volumetric) + "' does not apply to " + type->name +
+                         " elements: " + offers);
+  }
+  for (std::size_t m = 0; m < sc.materials.size(); ++m)
+    if (sc.materials[m].name == pin.material) part.material = static_cast<int>(m);
+  part.connectivity = block.connectivity;
+  return part;
+}
+
 }  // namespace
 
 namespace {
@@ -153,6 +238,7 @@ void build_particle_parts(const Scenario& sc, Simulation& sim) {
     part.x0 = ps.x;
     part.x_old = ps.x;
     part.dtheta.assign(ps.count() * ps.rot_dim(), 0.0);
+    part.prescribed.assign(ps.count() * (dim + ps.rot_dim()), -1);
     model.particle_parts.push_back(std::move(part));
   }
 
@@ -189,9 +275,11 @@ void build_particle_parts(const Scenario& sc, Simulation& sim) {
     }
     sim.loads.particle_groups.push_back(std::move(group));
   }
-  for (const auto& [key, value] : constraint)
-    sim.loads.particle_constraints.push_back(
-        {std::get<0>(key), std::get<1>(key), std::get<2>(key), value.first, value.second});
+  for (const auto& [key, value] : constraint) {
+    ParticlePart& pp = model.particle_parts[std::get<0>(key)];
+    const std::size_t width = static_cast<std::size_t>(dim + pp.system.rot_dim());
+    pp.prescribed[width * std::get<1>(key) + std::get<2>(key)] = sim.loads.prescription(value.first, value.second);
+  }
 }
 
 }  // namespace
@@ -208,78 +296,11 @@ Simulation build_simulation(Scenario& sc, const MeshData& mesh) {
   for (const auto& m : sc.materials)
     sim.materials.push_back(MaterialRegistry::find(m.model)->create(m.name, m.values));
 
-  // Parts: elements from the physical groups, in mesh node numbering for now.
-  std::vector<char> used(mesh.node_count(), 0);
-  for (const auto& pin : sc.parts) {
-    const std::string key = "parts." + pin.name + ".group";
-    const MeshGroup& group = find_group(sc, mesh, pin.group, pin.line, key, dim);
-    if (group.blocks.size() != 1) {
-      throw InputError(file, pin.line, key,
-                       "physical group '" + pin.group +
-                           "' mixes cell types; a part holds one element type (split it into "
-                           "several physical groups and parts)");
-    }
-    const CellBlock& block = group.blocks[0];
-    ElementKind kind;
-    switch (block.type) {
-      case CellType::tri3: kind = ElementKind::tri3; break;
-      case CellType::tet4: kind = ElementKind::tet4; break;
-      case CellType::hex8: kind = ElementKind::hex8_reduced; break;
-      default:
-        throw InputError(file, pin.line, key,
-                         "physical group '" + pin.group +
-                             "' is meshed with quadrilaterals, which shard does not support in 2D; "
-                             "remove 'Recombine' from the .geo to mesh it with triangles");
-    }
-    if (pin.element) {
-      const bool hex_cells = block.type == CellType::hex8;
-      const bool hex_element = *pin.element == ElementKind::hex8 || *pin.element == ElementKind::hex8_reduced;
-      if (hex_cells != hex_element || (!hex_cells && *pin.element != kind))
-        throw InputError(file, pin.line, "parts." + pin.name + ".element",
-                         std::string("element '") + name_of(*pin.element) + "' does not fit the cells of group '" +
-                             pin.group + "': it is meshed with " +
-                             (hex_cells ? "hexahedra (use hex8 or hex8_reduced)"
-                                        : kind == ElementKind::tet4 ? "tetrahedra (use tet4)"
-                                                                    : "triangles (use tri3)") +
-                             ", or leave 'element' out to take it from the mesh");
-      kind = *pin.element;
-    }
-    sc.resolved["parts"][pin.name]["element"] = name_of(kind);
-    Part part;
-    part.name = pin.name;
-    part.kind = kind;
-    part.hourglass_coefficient = pin.hourglass_coefficient;
-    part.volumetric = pin.volumetric;
-    const bool constant_strain = kind == ElementKind::tri3 || kind == ElementKind::tet4;
-    if ((pin.volumetric == VolumetricTreatment::average_nodal_pressure && !constant_strain) ||
-        (pin.volumetric == VolumetricTreatment::mean_dilatation && kind != ElementKind::hex8))
-      throw InputError(file, pin.line, "parts." + pin.name + ".volumetric",
-                       std::string("'") +
-                           (pin.volumetric == VolumetricTreatment::mean_dilatation ? "mean_dilatation"
-                                                                                   : "average_nodal_pressure") +
-                           "' does not apply to " + name_of(kind) +
-                           " elements: average_nodal_pressure is for tri3 and tet4, mean_dilatation "
-                           "for hex8 (hex8_reduced has a single, mean dilatation already)");
-    for (std::size_t m = 0; m < sc.materials.size(); ++m)
-      if (sc.materials[m].name == pin.material) part.material = static_cast<int>(m);
-    part.connectivity = block.connectivity;
-    for (auto n : part.connectivity) used[n] = 1;
-    model.parts.push_back(std::move(part));
-  }
-
-  // Keep the nodes of the parts' elements only, in mesh order.
-  std::vector<std::int32_t> renumber(mesh.node_count(), -1);
-  std::int32_t count = 0;
-  for (std::size_t i = 0; i < mesh.node_count(); ++i)
-    if (used[i]) renumber[i] = count++;
-  model.nodes.resize(static_cast<std::size_t>(count));
-  for (std::size_t i = 0; i < mesh.node_count(); ++i)
-    if (used[i])
-      for (int k = 0; k < dim; ++k) model.nodes.x0[dim * renumber[i] + k] = mesh.coordinates[3 * i + k];
-  model.nodes.x = model.nodes.x0;
-  for (auto& part : model.parts) {
-    for (auto& n : part.connectivity) n = renumber[n];
-  }
+  // Parts: elements from the physical groups, in mesh node numbering until assembled.
+  std::vector<Part> parts;
+  for (const auto& pin : sc.parts) parts.push_back(part_of(sc, mesh, pin));
+  const std::vector<std::int32_t> renumber =
+      assemble_nodes_and_parts(model, mesh, dim, std::move(parts));
   if (sc.formulation == Formulation::axisymmetric) {
     for (std::size_t i = 0; i < model.nodes.count(); ++i)
       if (model.nodes.x0[2 * i] < -1e-12) {
@@ -290,26 +311,16 @@ Simulation build_simulation(Scenario& sc, const MeshData& mesh) {
       }
   }
   for (std::size_t p = 0; p < model.parts.size(); ++p)
-    prepare_part(model.parts[p], *sim.materials[model.parts[p].material], model.nodes.count(),
-                 sc.initial_temperature);
+    prepare_part(model, p, *sim.materials[model.parts[p].material], sc.initial_temperature);
 
   // Node sets (and facet sets for boundary groups) of every physical group, on the kept nodes.
-  auto node_set_of = [&](const MeshGroup& g, int line, const std::string& key) -> const NodeSet& {
+  auto node_set_of_group = [&](const MeshGroup& g, int line, const std::string& key) -> const NodeSet& {
     if (const NodeSet* s = model.find_node_set(g.name)) return *s;
-    NodeSet s;
-    s.name = g.name;
-    for (const auto& b : g.blocks)
-      for (auto n : b.connectivity) {
-        if (renumber[n] < 0)
-          throw InputError(file, line, key,
-                           "physical group '" + g.name +
-                               "' has nodes that belong to no part (a boundary condition or load "
-                               "must act on the boundary of a part)");
-        s.nodes.push_back(renumber[n]);
-      }
-    std::sort(s.nodes.begin(), s.nodes.end());
-    s.nodes.erase(std::unique(s.nodes.begin(), s.nodes.end()), s.nodes.end());
-    model.node_sets.push_back(std::move(s));
+    try {
+      model.node_sets.push_back(node_set_of(g, renumber));
+    } catch (const AssemblyError& e) {
+      throw InputError(file, line, key, e.what());
+    }
     return model.node_sets.back();
   };
 
@@ -327,7 +338,7 @@ Simulation build_simulation(Scenario& sc, const MeshData& mesh) {
     const auto& bc = sc.boundary_conditions[i];
     const std::string key = "boundary_conditions[" + std::to_string(i + 1) + "].group";
     const MeshGroup& g = find_group(sc, mesh, bc.group, bc.line, key, -1);
-    const NodeSet& set = node_set_of(g, bc.line, key);
+    const NodeSet& set = node_set_of_group(g, bc.line, key);
     for (int k = 0; k < dim; ++k) {
       if (!bc.velocity[k]) continue;
       sim.loads.tables.push_back(*bc.velocity[k]);
@@ -335,27 +346,18 @@ Simulation build_simulation(Scenario& sc, const MeshData& mesh) {
       for (auto n : set.nodes) constraint_table[{n, k}] = table;
     }
   }
-  for (const auto& [dof, table] : constraint_table)
-    sim.loads.constraints.push_back({dof.first, dof.second, table});
+  for (const auto& [dof, table] : constraint_table) prescribe_node(model, sim.loads, dof.first, dof.second, table);
 
   // Pressure loads on boundary facets.
   for (std::size_t i = 0; i < sc.pressures.size(); ++i) {
     const auto& p = sc.pressures[i];
     const std::string key = "loads[" + std::to_string(i + 1) + "].group";
     const MeshGroup& g = find_group(sc, mesh, p.group, p.line, key, dim - 1);
-    node_set_of(g, p.line, key);
+    node_set_of_group(g, p.line, key);
     FacetSet fs;
-    fs.name = g.name;
-    for (const auto& b : g.blocks) {
-      const int npf = nodes_per_cell(b.type);
-      if (!fs.nodes.empty() && npf != fs.nodes_per_facet)
-        throw InputError(file, p.line, key, "group '" + g.name + "' mixes triangles and quadrilaterals; split it");
-      fs.nodes_per_facet = npf;
-      for (auto n : b.connectivity) fs.nodes.push_back(renumber[n]);
-    }
     try {
-      orient_facets_outward(model, fs);
-    } catch (const std::runtime_error& e) {
+      fs = facet_set_of(model, g, renumber);
+    } catch (const AssemblyError& e) {
       throw InputError(file, p.line, key, e.what());
     }
     model.facet_sets.push_back(std::move(fs));
@@ -379,12 +381,12 @@ Simulation build_simulation(Scenario& sc, const MeshData& mesh) {
       const Part& part = model.parts[p];
       const bool named = std::find(sc.cracking->parts.begin(), sc.cracking->parts.end(), part.name) !=
                          sc.cracking->parts.end();
-      const bool can = part.kind == ElementKind::tri3 && sim.materials[part.material]->failure_map_slots();
+      const bool can = part.type->is_triangle() && sim.materials[part.material]->failure_map_slots();
       if (named && !can)
         throw InputError(file, sc.cracking->line, "cracking.parts",
                          "part '" + part.name + "' cannot crack: cracks are inserted in tri3 parts of "
                          "a material with a failure map (rotating_crack); it has " +
-                             name_of(part.kind) + " elements of '" +
+                             part.type->name + " elements of '" +
                              std::string(sim.materials[part.material]->model()) + "'");
       if (named || (sc.cracking->parts.empty() && can)) cracking_parts.push_back(static_cast<int>(p));
     }
@@ -454,9 +456,10 @@ Simulation build_simulation(Scenario& sc, const MeshData& mesh) {
   s.q_quadratic = sc.bulk_viscosity_quadratic;
   s.mass_damping = sc.mass_damping;
   s.max_time_step = sc.max_time_step;
+  model.assign_ids();
   if (sim.contact)
     sim.contact_system.emplace(sim.model, *sim.contact, sim.part_materials(), static_cast<int>(nm));
-  if (sim.cracking) sim.crack_growth.emplace(sim.model, sim.materials, *sim.cracking);
+  if (sim.cracking) sim.events.push_back(std::make_unique<CrackGrowth>(sim.model, sim.materials, *sim.cracking));
   return sim;
 }
 

@@ -24,10 +24,16 @@ struct Simulation {
   std::optional<ContactSettings> contact;  ///< contact between parts and/or rigid walls
   std::optional<ContactSystem> contact_system;  ///< built from `contact`; attach it to the solver
   std::optional<CrackGrowthSettings> cracking;  ///< discrete crack insertion
-  std::optional<CrackGrowth> crack_growth;      ///< built from `cracking`; attach it to the solver
+  /// The step events the scenario asks for beyond the solver's own (crack growth).
+  std::vector<std::unique_ptr<StepEvent>> events;
 
   std::vector<int> part_materials() const;
+  /// The crack growth event, if the scenario has one.
+  CrackGrowth* crack_growth();
 };
+
+/// The solver of a simulation, with its contact and events attached.
+std::unique_ptr<ExplicitSolver> make_solver(Simulation& sim);
 
 /// Loads (or meshes) the scenario's mesh. Throws InputError naming the scenario line for bad
 /// mesh files.

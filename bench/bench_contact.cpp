@@ -41,7 +41,7 @@ Model impact_model() {
   Model model;
   for (int p = 0; p < kPlates; ++p) {
     BoxMesh plate;
-    plate.kind = ElementKind::tri3;
+    plate.element = "tri3";
     plate.cells = {p % 2 ? 471 : 500, 10, 1};
     plate.size = {kWidth, kPlate, 0};
     Model m = make_box_model(Formulation::plane_strain, plate);
@@ -54,7 +54,7 @@ Model impact_model() {
     }
   }
   BoxMesh block;
-  block.kind = ElementKind::tri3;
+  block.element = "tri3";
   block.cells = {100, 100, 1};
   block.size = {kBlock, kBlock, 0};
   Model b = make_box_model(Formulation::plane_strain, block);
@@ -82,7 +82,8 @@ Timing run_case(int threads, int steps, bool print_model) {
   // Sintox alumina and RHA steel (tables VI and III of the ceramics paper), elastic.
   materials.push_back(std::make_unique<LinearElastic>("alumina", 3690, ElasticModuli{149.425e9, 107.438e9}));
   materials.push_back(std::make_unique<LinearElastic>("steel", 7830, ElasticModuli{159e9, 81.8e9}));
-  for (Part& part : model.parts) prepare_part(part, *materials[part.material], model.nodes.count(), 293.15);
+  for (std::size_t p = 0; p < model.parts.size(); ++p)
+    prepare_part(model, p, *materials[model.parts[p].material], 293.15);
   std::vector<int> part_material;
   for (const Part& part : model.parts) part_material.push_back(part.material);
   ContactSystem contact(model, testing::all_pairs(model.parts.size(), 2), part_material, 2);

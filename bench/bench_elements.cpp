@@ -29,7 +29,7 @@ struct Case {
 
 std::size_t model_bytes(Model& m) {
   std::size_t bytes = 0;
-  m.visit_arrays([&](const std::string&, auto& a) { bytes += a.size() * sizeof(a[0]); });
+  m.visit_fields([&](const std::string&, const FieldInfo&, auto& a) { bytes += a.size() * sizeof(a[0]); });
   return bytes;
 }
 
@@ -39,10 +39,10 @@ void run_case(const Case& c, int threads, double seconds) {
   std::vector<std::unique_ptr<Material>> materials;
   // Steel, ν = 0 (the benchmark of the foundation issue).
   materials.push_back(std::make_unique<LinearElastic>("steel", 7830, ElasticModuli{210e9 / 3, 105e9}));
-  prepare_part(model.parts[0], *materials[0], model.nodes.count(), 293.15);
+  prepare_part(model, 0, *materials[0], 293.15);
   Loads loads;
   loads.tables.push_back(TimeTable::constant(-10.0));
-  for (auto n : model.find_node_set(c.driven)->nodes) loads.constraints.push_back({n, c.driven_component, 0});
+  for (auto n : model.find_node_set(c.driven)->nodes) prescribe_node(model, loads, n, c.driven_component, 0);
   SolverSettings settings;
   settings.end_time = 1.0;  // never reached: the benchmark stops on wall time
   ExplicitSolver solver(model, materials, loads, settings);
@@ -77,14 +77,14 @@ int main(int argc, char** argv) {
   BoxMesh bar;
   bar.cells = {200, 20, 20};  // 100 x 10 x 10 mm in 0.5 mm hexahedra: 80 000 elements
   bar.size = {0.1, 0.01, 0.01};
-  bar.kind = ElementKind::hex8_reduced;
+  bar.element = "hex8_reduced";
   BoxMesh bar_full = bar;
-  bar_full.kind = ElementKind::hex8;
+  bar_full.element = "hex8";
   BoxMesh bar_tet = bar;
   bar_tet.cells = {100, 10, 10};  // 6 tets per cell: 60 000 elements
-  bar_tet.kind = ElementKind::tet4;
+  bar_tet.element = "tet4";
   BoxMesh plate;
-  plate.kind = ElementKind::tri3;
+  plate.element = "tri3";
   plate.cells = {500, 200, 1};  // 100 x 40 mm, 200 000 triangles
   plate.size = {0.1, 0.04, 0};
   const Case cases[] = {

@@ -8,6 +8,16 @@
 
 namespace shard {
 
+std::vector<EnergyTerm> ContactSystem::energy_terms() {
+  using G = EnergyGroup;
+  namespace r = energy_rank;
+  return {{"wall_work", "work of moving rigid walls on the bodies (part of external_work)", r::wall_work,
+           {{G::contact, +1}}, "-"},
+          {"contact_work", "work done on the nodes by contact and wall forces", r::contact_work, {{G::contact, -1}}, "-"},
+          {"friction", "dissipated by friction (contact, walls; automata add theirs)", r::friction,
+           {{G::contact, -1}, {G::dissipated, +1}}, ""}};
+}
+
 bool ContactSettings::any_pairs() const {
   return std::find(part_pairs.begin(), part_pairs.end(), 1) != part_pairs.end();
 }
@@ -189,7 +199,7 @@ void ContactSystem::find_facet_hits(const Model& model) {
   }
 
   const std::size_t np = model.parts.size();
-  const auto& origin = model.node_origin;
+  const auto& origin = model.nodes.origin;
   auto is_sibling = [&](std::int32_t p, std::int32_t q) {
     return p != q && static_cast<std::size_t>(std::max(p, q)) < origin.size() && origin[p] == origin[q];
   };
@@ -225,7 +235,7 @@ void ContactSystem::find_facet_hits(const Model& model) {
         const double* b = &X[2 * fn[1]];
         const double tx = b[0] - a[0], ty = b[1] - a[1];
         const double l2 = tx * tx + ty * ty, l = std::sqrt(l2);
-        // Copies of one split node (same Model::node_origin) start on top of each other, so a
+        // Copies of one split node (same NodeArrays::origin) start on top of each other, so a
         // copy always sits at a corner of its siblings' wedges. Near such a corner the contact
         // must follow the true distance to the sibling's surface, which is continuous as the
         // copy moves around the corner; otherwise a copy switches on at a finite depth and the
@@ -455,7 +465,7 @@ void ContactSystem::add_forces(Model& model, double time, double dt, double stab
       const int ps = surface_.node_part[i];
       if (!wall.parts[ps]) continue;
       const std::int32_t s = surface_.nodes[i];
-      double* T = &model.contact.wall_tangential[(w * nn + s) * dim];
+      double* T = &model.contact.wall_tangential[(s * nw + w) * dim];
       double gap = 0;
       for (int d = 0; d < dim; ++d) gap += (model.nodes.x[dim * s + d] - origin[d]) * wall.normal[d];
       if (gap >= 0) {

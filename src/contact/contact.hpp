@@ -7,8 +7,10 @@
 #include <vector>
 
 #include "contact/contact_surface.hpp"
+#include "core/energy_ledger.hpp"
 #include "core/time_table.hpp"
 #include "model/model.hpp"
+#include "model/remap.hpp"
 
 namespace shard {
 
@@ -41,13 +43,19 @@ struct ContactSettings {
   bool any_pairs() const;
 };
 
-class ContactSystem {
+class ContactSystem final : public TopologyListener {
  public:
   ContactSystem(const Model& model, ContactSettings settings, std::vector<int> part_material,
                 int material_count);
 
-  /// Rebuilds the contact surface from the current topology (call after topology changes).
+  /// The energy terms of contact: the work of moving walls on the bodies, of the contact forces on
+  /// the nodes, and friction.
+  static std::vector<EnergyTerm> energy_terms();
+
+  /// Rebuilds the contact surface from the current topology.
   void rebuild(const Model& model);
+  /// After every topology change (src/solver/topology.hpp): the surface is rebuilt.
+  void topology_changed(const Model& model, const Remap&) override { rebuild(model); }
 
   /// Adds contact and wall forces at the positions x_n to model.nodes.force. Friction uses the
   /// velocities v_n−1/2 over dt = Δt_n−1/2; the penalty is set from the element stable time step

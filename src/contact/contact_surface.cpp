@@ -10,13 +10,8 @@ namespace shard {
 
 namespace {
 
-// Faces of each element kind with outward right-hand normals (for positive-volume elements in
-// Gmsh/VTK node order).
-constexpr int kTri3Edges[3][2] = {{0, 1}, {1, 2}, {2, 0}};
-constexpr int kTet4Faces[4][3] = {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {0, 3, 2}};
-constexpr int kHex8Faces[6][4] = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4},
-                                  {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}};
-
+/// An element face (2D: edge), its nodes oriented as ElementType::faces gives them (outward
+/// right-hand normal for a positive-volume element); at most 4 nodes.
 struct Face {
   std::array<std::int32_t, 4> nodes;  // oriented
   int count;                           // 2, 3 or 4 nodes
@@ -50,11 +45,12 @@ ContactSurface extract_contact_surface(const Model& model) {
   std::unordered_map<Key, int, KeyHash> seen;  // face key → index in faces, or -1 if shared
   for (std::size_t p = 0; p < model.parts.size(); ++p) {
     const Part& part = model.parts[p];
-    const int npe = nodes_per_element(part.kind);
+    const int npe = part.type->nodes;
     for (std::size_t e = 0; e < part.element_count(); ++e) {
       if (!part.eroded.empty() && part.eroded[e]) continue;  // its faces left with it
       const std::int32_t* cn = &part.connectivity[npe * e];
-      auto add = [&](const int* local, int count) {
+      for (const auto& local : part.type->faces) {
+        const int count = static_cast<int>(local.size());
         Face f{{-1, -1, -1, -1}, count, static_cast<std::int32_t>(p)};
         for (int i = 0; i < count; ++i) f.nodes[i] = cn[local[i]];
         Key k{f.nodes};
@@ -62,13 +58,7 @@ ContactSurface extract_contact_surface(const Model& model) {
         auto [it, inserted] = seen.emplace(k, static_cast<int>(faces.size()));
         if (inserted) faces.push_back(f);
         else it->second = -1;
-      };
-      if (part.kind == ElementKind::tri3)
-        for (const auto& edge : kTri3Edges) add(edge, 2);
-      else if (part.kind == ElementKind::tet4)
-        for (const auto& face : kTet4Faces) add(face, 3);
-      else
-        for (const auto& face : kHex8Faces) add(face, 4);
+      }
     }
   }
   // Keep the faces seen once, in the order they were first met (deterministic).
@@ -145,7 +135,7 @@ ContactSurface extract_contact_surface(const Model& model) {
   for (std::size_t i = 0; i < s.nodes.size(); ++i) slot[s.nodes[i]] = static_cast<std::int32_t>(i);
   std::vector<std::vector<std::int32_t>> lists(s.nodes.size());
   for (const Part& part : model.parts) {
-    const int npe = nodes_per_element(part.kind);
+    const int npe = part.type->nodes;
     for (std::size_t e = 0; e < part.element_count(); ++e) {
       const std::int32_t* cn = &part.connectivity[npe * e];
       for (int a = 0; a < npe; ++a) {

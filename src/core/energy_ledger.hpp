@@ -1,52 +1,94 @@
-// The energy balance: every term the run knows, accumulated step by step.
-// Theory: docs/theory/time_integration_and_energy.md.
+// The energy ledger: every term of the energy balance, registered by name by the code that does
+// the work (the element kernels, src/fem/; the contact, src/contact/; the automata,
+// src/particle/; the solver itself; later the conversion to particles and cohesive interfaces),
+// accumulated step by step. History columns,
+// the summary and checkpoints iterate the registered terms; the balance closes over whatever is
+// registered. Theory: docs/theory/time_integration_and_energy.md; recipe for a new term:
+// docs/architecture.md.
 #pragma once
 
+#include <cstdint>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace shard {
 
-struct EnergyBalance {
-  double kinetic = 0;         ///< ½ m v² at the last full step (v = mean of the half steps)
-  double stress_work = 0;     ///< ∫∫ σ : D dV dt (elastic energy + material dissipation)
-  double external_work = 0;   ///< work of pressure loads and of prescribed-velocity reactions
-  double viscosity = 0;       ///< bulk (artificial) viscosity dissipation
-  double hourglass = 0;       ///< hourglass control dissipation
-  double damping = 0;         ///< mass-proportional damping dissipation
-  double plastic = 0;         ///< plastic work
-  double fracture = 0;        ///< fracture energy
-  double contact_work = 0;    ///< work done on the nodes by contact and wall forces
-  double wall_work = 0;       ///< work of moving walls on the bodies (part of external_work)
-  double friction = 0;        ///< dissipated by friction (contact and walls)
-  double heat = 0;            ///< the part of `plastic` that became heat (β W_p); not a separate sink
-  double eroded = 0;          ///< elastic energy carried away by eroded elements
-  double initial = 0;         ///< kinetic energy at t = 0 (the models start stress-free)
-  /// Particle parts (MCA): the elastic energy stored in the automata and pairs now (a state
-  /// function, not accumulated), and the Amontons sliding of their unlinked pairs. Their plastic
-  /// work and bond-breaking release are in `plastic` and `fracture` (and in stress_work).
-  double particle_elastic = 0;
-  double particle_friction = 0;
+/// The groups of the balance
+///   residual = kinetic + internal + contact + dissipated − external − initial,
+/// each the signed sum of the terms that enter it.
+enum class EnergyGroup : std::uint8_t { kinetic, internal, contact, dissipated, external, initial };
 
-  /// Recoverable (elastic) internal energy: stress work less what the material dissipated.
-  double internal() const { return stress_work - plastic - fracture + particle_elastic; }
-  /// Contact ("sliding interface") energy: what the contact forces took from the nodes, less
-  /// what friction dissipated and what moving walls put in. The penalty springs' elastic energy
+/// A term of the ledger: where it enters the balance and where it is reported.
+struct EnergyTerm {
+  std::string name;  ///< e.g. "plastic"; unique
+  std::string doc;   ///< one line for docs/outputs.md
+  /// Its place within every group it enters (terms of a group are summed in increasing rank, so
+  /// the same terms give the same bits in any run); the standard ranks are in energy.cpp.
+  int rank = 0;
+  struct Entry {
+    EnergyGroup group;
+    int sign;  ///< +1 or −1
+  };
+  std::vector<Entry> entries;
+  /// The history column it is reported in: its own name by default; terms that name one column
+  /// are summed into it; "-" for a term reported only through its groups.
+  std::string column;
+  double value = 0;
+};
+
+class EnergyLedger {
+ public:
+  /// Registers a term (a term of that name already registered is kept); returns its handle.
+  int add(EnergyTerm term);
+  /// The handle of a term, −1 if none has that name.
+  int find(std::string_view name) const;
+  /// A registered term's value; throws std::out_of_range for a name not registered.
+  double& at(std::string_view name);
+  double& operator[](int handle) { return terms_[static_cast<std::size_t>(handle)].value; }
+  /// A term's value, 0 for a name not registered.
+  double value(std::string_view name) const;
+  /// Every value back to 0 (the terms stay registered).
+  void clear();
+
+  double group(EnergyGroup g) const;
+  double kinetic() const { return group(EnergyGroup::kinetic); }
+  /// Recoverable (elastic) internal energy: stress work less what the materials dissipated,
+  /// plus the energy the automata store.
+  double internal() const { return group(EnergyGroup::internal); }
+  /// Contact ("sliding interface") energy: what the moving walls put in, less what the contact
+  /// forces took from the nodes and what friction dissipated: the penalty springs' elastic energy
   /// plus the penalty method's discretisation error; it returns to ~0 when bodies separate.
-  double contact() const { return wall_work - contact_work - friction; }
-  double dissipated() const {
-    return viscosity + hourglass + damping + plastic + fracture + friction + particle_friction + eroded;
-  }
-  /// kinetic + internal + dissipated − external work − initial
-  double residual() const {
-    return kinetic + internal() + contact() + dissipated() - external_work - initial;
-  }
+  double contact() const { return group(EnergyGroup::contact); }
+  double dissipated() const { return group(EnergyGroup::dissipated); }
+  double external() const { return group(EnergyGroup::external); }
+  double initial() const { return group(EnergyGroup::initial); }
+  /// kinetic + internal + contact + dissipated − external work − initial
+  double residual() const;
   /// residual relative to the largest energy in play (never the residual's own scale)
   double relative_error() const;
 
-  /// Column names and values for history.csv (after time, step, dt), in one fixed order.
-  static std::vector<std::string> column_names();
+  /// Column names and values for history.csv (after time, step, dt), in one fixed order: the
+  /// standard columns, then one per column of terms registered beyond them, then energy_error.
+  std::vector<std::string> column_names() const;
   std::vector<double> column_values() const;
+
+  /// The registered terms, in registration order (what checkpoints store, by name).
+  const std::vector<EnergyTerm>& terms() const { return terms_; }
+  std::vector<EnergyTerm>& terms() { return terms_; }
+
+ private:
+  std::vector<EnergyTerm> terms_;
+  /// Per group, the handles of its terms in rank order, with their signs.
+  std::vector<std::vector<std::pair<int, int>>> groups_;
 };
+
+/// The standard ranks: terms enter their groups, and columns, in this order.
+namespace energy_rank {
+inline constexpr int kinetic = 0, initial = 0, external_work = 0, stress_work = 10, viscosity = 20,
+                     hourglass = 30, damping = 40, plastic = 50, heat = 55, fracture = 60,
+                     particle_elastic = 62, wall_work = 64, contact_work = 66, friction = 70,
+                     particle_friction = 75, eroded = 80, later = 100;
+}
 
 }  // namespace shard

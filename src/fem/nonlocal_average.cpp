@@ -12,7 +12,7 @@
 namespace shard {
 
 std::vector<double> reference_point_positions(const Part& part, const NodeArrays& nodes) {
-  const int dim = nodes.dim, npe = nodes_per_element(part.kind), npts = points_per_element(part.kind);
+  const int dim = nodes.dim, npe = part.type->nodes, npts = part.type->points;
   const std::size_t ne = part.element_count();
   std::vector<double> position(ne * npts * dim, 0.0);
   for (std::size_t e = 0; e < ne; ++e) {
@@ -124,7 +124,7 @@ void average_nonlocal(Part& part, const NodeArrays& nodes, const NonlocalSpec& s
   if (nb.length != spec.length || nb.position != position)
     nb = find_neighbours(std::move(position), nodes.dim, spec.length);
 
-  const std::size_t npts = static_cast<std::size_t>(points_per_element(part.kind));
+  const std::size_t npts = static_cast<std::size_t>(part.type->points);
   const std::size_t n = part.point_count();
   std::vector<double> averaged(n, 0.0);
   double* state = part.state.data();

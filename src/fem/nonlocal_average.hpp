@@ -8,26 +8,10 @@
 #include <cstdint>
 #include <vector>
 
+#include "material/nonlocal.hpp"
 #include "model/model.hpp"
 
 namespace shard {
-
-/// What a material asks of the non-local pass (the narrow hook add_internal_forces looks for
-/// with a dynamic_cast, once per part and step): average state slot `source` into slot `target`
-/// over `length`. A length of 0 asks for nothing.
-struct NonlocalSpec {
-  double length = 0;      ///< ℓ (m)
-  std::size_t source = 0;  ///< state slot averaged
-  std::size_t target = 0;  ///< state slot written
-};
-
-class NonlocalAveraging {
- public:
-  virtual NonlocalSpec nonlocal_spec() const = 0;
-
- protected:
-  ~NonlocalAveraging() = default;
-};
 
 /// Each point's neighbours within ℓ (itself included) and their weights w(r), found on the
 /// reference positions with a cell grid. Built once and reused while the part's point count,

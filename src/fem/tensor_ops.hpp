@@ -2,7 +2,7 @@
 // order of model.hpp's Voigt enum (tensor shear components).
 #pragma once
 
-#include "model/model.hpp"
+#include "core/voigt.hpp"
 
 namespace shard {
 

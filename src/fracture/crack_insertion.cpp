@@ -10,6 +10,7 @@
 #include <unordered_set>
 
 #include "fem/internal_forces.hpp"
+#include "model/remap.hpp"
 
 namespace shard {
 
@@ -88,7 +89,7 @@ template <class Visit>
 void for_each_live_triangle(const Model& model, const std::vector<std::int64_t>& part_begin, Visit&& visit) {
   for (std::size_t p = 0; p < model.parts.size(); ++p) {
     const Part& part = model.parts[p];
-    if (part.kind != ElementKind::tri3) continue;
+    if (!part.type->is_triangle()) continue;
     const std::size_t ne = part.element_count();
     for (std::size_t e = 0; e < ne; ++e) {
       if (!part.eroded.empty() && part.eroded[e]) continue;
@@ -258,9 +259,13 @@ void require_planar(const Model& model, const char* what) {
 
 namespace {
 
-/// split_nodes on fans already built from the connectivity as it is.
-std::vector<std::int32_t> split_on_fans(Model& model, const Fans& fans, std::span<const double> density,
-                                        std::span<const std::array<std::int32_t, 2>> edges) {
+/// The topology change that opens `edges`, on fans already built from the connectivity as it is:
+/// each split node keeps the wedge of its lowest element, and every other wedge g ≥ 1 gets a new
+/// node (appended in the order of the split nodes, then of their wedges) that takes the share of
+/// the mass and force that the wedge's own lumped masses hold; the corners of the wedge's
+/// elements move to it. `parent` receives the node each new node is split off.
+Remap split_on_fans(const Model& model, const Fans& fans, std::span<const double> density,
+                    std::span<const std::array<std::int32_t, 2>> edges, std::vector<std::int32_t>& parent) {
   std::unordered_set<std::uint64_t> cut;
   std::vector<std::int32_t> touched;
   for (const auto& e : edges) {
@@ -271,62 +276,32 @@ std::vector<std::int32_t> split_on_fans(Model& model, const Fans& fans, std::spa
   std::sort(touched.begin(), touched.end());
   touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
 
+  Remap remap;
+  remap.nodes = EntityRemap::identity(model.nodes.count());
+  EntityRemap& nodes = *remap.nodes;
   // Every wedge structure is found on the connectivity before any node is renumbered: the
   // renumbering at one end of an edge must not hide the edge from the node at its other end.
-  struct Split {
-    std::int32_t node;
-    std::vector<FanEntry> fan;
-    Wedges wedges;
-  };
-  std::vector<Split> splits;
   for (const std::int32_t p : touched) {
-    std::vector<FanEntry> fan = fans.of(p);
-    Wedges w = wedges_of(p, fan, cut);
-    if (w.count >= 2) splits.push_back({p, std::move(fan), std::move(w)});
-  }
-
-  auto& nodes = model.nodes;
-  const int dim = model.dim();
-  std::vector<std::int32_t> parent;
-  for (const Split& s : splits) {
-    const std::int32_t p = s.node;
-    const auto& fan = s.fan;
-    std::vector<double> share(s.wedges.count, 0.0);
-    for (std::size_t i = 0; i < fan.size(); ++i)
-      share[s.wedges.group[i]] += corner_mass(model, fan[i], density[fan[i].part]);
+    const std::vector<FanEntry> fan = fans.of(p);
+    const Wedges w = wedges_of(p, fan, cut);
+    if (w.count < 2) continue;
+    std::vector<double> share(w.count, 0.0);
+    for (std::size_t i = 0; i < fan.size(); ++i) share[w.group[i]] += corner_mass(model, fan[i], density[fan[i].part]);
     double total = 0;
     for (double c : share) total += c;
-    for (double& c : share) c = total > 0 ? c / total : 1.0 / s.wedges.count;
-
-    // Wedge 0 (the lowest element) keeps p; wedge g ≥ 1 gets the node first + g − 1. The parent
-    // keeps the remainder of the mass and force, so that the parts sum to the whole.
-    const std::size_t first = nodes.count();
-    const double m = nodes.mass[p];
-    double given_mass = 0, given_force[3] = {0, 0, 0};
-    for (int g = 1; g < s.wedges.count; ++g) {
-      for (int k = 0; k < dim; ++k) {
-        nodes.x0.push_back(nodes.x0[dim * p + k]);
-        nodes.x.push_back(nodes.x[dim * p + k]);
-        nodes.v.push_back(nodes.v[dim * p + k]);
-        const double f = share[g] * nodes.force[dim * p + k];
-        nodes.force.push_back(f);
-        given_force[k] += f;
-      }
-      nodes.mass.push_back(share[g] * m);
-      given_mass += share[g] * m;
+    for (double& c : share) c = total > 0 ? c / total : 1.0 / w.count;
+    // Wedge 0 (the lowest element) keeps p; wedge g ≥ 1 gets a new node. The parent keeps the
+    // remainder of the mass and force, so that the parts sum to the whole (Follow::share).
+    std::vector<std::int32_t> node_of_wedge(w.count, p);
+    for (int g = 1; g < w.count; ++g) {
+      node_of_wedge[g] = nodes.add_born(p, share[g]);
       parent.push_back(p);
     }
-    nodes.mass[p] = m - given_mass;
-    for (int k = 0; k < dim; ++k) nodes.force[dim * p + k] -= given_force[k];
-    for (std::size_t i = 0; i < fan.size(); ++i) {
-      const int g = s.wedges.group[i];
-      if (g == 0) continue;
-      Part& part = model.parts[fan[i].part];
-      part.connectivity[3 * static_cast<std::size_t>(fan[i].element) + fan[i].local] =
-          static_cast<std::int32_t>(first + g - 1);
-    }
+    for (std::size_t i = 0; i < fan.size(); ++i)
+      if (w.group[i] > 0) remap.corners.push_back({fan[i].part, fan[i].element, fan[i].local, node_of_wedge[w.group[i]]});
   }
-  return parent;
+  if (parent.empty()) return Remap{};
+  return remap;
 }
 
 }  // namespace
@@ -338,7 +313,10 @@ std::vector<std::int32_t> split_nodes(Model& model, std::span<const double> dens
     throw std::invalid_argument("split_nodes: one density per part is needed");
   std::vector<char> ends(model.nodes.count(), 0);
   for (const auto& e : edges) ends[e[0]] = ends[e[1]] = 1;
-  return split_on_fans(model, build_fans(model, std::move(ends), false), density, edges);
+  std::vector<std::int32_t> parent;
+  const Remap remap = split_on_fans(model, build_fans(model, std::move(ends), false), density, edges, parent);
+  apply_remap(model, remap);
+  return parent;
 }
 
 CrackInsertion insert_cracks(Model& model, std::span<const CrackingPart> parts,
@@ -515,7 +493,8 @@ CrackInsertion insert_cracks(Model& model, std::span<const CrackingPart> parts,
 
   std::vector<double> density(parts.size());
   for (std::size_t i = 0; i < parts.size(); ++i) density[i] = parts[i].density;
-  out.parent = split_on_fans(model, fans, density, out.opened_edges);
+  out.remap = split_on_fans(model, fans, density, out.opened_edges, out.parent);
+  apply_remap(model, out.remap);
 
   // Re-initialise the failed elements around each cracked node: their damage has become the
   // discrete crack (paper, "Discrete fracture insertion": failed elements heal and their state
@@ -532,7 +511,7 @@ CrackInsertion insert_cracks(Model& model, std::span<const CrackingPart> parts,
     if (!cp.cracks || cp.factor_index < 0) continue;
     Part& part = model.parts[pi];
     const std::size_t e = static_cast<std::size_t>(g - offset[pi]);
-    const int npts = points_per_element(part.kind);
+    const int npts = part.type->points;
     const std::size_t state_size = part.point_count() > 0 ? part.state.size() / part.point_count() : 0;
     bool element_failed = false;
     for (int q = 0; q < npts; ++q)
@@ -562,100 +541,8 @@ CrackInsertion insert_cracks(Model& model, std::span<const CrackingPart> parts,
   return out;
 }
 
-void extend_node_data(Model& model, std::span<const std::int32_t> parent, std::size_t first_new_node) {
-  const std::size_t nn = model.nodes.count();
-  if (parent.empty()) return;
-  if (first_new_node + parent.size() != nn)
-    throw std::invalid_argument("extend_node_data: the parents do not match the nodes added");
-  const int dim = model.dim();
-
-  // New ids are larger than every id in a set, so appending them in order keeps it sorted.
-  for (NodeSet& set : model.node_sets)
-    for (std::size_t i = 0; i < parent.size(); ++i)
-      if (std::binary_search(set.nodes.begin(), set.nodes.end(), parent[i]))
-        set.nodes.push_back(static_cast<std::int32_t>(first_new_node + i));
-
-  // Facets: a boundary segment lies on exactly one triangle; if that triangle now holds a copy of
-  // one of its nodes, the segment must follow (pressure loads act on the segment's nodes). Only
-  // segments at a split node can have changed, and only edges at a split node or copy are looked
-  // up, so this costs one pass over the connectivity.
-  if (dim == 2) {
-    std::unordered_map<std::int32_t, std::vector<std::int32_t>> copies;  // parent → itself, copies
-    for (std::size_t i = 0; i < parent.size(); ++i) {
-      auto& c = copies[parent[i]];
-      if (c.empty()) c.push_back(parent[i]);
-      c.push_back(static_cast<std::int32_t>(first_new_node + i));
-    }
-    std::vector<char> involved(nn, 0);
-    for (const auto& [p, c] : copies)
-      for (const auto n : c) involved[n] = 1;
-    std::unordered_set<std::uint64_t> edges;
-    for (const Part& part : model.parts) {
-      if (part.kind != ElementKind::tri3) continue;
-      for (std::size_t e = 0; e < part.element_count(); ++e) {
-        if (!part.eroded.empty() && part.eroded[e]) continue;
-        const std::int32_t* cn = &part.connectivity[3 * e];
-        for (int i = 0; i < 3; ++i) {
-          const std::int32_t a = cn[i], b = cn[(i + 1) % 3];
-          if (involved[a] || involved[b]) edges.insert(edge_key(a, b));
-        }
-      }
-    }
-    auto candidates = [&](std::int32_t n) {
-      const auto it = copies.find(n);
-      return it == copies.end() ? std::vector<std::int32_t>{n} : it->second;
-    };
-    for (FacetSet& set : model.facet_sets) {
-      if (set.nodes_per_facet != 2) continue;
-      for (std::size_t f = 0; f + 1 < set.nodes.size(); f += 2) {
-        std::int32_t& a = set.nodes[f];
-        std::int32_t& b = set.nodes[f + 1];
-        if (!involved[a] && !involved[b]) continue;
-        if (edges.count(edge_key(a, b))) continue;
-        bool found = false;
-        for (const std::int32_t ca : candidates(a)) {
-          for (const std::int32_t cb : candidates(b))
-            if (edges.count(edge_key(ca, cb))) {
-              a = ca;
-              b = cb;
-              found = true;
-              break;
-            }
-          if (found) break;
-        }
-      }
-    }
-  }
-
-  // Whose copy each node is (Model::node_origin): a copy of a copy has the first node's origin,
-  // so copies of one node are siblings however often it was split. The contact reads crack faces
-  // from it; the array starts at the first insertion, as the identity.
-  if (model.node_origin.size() < first_new_node) {
-    const std::size_t had = model.node_origin.size();
-    model.node_origin.resize(first_new_node);
-    for (std::size_t n = had; n < first_new_node; ++n) model.node_origin[n] = static_cast<std::int32_t>(n);
-  }
-  for (std::size_t i = 0; i < parent.size(); ++i) model.node_origin.push_back(model.node_origin[parent[i]]);
-
-  // Contact history: per node, so it grows with zeros for the new nodes. The wall-major layout
-  // of wall_tangential (wall w, node s at (w·n + s)·dim) is rebuilt for the new node count.
-  auto& c = model.contact;
-  const std::size_t old_n = first_new_node;
-  if (c.tangential.size() == dim * old_n) c.tangential.resize(dim * nn, 0.0);
-  if (c.touching.size() == old_n) c.touching.resize(nn, 0);
-  if (c.penetration_offset.size() == old_n) c.penetration_offset.resize(nn, 0.0);
-  if (c.loaded_gap.size() == old_n) c.loaded_gap.resize(nn, 0.0);
-  if (old_n > 0 && !c.wall_tangential.empty() && c.wall_tangential.size() % (dim * old_n) == 0) {
-    const std::size_t walls = c.wall_tangential.size() / (dim * old_n);
-    std::vector<double> grown(walls * dim * nn, 0.0);
-    for (std::size_t w = 0; w < walls; ++w)
-      std::copy_n(&c.wall_tangential[w * dim * old_n], dim * old_n, &grown[w * dim * nn]);
-    c.wall_tangential = std::move(grown);
-  }
-}
-
 bool colouring_is_valid(const Part& part) {
-  const int npe = nodes_per_element(part.kind);
+  const int npe = part.type->nodes;
   std::int32_t max_node = -1;
   for (const auto n : part.connectivity) max_node = std::max(max_node, n);
   std::vector<std::int64_t> stamp(static_cast<std::size_t>(max_node + 1), -1);

@@ -3,12 +3,11 @@
 // reaches 1 is split along the element edges best aligned with the crack line; new nodes, no new
 // elements. Theory and rules: docs/theory/crack_insertion.md.
 //
-// Call between steps (after ExplicitSolver::advance, before the next compute_forces). After an
-// insertion that added nodes the caller must:
-//   1. extend_node_data(model, insertion)     node sets, facet sets, node origins, contact history;
-//   2. copy every velocity constraint of a parent node to its new nodes (Loads::constraints);
-//   3. ContactSystem::rebuild(model)           the crack faces are free faces now;
-//   4. book insertion.released_energy as fracture energy (EnergyBalance::fracture).
+// Call between steps (after ExplicitSolver::advance, before the next compute_forces). An insertion
+// is one topology change (CrackInsertion::remap, already applied to the model): every node field
+// follows it (prescribed motion, crack lineage, contact history, node and facet sets), and
+// whatever caches topology (the contact surface) is told of it by the caller
+// (src/solver/topology.hpp); the released energy is the caller's to book as fracture energy.
 // Element colouring stays valid (no recolouring): see split_nodes.
 #pragma once
 
@@ -19,6 +18,7 @@
 
 #include "material/material.hpp"
 #include "model/model.hpp"
+#include "model/remap.hpp"
 
 namespace shard {
 
@@ -48,6 +48,7 @@ struct CrackInsertionSettings {
 
 /// The outcome of one topological update.
 struct CrackInsertion {
+  Remap remap;  ///< the topology change, applied (empty when no node split)
   std::size_t first_new_node = 0;     ///< the node count before the update
   std::vector<std::int32_t> parent;   ///< node first_new_node + i is a copy of parent[i]
   std::vector<std::array<std::int32_t, 2>> opened_edges;  ///< (node ids before the update)
@@ -87,26 +88,16 @@ CrackInsertion insert_cracks(Model& model, std::span<const CrackingPart> parts,
 
 /// The topological core: opens the given element edges (node pairs of edges shared by two live
 /// tri3 elements) and splits every node they touch into one node per wedge of its triangles
-/// that the opened and already free edges separate. Each new node keeps its parent's x0, x, v;
-/// the parent's mass (and force) is divided in proportion to the wedges' own lumped-mass
-/// contributions (computed as lump_masses does, on x0; `density` per part), so mass and momentum
-/// are conserved. The wedge with the lowest element keeps the parent id. Returns the parents of
-/// the new nodes (node first_new_node + i is a copy of parent[i]), in increasing parent order.
+/// that the opened and already free edges separate, as one remap applied to the model. Each new
+/// node keeps its parent's x0, x, v and every other copied field; the parent's mass (and force)
+/// is divided in proportion to the wedges' own lumped-mass contributions (computed as
+/// lump_masses does, on x0; `density` per part), so mass and momentum are conserved. The wedge
+/// with the lowest element keeps the parent. Returns the parents of the new nodes (node
+/// count-before + i is a copy of parent[i]), in increasing parent order.
 /// Colouring stays valid: an element gets a copy of a node only if it held the node, so two
 /// elements share a node afterwards only if they shared one before.
 std::vector<std::int32_t> split_nodes(Model& model, std::span<const double> density,
                                       std::span<const std::array<std::int32_t, 2>> edges);
-
-/// Extends the Model's per-node data to the nodes added by an insertion: a new node joins every
-/// node set its parent is in (sets stay sorted); a facet of a facet set whose element now holds
-/// a copy of one of its nodes is renumbered to the copy; Model::node_origin records the node each
-/// copy descends from (the crack faces the contact sees); the contact history arrays
-/// (ContactState::tangential, wall_tangential) get zero entries for the new nodes (a new surface
-/// node starts with no stick: its parent keeps its own).
-void extend_node_data(Model& model, std::span<const std::int32_t> parent, std::size_t first_new_node);
-inline void extend_node_data(Model& model, const CrackInsertion& insertion) {
-  extend_node_data(model, insertion.parent, insertion.first_new_node);
-}
 
 /// True if no two elements of one colour of `part` share a node (the invariant the parallel
 /// force scatter relies on).

@@ -58,7 +58,7 @@ void major_axis(const double* N, int dim, double* axis) {
 
 /// Element area (2D) or volume (3D) on the current positions.
 double element_weight(const Part& part, const NodeArrays& nodes, std::size_t e) {
-  if (part.kind == ElementKind::tri3) {
+  if (part.type->is_triangle()) {
     const std::int32_t* cn = &part.connectivity[3 * e];
     const double* X = nodes.x.data();
     return 0.5 * std::abs((X[2 * cn[1]] - X[2 * cn[0]]) * (X[2 * cn[2] + 1] - X[2 * cn[0] + 1]) -
@@ -87,7 +87,7 @@ void nodal_failure_map(const Model& model, std::span<const PartFailureField> par
     const Part& part = model.parts.at(pf.part);
     const PointFailureField& f = pf.field;
     if (f.factor == nullptr) continue;
-    const int npe = nodes_per_element(part.kind), npts = points_per_element(part.kind);
+    const int npe = part.type->nodes, npts = part.type->points;
     const std::size_t ne = part.element_count();
     for (std::size_t e = 0; e < ne; ++e) {
       bool damaged = false;
@@ -100,7 +100,7 @@ void nodal_failure_map(const Model& model, std::span<const PartFailureField> par
     const Part& part = model.parts.at(pf.part);
     const PointFailureField& f = pf.field;
     if (f.factor == nullptr) continue;
-    const int npe = nodes_per_element(part.kind), npts = points_per_element(part.kind);
+    const int npe = part.type->nodes, npts = part.type->points;
     const std::size_t ne = part.element_count();
     const bool any_eroded = !part.eroded.empty();
     for (std::size_t e = 0; e < ne; ++e) {
@@ -157,7 +157,7 @@ NodalFailureMap nodal_failure_map(const Model& model, std::span<const PartFailur
 double max_point_factor(const Part& part, const PointFailureField& field) {
   double largest = 0;
   if (field.factor == nullptr) return largest;
-  const int npts = points_per_element(part.kind);
+  const int npts = part.type->points;
   const std::size_t ne = part.element_count();
   for (std::size_t e = 0; e < ne; ++e) {
     if (!part.eroded.empty() && part.eroded[e]) continue;

@@ -38,7 +38,7 @@ Fragments find_fragments(const Model& model) {
   const int dim = model.dim();
   DisjointSets sets(nn);
   for (const Part& part : model.parts) {
-    const int npe = nodes_per_element(part.kind);
+    const int npe = part.type->nodes;
     for (std::size_t e = 0; e < part.element_count(); ++e) {
       if (!live(part, e)) continue;
       const std::int32_t* cn = &part.connectivity[npe * e];
@@ -51,7 +51,7 @@ Fragments find_fragments(const Model& model) {
   out.element_fragment.resize(model.parts.size());
   for (std::size_t p = 0; p < model.parts.size(); ++p) {
     const Part& part = model.parts[p];
-    const int npe = nodes_per_element(part.kind);
+    const int npe = part.type->nodes;
     auto& fragment_of = out.element_fragment[p];
     fragment_of.assign(part.element_count(), -1);
     for (std::size_t e = 0; e < part.element_count(); ++e) {

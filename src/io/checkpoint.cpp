@@ -11,7 +11,7 @@ namespace shard {
 
 namespace {
 
-constexpr char kMagic[8] = {'S', 'H', 'A', 'R', 'D', 'C', 'K', '1'};
+constexpr char kMagic[8] = {'S', 'H', 'A', 'R', 'D', 'C', 'K', '2'};
 
 /// Scalars of SolverState and OutputCursor in one fixed order, for both directions.
 template <class F>
@@ -27,11 +27,6 @@ void visit_scalars(SolverState& s, OutputCursor& c, F&& f) {
   f(s.pending_damping);
   f(s.pending_contact);
   f(s.pending_wall);
-  auto& e = s.energy;
-  for (double* v : {&e.kinetic, &e.stress_work, &e.external_work, &e.viscosity, &e.hourglass,
-                    &e.damping, &e.plastic, &e.fracture, &e.contact_work, &e.wall_work, &e.friction, &e.initial, &e.heat, &e.eroded,
-                    &e.particle_elastic, &e.particle_friction})
-    f(*v);
   f(c.next_frame);
   f(c.next_history);
   f(c.next_checkpoint);
@@ -44,8 +39,9 @@ constexpr std::uint8_t type_code() {
   if constexpr (std::is_same_v<T, double>) return 1;
   else if constexpr (std::is_same_v<T, std::int32_t>) return 2;
   else if constexpr (std::is_same_v<T, std::int16_t>) return 3;
+  else if constexpr (std::is_same_v<T, std::int64_t>) return 5;
   else {
-    static_assert(sizeof(T) == 1, "checkpoint arrays hold double, int32, int16 or 1-byte values");
+    static_assert(sizeof(T) == 1, "checkpoint arrays hold double, int64, int32, int16 or 1-byte values");
     return 4;
   }
 }
@@ -128,7 +124,16 @@ void write_checkpoint(const std::filesystem::path& path, Model& model, const Sol
     SolverState s = state;
     OutputCursor c = cursor;
     visit_scalars(s, c, [&](auto& v) { w.raw(v); });
-    model.visit_arrays([&](const std::string& name, auto& a) { w.array(name, a); });
+    // The energy ledger, by name: every registered term.
+    w.raw<std::uint64_t>(state.energy.terms().size());
+    for (const EnergyTerm& t : state.energy.terms()) {
+      w.text(t.name);
+      w.raw(t.value);
+    }
+    model.visit_fields([&](const std::string& name, const FieldInfo& info, auto& a) {
+      if (info.checkpoint) w.array(name, a);
+    });
+    model.visit_counters([&](const char*, std::int64_t& v) { w.raw(v); });
     out.flush();
     if (!out) throw RunError("writing checkpoint '" + tmp.string() + "' failed (disk full?)");
   }
@@ -146,7 +151,19 @@ void read_checkpoint(const std::filesystem::path& path, Model& model, SolverStat
   if (r.text() != fingerprint)
     r.fail("it was written by a different scenario (restart with the scenario that wrote it)");
   visit_scalars(state, cursor, [&](auto& v) { v = r.raw<std::decay_t<decltype(v)>>(); });
-  model.visit_arrays([&](const std::string& name, auto& a) { r.array(name, a); });
+  const auto terms = r.raw<std::uint64_t>();
+  if (terms > 4096) r.fail("corrupt energy ledger");
+  for (std::uint64_t k = 0; k < terms; ++k) {
+    const std::string name = r.text();
+    const double value = r.raw<double>();
+    if (state.energy.find(name) < 0)
+      r.fail("it books an energy term '" + name + "' this run does not have (a checkpoint of another model?)");
+    state.energy.at(name) = value;
+  }
+  model.visit_fields([&](const std::string& name, const FieldInfo& info, auto& a) {
+    if (info.checkpoint) r.array(name, a);
+  });
+  model.visit_counters([&](const char*, std::int64_t& v) { v = r.raw<std::int64_t>(); });
 }
 
 }  // namespace shard

@@ -25,10 +25,8 @@ VtuGrid make_frame(const Model& model, const std::vector<std::unique_ptr<Materia
   grid.offsets.reserve(ne);
   grid.types.reserve(ne);
   for (const auto& part : model.parts) {
-    const int npe = nodes_per_element(part.kind);
-    const VtkCellType type = part.kind == ElementKind::tri3   ? VtkCellType::triangle
-                             : part.kind == ElementKind::tet4 ? VtkCellType::tetra
-                                                              : VtkCellType::hexahedron;
+    const int npe = part.type->nodes;
+    const auto type = static_cast<VtkCellType>(part.type->vtk_cell);
     for (std::size_t e = 0; e < part.element_count(); ++e) {
       for (int a = 0; a < npe; ++a) grid.connectivity.push_back(part.connectivity[npe * e + a]);
       grid.offsets.push_back(static_cast<std::int64_t>(grid.connectivity.size()));
@@ -46,7 +44,7 @@ VtuGrid make_frame(const Model& model, const std::vector<std::unique_ptr<Materia
     point_vector("displacement", [&](std::size_t d) { return model.nodes.x[d] - model.nodes.x0[d]; });
   if (wants(fields, "velocity"))
     point_vector("velocity", [&](std::size_t d) { return model.nodes.v[d]; });
-  if (!model.node_origin.empty()) {
+  if (model.has_cracks()) {
     // After cracks split nodes: 1 on the nodes of crack faces (the copies and their origins),
     // so that a threshold on it in ParaView shows the crack paths.
     const std::vector<char> on_face = model.crack_face_nodes();
@@ -59,7 +57,7 @@ VtuGrid make_frame(const Model& model, const std::vector<std::unique_ptr<Materia
     f.values.reserve(components * ne);
     for (std::size_t p = 0; p < model.parts.size(); ++p) {
       const Part& part = model.parts[p];
-      const int npts = points_per_element(part.kind);
+      const int npts = part.type->points;
       for (std::size_t e = 0; e < part.element_count(); ++e)
         for (int c = 0; c < components; ++c) {
           double sum = 0;

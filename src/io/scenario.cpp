@@ -187,7 +187,7 @@ KeyList part_keys() {
   k.add("group", ValueKind::text, "the Gmsh physical group (surface in 2D, volume in 3D)")
       .defaults_to("the part's name");
   k.add("material", ValueKind::text, "name of a material in `materials`").must_be_given();
-  k.choice("element", {"tri3", "tet4", "hex8", "hex8_reduced"},
+  k.choice("element", element_type_names(),
            "element formulation (default from the mesh: tri3, tet4, or hex8_reduced for hexahedra)");
   k.quantity("hourglass_coefficient", dim::none,
              "viscous hourglass control κ (hex8_reduced)")
@@ -274,13 +274,6 @@ Formulation formulation_from(const std::string& s) {
   if (s == "plane_stress") return Formulation::plane_stress;
   if (s == "axisymmetric") return Formulation::axisymmetric;
   return Formulation::three_d;
-}
-
-ElementKind element_from(const std::string& s) {
-  if (s == "tri3") return ElementKind::tri3;
-  if (s == "tet4") return ElementKind::tet4;
-  if (s == "hex8") return ElementKind::hex8;
-  return ElementKind::hex8_reduced;
 }
 
 /// yaml-cpp's reason for a syntax error, with what usually causes it. yaml-cpp notices some
@@ -483,11 +476,16 @@ Scenario read_scenario(const std::filesystem::path& path) {
       s.fail("material", reason);
     }
     if (auto e = s.choice("element")) {
-      part.element = element_from(*e);
-      const bool planar = part.element == ElementKind::tri3;
-      if (planar != (dim == 2))
+      part.element = *e;
+      if (element_type(*e).dim != static_cast<int>(dim)) {
+        std::string fitting[2];
+        for (const auto& n : element_type_names()) {
+          std::string& list = fitting[element_type(n).dim == 2 ? 0 : 1];
+          list += (list.empty() ? "" : ", ") + n;
+        }
         s.fail("element", std::string("element '") + *e + "' does not fit formulation '" +
-                              name_of(sc.formulation) + "' (2D: tri3; 3D: tet4, hex8, hex8_reduced)");
+                              name_of(sc.formulation) + "' (2D: " + fitting[0] + "; 3D: " + fitting[1] + ")");
+      }
     }
     part.hourglass_coefficient = s.number("hourglass_coefficient");
     if (auto v = s.choice("volumetric")) {

@@ -30,7 +30,7 @@ struct PartInput {
   std::string name;
   std::string group;
   std::string material;
-  std::optional<ElementKind> element;  ///< absent: chosen from the mesh's cell type
+  std::optional<std::string> element;  ///< a registered element type; absent: chosen from the cells
   double hourglass_coefficient = 0.1;
   VolumetricTreatment volumetric = VolumetricTreatment::standard;
   int line = 0;

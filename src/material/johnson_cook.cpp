@@ -5,7 +5,7 @@
 #include <sstream>
 
 #include "material/linear_elastic.hpp"
-#include "model/model.hpp"
+#include "core/voigt.hpp"
 
 namespace shard {
 

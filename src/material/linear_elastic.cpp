@@ -3,7 +3,7 @@
 #include <cmath>
 #include <sstream>
 
-#include "model/model.hpp"
+#include "core/voigt.hpp"
 
 namespace shard {
 

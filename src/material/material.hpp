@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "core/parameters.hpp"
+#include "core/voigt.hpp"
 
 namespace shard {
 

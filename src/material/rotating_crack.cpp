@@ -7,7 +7,7 @@
 #include <stdexcept>
 
 #include "material/linear_elastic.hpp"
-#include "model/model.hpp"
+#include "core/voigt.hpp"
 
 namespace shard {
 

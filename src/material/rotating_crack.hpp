@@ -9,14 +9,14 @@
 //   - the area under s is G_f/h for an element of crack-band width h (energy per crack area G_f
 //     whatever the element size); a closed crack carries compression at full stiffness;
 //   - failure map: F = κ/ε_c (ε_c: the opening strain at which s reaches zero) and the crack
-//     normal, optionally averaged over a non-local length (src/fem/nonlocal_average.hpp).
+//     normal, optionally averaged over a non-local length (src/material/nonlocal.hpp).
 // Elements are never eroded (failure_state_index −1): discrete crack insertion reads the map.
 // Theory note: docs/theory/rotating_crack.md.
 #pragma once
 
 #include <cstdint>
 
-#include "fem/nonlocal_average.hpp"
+#include "material/nonlocal.hpp"
 #include "material/material.hpp"
 
 namespace shard {

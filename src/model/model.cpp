@@ -1,40 +1,11 @@
 #include "model/model.hpp"
 
+#include <algorithm>
+#include <unordered_map>
+
 #include "core/error.hpp"
 
 namespace shard {
-
-int nodes_per_element(ElementKind kind) {
-  switch (kind) {
-    case ElementKind::tri3: return 3;
-    case ElementKind::tet4: return 4;
-    case ElementKind::hex8:
-    case ElementKind::hex8_reduced: return 8;
-  }
-  return 0;
-}
-
-int points_per_element(ElementKind kind) {
-  switch (kind) {
-    case ElementKind::tri3:
-    case ElementKind::tet4:
-    case ElementKind::hex8_reduced: return 1;
-    case ElementKind::hex8: return 8;
-  }
-  return 0;
-}
-
-int dimension_of(ElementKind kind) { return kind == ElementKind::tri3 ? 2 : 3; }
-
-const char* name_of(ElementKind kind) {
-  switch (kind) {
-    case ElementKind::tri3: return "tri3";
-    case ElementKind::tet4: return "tet4";
-    case ElementKind::hex8: return "hex8";
-    case ElementKind::hex8_reduced: return "hex8_reduced";
-  }
-  return "?";
-}
 
 const char* name_of(Formulation f) {
   switch (f) {
@@ -52,11 +23,69 @@ std::size_t Model::element_count() const {
   return n;
 }
 
+void NodeArrays::resize(std::size_t n) {
+  id.resize(n);
+  origin.resize(n);
+  for (std::size_t i = 0; i < n; ++i) id[i] = origin[i] = static_cast<std::int64_t>(i);
+  x0.assign(n * dim, 0.0);
+  x.assign(n * dim, 0.0);
+  v.assign(n * dim, 0.0);
+  force.assign(n * dim, 0.0);
+  mass.assign(n, 0.0);
+  prescribed.assign(n * dim, -1);
+}
+
+bool Model::has_cracks() const {
+  for (std::size_t i = 0; i < nodes.origin.size(); ++i)
+    if (nodes.origin[i] != nodes.id[i]) return true;
+  return false;
+}
+
 std::vector<char> Model::crack_face_nodes() const {
-  std::vector<char> on_face(nodes.count(), 0);
-  for (std::size_t i = 0; i < node_origin.size() && i < on_face.size(); ++i)
-    if (node_origin[i] != static_cast<std::int32_t>(i)) on_face[i] = on_face[node_origin[i]] = 1;
+  const std::size_t n = nodes.count();
+  std::vector<char> on_face(n, 0);
+  if (!has_cracks()) return on_face;
+  // The node of each id: ids are the indices until nodes are removed or reordered.
+  std::unordered_map<std::int64_t, std::size_t> index;
+  for (std::size_t i = 0; i < n; ++i)
+    if (nodes.id[i] != static_cast<std::int64_t>(i)) {
+      for (std::size_t k = 0; k < n; ++k) index.emplace(nodes.id[k], k);
+      break;
+    }
+  auto node_of = [&](std::int64_t id) -> std::size_t {
+    if (index.empty()) return static_cast<std::size_t>(id);
+    const auto it = index.find(id);
+    return it == index.end() ? n : it->second;
+  };
+  for (std::size_t i = 0; i < n; ++i)
+    if (nodes.origin[i] != nodes.id[i]) {
+      on_face[i] = 1;
+      const std::size_t o = node_of(nodes.origin[i]);
+      if (o < n) on_face[o] = 1;
+    }
   return on_face;
+}
+
+void Model::assign_ids() {
+  std::int64_t next = next_element_id;
+  for (Part& p : parts)
+    if (p.id.size() != p.element_count()) {
+      p.id.resize(p.element_count());
+      for (auto& id : p.id) id = next++;
+    }
+  next_element_id = next;
+  for (Part& p : parts)
+    for (const auto id : p.id) next_element_id = std::max(next_element_id, id + 1);
+  next = next_particle_id;
+  for (ParticlePart& pp : particle_parts)
+    if (pp.id.size() != pp.count()) {
+      pp.id.resize(pp.count());
+      for (auto& id : pp.id) id = next++;
+    }
+  next_particle_id = next;
+  for (ParticlePart& pp : particle_parts)
+    for (const auto id : pp.id) next_particle_id = std::max(next_particle_id, id + 1);
+  for (const auto id : nodes.id) next_node_id = std::max(next_node_id, id + 1);
 }
 
 const NodeSet* Model::find_node_set(const std::string& name) const {

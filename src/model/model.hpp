@@ -1,14 +1,21 @@
 // The Model: the whole simulation state as plain arrays (structure of arrays).
 //
-// Nodes, elements and integration points are integers into arrays; nothing holds a pointer across
-// a step. Topology changes (cracks, erosion, remeshing) rebuild or append to these arrays between
-// steps, and a checkpoint is a dump of them (see Model::visit_arrays).
+// Nodes, elements, integration points, particles and pairs are integers into arrays; nothing
+// holds a pointer across a step. Every array is declared once, by the struct that holds it
+// (visit_fields, src/model/fields.hpp): sizing, checkpoints, the colour permutation and every
+// topology change (src/model/remap.hpp) loop over the declarations. Nodes, elements and particles
+// carry stable 64-bit ids that are never reused; what refers to an entity from outside its own
+// arrays (prescribed motion, contact history, crack lineage) is a field of that entity, so it
+// follows every remap and checkpoint.
 #pragma once
 
 #include <cstdint>
 #include <string>
 #include <vector>
 
+#include "core/voigt.hpp"
+#include "model/fields.hpp"
+#include "model/element_type.hpp"
 #include "particle/particle_system.hpp"
 
 namespace shard {
@@ -16,52 +23,40 @@ namespace shard {
 /// How the 2D or 3D continuum is idealised (scenario key analysis.formulation).
 enum class Formulation : std::uint8_t { plane_strain, plane_stress, axisymmetric, three_d };
 
-/// Element formulations. One kernel per value (src/fem/).
-enum class ElementKind : std::uint8_t {
-  tri3,          ///< 3-node triangle, constant strain (plane strain/stress, axisymmetric)
-  tet4,          ///< 4-node tetrahedron, constant strain
-  hex8,          ///< 8-node hexahedron, 2x2x2 Gauss points
-  hex8_reduced,  ///< 8-node hexahedron, one point (uniform gradient) + viscous hourglass control
-};
-
-/// How an element treats the volumetric part of the deformation. Nearly incompressible flow
-/// (metal plasticity) locks constant-strain triangles and tetrahedra and fully integrated
-/// hexahedra; the remedies replace each element's dilatation and pressure by averages
-/// (docs/theory/elements_and_kinematics.md, "Volumetric locking").
-enum class VolumetricTreatment : std::uint8_t {
-  standard,                ///< the element's own dilatation at each point
-  average_nodal_pressure,  ///< tri3/tet4: dilatation and pressure averaged through the nodes
-  mean_dilatation,         ///< hex8: B-bar, the element's mean dilatation at all 8 points
-};
-
-int nodes_per_element(ElementKind kind);
-int points_per_element(ElementKind kind);  ///< integration points
-int dimension_of(ElementKind kind);
-const char* name_of(ElementKind kind);
 const char* name_of(Formulation formulation);
-
-/// Stress and strain are stored as 6 tensor components per point in this order (shear as the
-/// tensor component, not the engineering strain). In 2D, zz is the out-of-plane (plane strain) or
-/// hoop (axisymmetric) component and yz = zx = 0.
-enum Voigt : int { xx = 0, yy = 1, zz = 2, xy = 3, yz = 4, zx = 5 };
-constexpr int kTensorSize = 6;
 
 /// Nodal arrays. Vectors are stored interleaved with `dim` components per node (x0[dim*i + k]).
 struct NodeArrays {
   int dim = 0;
+  std::vector<std::int64_t> id;  ///< stable id, never reused
   std::vector<double> x0;     ///< reference (initial) position
   std::vector<double> x;      ///< current position
   std::vector<double> v;      ///< velocity at the last half step
   std::vector<double> force;  ///< net nodal force at the current step (external - internal)
   std::vector<double> mass;   ///< lumped mass, one per node (axisymmetric: of the full ring)
+  /// The crack lineage: the id of the mesh node this one descends from (its own id for a node
+  /// no crack has split off), so that copies of one node know they are siblings.
+  std::vector<std::int64_t> origin;
+  /// dim per node: the prescribed motion of each component (an index into the run's list of
+  /// prescribed velocities, src/solver/loads.hpp), −1 where it is free. A node split off by a
+  /// crack inherits its parent's.
+  std::vector<std::int32_t> prescribed;
 
   std::size_t count() const { return mass.size(); }
-  void resize(std::size_t n) {
-    x0.assign(n * dim, 0.0);
-    x.assign(n * dim, 0.0);
-    v.assign(n * dim, 0.0);
-    force.assign(n * dim, 0.0);
-    mass.assign(n, 0.0);
+  /// n nodes at rest at the origin, free, with ids and origins 0 … n−1.
+  void resize(std::size_t n);
+
+  template <class F>
+  void visit_fields(F&& f) {
+    const auto d = dim;
+    f(field("id", Location::node, 1, Follow::stable_id), id);
+    f(field("x0", Location::node, d), x0);
+    f(field("x", Location::node, d), x);
+    f(field("v", Location::node, d), v);
+    f(field("force", Location::node, d, Follow::share), force);
+    f(field("mass", Location::node, 1, Follow::share), mass);
+    f(field("origin", Location::node, 1), origin);
+    f(field("prescribed", Location::node, d, Follow::copy, -1), prescribed);
   }
 };
 
@@ -70,57 +65,84 @@ struct NodeArrays {
 /// fixed summation order: the same result for any thread count.
 struct Part {
   std::string name;
-  ElementKind kind = ElementKind::tri3;
+  const ElementType* type = nullptr;  ///< the element formulation (src/model/element_type.hpp)
   int material = 0;                 ///< index into the run's material list
   double hourglass_coefficient = 0.1;
   VolumetricTreatment volumetric = VolumetricTreatment::standard;
+  int state_size = 0;  ///< material history variables per point (Material::state_size())
 
-  std::vector<std::int32_t> connectivity;  ///< nodes_per_element per element
+  std::vector<std::int64_t> id;            ///< stable element id, never reused
+  std::vector<std::int32_t> connectivity;  ///< type->nodes per element
+  std::vector<std::uint8_t> colour;        ///< per element; elements are sorted by it
   std::vector<std::int32_t> colour_begin;  ///< colour c holds elements [colour_begin[c], colour_begin[c+1])
 
-  // Integration-point state, points_per_element per element.
+  // Integration-point state, type->points per element.
   std::vector<double> stress;       ///< Cauchy stress, kTensorSize per point
   std::vector<double> strain;       ///< accumulated (rotated) strain, kTensorSize per point
   std::vector<double> state;        ///< material history variables, material.state_size() per point
   std::vector<double> temperature;  ///< one per point
   std::vector<double> volume;       ///< current element volume (axisymmetric: of the ring), per element
-  /// Forces of the last step that the next step needs to book their work exactly (trapezoid over
-  /// the interval): the bulk viscosity q per element, and for hex8_reduced the hourglass force
-  /// coefficients c·q_α (12 per element).
+  /// The bulk viscosity q of the last step, per element: the next step needs it to book the
+  /// viscous work exactly (trapezoid over the interval).
   std::vector<double> bulk_viscosity;
-  std::vector<double> hourglass_rate;
-  /// 1 for an element removed by erosion (its material failed): it carries no stress and adds
-  /// no force; its nodes keep their mass. One per element.
-  std::vector<std::int32_t> eroded;
+  /// What the element kernel keeps from one step to the next, type->kernel_state per element
+  /// (hex8_reduced: its hourglass force coefficients c·q_α, likewise for the trapezoid).
+  std::vector<double> kernel_state;
+  /// 1 for an element whose material failed in this step (erosion): it carries no stress and
+  /// adds no force, and leaves the part at the end of the step (the erosion event compacts it
+  /// away); its nodes keep their mass.
+  std::vector<std::uint8_t> eroded;
 
-  std::size_t element_count() const {
-    return connectivity.size() / static_cast<std::size_t>(nodes_per_element(kind));
-  }
-  std::size_t point_count() const {
-    return element_count() * static_cast<std::size_t>(points_per_element(kind));
-  }
+  std::size_t element_count() const { return connectivity.size() / static_cast<std::size_t>(type->nodes); }
+  std::size_t point_count() const { return element_count() * static_cast<std::size_t>(type->points); }
   std::size_t colour_count() const { return colour_begin.empty() ? 0 : colour_begin.size() - 1; }
+
+  template <class F>
+  void visit_fields(F&& f) {
+    const int points = type->points;
+    f(field("id", Location::element, 1, Follow::stable_id), id);
+    f(field("connectivity", Location::element, type->nodes, Follow::node_index), connectivity);
+    f(field("colour", Location::element, 1), colour);
+    f(field("colour_begin", Location::model, 0), colour_begin);
+    f(field("stress", Location::element, kTensorSize * points), stress);
+    f(field("strain", Location::element, kTensorSize * points), strain);
+    f(field("state", Location::element, state_size * points), state);
+    f(field("temperature", Location::element, points), temperature);
+    f(field("volume", Location::element, 1), volume);
+    f(field("bulk_viscosity", Location::element, 1), bulk_viscosity);
+    f(field("kernel_state", Location::element, type->kernel_state), kernel_state);
+    f(field("eroded", Location::element, 1), eroded);
+  }
 };
 
 /// A named set of boundary facets (2-node segments in 2D, 3- or 4-node faces in 3D), oriented so
-/// that their right-hand normal points out of the body. Used for pressure loads.
+/// that their right-hand normal points out of the body. Used for pressure loads. Each facet
+/// bounds one element (its owner): when a topology change gives that element other nodes (a
+/// crack splits them), the facet follows the element.
 struct FacetSet {
   std::string name;
   int nodes_per_facet = 2;
   std::vector<std::int32_t> nodes;
+  /// Per facet: the part and element it bounds, and per facet node its corner in that element
+  /// (empty: owners unknown, the nodes are only renumbered).
+  std::vector<std::int32_t> owner_part, owner_element;
+  std::vector<std::int8_t> owner_corner;
+
+  std::size_t facet_count() const { return nodes.size() / static_cast<std::size_t>(nodes_per_facet); }
 };
 
-/// A named set of nodes (from a Gmsh physical group of any dimension).
+/// A named set of nodes (from a Gmsh physical group of any dimension). A node split off by a
+/// crack joins every set its parent is in.
 struct NodeSet {
   std::string name;
   std::vector<std::int32_t> nodes;  ///< sorted, unique
 };
 
-/// Contact history that must survive a step (and a restart). Per-node arrays are indexed by
-/// node id (dim components per node), so they stay valid when the contact surface is rebuilt.
+/// Contact history that must survive a step (and a restart): node fields, so that they follow
+/// every topology change, and the state of the rigid walls.
 struct ContactState {
-  std::vector<double> tangential;       ///< stick force of node-to-facet contact, per node
-  std::vector<double> wall_tangential;  ///< stick force against each wall: wall-major, per node
+  std::vector<double> tangential;       ///< stick force of node-to-facet contact, dim per node
+  std::vector<double> wall_tangential;  ///< stick force against each wall: walls × dim per node
   std::vector<double> wall_offset;      ///< displacement of each rigid wall, dim per wall
   /// Node-to-facet contact, per node: whether the node was in contact in the last step, and the
   /// penetration (a gap ≤ 0) it carries without force because it was found deeper than the
@@ -134,6 +156,21 @@ struct ContactState {
   /// value): a penalty that followed the current step would change with the motion of the
   /// critical element and bulk viscosity, and make contact chatter.
   std::vector<double> penalty_time_step;
+
+  /// Node fields (sized by the contact on its first step; a node split off starts with none).
+  template <class F>
+  void visit_node_fields(F&& f) {
+    f(field("tangential", Location::node, 0, Follow::fresh), tangential);
+    f(field("wall_tangential", Location::node, 0, Follow::fresh), wall_tangential);
+    f(field("touching", Location::node, 0, Follow::fresh), touching);
+    f(field("penetration_offset", Location::node, 0, Follow::fresh), penetration_offset);
+    f(field("loaded_gap", Location::node, 0, Follow::fresh), loaded_gap);
+  }
+  template <class F>
+  void visit_model_fields(F&& f) {
+    f(field("wall_offset", Location::model, 0), wall_offset);
+    f(field("penalty_time_step", Location::model, 0), penalty_time_step);
+  }
 };
 
 /// A part of movable cellular automata (docs/theory/mca.md): bonded particles integrated in the
@@ -150,9 +187,80 @@ struct ParticlePart {
   /// pairs' areas, lengths and materials, so it is computed again only when pairs are added or
   /// dropped (0: to be computed). Not checkpointed: recomputed from the same pairs.
   double stable_time_step = 0;
+  std::vector<std::int64_t> id;  ///< stable particle id, never reused
   std::vector<double> x0;      ///< positions at t = 0 (for displacements)
   std::vector<double> x_old;   ///< positions at t_n−1 (dim per automaton)
   std::vector<double> dtheta;  ///< rotation increments over [t_n−1, t_n] (rot_dim per automaton)
+  /// dim + rot_dim per particle: prescribed translation and rotation components (an index into
+  /// the run's prescribed velocities), −1 where free.
+  std::vector<std::int32_t> prescribed;
+
+  std::size_t count() const { return system.count(); }
+
+  /// Per-particle fields of the part.
+  template <class F>
+  void visit_particle_fields(F&& f) {
+    ParticleSystem& s = system;
+    const int d = s.dim, r = s.rot_dim();
+    f(field("id", Location::particle, 1, Follow::stable_id), id);
+    f(field("x0", Location::particle, d), x0);
+    f(field("x_old", Location::particle, d), x_old);
+    f(field("dtheta", Location::particle, r), dtheta);
+    f(field("prescribed", Location::particle, d + r, Follow::copy, -1), prescribed);
+    f(field("x", Location::particle, d), s.x);
+    f(field("v", Location::particle, d), s.v);
+    f(field("force", Location::particle, d, Follow::share), s.force);
+    f(field("theta", Location::particle, r), s.theta);
+    f(field("omega", Location::particle, r), s.omega);
+    f(field("torque", Location::particle, r, Follow::share), s.torque);
+    f(field("size", Location::particle, 1), s.d);
+    f(field("volume", Location::particle, 1, Follow::share), s.volume);
+    f(field("face_area", Location::particle, 1), s.face_area);
+    f(field("mass", Location::particle, 1, Follow::share), s.mass);
+    f(field("inertia", Location::particle, 1, Follow::share), s.inertia);
+    f(field("material", Location::particle, 1), s.material);
+    f(field("stress", Location::particle, 6), s.stress);
+    f(field("sigma_mean", Location::particle, 1), s.sigma_mean);
+    f(field("sigma_mean_old", Location::particle, 1), s.sigma_mean_old);
+    f(field("sigma_mean_used", Location::particle, 1), s.sigma_mean_used);
+    f(field("stress_int", Location::particle, 1), s.stress_int);
+    f(field("plastic_strain", Location::particle, 1), s.plastic_strain);
+    f(field("fabric_index", Location::particle, 1, Follow::copy, -1), s.fabric_index);
+  }
+  /// Per-pair fields: every array of the pairs that changes during a run (broken bonds, k_link
+  /// and the pair stresses must never be lost across a restart).
+  template <class F>
+  void visit_pair_fields(F&& f) {
+    ParticleSystem& s = system;
+    PairList& q = s.pairs;
+    const int d = s.dim, r = s.rot_dim(), t = s.tau_dim();
+    f(field("i", Location::pair, 1, Follow::particle_index), q.i);
+    f(field("j", Location::pair, 1, Follow::particle_index), q.j);
+    f(field("r0", Location::pair, 1), q.r0);
+    f(field("area", Location::pair, 1), q.area);
+    f(field("kappa", Location::pair, 1), q.kappa);
+    f(field("xi_ij", Location::pair, 1), q.xi_ij);
+    f(field("xi_ji", Location::pair, 1), q.xi_ji);
+    f(field("eta", Location::pair, 1), q.eta);
+    f(field("tau", Location::pair, t), q.tau);
+    f(field("tau_c", Location::pair, t), q.tau_c);
+    f(field("phi", Location::pair, r), q.phi);
+    f(field("k_link", Location::pair, 1), q.k_link);
+    f(field("eps_onset", Location::pair, 1, Follow::copy, -1), q.eps_onset);
+    f(field("state", Location::pair, 1), q.state);
+    f(field("law", Location::pair, 1, Follow::copy, -1), q.law);
+    f(field("force", Location::pair, d), q.force);
+    f(field("normal", Location::pair, d), q.normal);
+    f(field("q_ij", Location::pair, 1), q.q_ij);
+    f(field("q_ji", Location::pair, 1), q.q_ji);
+    f(field("torque_rel", Location::pair, r), q.torque_rel);
+  }
+  /// The fabric tensors of the surface automata (rows indexed by fabric_index): fixed at bonding.
+  template <class F>
+  void visit_model_fields(F&& f) {
+    f(field("fabric", Location::model, 0), system.fabric);
+    f(field("fabric_inv", Location::model, 0), system.fabric_inv);
+  }
 };
 
 struct Model {
@@ -164,97 +272,65 @@ struct Model {
   std::vector<NodeSet> node_sets;
   std::vector<FacetSet> facet_sets;
   ContactState contact;
-  /// Empty until a crack splits a node; then, per node, the mesh node it is a copy of (itself
-  /// for a mesh node), so that a restart can give the copies their origin's prescribed motion.
-  std::vector<std::int32_t> node_origin;
+  /// The next stable id of a node, an element and a particle (ids are never reused).
+  std::int64_t next_node_id = 0, next_element_id = 0, next_particle_id = 0;
 
   int dim() const { return nodes.dim; }
   std::size_t element_count() const;
   /// Per node, 1 on a crack face (a copy of a split node, or the node it was split from), from
-  /// node_origin; all 0 before any crack.
+  /// the nodes' origins; all 0 before any crack.
   std::vector<char> crack_face_nodes() const;
+  /// Whether a crack has split any node (a node's origin is another node).
+  bool has_cracks() const;
   const NodeSet* find_node_set(const std::string& name) const;
   const FacetSet* find_facet_set(const std::string& name) const;
+  /// Gives the elements of every part and the particles of every particle part their ids where
+  /// they have none yet (0 … n−1 in order, continuing over parts), and sets the id counters past
+  /// every id in use. Called once a model is assembled.
+  void assign_ids();
 
-  /// Calls f(name, vector&) for every array of state (vectors of double, int32, int16 and of
-  /// the uint8 pair state), in a fixed
-  /// order. Checkpoints are written and read through this, so adding an array here is all a
+  /// Fields of the nodes, wherever they are held.
+  template <class F>
+  void visit_node_fields(F&& f) {
+    nodes.visit_fields(f);
+    contact.visit_node_fields(f);
+  }
+
+  /// Calls f(name, info, vector&) for every array of state, in a fixed order, with its name
+  /// qualified by its holder ("nodes.x", "part.plate.stress", "particles.sample.pair.eta").
+  /// Checkpoints are written and read through this, so declaring an array in its holder is all a
   /// new piece of state needs to survive a restart.
   template <class Visitor>
-  void visit_arrays(Visitor&& f) {
-    f("nodes.x0", nodes.x0);
-    f("nodes.x", nodes.x);
-    f("nodes.v", nodes.v);
-    f("nodes.force", nodes.force);
-    f("nodes.mass", nodes.mass);
-    f("contact.tangential", contact.tangential);
-    f("contact.wall_tangential", contact.wall_tangential);
-    f("contact.wall_offset", contact.wall_offset);
-    f("contact.touching", contact.touching);
-    f("contact.penetration_offset", contact.penetration_offset);
-    f("contact.loaded_gap", contact.loaded_gap);
-    f("contact.penalty_time_step", contact.penalty_time_step);
+  void visit_fields(Visitor&& f) {
+    auto as = [&f](const std::string& prefix) {
+      return [&f, prefix](const FieldInfo& info, auto& a) { f(prefix + info.name, info, a); };
+    };
+    nodes.visit_fields(as("nodes."));
+    contact.visit_node_fields(as("contact."));
+    contact.visit_model_fields(as("contact."));
     // Cracks add nodes: the sets that name nodes grow with them.
-    f("nodes.origin", node_origin);
-    for (auto& s : node_sets) f("node_set." + s.name, s.nodes);
-    for (auto& s : facet_sets) f("facet_set." + s.name, s.nodes);
-    for (auto& p : parts) {
-      const std::string prefix = "part." + p.name + ".";
-      f(prefix + "connectivity", p.connectivity);
-      f(prefix + "colour_begin", p.colour_begin);
-      f(prefix + "stress", p.stress);
-      f(prefix + "strain", p.strain);
-      f(prefix + "state", p.state);
-      f(prefix + "temperature", p.temperature);
-      f(prefix + "volume", p.volume);
-      f(prefix + "bulk_viscosity", p.bulk_viscosity);
-      f(prefix + "hourglass_rate", p.hourglass_rate);
-      f(prefix + "eroded", p.eroded);
+    for (auto& s : node_sets) f("node_set." + s.name, field("nodes", Location::model, 0), s.nodes);
+    for (auto& s : facet_sets) {
+      const std::string prefix = "facet_set." + s.name + ".";
+      f(prefix + "nodes", field("nodes", Location::model, 0), s.nodes);
+      f(prefix + "owner_part", field("owner_part", Location::model, 0), s.owner_part);
+      f(prefix + "owner_element", field("owner_element", Location::model, 0), s.owner_element);
+      f(prefix + "owner_corner", field("owner_corner", Location::model, 0), s.owner_corner);
     }
-    // Every array of a particle part that changes during a run, pairs included: broken bonds,
-    // k_link and the pair stresses must never be lost across a restart.
+    for (auto& p : parts) p.visit_fields(as("part." + p.name + "."));
     for (auto& pp : particle_parts) {
       const std::string prefix = "particles." + pp.name + ".";
-      ParticleSystem& s = pp.system;
-      f(prefix + "x_old", pp.x_old);
-      f(prefix + "dtheta", pp.dtheta);
-      f(prefix + "x", s.x);
-      f(prefix + "v", s.v);
-      f(prefix + "force", s.force);
-      f(prefix + "theta", s.theta);
-      f(prefix + "omega", s.omega);
-      f(prefix + "torque", s.torque);
-      f(prefix + "stress", s.stress);
-      f(prefix + "sigma_mean", s.sigma_mean);
-      f(prefix + "sigma_mean_old", s.sigma_mean_old);
-      f(prefix + "sigma_mean_used", s.sigma_mean_used);
-      f(prefix + "stress_int", s.stress_int);
-      f(prefix + "plastic_strain", s.plastic_strain);
-      f(prefix + "fabric_index", s.fabric_index);
-      f(prefix + "fabric", s.fabric);
-      f(prefix + "fabric_inv", s.fabric_inv);
-      PairList& q = s.pairs;
-      f(prefix + "pair.i", q.i);
-      f(prefix + "pair.j", q.j);
-      f(prefix + "pair.r0", q.r0);
-      f(prefix + "pair.area", q.area);
-      f(prefix + "pair.kappa", q.kappa);
-      f(prefix + "pair.xi_ij", q.xi_ij);
-      f(prefix + "pair.xi_ji", q.xi_ji);
-      f(prefix + "pair.eta", q.eta);
-      f(prefix + "pair.tau", q.tau);
-      f(prefix + "pair.tau_c", q.tau_c);
-      f(prefix + "pair.phi", q.phi);
-      f(prefix + "pair.k_link", q.k_link);
-      f(prefix + "pair.eps_onset", q.eps_onset);
-      f(prefix + "pair.state", q.state);
-      f(prefix + "pair.law", q.law);
-      f(prefix + "pair.force", q.force);
-      f(prefix + "pair.normal", q.normal);
-      f(prefix + "pair.q_ij", q.q_ij);
-      f(prefix + "pair.q_ji", q.q_ji);
-      f(prefix + "pair.torque_rel", q.torque_rel);
+      pp.visit_particle_fields(as(prefix));
+      pp.visit_pair_fields(as(prefix + "pair."));
+      pp.visit_model_fields(as(prefix));
     }
+  }
+  /// The scalars of the model's state (the id counters), for checkpoints.
+  template <class Visitor>
+  void visit_counters(Visitor&& f) {
+    f("next_node_id", next_node_id);
+    f("next_element_id", next_element_id);
+    f("next_particle_id", next_particle_id);
   }
 };
 

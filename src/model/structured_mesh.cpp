@@ -2,12 +2,15 @@
 
 #include <random>
 
+#include "model/assembly.hpp"
+
 namespace shard {
 
 Model make_box_model(Formulation formulation, const BoxMesh& box) {
   Model model;
   model.formulation = formulation;
-  const bool planar = box.kind == ElementKind::tri3;
+  const ElementType& type = element_type(box.element);
+  const bool planar = type.dim == 2;
   const int dim = planar ? 2 : 3;
   model.nodes.dim = dim;
   const int nx = box.cells[0], ny = box.cells[1], nz = planar ? 0 : box.cells[2];
@@ -37,7 +40,7 @@ Model make_box_model(Formulation formulation, const BoxMesh& box) {
 
   Part part;
   part.name = "body";
-  part.kind = box.kind;
+  part.type = &type;
   auto& cn = part.connectivity;
   if (planar) {
     for (int j = 0; j < ny; ++j)
@@ -52,7 +55,7 @@ Model make_box_model(Formulation formulation, const BoxMesh& box) {
           const std::int32_t v[8] = {id(i, j, k),         id(i + 1, j, k),     id(i + 1, j + 1, k),
                                      id(i, j + 1, k),     id(i, j, k + 1),     id(i + 1, j, k + 1),
                                      id(i + 1, j + 1, k + 1), id(i, j + 1, k + 1)};
-          if (box.kind == ElementKind::tet4) {
+          if (type.cell == CellType::tet4) {
             const int tets[6][4] = {{0, 1, 2, 6}, {0, 2, 3, 6}, {0, 3, 7, 6},
                                     {0, 7, 4, 6}, {0, 4, 5, 6}, {0, 5, 1, 6}};
             for (const auto& t : tets) {
@@ -119,9 +122,11 @@ Model make_box_model(Formulation formulation, const BoxMesh& box) {
           }
         }
     }
+    find_facet_owners(model, fs);  // none for the quadrilaterals of a tet4 box
     model.node_sets.push_back(std::move(ns));
     model.facet_sets.push_back(std::move(fs));
   }
+  model.next_node_id = static_cast<std::int64_t>(model.nodes.count());
   return model;
 }
 

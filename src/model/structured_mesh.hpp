@@ -3,13 +3,14 @@
 
 #include <array>
 #include <cstdint>
+#include <string>
 
 #include "model/model.hpp"
 
 namespace shard {
 
 struct BoxMesh {
-  ElementKind kind = ElementKind::hex8_reduced;
+  std::string element = "hex8_reduced";  ///< a registered element type (tri3: a 2D box)
   std::array<int, 3> cells{1, 1, 1};           ///< cells along x, y, z (z ignored for tri3)
   std::array<double, 3> size{1.0, 1.0, 1.0};   ///< box edge lengths (m), corner at the origin
   double distortion = 0.0;  ///< interior nodes moved by up to this fraction of the cell size

@@ -480,6 +480,15 @@ inline double plane_zz(const ParticleSystem& ps, const MCAMaterial& m, const dou
 
 double bond_criterion_value(const BondLaw& law, const double* T) { return criterion_value(law, T); }
 
+std::vector<EnergyTerm> mca_energy_terms() {
+  using G = EnergyGroup;
+  namespace r = energy_rank;
+  return {{"particle_elastic", "elastic energy the automata and their pairs store now", r::particle_elastic,
+           {{G::internal, +1}}, "-"},
+          {"particle_friction", "dissipated by the Amontons sliding of unlinked pairs of automata", r::particle_friction,
+           {{G::dissipated, +1}}, "friction"}};
+}
+
 double deterministic_sum(const std::vector<double>& values) {
   double total = 0;
   for (std::size_t b0 = 0; b0 < values.size(); b0 += kBlock) {

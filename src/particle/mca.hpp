@@ -7,9 +7,15 @@
 
 #include <vector>
 
+#include "core/energy_ledger.hpp"
 #include "particle/particle_system.hpp"
 
 namespace shard {
+
+/// The energy terms of the automata: the elastic energy they store now (a state function, not
+/// accumulated) and the Amontons sliding of unlinked pairs. Their plastic work and bond-breaking
+/// release go into the common "plastic" and "fracture" terms (and the stress work).
+std::vector<EnergyTerm> mca_energy_terms();
 
 /// Energy dissipated during one force evaluation (J).
 struct MCADissipation {

@@ -6,19 +6,6 @@
 
 namespace shard {
 
-namespace {
-
-/// Appends to `loads` a copy of every constraint of node `from` for node `to` (a linear scan:
-/// insertions are rare next to steps, and constraints need not be sorted).
-void copy_constraints(Loads& loads, std::int32_t from, std::int32_t to) {
-  auto& c = loads.constraints;
-  const std::size_t n = c.size();
-  for (std::size_t k = 0; k < n; ++k)
-    if (c[k].node == from) c.push_back({to, c[k].component, c[k].table});
-}
-
-}  // namespace
-
 CrackGrowth::CrackGrowth(const Model& model, const std::vector<std::unique_ptr<Material>>& materials,
                          CrackGrowthSettings settings)
     : settings_(std::move(settings)) {
@@ -33,7 +20,7 @@ CrackGrowth::CrackGrowth(const Model& model, const std::vector<std::unique_ptr<M
     const Part& part = model.parts[p];
     const Material& m = *materials[part.material];
     const auto slots = m.failure_map_slots();
-    SHARD_ASSERT(slots && part.kind == ElementKind::tri3, "part " << part.name << " cannot crack");
+    SHARD_ASSERT(slots && part.type->is_triangle(), "part " << part.name << " cannot crack");
     CrackingPart& cp = parts_[p];
     cp.cracks = true;
     cp.factor_index = slots->factor;
@@ -44,7 +31,7 @@ CrackGrowth::CrackGrowth(const Model& model, const std::vector<std::unique_ptr<M
   }
 }
 
-std::size_t CrackGrowth::update(Model& model, Loads& loads, ContactSystem* contact, EnergyBalance& energy) {
+std::size_t CrackGrowth::insert(Model& model, EnergyLedger& energy, Topology& topology) {
   if (settings_.parts.empty()) return 0;
   // No node can reach the threshold while no point has (the nodal factor is a weighted mean).
   bool any = false;
@@ -60,21 +47,11 @@ std::size_t CrackGrowth::update(Model& model, Loads& loads, ContactSystem* conta
   s.failure_threshold = settings_.failure_threshold;
   s.min_fragment_elements = settings_.min_fragment_elements;
   const CrackInsertion ins = insert_cracks(model, parts_, map_.factor, map_.direction, s);
-  energy.fracture += ins.released_energy;
+  energy.at("fracture") += ins.released_energy;
   if (ins.new_node_count() == 0) return 0;
-  extend_node_data(model, ins);
-  for (std::size_t i = 0; i < ins.new_node_count(); ++i)
-    copy_constraints(loads, ins.parent[i], static_cast<std::int32_t>(ins.first_new_node + i));
-  if (contact) contact->rebuild(model);
+  topology.changed(model, ins.remap);
   inserted_ += static_cast<std::int64_t>(ins.new_node_count());
   return ins.new_node_count();
-}
-
-void CrackGrowth::restore_constraints(const Model& model, Loads& loads) {
-  for (std::size_t n = 0; n < model.node_origin.size(); ++n)
-    if (model.node_origin[n] != static_cast<std::int32_t>(n))
-      copy_constraints(loads, model.node_origin[n], static_cast<std::int32_t>(n));
-
 }
 
 }  // namespace shard

@@ -1,20 +1,21 @@
-// Discrete cracks in the time loop: after each step, the nodal failure map of the cracking
-// parts decides which nodes split (src/fracture/), and the run's per-node data follow: node
-// sets, prescribed velocities, the contact surface (the crack faces become contact faces) and
-// the energy balance. Theory: docs/theory/crack_insertion.md.
+// Discrete cracks in the time loop: a step event that, after each advance, lets the nodal failure
+// map of the cracking parts decide which nodes split (src/fracture/). The split is one topology
+// change: every node field follows it (prescribed motion, crack lineage, contact history, node
+// and facet sets) and every cache is told (the crack faces become contact faces); the released
+// energy is booked as fracture. Theory: docs/theory/crack_insertion.md.
 #pragma once
 
 #include <cstdint>
 #include <memory>
 #include <vector>
 
-#include "contact/contact.hpp"
 #include "fracture/crack_insertion.hpp"
 #include "fracture/failure_map.hpp"
 #include "material/material.hpp"
 #include "model/model.hpp"
-#include "solver/energy.hpp"
-#include "solver/loads.hpp"
+#include "core/energy_ledger.hpp"
+#include "solver/step_event.hpp"
+#include "solver/topology.hpp"
 
 namespace shard {
 
@@ -24,19 +25,19 @@ struct CrackGrowthSettings {
   int min_fragment_elements = 1;   ///< no crack cuts off a piece of fewer elements (1: no limit)
 };
 
-class CrackGrowth {
+class CrackGrowth final : public StepEvent {
  public:
   CrackGrowth(const Model& model, const std::vector<std::unique_ptr<Material>>& materials,
               CrackGrowthSettings settings);
 
-  /// Inserts the cracks of the nodes that failed in the last step, in one topological update;
-  /// extends constraints and node data, rebuilds contact, books the released energy as
-  /// fracture. Returns the number of nodes added.
-  std::size_t update(Model& model, Loads& loads, ContactSystem* contact, EnergyBalance& energy);
+  const char* name() const override { return "crack growth"; }
+  Phase phase() const override { return Phase::after_advance; }
+  void run(Model& model, EventContext& context) override { insert(model, context.energy, context.topology); }
 
-  /// After a restart: copies the prescribed velocities of the mesh nodes to the nodes that
-  /// cracks added before the checkpoint (Model::node_origin says whose copy each is).
-  static void restore_constraints(const Model& model, Loads& loads);
+  /// Inserts the cracks of the nodes that failed in the last step, in one topological update
+  /// announced through `topology`; books the released energy as fracture. Returns the number of
+  /// nodes added.
+  std::size_t insert(Model& model, EnergyLedger& energy, Topology& topology);
 
   std::int64_t inserted_nodes() const { return inserted_; }
 

@@ -7,7 +7,7 @@
 #include <sstream>
 
 #include "core/error.hpp"
-#include "fem/hex8_shape.hpp"
+#include "solver/erosion.hpp"
 #include "solver/particle_integration.hpp"
 
 namespace shard {
@@ -19,79 +19,104 @@ constexpr std::size_t kNodeChunk = 2048;
 
 /// The degree of freedom a particle constraint holds: its velocity, force and inertia
 /// (translation components 0..dim−1, rotation components after them).
-struct ConstrainedDof {
+struct ParticleDof {
   double& velocity;
   double& force;
   double inertia;
 };
-ConstrainedDof constrained_dof(ParticleSystem& ps, const ParticleConstraint& c) {
+ParticleDof particle_dof(ParticleSystem& ps, const PrescribedDof& c) {
   const bool rot = c.component >= ps.dim;
-  const std::size_t slot = static_cast<std::size_t>(rot ? ps.rot_dim() : ps.dim) * c.automaton +
+  const std::size_t slot = static_cast<std::size_t>(rot ? ps.rot_dim() : ps.dim) * c.point +
                            (rot ? c.component - ps.dim : c.component);
   return {(rot ? ps.omega : ps.v)[slot], (rot ? ps.torque : ps.force)[slot],
-          rot ? ps.inertia[c.automaton] : ps.mass[c.automaton]};
+          rot ? ps.inertia[c.point] : ps.mass[c.point]};
+}
+
+[[noreturn]] void inverted_element(const Model& model, const Part& part, std::int64_t element, double time,
+                                   std::int64_t step) {
+  const int npe = part.type->nodes;
+  std::ostringstream out;
+  out << "element " << element << " of part '" << part.name << "' turned inside out (volume <= 0) at t = " << time
+      << " s, step " << step << "; its nodes are at";
+  for (int a = 0; a < npe; ++a) {
+    const auto n = part.connectivity[npe * element + a];
+    out << " (";
+    for (int k = 0; k < model.dim(); ++k) out << (k ? ", " : "") << model.nodes.x[model.dim() * n + k];
+    out << ")";
+  }
+  out << ". Usual causes: a time step too large (lower analysis.time_step_safety), too little "
+         "hourglass control, or a load beyond what the mesh can follow";
+  throw RunError(out.str());
 }
 }  // namespace
 
 void lump_masses(Model& model, const std::vector<std::unique_ptr<Material>>& materials) {
-  const int dim = model.dim();
-  auto& mass = model.nodes.mass;
-  const double* X = model.nodes.x.data();
-  for (const Part& part : model.parts) {
-    const double rho = materials[part.material]->density();
-    const int npe = nodes_per_element(part.kind);
-    for (std::size_t e = 0; e < part.element_count(); ++e) {
-      const std::int32_t* cn = &part.connectivity[npe * e];
-      if (part.kind == ElementKind::tri3) {
-        const double x1 = X[2 * cn[0]], y1 = X[2 * cn[0] + 1], x2 = X[2 * cn[1]],
-                     y2 = X[2 * cn[1] + 1], x3 = X[2 * cn[2]], y3 = X[2 * cn[2] + 1];
-        const double area = 0.5 * ((x2 - x1) * (y3 - y1) - (x3 - x1) * (y2 - y1));
-        if (model.formulation == Formulation::axisymmetric) {
-          // Row sums of the consistent ring mass: 2πρA(2r_a + r_b + r_c)/12.
-          const double r[3] = {x1, x2, x3};
-          for (int a = 0; a < 3; ++a)
-            mass[cn[a]] += 2.0 * std::numbers::pi * rho * area *
-                           (2.0 * r[a] + r[(a + 1) % 3] + r[(a + 2) % 3]) / 12.0;
-        } else {
-          for (int a = 0; a < 3; ++a) mass[cn[a]] += rho * area * model.thickness / 3.0;
-        }
-      } else if (part.kind == ElementKind::tet4) {
-        const double v = element_measure(part, model.nodes, e, model.formulation, model.thickness);
-        for (int a = 0; a < 4; ++a) mass[cn[a]] += rho * v / 4.0;
-      } else {
-        // Row sums of the consistent mass, ∫ρ N_a dV, by 2×2×2 Gauss (exact for the trilinear map).
-        double x[8][3];
-        for (int a = 0; a < 8; ++a)
-          for (int k = 0; k < 3; ++k) x[a][k] = X[3 * cn[a] + k];
-        for (int p = 0; p < 8; ++p) {
-          double J[3][3] = {};
-          for (int a = 0; a < 8; ++a)
-            for (int r = 0; r < 3; ++r)
-              for (int c = 0; c < 3; ++c) J[r][c] += x[a][r] * kHex8Gauss.dN[p][a][c];
-          const double det = J[0][0] * (J[1][1] * J[2][2] - J[1][2] * J[2][1]) -
-                             J[0][1] * (J[1][0] * J[2][2] - J[1][2] * J[2][0]) +
-                             J[0][2] * (J[1][0] * J[2][1] - J[1][1] * J[2][0]);
-          for (int a = 0; a < 8; ++a) mass[cn[a]] += rho * kHex8Gauss.N[p][a] * det;
-        }
-      }
-    }
-  }
-  (void)dim;
+  for (const Part& part : model.parts)
+    add_lumped_masses(part, model.nodes, materials[part.material]->density(), model.formulation,
+                      model.thickness, model.nodes.mass);
+}
+
+std::vector<EnergyTerm> solver_energy_terms() {
+  using G = EnergyGroup;
+  namespace r = energy_rank;
+  return {{"kinetic", "½ m v² at the last full step (v = mean of the half steps), rotation included", r::kinetic,
+           {{G::kinetic, +1}}, ""},
+          {"initial", "kinetic energy at t = 0 (the models start stress-free)", r::initial, {{G::initial, +1}}, "-"},
+          {"external_work", "work of loads, prescribed motion, moving walls and gravity", r::external_work,
+           {{G::external, +1}}, ""},
+          {"damping", "dissipated by mass-proportional damping", r::damping, {{G::dissipated, +1}}, ""}};
 }
 
 ExplicitSolver::ExplicitSolver(Model& model,
                                const std::vector<std::unique_ptr<Material>>& materials,
-                               Loads& loads, SolverSettings settings)
-    : model_(model), materials_(materials), loads_(loads), settings_(settings) {}
+                               const Loads& loads, SolverSettings settings)
+    : model_(model), materials_(materials), loads_(loads), settings_(settings) {
+  // The ledger: each piece that does work registers its terms (the contact on attaching).
+  EnergyLedger& E = state_.energy;
+  for (auto* terms : {solver_energy_terms, element_energy_terms, mca_energy_terms})
+    for (auto& t : terms()) E.add(std::move(t));
+  terms_ = {E.find("kinetic"),  E.find("initial"),   E.find("external_work"), E.find("damping"),
+            E.find("stress_work"), E.find("viscosity"), E.find("hourglass"), E.find("plastic"),
+            E.find("heat"),     E.find("fracture"),  E.find("eroded"),       E.find("particle_elastic"),
+            E.find("particle_friction")};
+  topology_.add(*this);
+  topology_changed(model_, Remap{});
+  // The solver's own events: every run compacts eroded elements and lets automata find new
+  // contacts; events a scenario asks for (crack growth) are added after them.
+  own_events_.push_back(std::make_unique<ParticleContactUpdate>());
+  own_events_.push_back(std::make_unique<ErosionCompaction>());
+  for (auto& e : own_events_) add_event(*e);
+}
+
+ExplicitSolver::~ExplicitSolver() = default;
+
+void ExplicitSolver::attach_contact(ContactSystem* contact) {
+  if (contact_) topology_.remove(*contact_);
+  contact_ = contact;
+  if (!contact_) return;
+  topology_.add(*contact_);
+  for (auto& t : ContactSystem::energy_terms()) state_.energy.add(std::move(t));
+  terms_.wall_work = state_.energy.find("wall_work");
+  terms_.contact_work = state_.energy.find("contact_work");
+  terms_.friction = state_.energy.find("friction");
+}
+
+void ExplicitSolver::topology_changed(const Model& model, const Remap&) {
+  node_dofs_ = prescribed_node_dofs(model);
+  particle_dofs_.clear();
+  for (const ParticlePart& pp : model.particle_parts) particle_dofs_.push_back(prescribed_particle_dofs(pp));
+}
 
 void ExplicitSolver::initialise() {
+  topology_changed(model_, Remap{});  // prescriptions may have been added since construction
   std::fill(model_.nodes.mass.begin(), model_.nodes.mass.end(), 0.0);
   lump_masses(model_, materials_);
   const int dim = model_.dim();
   // Prescribed velocities hold from t = 0: they are part of the initial state, so the initial
   // kinetic energy includes them and no impulsive jump happens in the first step.
-  for (const auto& c : loads_.constraints)
-    model_.nodes.v[static_cast<std::size_t>(dim) * c.node + c.component] = loads_.tables[c.table].at(0.0);
+  for (const auto& c : node_dofs_)
+    model_.nodes.v[static_cast<std::size_t>(dim) * c.point + c.component] =
+        loads_.tables[loads_.prescriptions[c.prescription].table].at(0.0);
   double kinetic = 0;
   for (std::size_t i = 0; i < model_.nodes.count(); ++i) {
     const double m = model_.nodes.mass[i];
@@ -104,64 +129,49 @@ void ExplicitSolver::initialise() {
     }
     for (int k = 0; k < dim; ++k) kinetic += 0.5 * m * model_.nodes.v[dim * i + k] * model_.nodes.v[dim * i + k];
   }
-  for (const auto& c : loads_.particle_constraints)
-    constrained_dof(model_.particle_parts[c.part].system, c).velocity = loads_.tables[c.table].at(0.0);
-  kinetic += particle_kinetic_energy();
-  state_ = SolverState{};
-  state_.energy.initial = kinetic;
-  state_.energy.kinetic = kinetic;
-}
-
-double ExplicitSolver::particle_kinetic_energy() const {
-  double kinetic = 0;
+  for (std::size_t p = 0; p < model_.particle_parts.size(); ++p)
+    for (const auto& c : particle_dofs_[p])
+      particle_dof(model_.particle_parts[p].system, c).velocity =
+          loads_.tables[loads_.prescriptions[c.prescription].table].at(0.0);
   for (const ParticlePart& pp : model_.particle_parts) kinetic += mca_kinetic_energy(pp.system);
-  return kinetic;
+  EnergyLedger ledger = std::move(state_.energy);  // the registered terms stay
+  ledger.clear();
+  state_ = SolverState{};
+  state_.energy = std::move(ledger);
+  state_.energy[terms_.initial] = kinetic;
+  state_.energy[terms_.kinetic] = kinetic;
 }
 
 bool ExplicitSolver::finished() const {
   return state_.time >= settings_.end_time * (1.0 - 1e-12);
 }
 
-void ExplicitSolver::compute_forces() {
-  auto& nodes = model_.nodes;
-  std::fill(nodes.force.begin(), nodes.force.end(), 0.0);
+void ExplicitSolver::add_element_forces(ForceSums& total) {
   StepContext ctx;
   ctx.formulation = model_.formulation;
   ctx.thickness = model_.thickness;
   ctx.dt = state_.dt_half;
   ctx.q_linear = settings_.q_linear;
   ctx.q_quadratic = settings_.q_quadratic;
-  ForceSums total;
   for (Part& part : model_.parts) {
-    const ForceSums sums = add_internal_forces(part, *materials_[part.material], nodes, ctx);
-    if (sums.inverted_element >= 0) {
-      const int npe = nodes_per_element(part.kind);
-      std::ostringstream out;
-      out << "element " << sums.inverted_element << " of part '" << part.name
-          << "' turned inside out (volume <= 0) at t = " << state_.time << " s, step "
-          << state_.step << "; its nodes are at";
-      for (int a = 0; a < npe; ++a) {
-        const auto n = part.connectivity[npe * sums.inverted_element + a];
-        out << " (";
-        for (int k = 0; k < model_.dim(); ++k) out << (k ? ", " : "") << nodes.x[model_.dim() * n + k];
-        out << ")";
-      }
-      out << ". Usual causes: a time step too large (lower analysis.time_step_safety), too little "
-             "hourglass control, or a load beyond what the mesh can follow";
-      throw RunError(out.str());
-    }
+    const ForceSums sums = add_internal_forces(part, *materials_[part.material], model_.nodes, ctx);
+    if (sums.inverted_element >= 0) inverted_element(model_, part, sums.inverted_element, state_.time, state_.step);
     total.add(sums);
   }
   auto& E = state_.energy;
-  E.stress_work += total.stress_work;
-  E.viscosity += total.viscous_work;
-  E.hourglass += total.hourglass_work;
-  E.plastic += total.plastic_work;
-  E.fracture += total.fracture_work;
-  E.heat += total.heat;
-  E.eroded += total.eroded_energy;
+  E[terms_.stress_work] += total.stress_work;
+  E[terms_.viscosity] += total.viscous_work;
+  E[terms_.hourglass] += total.hourglass_work;
+  E[terms_.plastic] += total.plastic_work;
+  E[terms_.fracture] += total.fracture_work;
+  E[terms_.heat] += total.heat;
+  E[terms_.eroded] += total.eroded_energy;
+}
+
+double ExplicitSolver::add_particle_forces() {
   // Particle parts: forces at t_n, the dissipation of the increment, the stored elastic energy
   // (a state function) and each part's limit on the next step.
+  auto& E = state_.energy;
   double particle_dt = std::numeric_limits<double>::infinity();
   particle_scratch_.resize(model_.particle_parts.size());
   double particle_elastic = 0;
@@ -170,21 +180,29 @@ void ExplicitSolver::compute_forces() {
     const MCADissipation d =
         particle_forces(pp, state_.step, state_.dt_half, settings_.gravity, particle_scratch_[p]);
     // The pair forces did the plastic and breaking work beyond what they store: stress work.
-    E.stress_work += d.plastic + d.breaking;
-    E.plastic += d.plastic;
-    E.fracture += d.breaking;
-    E.particle_friction += d.friction;
+    E[terms_.stress_work] += d.plastic + d.breaking;
+    E[terms_.plastic] += d.plastic;
+    E[terms_.fracture] += d.breaking;
+    E[terms_.particle_friction] += d.friction;
     particle_elastic += mca_elastic_energy(pp.system);
     if (pp.system.count() > 0) particle_dt = std::min(particle_dt, particle_time_step_limit(pp));
   }
-  E.particle_elastic = particle_elastic;
+  E[terms_.particle_elastic] = particle_elastic;
+  return particle_dt;
+}
 
+void ExplicitSolver::compute_forces() {
+  auto& nodes = model_.nodes;
+  std::fill(nodes.force.begin(), nodes.force.end(), 0.0);
+  ForceSums total;
+  add_element_forces(total);
+  const double particle_dt = add_particle_forces();
   if (total.eroded_elements > 0) {
     state_.eroded_elements += total.eroded_elements;
-    // The eroded elements' faces leave the contact surface and the faces they covered join it.
-    if (contact_) contact_->rebuild(model_);
+    // The eroded elements' faces leave the contact surface and the faces they covered join it
+    // now; the elements themselves leave the part at the end of the step (ErosionEvent).
+    topology_.changed(model_, Remap{});
   }
-
   applied_.clear();
   add_pressure_forces(model_, loads_, state_.time, applied_);
   const auto& g = settings_.gravity;
@@ -197,18 +215,21 @@ void ExplicitSolver::compute_forces() {
   }
   if (contact_) {
     contact_->add_forces(model_, state_.time, state_.dt_half, total.stable_dt);
-    E.friction += contact_->friction_increment();
+    state_.energy[terms_.friction] += contact_->friction_increment();
     const auto& wf = contact_->wall_forces();
     state_.wall_force_on_bodies.assign(wf.size(), 0.0);
     for (std::size_t i = 0; i < wf.size(); ++i) state_.wall_force_on_bodies[i] = -wf[i];
   }
+  state_.dt_next = choose_time_step(total.stable_dt, particle_dt);
+}
 
+double ExplicitSolver::choose_time_step(double element_stable_dt, double particle_dt) {
   // Contact springs may lower the stable step by up to the stated fraction (the automatic
   // penalty is built for that bound, docs/theory/contact.md): take it off before the safety factor.
   const double reduction = contact_ ? 1.0 - contact_->settings().time_step_reduction : 1.0;
   // With no element left to limit it (all eroded), the step stays what it was: free nodes fly on.
-  const double element_dt = std::isfinite(total.stable_dt) || state_.stable_dt == 0
-                                ? total.stable_dt
+  const double element_dt = std::isfinite(element_stable_dt) || state_.stable_dt == 0
+                                ? element_stable_dt
                                 : state_.stable_dt / reduction;
   state_.stable_dt = element_dt * reduction;
   // Several contact springs on one light node can take ω² past that fraction: bound the step by
@@ -235,37 +256,22 @@ void ExplicitSolver::compute_forces() {
            "refine, or check contact penetration)";
     throw RunError(out.str());
   }
-  state_.dt_next = dt;
+  return dt;
 }
 
-void ExplicitSolver::advance() {
-  auto& nodes = model_.nodes;
-  const int dim = model_.dim();
-  const double dt_next = state_.dt_next;
-  const double dt_n = state_.step == 0 ? 0.5 * dt_next : 0.5 * (state_.dt_half + dt_next);
-  // Central difference with mass-proportional damping taken at the mid-point:
-  // m (v+ − v−)/Δt = F − α m (v+ + v−)/2  ⇒  v+ = ((1 − αΔt/2) v− + Δt F/m) / (1 + αΔt/2).
-  const double alpha = settings_.mass_damping;
-  const double d1 = 1.0 - 0.5 * alpha * dt_n;
-  const double d2 = 1.0 / (1.0 + 0.5 * alpha * dt_n);
-  double* V = nodes.v.data();
-  double* F = nodes.force.data();
-  const double* M = nodes.mass.data();
-  auto new_velocity = [&](std::size_t dof, double m) { return (d1 * V[dof] + dt_n * (F[dof] / m)) * d2; };
-
-  // Work of a nodal force F_n is split at t_n: ½Δt_n−1/2 F_n·v_n−1/2 closes the interval
-  // [t_n−1/2, t_n] and ½Δt_n+1/2 F_n·v_n+1/2 opens [t_n, t_n+1/2]. The second half is booked
-  // next step, so that the reported energies all end at t_n, where the element stress work ends.
-  const double back = 0.5 * state_.dt_half, ahead = 0.5 * dt_next;
-
+void ExplicitSolver::apply_prescribed_velocities(double dt_n, double d1, double d2, double back, double ahead,
+                                                 double& external_back, double& external_ahead) {
   // Prescribed velocities: replace the force by the one that gives v+ = v_prescribed; the
   // difference is the reaction, whose work is external work.
-  double external_back = 0, external_ahead = 0;
-  const double t_half = state_.time + 0.5 * dt_next;
-  for (const auto& c : loads_.constraints) {
-    const std::size_t dof = static_cast<std::size_t>(dim) * c.node + c.component;
-    const double m = M[c.node];
-    const double vp = loads_.tables[c.table].at(t_half);
+  const int dim = model_.dim();
+  double* V = model_.nodes.v.data();
+  double* F = model_.nodes.force.data();
+  const double* M = model_.nodes.mass.data();
+  const double t_half = state_.time + 0.5 * state_.dt_next;
+  for (const auto& c : node_dofs_) {
+    const std::size_t dof = static_cast<std::size_t>(dim) * c.point + c.component;
+    const double m = M[c.point];
+    const double vp = loads_.tables[loads_.prescriptions[c.prescription].table].at(t_half);
     const double f_needed = m * (vp / d2 - d1 * V[dof]) / dt_n;
     const double reaction = f_needed - F[dof];
     external_back += reaction * back * V[dof];
@@ -275,52 +281,65 @@ void ExplicitSolver::advance() {
   // The same for prescribed velocities and angular velocities of automata; the reactions are
   // summed per group for the history (load-displacement curves of virtual tests).
   particle_reactions_.assign(6 * loads_.particle_groups.size(), 0.0);
-  for (const auto& c : loads_.particle_constraints) {
-    const ConstrainedDof dof = constrained_dof(model_.particle_parts[c.part].system, c);
-    double& f = dof.force;
-    double& v = dof.velocity;
-    const double m = dof.inertia;
-    const double vp = loads_.tables[c.table].at(t_half);
-    const double f_needed = m * (vp / d2 - d1 * v) / dt_n;
-    const double reaction = f_needed - f;
-    external_back += reaction * back * v;
-    external_ahead += reaction * ahead * vp;
-    f = f_needed;
-    particle_reactions_[6 * c.group + c.component] += reaction;
-  }
-  for (const auto& [dof, f] : applied_) {
-    const double m = M[dof / dim];
-    external_back += f * back * V[dof];
-    external_ahead += f * ahead * new_velocity(dof, m);
-  }
+  for (std::size_t p = 0; p < model_.particle_parts.size(); ++p)
+    for (const auto& c : particle_dofs_[p]) {
+      const ParticleDof dof = particle_dof(model_.particle_parts[p].system, c);
+      const Prescription& pr = loads_.prescriptions[c.prescription];
+      double& f = dof.force;
+      double& v = dof.velocity;
+      const double m = dof.inertia;
+      const double vp = loads_.tables[pr.table].at(t_half);
+      const double f_needed = m * (vp / d2 - d1 * v) / dt_n;
+      const double reaction = f_needed - f;
+      external_back += reaction * back * v;
+      external_ahead += reaction * ahead * vp;
+      f = f_needed;
+      if (pr.group >= 0) particle_reactions_[6 * pr.group + c.component] += reaction;
+    }
+}
 
+void ExplicitSolver::book_contact_work(double dt_n, double d1, double d2, double back, double ahead,
+                                       double dt_next, double& contact_back, double& contact_ahead,
+                                       double& wall_back, double& wall_ahead) {
   // Work of the contact forces on the nodes, and of moving rigid walls on the bodies they push
   // (F_wall→body · v_wall, external work).
-  double contact_back = 0, contact_ahead = 0, wall_back = 0, wall_ahead = 0;
-  if (contact_) {
-    for (const auto& [dof, f] : contact_->applied_forces()) {
-      contact_back += f * back * V[dof];
-      contact_ahead += f * ahead * new_velocity(dof, M[dof / dim]);
-    }
-    const auto& walls = contact_->settings().walls;
-    const auto& f = state_.wall_force_on_bodies;
-    for (std::size_t w = 0; w < walls.size(); ++w)
-      for (int k = 0; k < dim; ++k) {
-        const double vb = walls[w].velocity[k].at(state_.time - 0.5 * state_.dt_half);
-        const double va = walls[w].velocity[k].at(state_.time + 0.5 * dt_next);
-        wall_back += f[dim * w + k] * back * vb;
-        wall_ahead += f[dim * w + k] * ahead * va;
-        model_.contact.wall_offset[dim * w + k] += va * dt_next;
-      }
+  if (!contact_) return;
+  const int dim = model_.dim();
+  const double* V = model_.nodes.v.data();
+  const double* F = model_.nodes.force.data();
+  const double* M = model_.nodes.mass.data();
+  auto new_velocity = [&](std::size_t dof, double m) { return (d1 * V[dof] + dt_n * (F[dof] / m)) * d2; };
+  for (const auto& [dof, f] : contact_->applied_forces()) {
+    contact_back += f * back * V[dof];
+    contact_ahead += f * ahead * new_velocity(dof, M[dof / dim]);
   }
+  const auto& walls = contact_->settings().walls;
+  const auto& f = state_.wall_force_on_bodies;
+  for (std::size_t w = 0; w < walls.size(); ++w)
+    for (int k = 0; k < dim; ++k) {
+      const double vb = walls[w].velocity[k].at(state_.time - 0.5 * state_.dt_half);
+      const double va = walls[w].velocity[k].at(state_.time + 0.5 * dt_next);
+      wall_back += f[dim * w + k] * back * vb;
+      wall_ahead += f[dim * w + k] * ahead * va;
+      model_.contact.wall_offset[dim * w + k] += va * dt_next;
+    }
+}
+
+void ExplicitSolver::advance_nodes(double dt_n, double dt_next, double d1, double d2, double back,
+                                   double ahead, double sums[5]) {
+  auto& nodes = model_.nodes;
+  const int dim = model_.dim();
+  const double alpha = settings_.mass_damping;
+  double* V = nodes.v.data();
+  const double* F = nodes.force.data();
+  const double* M = nodes.mass.data();
+  double* X = nodes.x.data();
   const auto& g = settings_.gravity;
   const bool gravity = g[0] != 0 || g[1] != 0 || g[2] != 0;
-
   const std::size_t n = nodes.count();
   const std::size_t chunks = (n + kNodeChunk - 1) / kNodeChunk;
   constexpr int kSums = 6;  // kinetic, damping back/ahead, gravity back/ahead, first bad node
   chunk_sums_.assign(kSums * chunks, 0.0);
-  double* X = nodes.x.data();
 #pragma omp parallel for schedule(static)
   for (std::size_t ch = 0; ch < chunks; ++ch) {
     double kinetic = 0, damp_back = 0, damp_ahead = 0, grav_back = 0, grav_ahead = 0, bad = -1;
@@ -332,7 +351,7 @@ void ExplicitSolver::advance() {
         const std::size_t dof = dim * i + k;
         const double v_old = V[dof];
         if (gravity) gb += g[k] * v_old;
-        const double v_new = new_velocity(dof, m);
+        const double v_new = (d1 * V[dof] + dt_n * (F[dof] / m)) * d2;
         const double v_mean = 0.5 * (v_old + v_new);
         v2 += v_mean * v_mean;
         vb += v_mean * v_old;
@@ -356,31 +375,54 @@ void ExplicitSolver::advance() {
     out[4] = grav_ahead;
     out[5] = bad;
   }
-  double kinetic = 0, damp_back = 0, damp_ahead = 0;
   for (std::size_t ch = 0; ch < chunks; ++ch) {
     const double* in = &chunk_sums_[kSums * ch];
     if (in[5] >= 0) {
       std::ostringstream out;
-      out << "the velocity of node " << static_cast<std::int64_t>(in[5])
-          << " is not finite at t = " << state_.time << " s, step " << state_.step
-          << " (the run has become unstable)";
+      out << "the velocity of node " << static_cast<std::int64_t>(in[5]) << " is not finite at t = " << state_.time
+          << " s, step " << state_.step << " (the run has become unstable)";
       throw RunError(out.str());
     }
-    kinetic += in[0];
-    damp_back += in[1];
-    damp_ahead += in[2];
-    external_back += in[3];
-    external_ahead += in[4];
+    for (int k = 0; k < 5; ++k) sums[k] += in[k];
   }
+}
+
+void ExplicitSolver::advance() {
+  run_events(StepEvent::Phase::after_forces);
+  const double dt_next = state_.dt_next;
+  const double dt_n = state_.step == 0 ? 0.5 * dt_next : 0.5 * (state_.dt_half + dt_next);
+  // Central difference with mass-proportional damping taken at the mid-point:
+  // m (v+ − v−)/Δt = F − α m (v+ + v−)/2  ⇒  v+ = ((1 − αΔt/2) v− + Δt F/m) / (1 + αΔt/2).
+  const double alpha = settings_.mass_damping;
+  const double d1 = 1.0 - 0.5 * alpha * dt_n;
+  const double d2 = 1.0 / (1.0 + 0.5 * alpha * dt_n);
+  const double* V = model_.nodes.v.data();
+  const double* F = model_.nodes.force.data();
+  const double* M = model_.nodes.mass.data();
+  const int dim = model_.dim();
+
+  // Work of a nodal force F_n is split at t_n: ½Δt_n−1/2 F_n·v_n−1/2 closes the interval
+  // [t_n−1/2, t_n] and ½Δt_n+1/2 F_n·v_n+1/2 opens [t_n, t_n+1/2]. The second half is booked
+  // next step, so that the reported energies all end at t_n, where the element stress work ends.
+  const double back = 0.5 * state_.dt_half, ahead = 0.5 * dt_next;
+  double external_back = 0, external_ahead = 0;
+  apply_prescribed_velocities(dt_n, d1, d2, back, ahead, external_back, external_ahead);
+  for (const auto& [dof, f] : applied_) {
+    const double m = M[dof / dim];
+    external_back += f * back * V[dof];
+    external_ahead += f * ahead * ((d1 * V[dof] + dt_n * (F[dof] / m)) * d2);
+  }
+  double contact_back = 0, contact_ahead = 0, wall_back = 0, wall_ahead = 0;
+  book_contact_work(dt_n, d1, d2, back, ahead, dt_next, contact_back, contact_ahead, wall_back, wall_ahead);
+
+  // kinetic, damping back/ahead, external back/ahead (the nodes' gravity work adds to the latter)
+  double sums[5] = {0, 0, 0, external_back, external_ahead};
+  advance_nodes(dt_n, dt_next, d1, d2, back, ahead, sums);
+  double kinetic = sums[0], damp_back = sums[1], damp_ahead = sums[2];
+  external_back = sums[3];
+  external_ahead = sums[4];
   for (ParticlePart& pp : model_.particle_parts) {
-    // New contacts between automata that were not neighbours (fragments meeting), found at t_n
-    // before the drift, as the stand-alone MCA stepper does.
-    if (pp.contact_update_interval > 0 && state_.step > 0 && state_.step % pp.contact_update_interval == 0)
-    {
-      pp.system.update_contacts(pp.contact_skin);
-      pp.stable_time_step = 0;  // the pairs changed: the bound is computed again
-    }
-    const ParticleAdvanceSums ps = advance_particles(pp, dt_n, dt_next, alpha, g, back, ahead);
+    const ParticleAdvanceSums ps = advance_particles(pp, dt_n, dt_next, alpha, settings_.gravity, back, ahead);
     if (ps.bad_automaton >= 0) {
       std::ostringstream out;
       out << "the velocity of automaton " << ps.bad_automaton << " of particle part '" << pp.name
@@ -395,11 +437,13 @@ void ExplicitSolver::advance() {
     external_ahead += ps.gravity_ahead;
   }
   auto& E = state_.energy;
-  E.kinetic = kinetic;
-  E.damping += state_.pending_damping + damp_back;
-  E.external_work += state_.pending_external + external_back + state_.pending_wall + wall_back;
-  E.wall_work += state_.pending_wall + wall_back;
-  E.contact_work += state_.pending_contact + contact_back;
+  E[terms_.kinetic] = kinetic;
+  E[terms_.damping] += state_.pending_damping + damp_back;
+  E[terms_.external_work] += state_.pending_external + external_back + state_.pending_wall + wall_back;
+  if (contact_) {
+    E[terms_.wall_work] += state_.pending_wall + wall_back;
+    E[terms_.contact_work] += state_.pending_contact + contact_back;
+  }
   state_.pending_damping = damp_ahead;
   state_.pending_external = external_ahead;
   state_.pending_wall = wall_ahead;
@@ -409,7 +453,19 @@ void ExplicitSolver::advance() {
   state_.step += 1;
   // Nodes that failed in this step split now, between steps, where mass, momentum and the
   // positions at t_n+1 carry over to the copies unchanged.
-  if (cracks_) cracks_->update(model_, loads_, contact_, state_.energy);
+  run_events(StepEvent::Phase::after_advance);
+}
+
+void ExplicitSolver::remove_event(const StepEvent& event) {
+  events_.erase(std::remove(events_.begin(), events_.end(), &event), events_.end());
+}
+
+void ExplicitSolver::run_events(StepEvent::Phase phase) {
+  for (StepEvent* event : events_) {
+    if (event->phase() != phase) continue;
+    EventContext context{state_.step, state_.time, state_.eroded_elements, state_.energy, topology_, loads_};
+    event->run(model_, context);
+  }
 }
 
 }  // namespace shard

@@ -1,5 +1,10 @@
 // Explicit central-difference time integration of the Model.
 // Theory: docs/theory/time_integration_and_energy.md.
+//
+// A step is two phases: compute_forces() at t_n (stresses, internal, contact and applied forces,
+// the stable step) and advance() (velocities to t_n+1/2 with the prescribed motion, energies at
+// t_n, positions to t_n+1). Step events (src/solver/step_event.hpp) run between the phases and
+// after the advance; topology changes go through topology() so that every cache follows.
 #pragma once
 
 #include <array>
@@ -12,9 +17,10 @@
 #include "material/material.hpp"
 #include "model/model.hpp"
 #include "particle/mca.hpp"
-#include "solver/crack_growth.hpp"
-#include "solver/energy.hpp"
+#include "core/energy_ledger.hpp"
 #include "solver/loads.hpp"
+#include "solver/step_event.hpp"
+#include "solver/topology.hpp"
 
 namespace shard {
 
@@ -37,7 +43,7 @@ struct SolverState {
   double stable_dt = 0;    ///< the element stable step at t_n (before the safety factor)
   double initial_dt = 0;   ///< the first step's Δt, to detect a collapsing step
   std::int64_t eroded_elements = 0;  ///< elements removed by erosion so far
-  EnergyBalance energy;    ///< every term through t_n
+  EnergyLedger energy;    ///< every registered term through t_n
   /// Work of the nodal forces at t_n over [t_n, t_n+1/2]: booked with the next step, so that
   /// all terms of `energy` end at t_n (see docs/theory/time_integration_and_energy.md).
   double pending_external = 0, pending_damping = 0, pending_contact = 0, pending_wall = 0;
@@ -45,26 +51,34 @@ struct SolverState {
   std::vector<double> wall_force_on_bodies;
 };
 
-class ExplicitSolver {
+class ExplicitSolver : private TopologyListener {
  public:
-  /// `loads` is not const: crack insertion gives new nodes their parents' prescribed velocities.
   ExplicitSolver(Model& model, const std::vector<std::unique_ptr<Material>>& materials,
-                 Loads& loads, SolverSettings settings);
+                 const Loads& loads, SolverSettings settings);
+  ~ExplicitSolver() override;
+  ExplicitSolver(const ExplicitSolver&) = delete;
+  ExplicitSolver& operator=(const ExplicitSolver&) = delete;
 
   /// Lumped masses, initial energies, and sanity checks (zero masses). Call once on a new run.
   void initialise();
+  /// After the model and state were read from a checkpoint: every topology cache rebuilds.
+  void restored() { topology_.reset(model_); }
 
   /// Phase 1 at t_n: stresses and internal forces from the last increment, loads, stable step.
   /// After this the Model holds a consistent state at t_n (positions, stresses) for output.
   void compute_forces();
-  /// Phase 2: velocities to t_n+1/2 (with constraints), energies at t_n, positions to t_n+1.
+  /// Phase 2: the after_forces events, velocities to t_n+1/2 (with constraints), energies at t_n,
+  /// positions to t_n+1, then the after_advance events.
   void advance();
 
-  /// Contact between parts and with rigid walls (optional; not owned).
-  void attach_contact(ContactSystem* contact) { contact_ = contact; }
-  /// Discrete crack insertion after each step (optional; not owned).
-  void attach_crack_growth(CrackGrowth* cracks) { cracks_ = cracks; }
-  const CrackGrowth* crack_growth() const { return cracks_; }
+  /// Contact between parts and with rigid walls (optional; not owned). It follows every
+  /// topology change.
+  void attach_contact(ContactSystem* contact);
+  /// Adds an event to the registered list (not owned); events of one phase run in the order added.
+  void add_event(StepEvent& event) { events_.push_back(&event); }
+  void remove_event(const StepEvent& event);
+  /// The hook through which every topology change goes (listeners may be added).
+  Topology& topology() { return topology_; }
   const ContactSystem* contact() const { return contact_; }
 
   bool finished() const;
@@ -76,19 +90,46 @@ class ExplicitSolver {
   const std::vector<double>& particle_group_reactions() const { return particle_reactions_; }
 
  private:
+  void topology_changed(const Model& model, const Remap& remap) override;
+  void run_events(StepEvent::Phase phase);
+  void add_element_forces(ForceSums& total);
+  double add_particle_forces();
+  double choose_time_step(double element_dt, double particle_dt);
+  /// External work of the prescribed velocities of the nodes and particles (back, ahead halves).
+  void apply_prescribed_velocities(double dt_n, double d1, double d2, double back, double ahead,
+                                   double& external_back, double& external_ahead);
+  void advance_nodes(double dt_n, double dt_next, double d1, double d2, double back, double ahead,
+                     double sums[5]);
+  void book_contact_work(double dt_n, double d1, double d2, double back, double ahead, double dt_next,
+                         double& contact_back, double& contact_ahead, double& wall_back, double& wall_ahead);
+
   Model& model_;
   const std::vector<std::unique_ptr<Material>>& materials_;
-  Loads& loads_;
+  const Loads& loads_;
   SolverSettings settings_;
   SolverState state_;
-  double particle_kinetic_energy() const;
+  Topology topology_;
+  std::vector<StepEvent*> events_;
+  std::vector<std::unique_ptr<StepEvent>> own_events_;
   std::vector<std::pair<std::int64_t, double>> applied_;  // (dof, force) of pressure loads
   std::vector<double> chunk_sums_;
   ContactSystem* contact_ = nullptr;
-  CrackGrowth* cracks_ = nullptr;
   std::vector<MCAScratch> particle_scratch_;
   std::vector<double> particle_reactions_;
+  /// The prescribed degrees of freedom of the nodes and of each particle part, from their
+  /// `prescribed` fields; rebuilt after every topology change.
+  std::vector<PrescribedDof> node_dofs_;
+  std::vector<std::vector<PrescribedDof>> particle_dofs_;
+  /// Handles of the ledger terms the solver books (−1: not registered, no contact).
+  struct Terms {
+    int kinetic, initial, external_work, damping, stress_work, viscosity, hourglass, plastic, heat, fracture,
+        eroded, particle_elastic, particle_friction, wall_work = -1, contact_work = -1, friction = -1;
+  } terms_;
 };
+
+/// The energy terms the integrator itself books: kinetic energy, the initial kinetic energy,
+/// external work (loads, prescribed motion, moving walls, gravity) and mass damping.
+std::vector<EnergyTerm> solver_energy_terms();
 
 /// Lumped (row-sum) nodal masses of every part, added into model.nodes.mass.
 void lump_masses(Model& model, const std::vector<std::unique_ptr<Material>>& materials);

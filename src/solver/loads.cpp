@@ -1,7 +1,5 @@
 #include "solver/loads.hpp"
 
-#include "model/facet_geometry.hpp"
-
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -9,6 +7,43 @@
 #include <stdexcept>
 
 namespace shard {
+
+int Loads::constant_table(double value) {
+  tables.push_back(TimeTable::constant(value));
+  return static_cast<int>(tables.size()) - 1;
+}
+
+int Loads::prescription(int table, int group) {
+  for (std::size_t i = 0; i < prescriptions.size(); ++i)
+    if (prescriptions[i].table == table && prescriptions[i].group == group) return static_cast<int>(i);
+  prescriptions.push_back({table, group});
+  return static_cast<int>(prescriptions.size()) - 1;
+}
+
+void prescribe_node(Model& model, Loads& loads, std::int32_t node, int component, int table) {
+  const int dim = model.dim();
+  if (model.nodes.prescribed.size() != model.nodes.count() * dim)
+    model.nodes.prescribed.assign(model.nodes.count() * dim, -1);
+  model.nodes.prescribed[static_cast<std::size_t>(dim) * node + component] = loads.prescription(table);
+}
+
+namespace {
+std::vector<PrescribedDof> dofs_of(const std::vector<std::int32_t>& prescribed, std::size_t width) {
+  std::vector<PrescribedDof> out;
+  for (std::size_t i = 0; i < prescribed.size(); ++i)
+    if (prescribed[i] >= 0)
+      out.push_back({static_cast<std::int32_t>(i / width), static_cast<int>(i % width), prescribed[i]});
+  return out;
+}
+}  // namespace
+
+std::vector<PrescribedDof> prescribed_node_dofs(const Model& model) {
+  return dofs_of(model.nodes.prescribed, static_cast<std::size_t>(model.dim()));
+}
+
+std::vector<PrescribedDof> prescribed_particle_dofs(const ParticlePart& part) {
+  return dofs_of(part.prescribed, static_cast<std::size_t>(part.system.dim + part.system.rot_dim()));
+}
 
 void add_pressure_forces(const Model& model, const Loads& loads, double t,
                          std::vector<std::pair<std::int64_t, double>>& applied) {
@@ -68,60 +103,6 @@ void add_pressure_forces(const Model& model, const Loads& loads, double t,
           for (int k = 0; k < 3; ++k) add(n[i], k, -p * area[k] / npf);
       }
     }
-  }
-}
-
-void orient_facets_outward(const Model& model, FacetSet& set) {
-  const int dim = model.dim();
-  const std::size_t nn = model.nodes.count();
-  // node → (part, element) adjacency, only for the nodes of this set
-  std::vector<char> wanted(nn, 0);
-  for (auto n : set.nodes) wanted[n] = 1;
-  std::vector<std::vector<std::pair<int, std::int32_t>>> adjacent(nn);
-  for (std::size_t p = 0; p < model.parts.size(); ++p) {
-    const Part& part = model.parts[p];
-    const int npe = nodes_per_element(part.kind);
-    for (std::size_t e = 0; e < part.element_count(); ++e)
-      for (int a = 0; a < npe; ++a) {
-        const auto n = part.connectivity[npe * e + a];
-        if (wanted[n]) adjacent[n].emplace_back(static_cast<int>(p), static_cast<std::int32_t>(e));
-      }
-  }
-  const int npf = set.nodes_per_facet;
-  const std::size_t nf = set.nodes.size() / npf;
-  const double* X = model.nodes.x.data();
-  for (std::size_t f = 0; f < nf; ++f) {
-    std::int32_t* fn = &set.nodes[npf * f];
-    // An element that holds every node of the facet.
-    std::pair<int, std::int32_t> owner{-1, -1};
-    for (const auto& candidate : adjacent[fn[0]]) {
-      bool all = true;
-      for (int i = 1; i < npf && all; ++i)
-        all = std::find(adjacent[fn[i]].begin(), adjacent[fn[i]].end(), candidate) !=
-              adjacent[fn[i]].end();
-      if (all) {
-        owner = candidate;
-        break;
-      }
-    }
-    if (owner.first < 0) {
-      std::ostringstream out;
-      out << "boundary group '" << set.name << "': facet " << f
-          << " is not a face of any element of the parts (is the group on the boundary of a part?)";
-      throw std::runtime_error(out.str());
-    }
-    const Part& part = model.parts[owner.first];
-    const int npe = nodes_per_element(part.kind);
-    double centre[3] = {0, 0, 0}, fc[3] = {0, 0, 0};
-    for (int a = 0; a < npe; ++a)
-      for (int k = 0; k < dim; ++k) centre[k] += X[dim * part.connectivity[npe * owner.second + a] + k] / npe;
-    for (int i = 0; i < npf; ++i)
-      for (int k = 0; k < dim; ++k) fc[k] += X[dim * fn[i] + k] / npf;
-    double normal[3];
-    facet_normal(X, dim, fn, normal);
-    double dot = 0;
-    for (int k = 0; k < dim; ++k) dot += normal[k] * (fc[k] - centre[k]);
-    if (dot < 0) std::reverse(fn, fn + npf);
   }
 }
 

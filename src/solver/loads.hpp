@@ -1,4 +1,6 @@
-// Boundary conditions and loads in model terms (node ids, facet sets), built from the scenario.
+// Boundary conditions and loads in model terms, built from the scenario. What a condition holds
+// on is a field of the entities it holds on (NodeArrays::prescribed, ParticlePart::prescribed)
+// or a set the Model keeps (facet sets), so that conditions follow every topology change.
 #pragma once
 
 #include <cstdint>
@@ -10,11 +12,11 @@
 
 namespace shard {
 
-/// A velocity component prescribed at a node (fixed = a table of zero).
-struct VelocityConstraint {
-  std::int32_t node;
-  int component;
-  int table;  ///< index into Loads::tables
+/// A prescribed velocity component (fixed = a table of zero): what the `prescribed` field of a
+/// node or particle component points at.
+struct Prescription {
+  int table = 0;   ///< index into Loads::tables
+  int group = -1;  ///< particles: index into Loads::particle_groups, for the reported reaction
 };
 
 /// A pressure on a facet set, positive pushing into the body (follows the current geometry).
@@ -23,17 +25,7 @@ struct PressureLoad {
   int table;
 };
 
-/// A velocity component prescribed on an automaton of a particle part: translation components
-/// 0..dim−1, rotation components dim..dim+rot_dim−1 (angular velocity).
-struct ParticleConstraint {
-  int part;  ///< index into Model::particle_parts
-  std::int32_t automaton;
-  int component;
-  int table;
-  int group;  ///< index into Loads::particle_groups (for the reaction reported in the history)
-};
-
-/// A named set of constrained automata whose reaction and mean displacement are reported.
+/// A named set of automata whose reaction and mean displacement are reported.
 struct ParticleGroup {
   std::string name;
   int part = 0;
@@ -42,20 +34,37 @@ struct ParticleGroup {
 
 struct Loads {
   std::vector<TimeTable> tables;
-  std::vector<VelocityConstraint> constraints;  ///< at most one per (node, component)
+  std::vector<Prescription> prescriptions;
   std::vector<PressureLoad> pressures;
-  std::vector<ParticleConstraint> particle_constraints;  ///< at most one per (automaton, component)
   std::vector<ParticleGroup> particle_groups;
+
+  /// A table holding a constant value; returns its index.
+  int constant_table(double value);
+  /// The prescription for a table (and particle group), added if new; returns its index.
+  int prescription(int table, int group = -1);
 };
+
+/// Prescribes velocity component `component` of node `node` to follow table `table` (a later
+/// call for the same component replaces the earlier one).
+void prescribe_node(Model& model, Loads& loads, std::int32_t node, int component, int table);
+
+/// A degree of freedom whose velocity is prescribed: a point (node or particle), a component
+/// (particles: translation 0..dim−1, then rotation), and its Prescription.
+struct PrescribedDof {
+  std::int32_t point;
+  int component;
+  int prescription;
+};
+
+/// Every prescribed degree of freedom of the nodes, point-major (the order the constraints are
+/// applied and their work summed in).
+std::vector<PrescribedDof> prescribed_node_dofs(const Model& model);
+/// The same for one particle part (components: dim translation, then rot_dim rotation).
+std::vector<PrescribedDof> prescribed_particle_dofs(const ParticlePart& part);
 
 /// Adds the nodal forces of every pressure load at time t to model.nodes.force, and appends
 /// (dof, force) of each contribution to `applied` (for the external work).
 void add_pressure_forces(const Model& model, const Loads& loads, double t,
                          std::vector<std::pair<std::int64_t, double>>& applied);
-
-/// Reverses facets whose right-hand normal points into the adjacent element, so that every facet
-/// of `set` has an outward normal. Throws std::runtime_error naming a facet that lies on no
-/// element of the model.
-void orient_facets_outward(const Model& model, FacetSet& set);
 
 }  // namespace shard

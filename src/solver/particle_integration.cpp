@@ -108,4 +108,15 @@ ParticleAdvanceSums advance_particles(ParticlePart& part, double dt_n, double dt
   return total;
 }
 
+void ParticleContactUpdate::run(Model& model, EventContext& context) {
+  bool changed = false;
+  for (ParticlePart& pp : model.particle_parts) {
+    if (pp.contact_update_interval <= 0 || context.step <= 0 || context.step % pp.contact_update_interval != 0) continue;
+    pp.system.update_contacts(pp.contact_skin);
+    pp.stable_time_step = 0;  // the pairs changed: the bound is computed again
+    changed = true;
+  }
+  if (changed) context.topology.changed(model, Remap{});
+}
+
 }  // namespace shard

@@ -8,6 +8,7 @@
 
 #include "model/model.hpp"
 #include "particle/mca.hpp"
+#include "solver/step_event.hpp"
 
 namespace shard {
 
@@ -36,5 +37,14 @@ struct ParticleAdvanceSums {
 ParticleAdvanceSums advance_particles(ParticlePart& part, double dt_n, double dt_next, double alpha,
                                       const std::array<double, 3>& gravity, double back,
                                       double ahead);
+
+/// The automata's search for new contacts (fragments meeting) every contact_update_interval
+/// steps of each particle part, at t_n before the advance (as the MCA paper's stepper does it).
+class ParticleContactUpdate final : public StepEvent {
+ public:
+  const char* name() const override { return "particle contact update"; }
+  Phase phase() const override { return Phase::after_forces; }
+  void run(Model& model, EventContext& context) override;
+};
 
 }  // namespace shard

@@ -1,22 +1,27 @@
 #include "solver/setup.hpp"
 
+#include <algorithm>
+
 #include "fem/internal_forces.hpp"
 
 namespace shard {
 
-void prepare_part(Part& part, const Material& material, std::size_t node_count,
-                  double initial_temperature) {
-  const std::size_t points = part.point_count();
-  part.stress.assign(points * kTensorSize, 0.0);
-  part.strain.assign(points * kTensorSize, 0.0);
-  part.state.assign(points * material.state_size(), 0.0);
-  if (!part.state.empty()) material.initialise(part.state.data(), points);
-  part.temperature.assign(points, initial_temperature);
-  part.volume.assign(part.element_count(), 0.0);
-  part.bulk_viscosity.assign(part.element_count(), 0.0);
-  part.hourglass_rate.assign(part.kind == ElementKind::hex8_reduced ? 12 * part.element_count() : 0, 0.0);
-  part.eroded.assign(part.element_count(), 0);
-  colour_elements(part, node_count);
+void prepare_part(Model& model, std::size_t p, const Material& material, double initial_temperature) {
+  Part& part = model.parts[p];
+  part.state_size = static_cast<int>(material.state_size());
+  const std::size_t ne = part.element_count();
+  part.visit_fields([&](const FieldInfo& info, auto& a) {
+    using T = typename std::decay_t<decltype(a)>::value_type;
+    if (info.follow == Follow::node_index || info.follow == Follow::stable_id) return;  // from the mesh; below
+    a.assign(ne * static_cast<std::size_t>(info.components), static_cast<T>(info.initial));
+  });
+  if (!part.state.empty()) material.initialise(part.state.data(), part.point_count());
+  std::fill(part.temperature.begin(), part.temperature.end(), initial_temperature);
+  if (part.id.size() != ne) {
+    part.id.resize(ne);
+    for (auto& id : part.id) id = model.next_element_id++;
+  }
+  colour_elements(model, p);
 }
 
 }  // namespace shard

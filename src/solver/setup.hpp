@@ -1,4 +1,4 @@
-// Sizing and colouring a part's arrays once its elements and material are known.
+// Sizing a part's arrays once its elements and material are known.
 #pragma once
 
 #include "material/material.hpp"
@@ -6,9 +6,9 @@
 
 namespace shard {
 
-/// Sizes the integration-point arrays of `part` for `material` (zero stress, the material's
-/// initial state, the given temperature) and orders the elements by colour.
-void prepare_part(Part& part, const Material& material, std::size_t node_count,
-                  double initial_temperature);
+/// Sizes every declared element field of part `part` (src/model/fields.hpp) for its elements and
+/// `material` (zero stress, the material's initial state, the given temperature), gives its
+/// elements ids if they have none, and orders them by colour.
+void prepare_part(Model& model, std::size_t part, const Material& material, double initial_temperature);
 
 }  // namespace shard

@@ -29,6 +29,8 @@ inline void append_model(Model& a, Model b, const std::array<double, 3>& shift, 
     }
   merged.x = merged.x0;
   a.nodes = std::move(merged);
+  a.next_node_id = static_cast<std::int64_t>(a.nodes.count());
+  const auto part_offset = static_cast<std::int32_t>(a.parts.size());
   for (auto& p : b.parts) {
     for (auto& n : p.connectivity) n += offset;
     p.name = prefix + p.name;
@@ -42,6 +44,7 @@ inline void append_model(Model& a, Model b, const std::array<double, 3>& shift, 
   }
   for (auto& s : b.facet_sets) {
     for (auto& n : s.nodes) n += offset;
+    for (auto& p : s.owner_part) p += part_offset;
     s.name = prefix + s.name;
     a.facet_sets.push_back(std::move(s));
   }

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "material/linear_elastic.hpp"
+#include "model/assembly.hpp"
 #include "model/model.hpp"
 #include "model/structured_mesh.hpp"
 #include "solver/explicit_solver.hpp"
@@ -22,14 +23,14 @@ struct ElasticRun {
   ElasticRun(Model m, double density, double youngs, double poisson) : model(std::move(m)) {
     const double K = youngs / (3 * (1 - 2 * poisson)), G = youngs / (2 * (1 + poisson));
     materials.push_back(std::make_unique<LinearElastic>("elastic", density, ElasticModuli{K, G}));
-    for (auto& p : model.parts) prepare_part(p, *materials[0], model.nodes.count(), 293.15);
+    for (std::size_t p = 0; p < model.parts.size(); ++p) prepare_part(model, p, *materials[0], 293.15);
   }
 
   /// Any material (one, for every part).
   ElasticRun(Model m, std::unique_ptr<Material> material, double temperature = 293.15)
       : model(std::move(m)) {
     materials.push_back(std::move(material));
-    for (auto& p : model.parts) prepare_part(p, *materials[0], model.nodes.count(), temperature);
+    for (std::size_t p = 0; p < model.parts.size(); ++p) prepare_part(model, p, *materials[0], temperature);
   }
 
   int table(double value) {
@@ -39,7 +40,7 @@ struct ElasticRun {
   /// Prescribes velocity component k of every node of a node set.
   void prescribe(const std::string& set, int k, double value) {
     const int t = table(value);
-    for (auto n : model.find_node_set(set)->nodes) loads.constraints.push_back({n, k, t});
+    for (auto n : model.find_node_set(set)->nodes) prescribe_node(model, loads, n, k, t);
   }
 
   /// Runs to end_time; calls `each_step(solver)` after every force phase (state at t_n).
@@ -61,14 +62,14 @@ struct ElasticRun {
     }
   }
 
-  EnergyBalance energy;
+  EnergyLedger energy;
   std::int64_t steps = 0;
   double max_error = 0;
 };
 
 /// Centroid coordinate k of element e of a part.
 inline double element_centroid(const Model& model, const Part& part, std::size_t e, int k) {
-  const int npe = nodes_per_element(part.kind);
+  const int npe = part.type->nodes;
   double c = 0;
   for (int a = 0; a < npe; ++a) c += model.nodes.x[model.dim() * part.connectivity[npe * e + a] + k];
   return c / npe;

@@ -6,7 +6,7 @@
 #include <memory>
 #include <string>
 
-#include "io/model_setup.hpp"
+#include "app/simulation.hpp"
 #include "solver/explicit_solver.hpp"
 
 namespace shard::testing {
@@ -20,11 +20,9 @@ struct ScenarioRun {
 
   explicit ScenarioRun(const std::string& file) : scenario(read_scenario(file)) {
     sim = build_simulation(scenario, load_scenario_mesh(scenario));
-    solver = std::make_unique<ExplicitSolver>(sim.model, sim.materials, sim.loads, sim.settings);
+    solver = make_solver(sim);
     contact = sim.contact_system ? &*sim.contact_system : nullptr;
-    solver->attach_contact(contact);
-    cracks = sim.crack_growth ? &*sim.crack_growth : nullptr;
-    solver->attach_crack_growth(cracks);
+    cracks = sim.crack_growth();
     solver->initialise();
   }
   void step() {

@@ -35,8 +35,7 @@ inline void prescribe_everywhere(ElasticRun& run, const std::vector<double>& tim
   for (std::size_t i = 0; i < n; ++i)
     for (int k = 0; k < dim; ++k) {
       run.loads.tables.push_back(std::move(tables[dim * i + k]));
-      run.loads.constraints.push_back({static_cast<std::int32_t>(i), k,
-                                       static_cast<int>(run.loads.tables.size()) - 1});
+      prescribe_node(run.model, run.loads, static_cast<std::int32_t>(i), k, static_cast<int>(run.loads.tables.size()) - 1);
     }
 }
 

@@ -64,12 +64,12 @@ struct CantileverResult {
   std::size_t elements = 0;
 };
 
-CantileverResult cantilever(ElementKind kind, Formulation formulation, std::array<int, 3> cells,
+CantileverResult cantilever(const std::string& kind, Formulation formulation, std::array<int, 3> cells,
                             double nu) {
   const auto start = std::chrono::steady_clock::now();
   const double L = 1.0, h = 0.05, b = 0.05, rho = 7800, E = 200e9, V0 = 0.05;
   BoxMesh box;
-  box.kind = kind;
+  box.element = kind;
   box.cells = cells;
   box.size = {L, h, b};
   testing::ElasticRun run(make_box_model(formulation, box), rho, E, nu);
@@ -120,7 +120,7 @@ CantileverResult cantilever(ElementKind kind, Formulation formulation, std::arra
   std::printf("[cantilever] %-12s %-12s nu %.1f, %d x %d x %d cells (%zu elements): f1 = %.2f Hz "
               "vs %.2f Hz Euler-Bernoulli (%+.2f %%) from %zu zero crossings; max energy error "
               "%.1e; %lld steps, %.2f s\n",
-              name_of(kind), name_of(formulation), nu, cells[0], cells[1],
+              kind.c_str(), name_of(formulation), nu, cells[0], cells[1],
               dim == 3 ? cells[2] : 1, out.elements, out.measured, out.theory,
               100 * (out.measured / out.theory - 1), crossings.size(), out.energy_error,
               static_cast<long long>(out.steps), out.seconds);
@@ -128,12 +128,12 @@ CantileverResult cantilever(ElementKind kind, Formulation formulation, std::arra
 }
 
 TEST(Cantilever, Hex8OnePoint) {
-  const auto r = cantilever(ElementKind::hex8_reduced, Formulation::three_d, {20, 8, 1}, 0.3);
+  const auto r = cantilever("hex8_reduced", Formulation::three_d, {20, 8, 1}, 0.3);
   EXPECT_NEAR(r.measured, r.theory, 0.03 * r.theory);
 }
 
 TEST(Cantilever, Tri3PlaneStress) {
-  const auto r = cantilever(ElementKind::tri3, Formulation::plane_stress, {150, 10, 1}, 0.0);
+  const auto r = cantilever("tri3", Formulation::plane_stress, {150, 10, 1}, 0.0);
   EXPECT_NEAR(r.measured, r.theory, 0.03 * r.theory);
 }
 

@@ -20,7 +20,7 @@
 #include <utility>
 #include <vector>
 
-#include "io/model_setup.hpp"
+#include "app/simulation.hpp"
 #include "model/structured_mesh.hpp"
 #include "support/cli.hpp"
 #include "support/scenario_run.hpp"
@@ -61,7 +61,7 @@ double smallest_altitude(const Model& model) {
 const auto& x = model.nodes.x0;
   double smallest = INFINITY;
   for (const Part& part : model.parts) {
-    EXPECT_EQ(part.kind, ElementKind::tri3);
+    EXPECT_EQ(part.type->name, "tri3");
     for (std::size_t e = 0; e < part.element_count(); ++e) {
       const std::int32_t* n = &part.connectivity[3 * e];
       double longest = 0;
@@ -202,12 +202,12 @@ TEST(ContactImpact, SquarePlateCornersNoSpuriousPenetration) {
 TEST(ContactImpact, Search3DFindsEveryNodeUnderALargeFacet) {
   for (double offset : {0.0, 0.3, 0.6, 0.9}) {
     BoxMesh cube;
-    cube.kind = ElementKind::hex8_reduced;
+    cube.element = "hex8_reduced";
     Model m = make_box_model(Formulation::three_d, cube);
     for (double& x : m.nodes.x0) x += offset;
     m.nodes.x = m.nodes.x0;
     BoxMesh plate;
-    plate.kind = ElementKind::hex8_reduced;
+    plate.element = "hex8_reduced";
     plate.cells = {20, 20, 1};
     plate.size = {0.98, 0.98, 0.05};
     // The plate's top face 1 mm above the cube's bottom face z = offset.

@@ -40,7 +40,7 @@ NotchedPlateRun run_notched_plate(const std::string& file, double h) {
   NotchedPlateRun out;
   out.h = h;
   if (!run.cracks) return out;
-  run.solver->attach_crack_growth(nullptr);
+  run.solver->remove_event(*run.cracks);
   const double tip_x = 4e-3, line_y = 5e-3;
   auto total_mass = [&] {
     double m = 0;
@@ -48,7 +48,7 @@ NotchedPlateRun run_notched_plate(const std::string& file, double h) {
     return m;
   };
   const double mass0 = total_mass();
-  const EnergyBalance& energy = run.solver->state().energy;
+  const EnergyLedger& energy = run.solver->state().energy;
   while (!run.solver->finished()) {
     run.step();
     const double m_before = total_mass();
@@ -57,8 +57,7 @@ NotchedPlateRun run_notched_plate(const std::string& file, double h) {
     for (std::size_t i = 0; i < run.sim.model.nodes.count(); ++i)
       for (int k = 0; k < 2; ++k)
         scale += run.sim.model.nodes.mass[i] * std::abs(run.sim.model.nodes.v[2 * i + k]);
-    const std::size_t added = run.cracks->update(run.sim.model, run.sim.loads, run.contact,
-                                                 run.solver->state().energy);
+    const std::size_t added = run.cracks->insert(run.sim.model, run.solver->state().energy, run.solver->topology());
     if (added > 0) {
       ++out.insertions;
       const auto p_after = run.momentum();
@@ -67,18 +66,18 @@ NotchedPlateRun run_notched_plate(const std::string& file, double h) {
         out.worst_momentum = std::max(out.worst_momentum, std::abs(p_after[k] - p_before[k]) / scale);
     }
     if (out.insertions > 0) {
-      const double in_play = std::max(energy.external_work, energy.fracture);
+      const double in_play = std::max(energy.value("external_work"), energy.value("fracture"));
       out.worst_residual = std::max(out.worst_residual, std::abs(energy.residual()) / in_play);
       out.lowest_contact = std::min(out.lowest_contact, energy.contact() / in_play);
     }
   }
   out.mass_drift = std::abs(total_mass() - mass0) / mass0;
-  out.kinetic = energy.kinetic;
-  out.external = energy.external_work;
-  out.fracture = energy.fracture;
+  out.kinetic = energy.value("kinetic");
+  out.external = energy.value("external_work");
+  out.fracture = energy.value("fracture");
   const Model& model = run.sim.model;
-  for (std::size_t i = 0; i < model.node_origin.size(); ++i) {
-    if (model.node_origin[i] == static_cast<std::int32_t>(i)) continue;
+  for (std::size_t i = 0; i < model.nodes.count(); ++i) {
+    if (model.nodes.origin[i] == model.nodes.id[i]) continue;
     ++out.split;
     const double x = model.nodes.x0[2 * i], y = model.nodes.x0[2 * i + 1];
     if (x < tip_x - h) continue;  // the notch flanks themselves

@@ -38,7 +38,7 @@
 #include <cstdio>
 #include <numbers>
 
-#include "io/model_setup.hpp"
+#include "app/simulation.hpp"
 
 namespace shard {
 namespace {
@@ -90,7 +90,7 @@ Settled settle(const std::string& file, double moment) {
   s.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const auto& energy = solver.state().energy;
   s.energy_error = energy.relative_error();
-  s.kinetic = energy.kinetic / energy.external_work;
+  s.kinetic = energy.value("kinetic") / energy.value("external_work");
   s.step_spread = step_max / step_min - 1;
 
   const Model& model = sim.model;

@@ -78,12 +78,12 @@ struct TensionRun {
     }
     run.loads.tables.push_back(pull);
     for (auto n : run.model.find_node_set("xmax")->nodes)
-      run.loads.constraints.push_back({n, 0, static_cast<int>(run.loads.tables.size()) - 1});
+      prescribe_node(run.model, run.loads, n, 0, static_cast<int>(run.loads.tables.size()) - 1);
     run.settings.end_time = end;
   }
   static BoxMesh box() {
     BoxMesh b;
-    b.kind = ElementKind::hex8_reduced;
+    b.element = "hex8_reduced";
     b.cells = {1, 1, 1};
     b.size = {1e-3, 1e-3, 1e-3};
     return b;
@@ -164,10 +164,10 @@ void check_tension(double beta, const char* label) {
   std::printf("[johnson_cook] tension %-10s worst stress error %.3f %% (limit 1 %%), temperature "
               "rise error %.3f %%, energy balance after yield %.2e\n",
               label, 100 * worst, 100 * worst_temperature, balance);
-  const EnergyBalance& E = t.run.energy;
+  const EnergyLedger& E = t.run.energy;
   std::printf("[johnson_cook] tension %-10s energies (J): external %.5e, plastic %.5e, heat %.5e, "
               "internal %.5e, kinetic %.3e, viscosity %.3e, hourglass %.3e\n",
-              label, E.external_work, E.plastic, E.heat, E.internal(), E.kinetic, E.viscosity, E.hourglass);
+              label, E.value("external_work"), E.value("plastic"), E.value("heat"), E.internal(), E.value("kinetic"), E.value("viscosity"), E.value("hourglass"));
   EXPECT_LT(worst_temperature, 0.01) << label;
   EXPECT_LT(balance, 0.01) << label;
   // The plastic work: ∫σ dεp per volume; the run's own sum against the curve's, 1 %.
@@ -312,6 +312,8 @@ TEST(JohnsonCook, DamageErodesAtFailureStrain) {
   double eroded_at = -1, stress_before = 0, balance = 0;
   t.run.run(
       [&](const ExplicitSolver&) {
+        // The element is flagged in the step its material fails and compacted away at its end.
+        if (part.element_count() == 0) return;
         if (eroded_at < 0 && part.eroded[0]) eroded_at = part.state[JohnsonCook::plastic_strain];
         if (!part.eroded[0]) stress_before = part.stress[xx];
       },
@@ -323,12 +325,12 @@ TEST(JohnsonCook, DamageErodesAtFailureStrain) {
   const double stored = stress_before * stress_before / (2 * kE) * volume;
   std::printf("[johnson_cook] damage: eroded at eqps %.4f, JC failure strain %.4f (%+.3f %%); "
               "eroded energy %.4e J (sigma^2 V/2E = %.4e J); energy balance %.2e\n",
-              eroded_at, expected, 100 * (eroded_at / expected - 1), t.run.energy.eroded, stored,
+              eroded_at, expected, 100 * (eroded_at / expected - 1), t.run.energy.value("eroded"), stored,
               balance);
   EXPECT_NEAR(eroded_at / expected, 1.0, 0.01);
-  EXPECT_NEAR(t.run.energy.eroded / stored, 1.0, 0.05);
+  EXPECT_NEAR(t.run.energy.value("eroded") / stored, 1.0, 0.05);
   EXPECT_LT(balance, 0.01);
-  EXPECT_EQ(part.stress[xx], 0.0);
+  EXPECT_EQ(part.element_count(), 0u) << "the eroded element left the part";
 }
 
 TEST(JohnsonCook, MieGruneisenPressureUnderCompression) {

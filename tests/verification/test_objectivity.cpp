@@ -56,12 +56,12 @@ struct SpinResult {
 
 /// Spins a block (distorted mesh) through `angle` about `axis` in `steps` equal steps, with the
 /// uniform initial stress σ0 in every point.
-SpinResult spin(ElementKind kind, Formulation formulation, const std::array<double, 3>& axis,
+SpinResult spin(const std::string& kind, Formulation formulation, const std::array<double, 3>& axis,
                 double angle, int steps, const std::array<double, kTensorSize>& sigma0,
                 double youngs) {
   const auto start = std::chrono::steady_clock::now();
   BoxMesh box;
-  box.kind = kind;
+  box.element = kind;
   box.cells = {4, 4, 4};
   box.size = {1.0, 0.8, 0.6};
   box.distortion = 0.25;
@@ -111,7 +111,7 @@ SpinResult spin(ElementKind kind, Formulation formulation, const std::array<doub
   return out;
 }
 
-void check_rotation(ElementKind kind, Formulation formulation, const std::array<double, 3>& axis,
+void check_rotation(const std::string& kind, Formulation formulation, const std::array<double, 3>& axis,
                     const char* label) {
   const double E = 200e9;
   std::array<double, kTensorSize> sigma0 = {2.0e9, -0.8e9, 0.5e9, 1.2e9, -0.7e9, 0.4e9};
@@ -122,10 +122,10 @@ void check_rotation(ElementKind kind, Formulation formulation, const std::array<
   const SpinResult r = spin(kind, formulation, axis, angle, steps, sigma0, E);
   std::printf("[objectivity] %-12s %-12s axis %-8s: 90 deg in %lld steps: |sigma - Q sigma0 Q^T| "
               "= %.2e |sigma0|, invariant drift %.2e |sigma0| (%.2f s)\n",
-              name_of(kind), name_of(formulation), label, static_cast<long long>(steps),
+              kind.c_str(), name_of(formulation), label, static_cast<long long>(steps),
               r.component_error, r.invariant_error, r.seconds);
-  EXPECT_LT(r.component_error, 1e-6) << name_of(kind) << " " << label;
-  EXPECT_LT(r.invariant_error, 1e-10) << name_of(kind) << " " << label;
+  EXPECT_LT(r.component_error, 1e-6) << kind.c_str() << " " << label;
+  EXPECT_LT(r.invariant_error, 1e-10) << kind.c_str() << " " << label;
 
   // About z, 90°: σ_xx ↔ σ_yy, σ_xy → −σ_xy, σ_zz unchanged. Literally, on one point.
   if (axis[2] == 1.0) {
@@ -141,30 +141,30 @@ void check_rotation(ElementKind kind, Formulation formulation, const std::array<
   const SpinResult free = spin(kind, formulation, axis, angle, steps, {}, E);
   std::printf("[objectivity] %-12s %-12s axis %-8s: stress-free block: max |sigma| = %.2e E "
               "(limit 1e-8 E x angle = %.2e E)\n",
-              name_of(kind), name_of(formulation), label, free.max_stress / E, 1e-8 * angle);
-  EXPECT_LT(free.max_stress, 1e-8 * E * angle) << name_of(kind) << " " << label;
+              kind.c_str(), name_of(formulation), label, free.max_stress / E, 1e-8 * angle);
+  EXPECT_LT(free.max_stress, 1e-8 * E * angle) << kind.c_str() << " " << label;
 }
 
 const std::array<double, 3> kAxisZ = {0, 0, 1};
 const std::array<double, 3> kAxisTilted = {1.0 / 3, 2.0 / 3, 2.0 / 3};
 
 TEST(Objectivity, Hex8OnePointAboutZ) {
-  check_rotation(ElementKind::hex8_reduced, Formulation::three_d, kAxisZ, "z");
+  check_rotation("hex8_reduced", Formulation::three_d, kAxisZ, "z");
 }
 TEST(Objectivity, Hex8OnePointAboutTiltedAxis) {
-  check_rotation(ElementKind::hex8_reduced, Formulation::three_d, kAxisTilted, "(1,2,2)/3");
+  check_rotation("hex8_reduced", Formulation::three_d, kAxisTilted, "(1,2,2)/3");
 }
 TEST(Objectivity, Hex8FullyIntegratedAboutTiltedAxis) {
-  check_rotation(ElementKind::hex8, Formulation::three_d, kAxisTilted, "(1,2,2)/3");
+  check_rotation("hex8", Formulation::three_d, kAxisTilted, "(1,2,2)/3");
 }
 TEST(Objectivity, Tet4AboutTiltedAxis) {
-  check_rotation(ElementKind::tet4, Formulation::three_d, kAxisTilted, "(1,2,2)/3");
+  check_rotation("tet4", Formulation::three_d, kAxisTilted, "(1,2,2)/3");
 }
 TEST(Objectivity, Tri3PlaneStrain) {
-  check_rotation(ElementKind::tri3, Formulation::plane_strain, kAxisZ, "z");
+  check_rotation("tri3", Formulation::plane_strain, kAxisZ, "z");
 }
 TEST(Objectivity, Tri3PlaneStress) {
-  check_rotation(ElementKind::tri3, Formulation::plane_stress, kAxisZ, "z");
+  check_rotation("tri3", Formulation::plane_stress, kAxisZ, "z");
 }
 
 }  // namespace

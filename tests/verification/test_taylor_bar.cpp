@@ -55,8 +55,8 @@ TaylorResult run_taylor(const std::string& path) {
   }
   out.length = top - bottom;
   out.rebound = bottom;
-  const EnergyBalance& E = run.solver->state().energy;
-  out.plastic_fraction = E.plastic / E.initial;
+  const EnergyLedger& E = run.solver->state().energy;
+  out.plastic_fraction = E.value("plastic") / E.value("initial");
   const Part& part = m.parts[0];
   const auto& names = run.sim.materials[part.material]->state_names();
   const std::size_t stride = names.size(), slot = 0;  // equivalent_plastic_strain first

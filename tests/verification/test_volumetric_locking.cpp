@@ -85,10 +85,10 @@ struct LameResult {
 
 /// The cylinder wall a ≤ r ≤ b: an axisymmetric slice of height `thickness`, or a quarter ring
 /// (2D plane strain, or a 3D slab of thickness `thickness`).
-Model cylinder_model(ElementKind kind, Formulation formulation, std::array<int, 3> cells,
+Model cylinder_model(const std::string& kind, Formulation formulation, std::array<int, 3> cells,
                      double thickness) {
   BoxMesh box;
-  box.kind = kind;
+  box.element = kind;
   box.cells = cells;
   if (formulation == Formulation::axisymmetric) {
     box.size = {kB - kA, thickness, 1.0};
@@ -106,7 +106,7 @@ Model cylinder_model(ElementKind kind, Formulation formulation, std::array<int, 
     m.nodes.x0[dim * i + 1] = r * std::sin(t);
   }
   m.nodes.x = m.nodes.x0;
-  if (kind == ElementKind::tet4) {
+  if (kind == "tet4") {
     // The box's face quadrilaterals are not faces of the tetrahedra: split each along the
     // diagonal of the Kuhn subdivision (all six tetrahedra of a cell share its 0–6 diagonal,
     // which meets every face at the facet's corners 0 and 2).
@@ -125,7 +125,7 @@ Model cylinder_model(ElementKind kind, Formulation formulation, std::array<int, 
 
 /// The run set up with its boundary conditions and the pressure on the bore; `hold` in units of
 /// 1/ω1 after a ramp of 6/ω1.
-testing::ElasticRun setup(ElementKind kind, Formulation formulation, VolumetricTreatment treatment,
+testing::ElasticRun setup(const std::string& kind, Formulation formulation, VolumetricTreatment treatment,
                           std::array<int, 3> cells, double nu, double thickness, double ramp,
                           double hold) {
   testing::ElasticRun run(cylinder_model(kind, formulation, cells, thickness), kRho, kE, nu);
@@ -161,7 +161,7 @@ testing::ElasticRun setup(ElementKind kind, Formulation formulation, VolumetricT
   return run;
 }
 
-LameResult lame(ElementKind kind, Formulation formulation, VolumetricTreatment treatment,
+LameResult lame(const std::string& kind, Formulation formulation, VolumetricTreatment treatment,
                 std::array<int, 3> cells, double nu, double thickness) {
   const auto start = std::chrono::steady_clock::now();
   testing::ElasticRun run = setup(kind, formulation, treatment, cells, nu, thickness, 6.0, 10.0);
@@ -205,14 +205,14 @@ double poisson_with_bulk_scaled(double nu, double scale) {
 TEST(VolumetricLocking, Tri3PlaneStrainAverageNodalPressure) {
   const double nu = 0.4999;
   const std::array<int, 3> cells{16, 24, 1};
-  const auto standard = lame(ElementKind::tri3, Formulation::plane_strain,
+  const auto standard = lame("tri3", Formulation::plane_strain,
                              VolumetricTreatment::standard, cells, nu, 0.0);
-  const auto nodal = lame(ElementKind::tri3, Formulation::plane_strain,
+  const auto nodal = lame("tri3", Formulation::plane_strain,
                           VolumetricTreatment::average_nodal_pressure, cells, nu, 0.0);
   // The standard element with the bulk modulus α² K that the element share leaves on the
   // checkerboard mode.
   const double nu_share = poisson_with_bulk_scaled(nu, kShare * kShare);
-  const auto equivalent = lame(ElementKind::tri3, Formulation::plane_strain,
+  const auto equivalent = lame("tri3", Formulation::plane_strain,
                                VolumetricTreatment::standard, cells, nu_share, 0.0);
   report("tri3 plane strain standard", nu, standard);
   report("tri3 plane strain average_nodal_pressure", nu, nodal);
@@ -226,7 +226,7 @@ TEST(VolumetricLocking, Tri3PlaneStrainAverageNodalPressure) {
 
 TEST(VolumetricLocking, Tri3AxisymmetricAverageNodalPressure) {
   const double nu = 0.4999;
-  const auto nodal = lame(ElementKind::tri3, Formulation::axisymmetric,
+  const auto nodal = lame("tri3", Formulation::axisymmetric,
                           VolumetricTreatment::average_nodal_pressure, {10, 2, 1}, nu, 0.02);
   report("tri3 axisymmetric average_nodal_pressure", nu, nodal);
   EXPECT_LT(std::abs(nodal.ratio() - 1), 0.01);
@@ -237,16 +237,16 @@ TEST(VolumetricLocking, Tet4AverageNodalPressure) {
   const double nu = 0.499;
   const std::array<int, 3> cells{8, 12, 1};
   const double t = (kB - kA) / cells[0];
-  const auto standard = lame(ElementKind::tet4, Formulation::three_d,
+  const auto standard = lame("tet4", Formulation::three_d,
                              VolumetricTreatment::standard, cells, nu, t);
-  const auto nodal = lame(ElementKind::tet4, Formulation::three_d,
+  const auto nodal = lame("tet4", Formulation::three_d,
                           VolumetricTreatment::average_nodal_pressure, cells, nu, t);
   // At ν = 0.4999 the share's α² K dominates on this coarse mesh: the remedy against the
   // standard element at K' = α² K.
   const double nu_hard = 0.4999, nu_share = poisson_with_bulk_scaled(nu_hard, kShare * kShare);
-  const auto nodal_hard = lame(ElementKind::tet4, Formulation::three_d,
+  const auto nodal_hard = lame("tet4", Formulation::three_d,
                                VolumetricTreatment::average_nodal_pressure, cells, nu_hard, t);
-  const auto equivalent = lame(ElementKind::tet4, Formulation::three_d,
+  const auto equivalent = lame("tet4", Formulation::three_d,
                                VolumetricTreatment::standard, cells, nu_share, t);
   report("tet4 standard", nu, standard);
   report("tet4 average_nodal_pressure", nu, nodal);
@@ -262,9 +262,9 @@ TEST(VolumetricLocking, Hex8MeanDilatation) {
   const double nu = 0.4999;
   const std::array<int, 3> cells{8, 12, 1};
   const double t = (kB - kA) / cells[0];
-  const auto standard = lame(ElementKind::hex8, Formulation::three_d,
+  const auto standard = lame("hex8", Formulation::three_d,
                              VolumetricTreatment::standard, cells, nu, t);
-  const auto bbar = lame(ElementKind::hex8, Formulation::three_d,
+  const auto bbar = lame("hex8", Formulation::three_d,
                          VolumetricTreatment::mean_dilatation, cells, nu, t);
   report("hex8 standard (2x2x2 points)", nu, standard);
   report("hex8 mean_dilatation", nu, bbar);
@@ -275,10 +275,10 @@ TEST(VolumetricLocking, Hex8MeanDilatation) {
 
 #ifdef _OPENMP
 /// The state after `steps` steps of a suddenly loaded ring, with `threads` OpenMP threads.
-std::vector<double> nodal_pressure_state(ElementKind kind, int threads, int steps) {
+std::vector<double> nodal_pressure_state(const std::string& kind, int threads, int steps) {
   const int saved = omp_get_max_threads();
   omp_set_num_threads(threads);
-  const bool planar = kind == ElementKind::tri3;
+  const bool planar = kind == "tri3";
   const std::array<int, 3> cells = planar ? std::array<int, 3>{24, 32, 1} : std::array<int, 3>{12, 16, 2};
   testing::ElasticRun run = setup(kind, planar ? Formulation::plane_strain : Formulation::three_d,
                                   VolumetricTreatment::average_nodal_pressure, cells, 0.4999,
@@ -301,15 +301,15 @@ std::vector<double> nodal_pressure_state(ElementKind kind, int threads, int step
   std::int32_t largest = 0;
   for (std::size_t c = 0; c < part.colour_count(); ++c)
     largest = std::max(largest, part.colour_begin[c + 1] - part.colour_begin[c]);
-  EXPECT_GT(largest, 2 * 64) << name_of(kind) << ": " << part.colour_count() << " colours";
+  EXPECT_GT(largest, 2 * 64) << kind.c_str() << ": " << part.colour_count() << " colours";
   for (const auto* v : {&nd.x, &nd.v, &nd.force, &part.stress, &part.strain}) out.insert(out.end(), v->begin(), v->end());
-  out.push_back(run.energy.stress_work);
-  out.push_back(run.energy.external_work);
+  out.push_back(run.energy.value("stress_work"));
+  out.push_back(run.energy.value("external_work"));
   return out;
 }
 
 TEST(VolumetricLocking, AverageNodalPressureThreadIndependent) {
-  for (ElementKind kind : {ElementKind::tri3, ElementKind::tet4}) {
+  for (const std::string kind : {"tri3", "tet4"}) {
     const auto one = nodal_pressure_state(kind, 1, 20);
     const auto two = nodal_pressure_state(kind, 2, 20);
     ASSERT_EQ(one.size(), two.size());
@@ -320,8 +320,8 @@ TEST(VolumetricLocking, AverageNodalPressureThreadIndependent) {
       norm = std::max(norm, std::abs(one[i]));
     }
     std::printf("[volumetric locking] %s average_nodal_pressure, 20 steps, 1 and 2 threads: %zu of "
-                "%zu values differ\n", name_of(kind), differ, one.size());
-    EXPECT_EQ(differ, 0u) << name_of(kind);
+                "%zu values differ\n", kind.c_str(), differ, one.size());
+    EXPECT_EQ(differ, 0u) << kind.c_str();
     EXPECT_GT(norm, 0.0);
   }
 }

@@ -16,7 +16,7 @@ struct Profile {
 
 Profile stress_profile(const Model& model) {
   const Part& part = model.parts[0];
-  const int npts = points_per_element(part.kind);
+  const int npts = part.type->points;
   std::vector<std::pair<double, double>> samples;
   for (std::size_t e = 0; e < part.element_count(); ++e) {
     double s = 0;
@@ -43,19 +43,19 @@ double front_position(const Profile& p, double plateau) {
   return -1;
 }
 
-void check_wave(ElementKind kind, Formulation formulation) {
+void check_wave(const std::string& kind, Formulation formulation) {
   const double L = 0.1, rho = 7800, E = 200e9, nu = 0.3, v = 10.0;
   const double lambda = E * nu / ((1 + nu) * (1 - 2 * nu)), G = E / (2 * (1 + nu));
   const double c = std::sqrt((lambda + 2 * G) / rho);
   BoxMesh box;
-  box.kind = kind;
+  box.element = kind;
   box.cells = {200, 2, 2};
   box.size = {L, 1e-3, 1e-3};
   testing::ElasticRun run(make_box_model(formulation, box), rho, E, nu);
   run.prescribe("xmin", 0, v);
   run.prescribe("ymin", 1, 0.0);
   run.prescribe("ymax", 1, 0.0);
-  if (kind != ElementKind::tri3) {
+  if (kind != "tri3") {
     run.prescribe("zmin", 2, 0.0);
     run.prescribe("zmax", 2, 0.0);
   }
@@ -81,15 +81,15 @@ void check_wave(ElementKind kind, Formulation formulation) {
   const Profile p = stress_profile(run.model);
   const double x2 = front_position(p, plateau);
   const double speed = (x2 - x1) / (t2 - t1);
-  EXPECT_NEAR(plateau, -rho * c * v, 0.02 * rho * c * v) << name_of(kind);
-  EXPECT_NEAR(speed, c, 0.02 * c) << name_of(kind);
+  EXPECT_NEAR(plateau, -rho * c * v, 0.02 * rho * c * v) << kind.c_str();
+  EXPECT_NEAR(speed, c, 0.02 * c) << kind.c_str();
   EXPECT_LT(std::abs(run.energy.relative_error()), 0.01) << "energy balance at the end";
 }
 
-TEST(WaveInBar, Hex8OnePoint) { check_wave(ElementKind::hex8_reduced, Formulation::three_d); }
-TEST(WaveInBar, Hex8FullyIntegrated) { check_wave(ElementKind::hex8, Formulation::three_d); }
-TEST(WaveInBar, Tet4) { check_wave(ElementKind::tet4, Formulation::three_d); }
-TEST(WaveInBar, Tri3PlaneStrain) { check_wave(ElementKind::tri3, Formulation::plane_strain); }
+TEST(WaveInBar, Hex8OnePoint) { check_wave("hex8_reduced", Formulation::three_d); }
+TEST(WaveInBar, Hex8FullyIntegrated) { check_wave("hex8", Formulation::three_d); }
+TEST(WaveInBar, Tet4) { check_wave("tet4", Formulation::three_d); }
+TEST(WaveInBar, Tri3PlaneStrain) { check_wave("tri3", Formulation::plane_strain); }
 
 }  // namespace
 }  // namespace shard
