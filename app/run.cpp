@@ -20,6 +20,7 @@
 #include "io/frame_output.hpp"
 #include "app/simulation.hpp"
 #include "io/particle_frame.hpp"
+#include "particle/mca_state.hpp"
 #include "fracture/fragments.hpp"
 #include "io/vtu_writer.hpp"
 
@@ -143,8 +144,8 @@ std::string check_scenario(const std::filesystem::path& file) {
         << ", material '" << sim.materials[part.material]->name() << "' ("
         << sim.materials[part.material]->model() << ")\n";
   for (const auto& pp : sim.model.particle_parts) {
-    const auto& ps = pp.system;
-    out << "  particle part '" << pp.name << "': " << ps.count() << " automata, " << ps.pairs.count()
+    const auto& ps = mca_state(pp);
+    out << "  particle part '" << pp.name << "': " << pp.count() << " automata, " << ps.pairs.count()
         << " bonded pairs, materials:";
     for (const auto& m : ps.materials) out << " " << m.name;
     out << "\n";
@@ -175,8 +176,6 @@ RunSummary run_scenario(const std::filesystem::path& file, const RunOptions& opt
   OutputCursor cursor;
   if (options.restart) {
     read_checkpoint(*options.restart, sim.model, solver.state(), cursor, fingerprint);
-    // The pair lists may have grown (new contacts): the adjacency is derived from them.
-    for (auto& pp : sim.model.particle_parts) pp.system.build_adjacency();
     // Cracks and erosion changed the mesh since set-up: every cache of the topology (the contact
     // surface, the prescribed degrees of freedom) follows the checkpoint's model.
     solver.restored();
@@ -247,7 +246,7 @@ RunSummary run_scenario(const std::filesystem::path& file, const RunOptions& opt
   const std::int64_t first_step = solver.state().step;
   std::string status = "completed", message;
   std::size_t particles = 0;
-  for (const auto& pp : sim.model.particle_parts) particles += pp.system.count();
+  for (const auto& pp : sim.model.particle_parts) particles += pp.count();
   auto write_summary = [&]() {
     const double wall = std::chrono::duration<double>(Clock::now() - start).count();
     const auto& s = solver.state();
@@ -277,12 +276,13 @@ RunSummary run_scenario(const std::filesystem::path& file, const RunOptions& opt
       for (std::size_t gi = 0; gi < sim.loads.particle_groups.size(); ++gi) {
         const auto& g = sim.loads.particle_groups[gi];
         const auto& pp = sim.model.particle_parts[g.part];
-        j << (gi ? ", " : "") << json_string(g.name) << ": {\"automata\": " << g.automata.size()
+        const auto& members = pp.find_set(g.name)->members;
+        j << (gi ? ", " : "") << json_string(g.name) << ": {\"automata\": " << members.size()
           << ", \"initial_centroid\": [";
         for (int k = 0; k < dim; ++k) {
           double c = 0;
-          for (auto a : g.automata) c += pp.x0[dim * a + k];
-          j << (k ? ", " : "") << c / static_cast<double>(g.automata.size());
+          for (auto a : members) c += pp.x0[dim * a + k];
+          j << (k ? ", " : "") << c / static_cast<double>(members.size());
         }
         j << "]}";
       }
@@ -342,15 +342,17 @@ RunSummary run_scenario(const std::filesystem::path& file, const RunOptions& opt
           // x_old holds the positions at t_n once the step has advanced to t_n+1.
           for (int k = 0; k < dim; ++k) {
             double u = 0;
-            for (auto a : g.automata) u += pp.x_old[dim * a + k] - pp.x0[dim * a + k];
-            std::snprintf(buffer, sizeof buffer, ",%.12e", u / static_cast<double>(g.automata.size()));
+            const auto& members = pp.find_set(g.name)->members;
+            for (auto a : members) u += pp.x_old[dim * a + k] - pp.x0[dim * a + k];
+            std::snprintf(buffer, sizeof buffer, ",%.12e", u / static_cast<double>(members.size()));
             history << buffer;
           }
         }
         for (const auto& pp : sim.model.particle_parts) {
           // Pairs still fully linked (k_link = 1); the bonds broken so far are the drop from row 1.
           std::int64_t linked = 0;
-          for (PairState st : pp.system.pairs.state) linked += st == PairState::linked;
+          const PairList& pairs = mca_state(pp).pairs;
+          for (std::size_t p = 0; p < pairs.count(); ++p) linked += pairs.state_of(p) == PairState::linked;
           history << ',' << linked;
         }
         if (cracks) history << ',' << find_fragments(sim.model).list.size();

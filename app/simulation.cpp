@@ -7,6 +7,7 @@
 
 #include "core/error.hpp"
 #include "model/assembly.hpp"
+#include "particle/mca_contact_update.hpp"
 #include "particle/packing.hpp"
 #include "solver/setup.hpp"
 
@@ -202,25 +203,26 @@ void build_particle_parts(const Scenario& sc, Simulation& sim) {
     const std::string path = "particles." + in.name;
     PackingSpec spec = in.packing;
     spec.material = index_of(in.material);
-    ParticlePart part;
+    ParticlePart part = build_packing(spec, materials);
     part.name = in.name;
     part.time_step_safety = in.time_step_safety;
     part.contact_update_interval = in.contact_update_interval;
     part.contact_skin = in.contact_skin;
-    ParticleSystem& ps = part.system;
-    ps = build_packing(spec, materials);
-    if (ps.count() == 0) throw InputError(file, in.line, path, "the sample box holds no automaton");
+    // Ids after every particle of the parts before (a pair is keyed by its automata's ids).
+    for (auto& id : part.id) id += model.next_particle_id;
+    if (part.count() == 0) throw InputError(file, in.line, path, "the sample box holds no automaton");
+    MCAState& ms = mca_state(part);
     for (const auto& [name, region] : in.material_regions)
-      assign_material(ps, [&](const double* x) { return region.contains(x, dim); }, index_of(name));
+      assign_material(part, [&](const double* x) { return region.contains(x, dim); }, index_of(name));
     // Bond laws before the interphase, which copies them onto its graded materials.
     for (const auto& b : sc.bonds) {
-      ps.bond_laws.push_back(b.law);
-      ps.set_bond_law(index_of(b.material_a), index_of(b.material_b), static_cast<int>(ps.bond_laws.size()) - 1);
+      ms.bond_laws.push_back(b.law);
+      ms.set_bond_law(index_of(b.material_a), index_of(b.material_b), static_cast<int>(ms.bond_laws.size()) - 1);
     }
     if (in.inclusions) {
       InclusionSpec inc = *in.inclusions;
       inc.material = index_of(in.inclusion_material);
-      const int made = add_inclusions(ps, inc);
+      const int made = add_inclusions(part, inc);
       if (made == 0)
         throw InputError(file, in.line, path + ".inclusions",
                          "no inclusion fits the sample (diameter larger than the sample?)");
@@ -228,19 +230,21 @@ void build_particle_parts(const Scenario& sc, Simulation& sim) {
         InterphaseSpec g = *in.interphase;
         g.inclusion_material = inc.material;
         g.matrix_material = spec.material;
-        add_interphase(ps, g);
+        add_interphase(part, g);
       }
     }
-    if (in.pores) add_pores(ps, *in.pores);
-    finish_sample(ps, spec.bond_tolerance);
-    for (std::size_t i = 0; i < ps.count(); ++i)
-      for (int k = 0; k < dim; ++k) ps.v[dim * i + k] = in.velocity[k];
-    part.x0 = ps.x;
-    part.x_old = ps.x;
-    part.dtheta.assign(ps.count() * ps.rot_dim(), 0.0);
-    part.prescribed.assign(ps.count() * (dim + ps.rot_dim()), -1);
+    if (in.pores) add_pores(part, *in.pores);
+    finish_sample(part, spec.bond_tolerance);
+    for (std::size_t i = 0; i < part.count(); ++i)
+      for (int k = 0; k < dim; ++k) part.v[dim * i + k] = in.velocity[k];
+    part.x0 = part.x;
+    part.x_old = part.x;
+    for (const auto id : part.id) model.next_particle_id = std::max(model.next_particle_id, id + 1);
     model.particle_parts.push_back(std::move(part));
   }
+  if (std::any_of(model.particle_parts.begin(), model.particle_parts.end(),
+                  [](const ParticlePart& p) { return p.contact_update_interval > 0; }))
+    sim.events.push_back(std::make_unique<MCAContactUpdate>());
 
   // Conditions on regions: one constraint per (automaton, component); a later entry overrides.
   std::map<std::tuple<int, std::int32_t, int>, std::pair<int, int>> constraint;  // → (table, group)
@@ -248,36 +252,36 @@ void build_particle_parts(const Scenario& sc, Simulation& sim) {
     const auto& in = sc.particle_conditions[c];
     int p = 0;
     while (model.particle_parts[p].name != in.part) ++p;
-    const ParticleSystem& ps = model.particle_parts[p].system;
-    ParticleGroup group;
-    group.name = in.name;
-    group.part = p;
+    ParticlePart& part = model.particle_parts[p];
+    ParticleSet set;
+    set.name = in.name;
     if (in.region.kind == RegionInput::Kind::side) {
-      for (int a : boundary_layer(ps, in.region.axis, in.region.at_max, in.region.depth)) group.automata.push_back(a);
+      for (int a : boundary_layer(part, in.region.axis, in.region.at_max, in.region.depth)) set.members.push_back(a);
     } else {
-      for (std::size_t i = 0; i < ps.count(); ++i)
-        if (in.region.contains(&ps.x[dim * i], dim)) group.automata.push_back(static_cast<std::int32_t>(i));
+      for (std::size_t i = 0; i < part.count(); ++i)
+        if (in.region.contains(&part.x[dim * i], dim)) set.members.push_back(static_cast<std::int32_t>(i));
     }
-    if (group.automata.empty())
+    if (set.members.empty())
       throw InputError(file, in.line, "particle_boundary_conditions[" + std::to_string(c + 1) + "].region",
                        "the region holds no automaton of part '" + in.part + "'");
     const int g = static_cast<int>(sim.loads.particle_groups.size());
     for (int k = 0; k < 3; ++k) {
       if (!in.velocity[k]) continue;
       sim.loads.tables.push_back(*in.velocity[k]);
-      for (auto a : group.automata) constraint[{p, a, k}] = {static_cast<int>(sim.loads.tables.size()) - 1, g};
+      for (auto a : set.members) constraint[{p, a, k}] = {static_cast<int>(sim.loads.tables.size()) - 1, g};
     }
     if (in.fix_rotation) {
       sim.loads.tables.push_back(TimeTable::constant(0.0));
-      for (auto a : group.automata)
-        for (int r = 0; r < ps.rot_dim(); ++r)
+      for (auto a : set.members)
+        for (int r = 0; r < part.rot_dim(); ++r)
           constraint[{p, a, dim + r}] = {static_cast<int>(sim.loads.tables.size()) - 1, g};
     }
-    sim.loads.particle_groups.push_back(std::move(group));
+    sim.loads.particle_groups.push_back({in.name, p});
+    part.sets.push_back(std::move(set));
   }
   for (const auto& [key, value] : constraint) {
     ParticlePart& pp = model.particle_parts[std::get<0>(key)];
-    const std::size_t width = static_cast<std::size_t>(dim + pp.system.rot_dim());
+    const std::size_t width = static_cast<std::size_t>(dim + pp.rot_dim());
     pp.prescribed[width * std::get<1>(key) + std::get<2>(key)] = sim.loads.prescription(value.first, value.second);
   }
 }

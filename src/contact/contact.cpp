@@ -59,13 +59,6 @@ double penalty(double mass, double stable_dt, double reduction, double scale) {
   return scale * mass * omega2 * (1.0 / ((1.0 - reduction) * (1.0 - reduction)) - 1.0) / 4.0;
 }
 
-std::size_t cell_hash(std::int64_t i, std::int64_t j, std::int64_t k, std::size_t mask) {
-  const std::uint64_t h = static_cast<std::uint64_t>(i) * 73856093u ^
-                          static_cast<std::uint64_t>(j) * 19349663u ^
-                          static_cast<std::uint64_t>(k) * 83492791u;
-  return static_cast<std::size_t>(h) & mask;
-}
-
 /// Coulomb friction with an elastic stick spring of stiffness k: returns the dissipated work.
 double coulomb(double* T, const double* n, const double* vt, double k, double dt, double fn,
                const FrictionLaw& law, int dim) {
@@ -151,40 +144,7 @@ void ContactSystem::find_facet_hits(const Model& model) {
   }
   mean /= static_cast<double>(nf);
   bin_size_ = std::max({2.5 * mean, largest / 8.0, 1e-12});
-  std::vector<std::size_t>& keys = bin_keys_;
-  std::vector<std::int32_t>& owners = bin_owners_;
-  keys.clear();
-  owners.clear();
-  std::size_t table = 1;
-  while (table < 4 * nf) table <<= 1;  // collisions only add candidates, never lose one
-  bin_mask_ = table - 1;
-  bin_begin_.assign(table + 1, 0);
-  std::int64_t c0[3] = {0, 0, 0}, c1[3] = {0, 0, 0};
-  std::vector<std::size_t>& local = bin_cells_;
-  for (std::size_t f = 0; f < nf; ++f) {
-    for (int d = 0; d < dim; ++d) {
-      c0[d] = static_cast<std::int64_t>(std::floor(facet_box_[6 * f + d] / bin_size_));
-      c1[d] = static_cast<std::int64_t>(std::floor(facet_box_[6 * f + 3 + d] / bin_size_));
-    }
-    // Two cells of one facet may share a hash slot: enter the facet once per slot.
-    local.clear();
-    for (std::int64_t i = c0[0]; i <= c1[0]; ++i)
-      for (std::int64_t j = c0[1]; j <= c1[1]; ++j)
-        for (std::int64_t k = c0[2]; k <= c1[2]; ++k) local.push_back(cell_hash(i, j, k, bin_mask_));
-    if (local.size() > 1) {
-      std::sort(local.begin(), local.end());
-      local.erase(std::unique(local.begin(), local.end()), local.end());
-    }
-    for (const std::size_t h : local) {
-      keys.push_back(h);
-      owners.push_back(static_cast<std::int32_t>(f));
-      bin_begin_[h + 1]++;
-    }
-  }
-  for (std::size_t b = 0; b < table; ++b) bin_begin_[b + 1] += bin_begin_[b];
-  bin_facets_.assign(keys.size(), 0);
-  bin_fill_.assign(bin_begin_.begin(), bin_begin_.end() - 1);
-  for (std::size_t e = 0; e < keys.size(); ++e) bin_facets_[bin_fill_[keys[e]]++] = owners[e];
+  grid_.build_boxes(facet_box_, dim, bin_size_);
 
   // Outward normal of each surface node (sum of its facets' area normals): a node only touches
   // facets that face it, which keeps coincident or nearby corners of two bodies from pushing each
@@ -210,13 +170,10 @@ void ContactSystem::find_facet_hits(const Model& model) {
     const int ps = surface_.node_part[i];
     const double* x = &X[dim * s];
     const double* nn = &node_normal_[dim * s];
-    std::int64_t c[3] = {0, 0, 0};
-    for (int d = 0; d < dim; ++d) c[d] = static_cast<std::int64_t>(std::floor(x[d] / bin_size_));
-    const std::size_t h = cell_hash(c[0], c[1], c[2], bin_mask_);
+    const std::span<const std::int32_t> candidates = grid_.cell(x);
     Hit best;
     double best_gap = -std::numeric_limits<double>::infinity();
-    for (std::int32_t q = bin_begin_[h]; q < bin_begin_[h + 1]; ++q) {
-      const std::int32_t f = bin_facets_[q];
+    for (const std::int32_t f : candidates) {
       const int pf = surface_.facet_part[f];
       if (!settings_.part_pairs[ps * np + pf]) continue;
       const std::int32_t* fn = &F[dim * f];

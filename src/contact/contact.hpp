@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "contact/contact_surface.hpp"
+#include "core/cell_grid.hpp"
 #include "core/energy_ledger.hpp"
 #include "core/time_table.hpp"
 #include "model/model.hpp"
@@ -54,7 +55,7 @@ class ContactSystem final : public TopologyListener {
 
   /// Rebuilds the contact surface from the current topology.
   void rebuild(const Model& model);
-  /// After every topology change (src/solver/topology.hpp): the surface is rebuilt.
+  /// After every topology change (src/model/topology.hpp): the surface is rebuilt.
   void topology_changed(const Model& model, const Remap&) override { rebuild(model); }
 
   /// Adds contact and wall forces at the positions x_n to model.nodes.force. Friction uses the
@@ -105,13 +106,10 @@ class ContactSystem final : public TopologyListener {
   ContactSurface surface_;
   std::vector<Hit> hits_;                // per surface node
   std::vector<double> normal_force_;     // per surface node, last call (N)
-  std::vector<std::int32_t> bin_begin_, bin_facets_, bin_fill_, bin_owners_;
+  CellGrid grid_;                       // the facets near each node (the one broad phase)
   std::vector<char> crack_face_;        // per node: on a crack face (Model::crack_face_nodes)
-  std::vector<std::size_t> bin_keys_;  // scratch of the search, kept to avoid per-step allocation
-  std::vector<std::size_t> bin_cells_;  // scratch: the hash slots of one facet
   std::vector<double> facet_box_;       // scratch: per facet lo[3], hi[3] grown by the search depth
   double bin_size_ = 0;
-  std::size_t bin_mask_ = 0;
   double friction_work_ = 0;
   std::size_t active_ = 0;
   double max_penetration_ = 0;

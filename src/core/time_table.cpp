@@ -5,6 +5,7 @@
 namespace shard {
 
 double TimeTable::at(double t) const {
+  if (function) return function(t);
   if (values.empty()) return 0.0;
   if (t <= times.front()) return values.front();
   if (t >= times.back()) return values.back();

@@ -59,13 +59,13 @@ const ElementKernel& kernel_of(const ElementType& type) {
 }
 
 ForceSums add_internal_forces(Part& part, const Material& material, NodeArrays& nodes,
-                              const StepContext& ctx) {
+                              const StepContext& ctx, PartCache& cache) {
   const ForceSums sums = kernel_of(*part.type).internal_forces(part, material, nodes, ctx);
   // Part-level pass of materials with a non-local history variable (src/fem/nonlocal_average.hpp),
   // on the state just updated.
   if (const auto* nonlocal = dynamic_cast<const NonlocalAveraging*>(&material)) {
     const NonlocalSpec spec = nonlocal->nonlocal_spec();
-    if (spec.length > 0) average_nonlocal(part, nodes, spec, material.state_size());
+    if (spec.length > 0) average_nonlocal(part, nodes, spec, material.state_size(), cache.nonlocal);
   }
   return sums;
 }

@@ -7,6 +7,7 @@
 
 #include "core/energy_ledger.hpp"
 #include "fem/element.hpp"
+#include "fem/nonlocal_average.hpp"
 
 namespace shard {
 
@@ -25,12 +26,18 @@ inline constexpr double kNodalPressureElementShare = 0.1;
 /// control, plastic work (and the heat it became), fracture and the energy eroded elements took.
 std::vector<EnergyTerm> element_energy_terms();
 
+/// What the element pass of a part keeps from one step to the next besides the Model (derived
+/// from it; the caller keeps one per part and clears it when the topology changes).
+struct PartCache {
+  NonlocalNeighbours nonlocal;  ///< the neighbourhoods of a non-local material's points
+};
+
 /// Updates stresses and state of every point of `part` with the velocities in `nodes.v` over
 /// `ctx.dt`, on the current positions `nodes.x`, and subtracts the internal forces from
 /// `nodes.force` (the part's kernel), then runs the part-level pass of a non-local material. The
 /// result is the same for any number of OpenMP threads.
 ForceSums add_internal_forces(Part& part, const Material& material, NodeArrays& nodes,
-                              const StepContext& ctx);
+                              const StepContext& ctx, PartCache& cache);
 
 /// Element volumes/areas on the current positions (no stress update); used for masses and the
 /// initial time step.

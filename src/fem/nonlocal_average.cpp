@@ -3,10 +3,9 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <map>
-#include <mutex>
 #include <stdexcept>
 
+#include "core/cell_grid.hpp"
 #include "fem/hex8_shape.hpp"
 
 namespace shard {
@@ -36,62 +35,24 @@ NonlocalNeighbours find_neighbours(std::vector<double> position, int dim, double
   const std::size_t n = nb.position.size() / dim;
   nb.begin.assign(n + 1, 0);
   if (n == 0) return nb;
-  // Cell grid of cell size ℓ: a point's neighbours lie in its own cell and the adjacent ones.
-  std::array<double, 3> lo{0, 0, 0}, hi{0, 0, 0};
-  for (int k = 0; k < dim; ++k) {
-    lo[k] = hi[k] = nb.position[k];
-    for (std::size_t i = 0; i < n; ++i) {
-      lo[k] = std::min(lo[k], nb.position[dim * i + k]);
-      hi[k] = std::max(hi[k], nb.position[dim * i + k]);
-    }
-  }
-  std::array<std::int64_t, 3> cells{1, 1, 1};
-  double total = 1;
-  for (int k = 0; k < dim; ++k) {
-    cells[k] = static_cast<std::int64_t>((hi[k] - lo[k]) / length) + 1;
-    total *= static_cast<double>(cells[k]);
-  }
-  if (total > 4e18)
-    throw std::runtime_error("nonlocal_length is too small for the size of the part (cell grid of " +
-                             std::to_string(total) + " cells)");
-  auto cell_of = [&](std::size_t i, int k) {
-    return std::min<std::int64_t>(static_cast<std::int64_t>((nb.position[dim * i + k] - lo[k]) / length),
-                                  cells[k] - 1);
-  };
-  auto key_of = [&](std::int64_t cx, std::int64_t cy, std::int64_t cz) {
-    return (cz * cells[1] + cy) * cells[0] + cx;
-  };
-  std::vector<std::pair<std::int64_t, std::int32_t>> sorted(n);
-  for (std::size_t i = 0; i < n; ++i)
-    sorted[i] = {key_of(cell_of(i, 0), cell_of(i, 1), dim == 3 ? cell_of(i, 2) : 0),
-                 static_cast<std::int32_t>(i)};
-  std::sort(sorted.begin(), sorted.end());
-
+  // The broad phase, cells of size ℓ: a point's neighbours lie in its own cell and the adjacent
+  // ones; each list is sorted, so the order the cells give them in does not matter.
+  const CellGrid grid(nb.position, dim, length);
   const double l2 = length * length;
   std::vector<std::vector<std::pair<std::int32_t, double>>> found(n);
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
-    const std::int64_t c[3] = {cell_of(i, 0), cell_of(i, 1), dim == 3 ? cell_of(i, 2) : 0};
     auto& list = found[i];
-    for (std::int64_t dz = (dim == 3 ? -1 : 0); dz <= (dim == 3 ? 1 : 0); ++dz)
-      for (std::int64_t dy = -1; dy <= 1; ++dy)
-        for (std::int64_t dx = -1; dx <= 1; ++dx) {
-          const std::int64_t x = c[0] + dx, y = c[1] + dy, z = c[2] + dz;
-          if (x < 0 || y < 0 || z < 0 || x >= cells[0] || y >= cells[1] || z >= cells[2]) continue;
-          const std::int64_t key = key_of(x, y, z);
-          auto it = std::lower_bound(sorted.begin(), sorted.end(), std::make_pair(key, std::int32_t{-1}));
-          for (; it != sorted.end() && it->first == key; ++it) {
-            const std::size_t j = static_cast<std::size_t>(it->second);
-            double r2 = 0;
-            for (int k = 0; k < dim; ++k) {
-              const double d = nb.position[dim * i + k] - nb.position[dim * j + k];
-              r2 += d * d;
-            }
-            if (r2 >= l2) continue;
-            const double b = 1.0 - r2 / l2;
-            list.emplace_back(it->second, b * b);
-          }
-        }
+    grid.for_near(&nb.position[dim * i], [&](std::int32_t j) {
+      double r2 = 0;
+      for (int k = 0; k < dim; ++k) {
+        const double d = nb.position[dim * i + k] - nb.position[dim * static_cast<std::size_t>(j) + k];
+        r2 += d * d;
+      }
+      if (r2 >= l2) return;
+      const double b = 1.0 - r2 / l2;
+      list.emplace_back(j, b * b);
+    });
     std::sort(list.begin(), list.end());  // fixed summation order
   }
   for (std::size_t i = 0; i < n; ++i) nb.begin[i + 1] = nb.begin[i] + static_cast<std::int64_t>(found[i].size());
@@ -105,22 +66,12 @@ NonlocalNeighbours find_neighbours(std::vector<double> position, int dim, double
   return nb;
 }
 
-namespace {
-
-/// Neighbour lists by part. A part is identified by its address and validated by its reference
-/// point positions (compared in full each step: one pass over the points, cheaper than the
-/// average itself), so a rebuilt or different model never reuses stale lists.
-std::mutex cache_mutex;
-std::map<const Part*, NonlocalNeighbours> cache;
-
-}  // namespace
-
-void average_nonlocal(Part& part, const NodeArrays& nodes, const NonlocalSpec& spec,
-                      std::size_t state_size) {
+void average_nonlocal(Part& part, const NodeArrays& nodes, const NonlocalSpec& spec, std::size_t state_size,
+                      NonlocalNeighbours& nb) {
   if (!(spec.length > 0)) return;
+  // The lists are validated by the reference point positions (compared in full each step: one
+  // pass over the points, cheaper than the average itself), so stale lists are never used.
   std::vector<double> position = reference_point_positions(part, nodes);
-  std::lock_guard<std::mutex> lock(cache_mutex);
-  NonlocalNeighbours& nb = cache[&part];
   if (nb.length != spec.length || nb.position != position)
     nb = find_neighbours(std::move(position), nodes.dim, spec.length);
 

@@ -34,9 +34,10 @@ NonlocalNeighbours find_neighbours(std::vector<double> position, int dim, double
 
 /// Writes the average of slot spec.source into slot spec.target for every point of `part`,
 /// weighted by w(r) and the point volumes (part.volume per element, shared equally among its
-/// points; eroded elements take no part). Neighbour lists are cached per part (see
-/// NonlocalNeighbours). Deterministic for any thread count.
+/// points; eroded elements take no part). `neighbours` caches the lists from one step to the next
+/// (the caller keeps one per part; they are found again when the points moved or ℓ changed).
+/// Deterministic for any thread count.
 void average_nonlocal(Part& part, const NodeArrays& nodes, const NonlocalSpec& spec,
-                      std::size_t state_size);
+                      std::size_t state_size, NonlocalNeighbours& neighbours);
 
 }  // namespace shard

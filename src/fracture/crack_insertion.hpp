@@ -7,7 +7,7 @@
 // is one topology change (CrackInsertion::remap, already applied to the model): every node field
 // follows it (prescribed motion, crack lineage, contact history, node and facet sets), and
 // whatever caches topology (the contact surface) is told of it by the caller
-// (src/solver/topology.hpp); the released energy is the caller's to book as fracture energy.
+// (src/model/topology.hpp); the released energy is the caller's to book as fracture energy.
 // Element colouring stays valid (no recolouring): see split_nodes.
 #pragma once
 

@@ -2,12 +2,15 @@
 
 #include <cmath>
 
+#include "particle/mca_state.hpp"
+
 namespace shard {
 
 VtuGrid make_particle_frame(const ParticlePart& part, double time) {
-  const ParticleSystem& ps = part.system;
-  const std::size_t n = ps.count(), np = ps.pairs.count();
-  const int D = ps.dim, R = ps.rot_dim(), T = ps.tau_dim();
+  const ParticlePart& ps = part;
+  const MCAState& mca = mca_state(part);
+  const std::size_t n = ps.count(), np = mca.pairs.count();
+  const int D = ps.dim, R = ps.rot_dim(), T = mca.tau_dim();
   VtuGrid g;
   g.points.assign(3 * n, 0.0);
   for (std::size_t i = 0; i < n; ++i)
@@ -19,8 +22,8 @@ VtuGrid make_particle_frame(const ParticlePart& part, double time) {
     g.types.push_back(VtkCellType::vertex);
   }
   for (std::size_t p = 0; p < np; ++p) {
-    g.connectivity.push_back(ps.pairs.i[p]);
-    g.connectivity.push_back(ps.pairs.j[p]);
+    g.connectivity.push_back(mca.pairs.i[p]);
+    g.connectivity.push_back(mca.pairs.j[p]);
     g.offsets.push_back(static_cast<std::int64_t>(g.connectivity.size()));
     g.types.push_back(VtkCellType::line);
   }
@@ -41,7 +44,7 @@ VtuGrid make_particle_frame(const ParticlePart& part, double time) {
   }
   {
     // Our slots are xx yy zz xy yz xz, ParaView's xx yy zz xy yz xz: the same.
-    VtuField f{"stress", 6, std::vector<double>(ps.stress.begin(), ps.stress.begin() + 6 * n)};
+    VtuField f{"stress", 6, std::vector<double>(mca.stress.begin(), mca.stress.begin() + 6 * n)};
     g.point_fields.push_back(std::move(f));
   }
   auto scalar = [&](const char* name, auto value) {
@@ -49,23 +52,23 @@ VtuGrid make_particle_frame(const ParticlePart& part, double time) {
     for (std::size_t i = 0; i < n; ++i) f.values[i] = value(i);
     g.point_fields.push_back(std::move(f));
   };
-  scalar("pressure", [&](std::size_t i) { return -ps.sigma_mean[i]; });
-  scalar("stress_intensity", [&](std::size_t i) { return ps.stress_int[i]; });
-  scalar("plastic_strain", [&](std::size_t i) { return ps.plastic_strain[i]; });
+  scalar("pressure", [&](std::size_t i) { return -mca.sigma_mean[i]; });
+  scalar("stress_intensity", [&](std::size_t i) { return mca.stress_int[i]; });
+  scalar("plastic_strain", [&](std::size_t i) { return mca.plastic_strain[i]; });
   scalar("material", [&](std::size_t i) { return static_cast<double>(ps.material[i]); });
-  scalar("diameter", [&](std::size_t i) { return ps.d[i]; });
+  scalar("diameter", [&](std::size_t i) { return 2 * ps.radius[i]; });
 
   auto cell_scalar = [&](const char* name, double vertex_value, auto value) {
     VtuField f{name, 1, std::vector<double>(n + np, vertex_value)};
     for (std::size_t p = 0; p < np; ++p) f.values[n + p] = value(p);
     g.cell_fields.push_back(std::move(f));
   };
-  cell_scalar("bond_state", -1.0, [&](std::size_t p) { return static_cast<double>(ps.pairs.state[p]); });
-  cell_scalar("k_link", 0.0, [&](std::size_t p) { return ps.pairs.k_link[p]; });
-  cell_scalar("bond_normal_stress", 0.0, [&](std::size_t p) { return ps.pairs.eta[p]; });
+  cell_scalar("bond_state", -1.0, [&](std::size_t p) { return static_cast<double>(mca.pairs.state[p]); });
+  cell_scalar("k_link", 0.0, [&](std::size_t p) { return mca.pairs.k_link[p]; });
+  cell_scalar("bond_normal_stress", 0.0, [&](std::size_t p) { return mca.pairs.eta[p]; });
   cell_scalar("bond_shear_stress", 0.0, [&](std::size_t p) {
     double s = 0;
-    for (int k = 0; k < T; ++k) s += ps.pairs.tau[T * p + k] * ps.pairs.tau[T * p + k];
+    for (int k = 0; k < T; ++k) s += mca.pairs.tau[T * p + k] * mca.pairs.tau[T * p + k];
     return std::sqrt(s);
   });
   g.field_data.push_back({"TimeValue", 1, {time}});

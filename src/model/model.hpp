@@ -16,7 +16,7 @@
 #include "core/voigt.hpp"
 #include "model/fields.hpp"
 #include "model/element_type.hpp"
-#include "particle/particle_system.hpp"
+#include "model/particles.hpp"
 
 namespace shard {
 
@@ -173,96 +173,6 @@ struct ContactState {
   }
 };
 
-/// A part of movable cellular automata (docs/theory/mca.md): bonded particles integrated in the
-/// same time loop as the elements. Besides the automata and pairs, the leapfrog needs the
-/// positions at the start of the last increment and the rotation increments over it, which the
-/// pair kinematics of eqs. (11)-(13) of the MCA paper are built on.
-struct ParticlePart {
-  std::string name;
-  ParticleSystem system;
-  double time_step_safety = 0.25;  ///< multiplies mca_stable_time_step()
-  int contact_update_interval = 0;  ///< steps between searches for new contacts (0: never)
-  double contact_skin = 0;          ///< unlinked pairs further apart than this are dropped
-  /// The velocity-Verlet bound of the pairs (mca_stable_time_step): it depends only on the
-  /// pairs' areas, lengths and materials, so it is computed again only when pairs are added or
-  /// dropped (0: to be computed). Not checkpointed: recomputed from the same pairs.
-  double stable_time_step = 0;
-  std::vector<std::int64_t> id;  ///< stable particle id, never reused
-  std::vector<double> x0;      ///< positions at t = 0 (for displacements)
-  std::vector<double> x_old;   ///< positions at t_n−1 (dim per automaton)
-  std::vector<double> dtheta;  ///< rotation increments over [t_n−1, t_n] (rot_dim per automaton)
-  /// dim + rot_dim per particle: prescribed translation and rotation components (an index into
-  /// the run's prescribed velocities), −1 where free.
-  std::vector<std::int32_t> prescribed;
-
-  std::size_t count() const { return system.count(); }
-
-  /// Per-particle fields of the part.
-  template <class F>
-  void visit_particle_fields(F&& f) {
-    ParticleSystem& s = system;
-    const int d = s.dim, r = s.rot_dim();
-    f(field("id", Location::particle, 1, Follow::stable_id), id);
-    f(field("x0", Location::particle, d), x0);
-    f(field("x_old", Location::particle, d), x_old);
-    f(field("dtheta", Location::particle, r), dtheta);
-    f(field("prescribed", Location::particle, d + r, Follow::copy, -1), prescribed);
-    f(field("x", Location::particle, d), s.x);
-    f(field("v", Location::particle, d), s.v);
-    f(field("force", Location::particle, d, Follow::share), s.force);
-    f(field("theta", Location::particle, r), s.theta);
-    f(field("omega", Location::particle, r), s.omega);
-    f(field("torque", Location::particle, r, Follow::share), s.torque);
-    f(field("size", Location::particle, 1), s.d);
-    f(field("volume", Location::particle, 1, Follow::share), s.volume);
-    f(field("face_area", Location::particle, 1), s.face_area);
-    f(field("mass", Location::particle, 1, Follow::share), s.mass);
-    f(field("inertia", Location::particle, 1, Follow::share), s.inertia);
-    f(field("material", Location::particle, 1), s.material);
-    f(field("stress", Location::particle, 6), s.stress);
-    f(field("sigma_mean", Location::particle, 1), s.sigma_mean);
-    f(field("sigma_mean_old", Location::particle, 1), s.sigma_mean_old);
-    f(field("sigma_mean_used", Location::particle, 1), s.sigma_mean_used);
-    f(field("stress_int", Location::particle, 1), s.stress_int);
-    f(field("plastic_strain", Location::particle, 1), s.plastic_strain);
-    f(field("fabric_index", Location::particle, 1, Follow::copy, -1), s.fabric_index);
-  }
-  /// Per-pair fields: every array of the pairs that changes during a run (broken bonds, k_link
-  /// and the pair stresses must never be lost across a restart).
-  template <class F>
-  void visit_pair_fields(F&& f) {
-    ParticleSystem& s = system;
-    PairList& q = s.pairs;
-    const int d = s.dim, r = s.rot_dim(), t = s.tau_dim();
-    f(field("i", Location::pair, 1, Follow::particle_index), q.i);
-    f(field("j", Location::pair, 1, Follow::particle_index), q.j);
-    f(field("r0", Location::pair, 1), q.r0);
-    f(field("area", Location::pair, 1), q.area);
-    f(field("kappa", Location::pair, 1), q.kappa);
-    f(field("xi_ij", Location::pair, 1), q.xi_ij);
-    f(field("xi_ji", Location::pair, 1), q.xi_ji);
-    f(field("eta", Location::pair, 1), q.eta);
-    f(field("tau", Location::pair, t), q.tau);
-    f(field("tau_c", Location::pair, t), q.tau_c);
-    f(field("phi", Location::pair, r), q.phi);
-    f(field("k_link", Location::pair, 1), q.k_link);
-    f(field("eps_onset", Location::pair, 1, Follow::copy, -1), q.eps_onset);
-    f(field("state", Location::pair, 1), q.state);
-    f(field("law", Location::pair, 1, Follow::copy, -1), q.law);
-    f(field("force", Location::pair, d), q.force);
-    f(field("normal", Location::pair, d), q.normal);
-    f(field("q_ij", Location::pair, 1), q.q_ij);
-    f(field("q_ji", Location::pair, 1), q.q_ji);
-    f(field("torque_rel", Location::pair, r), q.torque_rel);
-  }
-  /// The fabric tensors of the surface automata (rows indexed by fabric_index): fixed at bonding.
-  template <class F>
-  void visit_model_fields(F&& f) {
-    f(field("fabric", Location::model, 0), system.fabric);
-    f(field("fabric_inv", Location::model, 0), system.fabric_inv);
-  }
-};
-
 struct Model {
   Formulation formulation = Formulation::plane_strain;
   double thickness = 1.0;  ///< out-of-plane thickness for plane strain / plane stress
@@ -319,10 +229,9 @@ struct Model {
     }
     for (auto& p : parts) p.visit_fields(as("part." + p.name + "."));
     for (auto& pp : particle_parts) {
-      const std::string prefix = "particles." + pp.name + ".";
-      pp.visit_particle_fields(as(prefix));
-      pp.visit_pair_fields(as(prefix + "pair."));
-      pp.visit_model_fields(as(prefix));
+      pp.visit_all_fields(as("particles." + pp.name + "."));
+      for (auto& set : pp.sets)
+        f("particles." + pp.name + ".set." + set.name, field("members", Location::model, 0), set.members);
     }
   }
   /// The scalars of the model's state (the id counters), for checkpoints.

@@ -108,7 +108,9 @@ T rule_value(const std::vector<T>& old, std::size_t comps, std::size_t k, const 
 /// parts add up to the whole as the sum of the pieces, for mass and momentum).
 template <class T>
 void remap_values(std::vector<T>& a, const FieldInfo& info, const EntityRemap& r, std::int64_t* next_id) {
-  if (a.empty() || r.old_count == 0) return;
+  // An empty array of some entities is a field not in use; with no entities yet, one whose
+  // components are declared grows with the born ones.
+  if (a.empty() && (r.old_count > 0 || info.components <= 0)) return;
   const std::size_t comps = info.components > 0 ? static_cast<std::size_t>(info.components) : a.size() / r.old_count;
   if (comps == 0 || comps * r.old_count != a.size())
     inconsistent("field '" + info.name + "' holds " + std::to_string(a.size()) + " values for " +
@@ -232,26 +234,62 @@ void recount_colours(Part& part) {
   for (int c = 0; c < colours; ++c) part.colour_begin[c + 1] += part.colour_begin[c];
 }
 
-void remap_particles(Model& model, int pp_index, const EntityRemap& r, const EntityRemap* pairs) {
-  ParticlePart& pp = model.particle_parts.at(pp_index);
-  validate(r, pp.count(), "particles");
-  pp.visit_particle_fields([&](const FieldInfo& info, auto& a) { remap_values(a, info, r, &model.next_particle_id); });
-  const std::vector<std::int32_t> new_of_old = r.new_of_old();
-  PairList& q = pp.system.pairs;
-  EntityRemap derived;
-  if (!pairs) {
-    std::vector<std::uint8_t> keep(q.count());
-    for (std::size_t p = 0; p < q.count(); ++p) keep[p] = new_of_old[q.i[p]] >= 0 && new_of_old[q.j[p]] >= 0;
-    derived = EntityRemap::keeping(keep);
-    pairs = &derived;
-  }
-  validate(*pairs, q.count(), "pairs");
-  pp.visit_pair_fields([&](const FieldInfo& info, auto& a) { remap_values(a, info, *pairs, nullptr); });
-  renumber(q.i, new_of_old, "particle");
-  renumber(q.j, new_of_old, "particle");
+/// Field arrays of one location of a particle part, to a generic body.
+template <class Body>
+void for_location(ParticlePart& part, Location location, Body&& body) {
+  part.visit_all_fields([&](const FieldInfo& info, auto& a) {
+    if (info.location == location) body(info, a);
+  });
 }
 
 }  // namespace
+
+void apply_particle_remap(ParticlePart& part, const EntityRemap* particles, const EntityRemap* pairs,
+                          std::int64_t* next_id) {
+  std::vector<std::int32_t> new_of_old;
+  EntityRemap derived;
+  const std::size_t pair_count = part.model ? part.model->pair_count() : 0;
+  if (particles) {
+    validate(*particles, part.count(), "particles");
+    for_location(part, Location::particle, [&](const FieldInfo& info, auto& a) {
+      remap_values(a, info, *particles, next_id);
+    });
+    new_of_old = particles->new_of_old();
+    for (ParticleSet& set : part.sets) follow_set(set.members, *particles, new_of_old);
+    if (!pairs && pair_count > 0) {
+      // The pairs of two continued particles are kept, in their order.
+      std::vector<std::uint8_t> keep(pair_count, 1);
+      std::vector<std::int32_t> ends[2];
+      int e = 0;
+      for_location(part, Location::pair, [&](const FieldInfo& info, auto& a) {
+        if constexpr (std::is_same_v<std::decay_t<decltype(a)>, std::vector<std::int32_t>>)
+          if (info.follow == Follow::particle_index && e < 2) ends[e++] = a;
+      });
+      for (int k = 0; k < e; ++k)
+        for (std::size_t p = 0; p < pair_count; ++p) keep[p] = keep[p] && new_of_old[ends[k][p]] >= 0;
+      derived = EntityRemap::keeping(keep);
+      pairs = &derived;
+    }
+  }
+  if (pairs) {
+    validate(*pairs, pair_count, "pairs");
+    for_location(part, Location::pair, [&](const FieldInfo& info, auto& a) { remap_values(a, info, *pairs, nullptr); });
+  }
+  if (particles)
+    for_location(part, Location::pair, [&](const FieldInfo& info, auto& a) {
+      if constexpr (std::is_integral_v<typename std::decay_t<decltype(a)>::value_type>)
+        if (info.follow == Follow::particle_index) renumber(a, new_of_old, "particle");
+    });
+}
+
+void resize_particles(ParticlePart& part, std::size_t n) {
+  part.visit_all_fields([&](const FieldInfo& info, auto& a) {
+    using T = typename std::decay_t<decltype(a)>::value_type;
+    if (info.location != Location::particle) return;
+    a.assign(n * static_cast<std::size_t>(info.components), initial_value<T>(info));
+  });
+  for (std::size_t i = 0; i < n; ++i) part.id[i] = static_cast<std::int64_t>(i);
+}
 
 std::optional<EntityRemap> colour_order(const Part& part) {
   if (std::is_sorted(part.colour.begin(), part.colour.end())) return std::nullopt;
@@ -286,15 +324,15 @@ void apply_remap(Model& model, const Remap& remap) {
   if (remap.nodes)
     for (NodeSet& set : model.node_sets) follow_set(set.nodes, *remap.nodes, node_map);
   for (FacetSet& set : model.facet_sets) follow_facets(model, set, element_maps, remap.nodes ? &node_map : nullptr);
-  for (const auto& [pp, r] : remap.particles) {
-    const auto it = remap.pairs.find(pp);
-    remap_particles(model, pp, r, it == remap.pairs.end() ? nullptr : &it->second);
-  }
-  for (const auto& [pp, r] : remap.pairs) {
-    if (remap.particles.count(pp)) continue;
-    ParticlePart& part = model.particle_parts.at(pp);
-    validate(r, part.system.pairs.count(), "pairs");
-    part.visit_pair_fields([&](const FieldInfo& info, auto& a) { remap_values(a, info, r, nullptr); });
+  for (std::size_t pp = 0; pp < model.particle_parts.size(); ++pp) {
+    const auto particles = remap.particles.find(static_cast<int>(pp));
+    const auto pairs = remap.pairs.find(static_cast<int>(pp));
+    if (particles == remap.particles.end() && pairs == remap.pairs.end()) continue;
+    ParticlePart& part = model.particle_parts[pp];
+    apply_particle_remap(part, particles == remap.particles.end() ? nullptr : &particles->second,
+                         pairs == remap.pairs.end() ? nullptr : &pairs->second, &model.next_particle_id);
+    if (part.model) part.model->after_change(part);
+    part.stable_time_step = 0;  // the pairs may have changed: the model's bound is computed again
   }
   // Elements stay grouped by colour: a change that reordered them is followed by the stable
   // sort that groups them again (elements keep their colours).

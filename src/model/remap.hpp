@@ -2,7 +2,7 @@
 // the automata's contact update and, later, conversion to particles and remeshing each describe
 // what they change as a Remap; apply_remap is the only code that moves per-entity data, and it
 // does so for every declared field (src/model/fields.hpp) of the entities that change. The caller
-// then lets whatever caches topology update (src/solver/topology.hpp), as MFEM's examples do with
+// then lets whatever caches topology update (src/model/topology.hpp), as MFEM's examples do with
 // `fespace.Update(); x.Update();` after a mesh change. Theory of the rules and the invariants:
 // docs/architecture.md, "Topology changes".
 #pragma once
@@ -75,7 +75,7 @@ struct Remap {
 
 /// Whatever caches something that depends on the topology (a contact surface, lists of prescribed
 /// degrees of freedom, a pair adjacency) implements this and is told of every change
-/// (src/solver/topology.hpp).
+/// (src/model/topology.hpp).
 class TopologyListener {
  public:
   virtual ~TopologyListener() = default;
@@ -90,6 +90,19 @@ class TopologyListener {
 /// colour (colour_begin). Throws std::logic_error for an inconsistent remap (a removed node still
 /// held by an element, an old entity continued twice, ...).
 void apply_remap(Model& model, const Remap& remap);
+
+/// The same for one particle part alone (a sample being built, or its pairs changing): its
+/// particles (may be null) and its pairs (may be null: then, if the particles change, the pairs
+/// of two continued particles are kept), every declared field of the part and of its model, its
+/// particle sets and pair ends. The model's derived state is not rebuilt (ParticleModel::
+/// after_change): the caller does that once born entities have their values. `next_id` gives born
+/// particles their ids (null: they take none).
+void apply_particle_remap(ParticlePart& part, const EntityRemap* particles, const EntityRemap* pairs,
+                          std::int64_t* next_id);
+
+/// Sizes every declared field of a particle part and of its model for n particles at their
+/// initial values (ids 0 … n−1).
+void resize_particles(ParticlePart& part, std::size_t n);
 
 /// The permutation that sorts a part's elements by colour, keeping their order within a colour
 /// (nullopt: already sorted).

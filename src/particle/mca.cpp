@@ -21,13 +21,14 @@
 
 #include <Eigen/Dense>
 
+#include "core/deterministic_sum.hpp"
 #include "core/error.hpp"
 
 namespace shard {
 
 namespace {
 
-constexpr std::size_t kBlock = 2048;  // items per deterministic block (fixed, not per thread)
+constexpr std::size_t kBlock = kDeterministicBlock;  // items per block (fixed, not per thread)
 
 inline double dot(const double* a, const double* b, int n) {
   double s = 0;
@@ -75,7 +76,7 @@ inline double stress_intensity(const double* s) {
 
 /// Averaged stress of eq. (3) from the moment sum M = (1/V) Σ q n⊗F (3×3 row-major): its
 /// symmetric part, read through A⁻¹ for an automaton with missing neighbours.
-inline void averaged_stress(const ParticleSystem& ps, std::size_t i, const double* M, double* s) {
+inline void averaged_stress(const MCAState& ps, std::size_t i, const double* M, double* s) {
   double B[9];
   const int f = ps.fabric_index[i];
   if (f >= 0) {
@@ -157,13 +158,13 @@ inline double criterion_value(const BondLaw& law, const double* T) {
 
 /// The averaged stresses of the pair's two automata interpolated to the contact point (weights
 /// q_ji/r and q_ij/r; half the sizes before the first step), 6 components.
-inline void interpolated_pair_stress(const ParticleSystem& ps, std::size_t p, double* S) {
+inline void interpolated_pair_stress(const ParticlePart& pt, const MCAState& ps, std::size_t p, double* S) {
   const PairList& P = ps.pairs;
   const int i = P.i[p], j = P.j[p];
   double qi = P.q_ij[p], qj = P.q_ji[p];
   if (qi + qj <= 0) {
-    qi = 0.5 * ps.d[i];
-    qj = 0.5 * ps.d[j];
+    qi = pt.radius[i];
+    qj = pt.radius[j];
   }
   const double wi = qj / (qi + qj), wj = qi / (qi + qj);
   const double* a = &ps.stress[6 * i];
@@ -175,10 +176,10 @@ inline void interpolated_pair_stress(const ParticleSystem& ps, std::size_t p, do
 /// specific forces of the pair, and the components across the pair interpolated from the
 /// averaged stresses of the two automata (weights q_ji/r and q_ij/r).
 template <int D>
-void pair_tensor(const ParticleSystem& ps, std::size_t p, const double* n, double* T) {
+void pair_tensor(const ParticlePart& pt, const MCAState& ps, std::size_t p, const double* n, double* T) {
   const PairList& P = ps.pairs;
   double A[6];
-  interpolated_pair_stress(ps, p, A);
+  interpolated_pair_stress(pt, ps, p, A);
   const double xx = A[0], yy = A[1], zz = A[2], xy = A[3], yz = A[4], xz = A[5];
   double S[9];
   S[0] = xx, S[1] = xy, S[2] = xz, S[3] = xy, S[4] = yy, S[5] = yz, S[6] = xz, S[7] = yz, S[8] = zz;
@@ -203,10 +204,10 @@ void pair_tensor(const ParticleSystem& ps, std::size_t p, const double* n, doubl
 /// Mean and von Mises equivalent of the pair tensor of eq. (16) without forming it: with
 /// P = I − n⊗n, |σ^ij|² = |PΣ̄P|² + η² + 2|τ|² and |PΣ̄P|² = |Σ̄|² − 2|Σ̄n|² + (n·Σ̄n)².
 template <int D>
-inline void pair_invariants(const ParticleSystem& ps, std::size_t p, const double* n, double& mean, double& eq) {
+inline void pair_invariants(const ParticlePart& pt, const MCAState& ps, std::size_t p, const double* n, double& mean, double& eq) {
   const PairList& P = ps.pairs;
   double S[6];
-  interpolated_pair_stress(ps, p, S);
+  interpolated_pair_stress(pt, ps, p, S);
   const double nz = D == 3 ? n[2] : 0.0;
   const double Sn[3] = {S[0] * n[0] + S[3] * n[1] + S[5] * nz, S[3] * n[0] + S[1] * n[1] + S[4] * nz,
                         S[5] * n[0] + S[4] * n[1] + S[2] * nz};
@@ -255,16 +256,16 @@ inline void pair_force(PairList& P, std::size_t p, const double* n, double* F) {
 /// Pass A over pairs [p0, p1): see the file comment. sums: [0] friction, [1] breaking (torque
 /// springs only; the rest of breaking is booked in pass D).
 template <int D>
-void pair_pass(ParticleSystem& ps, const std::vector<double>& x_old, const std::vector<double>& dth,
+void pair_pass(const ParticlePart& pt, MCAState& ps, const std::vector<double>& x_old, const std::vector<double>& dth,
                double dt, const MCAScratch& s, std::size_t p0, std::size_t p1, double* sums) {
   constexpr int R = D == 2 ? 1 : 3;
   PairList& P = ps.pairs;
-  const std::vector<double>& x = ps.x;
+  const std::vector<double>& x = pt.x;
   double friction = 0, breaking = 0;
   for (std::size_t p = p0; p < p1; ++p) {
     const int i = P.i[p], j = P.j[p];
-    const double Gi = s.shear[ps.material[i]], Gj = s.shear[ps.material[j]];
-    const double Ri = 0.5 * ps.d[i], Rj = 0.5 * ps.d[j];
+    const double Gi = s.shear[pt.material[i]], Gj = s.shear[pt.material[j]];
+    const double Ri = pt.radius[i], Rj = pt.radius[j];
     double ro[D], rn[D], rm[D], du[D];
     for (int a = 0; a < D; ++a) {
       ro[a] = x_old[D * j + a] - x_old[D * i + a];
@@ -287,15 +288,15 @@ void pair_pass(ParticleSystem& ps, const std::vector<double>& x_old, const std::
     const BondLaw* law = P.law[p] >= 0 ? &ps.bond_laws[P.law[p]] : nullptr;
 
     // --- fracture criterion on the pair tensor, eqs. (16)-(17), with the state of the last step
-    if (law && law->criterion != BondCriterion::none && P.state[p] == PairState::linked) {
+    if (law && law->criterion != BondCriterion::none && P.state_of(p) == PairState::linked) {
       double value;
       if (law->criterion == BondCriterion::mohr_coulomb) {
         double T[9];
-        pair_tensor<D>(ps, p, no, T);
+        pair_tensor<D>(pt, ps, p, no, T);
         value = criterion_value(*law, T);
       } else {
         double mean, eq;
-        pair_invariants<D>(ps, p, no, mean, eq);
+        pair_invariants<D>(pt, ps, p, no, mean, eq);
         value = invariant_criterion_value(*law, mean, eq);
       }
       if (value >= 1) {
@@ -304,9 +305,9 @@ void pair_pass(ParticleSystem& ps, const std::vector<double>& x_old, const std::
             (law->breaking == BondBreaking::stable && law->strain_width <= 0) ||
             (law->breaking == BondBreaking::unstable && law->crack_speed <= 0)) {
           P.k_link[p] = 0;
-          P.state[p] = PairState::unlinked;
+          P.set_state(p, PairState::unlinked);
         } else {
-          P.state[p] = PairState::breaking;
+          P.set_state(p, PairState::breaking);
           const double tn = std::sqrt(dot(&P.tau[R * p], &P.tau[R * p], R));
           P.eps_onset[p] = pair_equivalent_strain(lo, P.r0[p], tn, Gi, Gj);
         }
@@ -315,7 +316,7 @@ void pair_pass(ParticleSystem& ps, const std::vector<double>& x_old, const std::
 
     // --- shear: relative tangential displacement at the contact point, eqs. (11)-(12), with the
     // pair's rotation taken from the positions and each automaton's rotation from dtheta.
-    const double ci = s.many_body[ps.material[i]], cj = s.many_body[ps.material[j]];
+    const double ci = s.many_body[pt.material[i]], cj = s.many_body[pt.material[j]];
     double qi = Ri * (1 + P.xi_ij[p]), qj = Rj * (1 + P.xi_ji[p]);
     const double inv_q = 1 / (qi + qj);
     const double li = qi * inv_q, lj = qj * inv_q;
@@ -329,7 +330,7 @@ void pair_pass(ParticleSystem& ps, const std::vector<double>& x_old, const std::
       slip[0] = dl;
       tc_old[0] = P.tau_c[p];
       P.tau[p] += shear_k * dl;
-      if (P.state[p] != PairState::linked) P.tau_c[p] += shear_k * dl;
+      if (P.state_of(p) != PairState::linked) P.tau_c[p] += shear_k * dl;
       P.phi[p] += dth[j] - dth[i];
     } else {
       double w[3], sp[3], dl[3];
@@ -343,7 +344,7 @@ void pair_pass(ParticleSystem& ps, const std::vector<double>& x_old, const std::
       double* tau = &P.tau[3 * p];
       double* tauc = &P.tau_c[3 * p];
       double* phi = &P.phi[3 * p];
-      const bool contact_part = P.state[p] != PairState::linked;  // τ_c is zero while linked
+      const bool contact_part = P.state_of(p) != PairState::linked;  // τ_c is zero while linked
       const MinimalRotation turn(no, nn);
       turn.apply(tau);
       if (contact_part) turn.apply(tauc);
@@ -359,7 +360,7 @@ void pair_pass(ParticleSystem& ps, const std::vector<double>& x_old, const std::
         tc_old[a] = tauc[a];
         slip[a] = dl[a];
         tau[a] += shear_k * dl[a];
-        if (P.state[p] != PairState::linked) tauc[a] += shear_k * dl[a];
+        if (P.state_of(p) != PairState::linked) tauc[a] += shear_k * dl[a];
         phi[a] += dth[3 * j + a] - dth[3 * i + a];
       }
     }
@@ -379,7 +380,7 @@ void pair_pass(ParticleSystem& ps, const std::vector<double>& x_old, const std::
 
     // --- gradual breaking: k_link falls (stable: with the pair equivalent strain; unstable: the
     // crack crosses the contact at V_crack).
-    if (P.state[p] == PairState::breaking) {
+    if (P.state_of(p) == PairState::breaking) {
       double k = P.k_link[p];
       if (law->breaking == BondBreaking::unstable) {
         const double width = D == 3 ? std::sqrt(P.area[p]) : P.area[p] / ps.thickness;
@@ -391,7 +392,7 @@ void pair_pass(ParticleSystem& ps, const std::vector<double>& x_old, const std::
       }
       if (k <= 0) {
         k = 0;
-        P.state[p] = PairState::unlinked;
+        P.set_state(p, PairState::unlinked);
       }
       P.k_link[p] = k;
     }
@@ -451,7 +452,7 @@ void pair_pass(ParticleSystem& ps, const std::vector<double>& x_old, const std::
 
 /// Averaged stress of eq. (3) (in-plane only in 2D) from the pair forces.
 template <int D>
-void gather_stress(const ParticleSystem& ps, std::size_t i, double* s) {
+void gather_stress(const MCAState& ps, std::size_t i, double* s) {
   const PairList& P = ps.pairs;
   double M[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
   for (int e = ps.adjacency.start[i]; e < ps.adjacency.start[i + 1]; ++e) {
@@ -471,7 +472,7 @@ void gather_stress(const ParticleSystem& ps, std::size_t i, double* s) {
 
 /// σ_zz of a 2D automaton: 0 in plane stress; in plane strain, for an elastic material,
 /// λ tr ε = 2ν σ_m2 (σ_m2: in-plane mean).
-inline double plane_zz(const ParticleSystem& ps, const MCAMaterial& m, const double* s) {
+inline double plane_zz(const MCAState& ps, const MCAMaterial& m, const double* s) {
   if (ps.plane == PlaneMode::plane_stress) return 0;
   return m.poisson * (s[0] + s[1]);
 }
@@ -480,33 +481,13 @@ inline double plane_zz(const ParticleSystem& ps, const MCAMaterial& m, const dou
 
 double bond_criterion_value(const BondLaw& law, const double* T) { return criterion_value(law, T); }
 
-std::vector<EnergyTerm> mca_energy_terms() {
-  using G = EnergyGroup;
-  namespace r = energy_rank;
-  return {{"particle_elastic", "elastic energy the automata and their pairs store now", r::particle_elastic,
-           {{G::internal, +1}}, "-"},
-          {"particle_friction", "dissipated by the Amontons sliding of unlinked pairs of automata", r::particle_friction,
-           {{G::dissipated, +1}}, "friction"}};
-}
-
-double deterministic_sum(const std::vector<double>& values) {
-  double total = 0;
-  for (std::size_t b0 = 0; b0 < values.size(); b0 += kBlock) {
-    double part = 0;
-    const std::size_t b1 = std::min(values.size(), b0 + kBlock);
-    for (std::size_t k = b0; k < b1; ++k) part += values[k];
-    total += part;
-  }
-  return total;
-}
-
 namespace {
 
 template <int D>
-MCADissipation forces_impl(ParticleSystem& ps, const std::vector<double>& x_old,
+MCADissipation forces_impl(ParticlePart& pt, MCAState& ps, const std::vector<double>& x_old,
                            const std::vector<double>& dth, double dt, bool first_step, MCAScratch& s) {
   constexpr int R = D == 2 ? 1 : 3;
-  const std::size_t n = ps.count(), np = ps.pairs.count();
+  const std::size_t n = pt.count(), np = ps.pairs.count();
   s.many_body.resize(ps.materials.size());
   s.shear.resize(ps.materials.size());
   bool any_plastic = false;
@@ -535,7 +516,7 @@ MCADissipation forces_impl(ParticleSystem& ps, const std::vector<double>& x_old,
   std::vector<double> pair_sums(2 * nbp, 0.0);
 #pragma omp parallel for schedule(static)
   for (std::size_t b = 0; b < nbp; ++b)
-    pair_pass<D>(ps, x_old, dth, dt, s, b * kBlock, std::min(np, (b + 1) * kBlock), &pair_sums[2 * b]);
+    pair_pass<D>(pt, ps, x_old, dth, dt, s, b * kBlock, std::min(np, (b + 1) * kBlock), &pair_sums[2 * b]);
 
   const std::size_t nba = (n + kBlock - 1) / kBlock;
 
@@ -548,7 +529,7 @@ MCADissipation forces_impl(ParticleSystem& ps, const std::vector<double>& x_old,
 #pragma omp parallel for schedule(static)
     for (std::size_t b = 0; b < nba; ++b) {
       for (std::size_t i = b * kBlock; i < std::min(n, (b + 1) * kBlock); ++i) {
-        const MCAMaterial& m = ps.materials[ps.material[i]];
+        const MCAMaterial& m = ps.materials[pt.material[i]];
         if (!m.plastic()) continue;
         double st[6];
         gather_stress<D>(ps, i, st);
@@ -585,12 +566,12 @@ MCADissipation forces_impl(ParticleSystem& ps, const std::vector<double>& x_old,
         const int i = P.i[p], j = P.j[p];
         const double Mi = s.return_factor[i], Mj = s.return_factor[j];
         if (Mi == 1 && Mj == 1) continue;
-        const double wi = ps.d[i] / ps.materials[ps.material[i]].shear_modulus();
-        const double wj = ps.d[j] / ps.materials[ps.material[j]].shear_modulus();
+        const double wi = (2 * pt.radius[i]) / ps.materials[pt.material[i]].shear_modulus();
+        const double wj = (2 * pt.radius[j]) / ps.materials[pt.material[j]].shear_modulus();
         const double eta = P.eta[p];
-        const double Gi = ps.materials[ps.material[i]].shear_modulus(), Gj = ps.materials[ps.material[j]].shear_modulus();
-        const double ci = s.many_body[ps.material[i]], cj = s.many_body[ps.material[j]];
-        const double Ri = 0.5 * ps.d[i], Rj = 0.5 * ps.d[j];
+        const double Gi = ps.materials[pt.material[i]].shear_modulus(), Gj = ps.materials[pt.material[j]].shear_modulus();
+        const double ci = s.many_body[pt.material[i]], cj = s.many_body[pt.material[j]];
+        const double Ri = pt.radius[i], Rj = pt.radius[j];
         const double mi = ps.sigma_mean_used[i], mj = ps.sigma_mean_used[j];
         const double before = pair_energy(P.area[p], P.k_link[p], eta, dot(&P.tau[R * p], &P.tau[R * p], R),
                                           dot(&P.tau_c[R * p], &P.tau_c[R * p], R), Ri, Gi, ci, mi, Rj, Gj, cj, mj);
@@ -638,9 +619,9 @@ MCADissipation forces_impl(ParticleSystem& ps, const std::vector<double>& x_old,
       for (int k = 0; k < 9; ++k) M[k] *= inv;
       double st[6];
       averaged_stress(ps, i, M, st);
-      const MCAMaterial& m = ps.materials[ps.material[i]];
-      for (int a = 0; a < D; ++a) ps.force[D * i + a] = f[a];
-      for (int a = 0; a < R; ++a) ps.torque[R * i + a] = t[a];
+      const MCAMaterial& m = ps.materials[pt.material[i]];
+      for (int a = 0; a < D; ++a) pt.force[D * i + a] = f[a];
+      for (int a = 0; a < R; ++a) pt.torque[R * i + a] = t[a];
       double mean_mb;  // the mean stress the many-body term uses: 3D mean, 2D in-plane mean
       if constexpr (D == 2) {
         st[2] = m.plastic() && ps.plane == PlaneMode::plane_strain ? ps.stress[6 * i + 2] : plane_zz(ps, m, st);
@@ -666,17 +647,17 @@ MCADissipation forces_impl(ParticleSystem& ps, const std::vector<double>& x_old,
 
 }  // namespace
 
-MCADissipation mca_forces(ParticleSystem& ps, const std::vector<double>& x_old,
-                          const std::vector<double>& dtheta, double dt, bool first_step,
-                          MCAScratch& scratch) {
+MCADissipation mca_forces(ParticlePart& pt, double dt, bool first_step) {
+  MCAState& ps = mca_state(pt);
   SHARD_ASSERT(ps.dim == 2 || ps.dim == 3, "dimension " << ps.dim);
-  SHARD_ASSERT(ps.pairs.force.size() == ps.pairs.count() * ps.dim, "finalize() the particle system first");
-  return ps.dim == 2 ? forces_impl<2>(ps, x_old, dtheta, dt, first_step, scratch)
-                     : forces_impl<3>(ps, x_old, dtheta, dt, first_step, scratch);
+  SHARD_ASSERT(ps.pairs.force.size() == ps.pairs.count() * ps.dim, "finalize_automata() the sample first");
+  return ps.dim == 2 ? forces_impl<2>(pt, ps, pt.x_old, pt.dtheta, dt, first_step, ps.scratch)
+                     : forces_impl<3>(pt, ps, pt.x_old, pt.dtheta, dt, first_step, ps.scratch);
 }
 
-double mca_elastic_energy(const ParticleSystem& ps) {
-  const std::size_t n = ps.count(), np = ps.pairs.count();
+double mca_elastic_energy(const ParticlePart& pt) {
+  const MCAState& ps = mca_state(pt);
+  const std::size_t n = pt.count(), np = ps.pairs.count();
   const int R = ps.rot_dim();
   const PairList& P = ps.pairs;
   std::vector<double> c(ps.materials.size()), K(ps.materials.size());
@@ -691,7 +672,7 @@ double mca_elastic_energy(const ParticleSystem& ps) {
   // of a full neighbourhood the automaton has (tr A / dim).
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
-    const int mat = ps.material[i];
+    const int mat = pt.material[i];
     const double m = ps.sigma_mean_used[i];
     double share = 1;
     if (ps.fabric_index[i] >= 0) {
@@ -704,29 +685,19 @@ double mca_elastic_energy(const ParticleSystem& ps) {
 #pragma omp parallel for schedule(static)
   for (std::size_t p = 0; p < np; ++p) {
     const int i = P.i[p], j = P.j[p];
-    const int mi = ps.material[i], mj = ps.material[j];
+    const int mi = pt.material[i], mj = pt.material[j];
     e[n + p] = pair_energy(P.area[p], P.k_link[p], P.eta[p], dot(&P.tau[R * p], &P.tau[R * p], R),
-                           dot(&P.tau_c[R * p], &P.tau_c[R * p], R), 0.5 * ps.d[i], ps.materials[mi].shear_modulus(),
-                           c[mi], ps.sigma_mean_used[i], 0.5 * ps.d[j], ps.materials[mj].shear_modulus(), c[mj],
+                           dot(&P.tau_c[R * p], &P.tau_c[R * p], R), pt.radius[i], ps.materials[mi].shear_modulus(),
+                           c[mi], ps.sigma_mean_used[i], pt.radius[j], ps.materials[mj].shear_modulus(), c[mj],
                            ps.sigma_mean_used[j]) +
                0.5 * P.k_link[p] * P.kappa[p] * dot(&P.phi[R * p], &P.phi[R * p], R);
   }
   return deterministic_sum(e);
 }
 
-double mca_kinetic_energy(const ParticleSystem& ps) {
-  const std::size_t n = ps.count();
-  const int D = ps.dim, R = ps.rot_dim();
-  std::vector<double> e(n);
-#pragma omp parallel for schedule(static)
-  for (std::size_t i = 0; i < n; ++i)
-    e[i] = 0.5 * ps.mass[i] * dot(&ps.v[D * i], &ps.v[D * i], D) +
-           0.5 * ps.inertia[i] * dot(&ps.omega[R * i], &ps.omega[R * i], R);
-  return deterministic_sum(e);
-}
-
-double mca_stable_time_step(const ParticleSystem& ps) {
-  const std::size_t n = ps.count();
+double mca_stable_time_step(const ParticlePart& pt) {
+  const MCAState& ps = mca_state(pt);
+  const std::size_t n = pt.count();
   // Gershgorin bound per automaton: ω² ≤ 2 Σ_pairs k / m (translation, with the P-wave modulus,
   // which includes the many-body term) and 2 Σ_pairs (q² k_t + κ) / J (rotation).
   std::vector<double> kt(n, 0.0), kr(n, 0.0);
@@ -735,7 +706,7 @@ double mca_stable_time_step(const ParticleSystem& ps) {
     const int i = P.i[p], j = P.j[p];
     for (int side = 0; side < 2; ++side) {
       const int a = side ? j : i;
-      const MCAMaterial& m = ps.materials[ps.material[a]];
+      const MCAMaterial& m = ps.materials[pt.material[a]];
       const double G = m.shear_modulus(), K = m.bulk_modulus();
       double Mp = K + 4 * G / 3;
       if (ps.dim == 2 && ps.plane == PlaneMode::plane_stress) Mp = m.young / (1 - m.poisson * m.poisson);
@@ -749,13 +720,13 @@ double mca_stable_time_step(const ParticleSystem& ps) {
   for (std::size_t i = 0; i < n; ++i) {
     // An automaton may gain contacts during the run: never less than a full close-packed
     // neighbourhood of its own size (12 in 3D, 6 in 2D).
-    const MCAMaterial& m = ps.materials[ps.material[i]];
+    const MCAMaterial& m = ps.materials[pt.material[i]];
     const double Mp = m.bulk_modulus() + 4 * m.shear_modulus() / 3;
-    const double full = (ps.dim == 3 ? 12 : 6) * ps.face_area[i] * Mp / ps.d[i];
+    const double full = (ps.dim == 3 ? 12 : 6) * ps.face_area[i] * Mp / (2 * pt.radius[i]);
     kt[i] = std::max(kt[i], full);
-    kr[i] = std::max(kr[i], (ps.dim == 3 ? 12 : 6) * 0.25 * ps.d[i] * ps.face_area[i] * 2 * m.shear_modulus());
-    w2 = std::max(w2, 2 * kt[i] / ps.mass[i]);
-    w2 = std::max(w2, 2 * 2 * kr[i] / ps.inertia[i]);
+    kr[i] = std::max(kr[i], (ps.dim == 3 ? 12 : 6) * 0.25 * (2 * pt.radius[i]) * ps.face_area[i] * 2 * m.shear_modulus());
+    w2 = std::max(w2, 2 * kt[i] / pt.mass[i]);
+    w2 = std::max(w2, 2 * 2 * kr[i] / pt.inertia[i]);
   }
   return w2 > 0 ? 2 / std::sqrt(w2) : std::numeric_limits<double>::infinity();
 }

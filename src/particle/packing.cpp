@@ -9,6 +9,7 @@
 #include <Eigen/Dense>
 
 #include "core/error.hpp"
+#include "model/remap.hpp"
 
 namespace shard {
 
@@ -62,15 +63,10 @@ LatticeCell lattice_cell(Lattice lattice, double d) {
 
 double uniform01(std::mt19937_64& rng) { return static_cast<double>(rng() >> 11) * 0x1.0p-53; }
 
-ParticleSystem build_packing(const PackingSpec& spec, std::vector<MCAMaterial> materials) {
+ParticlePart build_packing(const PackingSpec& spec, std::vector<MCAMaterial> materials) {
   if (spec.size <= 0) throw InputError("packing: automaton size must be positive");
   if (materials.empty()) throw InputError("packing: no material");
   const LatticeCell cell = lattice_cell(spec.lattice, spec.size);
-  ParticleSystem ps;
-  ps.dim = cell.dim;
-  ps.plane = cell.dim == 2 ? spec.plane : PlaneMode::none;
-  ps.thickness = cell.dim == 2 ? spec.thickness : 1.0;
-  ps.materials = std::move(materials);
   const double volume = cell.dim == 2 ? cell.volume * spec.thickness : cell.volume;
   const double face = cell.dim == 2 ? cell.face * spec.thickness : cell.face;
   const int D = cell.dim;
@@ -104,6 +100,7 @@ ParticleSystem build_packing(const PackingSpec& spec, std::vector<MCAMaterial> m
   }
   if (D == 2) imin[2] = imax[2] = 0;
   const long kz = D == 3 ? 1 : 0;
+  std::vector<double> sites;
   for (long k = imin[2]; k <= imax[2]; ++k)
     for (long j = imin[1]; j <= imax[1]; ++j)
       for (long i = imin[0]; i <= imax[0]; ++i)
@@ -114,28 +111,42 @@ ParticleSystem build_packing(const PackingSpec& spec, std::vector<MCAMaterial> m
           double pos[3] = {origin[0] + px, origin[1] + py, origin[2] + p[2]};
           bool inside = true;
           for (int a = 0; a < D; ++a) inside = inside && pos[a] >= spec.lo[a] - tol && pos[a] <= spec.hi[a] + tol;
-          if (inside) ps.add_automaton(pos, spec.size, volume, face, spec.material);
+          if (inside) sites.insert(sites.end(), pos, pos + D);
         }
-  if (ps.count() == 0) throw InputError("packing: the box holds no automaton; make it larger than the size");
-  return ps;
+  const std::size_t n = sites.size() / static_cast<std::size_t>(D);
+  if (n == 0) throw InputError("packing: the box holds no automaton; make it larger than the size");
+  ParticlePart part = make_automata(D, spec.plane, spec.thickness, std::move(materials), n);
+  MCAState& s = mca_state(part);
+  part.x = std::move(sites);
+  for (std::size_t i = 0; i < n; ++i) {
+    part.radius[i] = 0.5 * spec.size;
+    part.material[i] = spec.material;
+    s.volume[i] = volume;
+    s.face_area[i] = face;
+  }
+  return part;
 }
 
-void finish_sample(ParticleSystem& ps, double bond_tolerance) {
-  ps.pairs = PairList{};
-  ps.fabric_index.clear();
-  ps.bond_neighbours(bond_tolerance);
-  ps.finalize();
+void finish_sample(ParticlePart& ps, double bond_tolerance) {
+  MCAState& s = mca_state(ps);
+  if (s.pairs.count() > 0) {
+    const EntityRemap none = EntityRemap::keeping(std::vector<std::uint8_t>(s.pairs.count(), 0));
+    apply_particle_remap(ps, nullptr, &none, nullptr);
+  }
+  bond_neighbours(ps, bond_tolerance);
+  compute_fabric(ps);
+  finalize_automata(ps);
 }
 
-void assign_material(ParticleSystem& ps, const std::function<bool(const double*)>& inside, int material) {
-  SHARD_ASSERT(material >= 0 && material < static_cast<int>(ps.materials.size()), "material " << material);
+void assign_material(ParticlePart& ps, const std::function<bool(const double*)>& inside, int material) {
+  SHARD_ASSERT(material >= 0 && material < static_cast<int>(mca_state(ps).materials.size()), "material " << material);
   for (std::size_t i = 0; i < ps.count(); ++i)
     if (inside(&ps.x[ps.dim * i])) ps.material[i] = material;
 }
 
 namespace {
 
-void bounds(const ParticleSystem& ps, double* lo, double* hi) {
+void bounds(const ParticlePart& ps, double* lo, double* hi) {
   for (int a = 0; a < ps.dim; ++a) {
     lo[a] = 1e300;
     hi[a] = -1e300;
@@ -147,7 +158,7 @@ void bounds(const ParticleSystem& ps, double* lo, double* hi) {
     }
 }
 
-double dist2(const ParticleSystem& ps, std::size_t i, const double* c) {
+double dist2(const ParticlePart& ps, std::size_t i, const double* c) {
   double s = 0;
   for (int a = 0; a < ps.dim; ++a) {
     const double dx = ps.coord(i, a) - c[a];
@@ -158,7 +169,7 @@ double dist2(const ParticleSystem& ps, std::size_t i, const double* c) {
 
 }  // namespace
 
-int add_inclusions(ParticleSystem& ps, const InclusionSpec& spec) {
+int add_inclusions(ParticlePart& ps, const InclusionSpec& spec) {
   if (spec.volume_fraction <= 0 || spec.volume_fraction >= 1)
     throw InputError("inclusions: volume fraction must be in (0, 1)");
   std::mt19937_64 rng(spec.seed);
@@ -198,7 +209,7 @@ int add_inclusions(ParticleSystem& ps, const InclusionSpec& spec) {
   return static_cast<int>(centres.size());
 }
 
-int add_pores(ParticleSystem& ps, const PoreSpec& spec) {
+int add_pores(ParticlePart& ps, const PoreSpec& spec) {
   if (spec.porosity <= 0 || spec.porosity >= 1) throw InputError("pores: porosity must be in (0, 1)");
   std::mt19937_64 rng(spec.seed);
   const std::size_t n = ps.count();
@@ -213,7 +224,7 @@ int add_pores(ParticleSystem& ps, const PoreSpec& spec) {
     remove[c] = 1;
     ++removed;
     if (spec.with_neighbours) {
-      const double reach = 1.1 * ps.d[c];
+      const double reach = 1.1 * (2 * ps.radius[c]);
       for (std::size_t i = 0; i < n; ++i)
         if (!remove[i] && dist2(ps, i, &ps.x[ps.dim * c]) <= reach * reach) {
           remove[i] = 1;
@@ -221,16 +232,19 @@ int add_pores(ParticleSystem& ps, const PoreSpec& spec) {
         }
     }
   }
-  ps.remove_automata(remove);
+  std::vector<std::uint8_t> keep(n);
+  for (std::size_t i = 0; i < n; ++i) keep[i] = !remove[i];
+  const EntityRemap removal = EntityRemap::keeping(keep);
+  apply_particle_remap(ps, &removal, nullptr, nullptr);
   return pores;
 }
 
-int add_interphase(ParticleSystem& ps, const InterphaseSpec& spec) {
-  const int nm0 = static_cast<int>(ps.materials.size());
+int add_interphase(ParticlePart& ps, const InterphaseSpec& spec) {
+  const int nm0 = static_cast<int>(mca_state(ps).materials.size());
   SHARD_ASSERT(spec.inclusion_material < nm0 && spec.matrix_material < nm0, "material index");
   if (spec.levels < 1 || spec.width <= 0) throw InputError("interphase: width and levels must be positive");
-  const MCAMaterial inc = ps.materials[spec.inclusion_material];  // copies: materials grows below
-  const MCAMaterial mat = ps.materials[spec.matrix_material];
+  const MCAMaterial inc = mca_state(ps).materials[spec.inclusion_material];  // copies: materials grows below
+  const MCAMaterial mat = mca_state(ps).materials[spec.matrix_material];
   // Inclusion automata sorted by x for a windowed nearest search.
   std::vector<std::pair<double, int>> incl;
   for (std::size_t i = 0; i < ps.count(); ++i)
@@ -240,18 +254,18 @@ int add_interphase(ParticleSystem& ps, const InterphaseSpec& spec) {
   int changed = 0;
   for (std::size_t i = 0; i < ps.count(); ++i) {
     if (ps.material[i] != spec.matrix_material) continue;
-    const double reach = spec.width + ps.d[i];
+    const double reach = spec.width + (2 * ps.radius[i]);
     auto it = std::lower_bound(incl.begin(), incl.end(), std::make_pair(ps.coord(i, 0) - reach, -1));
     double best = 1e300;
     for (; it != incl.end() && it->first <= ps.coord(i, 0) + reach; ++it)
       best = std::min(best, std::sqrt(dist2(ps, i, &ps.x[ps.dim * it->second])));
-    const double gap = best - ps.d[i];  // 0 for a direct neighbour of the inclusion
+    const double gap = best - (2 * ps.radius[i]);  // 0 for a direct neighbour of the inclusion
     if (gap < spec.width) {
       level[i] = std::min(spec.levels - 1, static_cast<int>(std::max(0.0, gap) / spec.width * spec.levels));
       ++changed;
     }
   }
-  const std::vector<int> old_laws = ps.bond_law_of;
+  const std::vector<int> old_laws = mca_state(ps).bond_law_of;
   for (int l = 0; l < spec.levels; ++l) {
     const double t = (l + 0.5) / spec.levels;  // 0: inclusion, 1: matrix
     MCAMaterial g = mat;
@@ -262,27 +276,27 @@ int add_interphase(ParticleSystem& ps, const InterphaseSpec& spec) {
     g.yield_stress = inc.yield_stress + t * (mat.yield_stress - inc.yield_stress);
     g.hardening = inc.hardening + t * (mat.hardening - inc.hardening);
     g.curve.clear();
-    ps.materials.push_back(g);
+    mca_state(ps).materials.push_back(g);
   }
-  const int nm = static_cast<int>(ps.materials.size());
-  ps.bond_law_of.assign(nm * nm, -1);
+  const int nm = static_cast<int>(mca_state(ps).materials.size());
+  mca_state(ps).bond_law_of.assign(nm * nm, -1);
   auto old = [&](int a, int b) { return old_laws.empty() ? -1 : old_laws[a * nm0 + b]; };
   for (int a = 0; a < nm0; ++a)
-    for (int b = 0; b < nm0; ++b) ps.bond_law_of[a * nm + b] = old(a, b);
+    for (int b = 0; b < nm0; ++b) mca_state(ps).bond_law_of[a * nm + b] = old(a, b);
   const int interface_law = old(spec.matrix_material, spec.inclusion_material) >= 0
                                 ? old(spec.matrix_material, spec.inclusion_material)
                                 : old(spec.matrix_material, spec.matrix_material);
   for (int g = nm0; g < nm; ++g)
     for (int b = 0; b < nm; ++b) {
-      ps.bond_law_of[g * nm + b] = interface_law;
-      ps.bond_law_of[b * nm + g] = interface_law;
+      mca_state(ps).bond_law_of[g * nm + b] = interface_law;
+      mca_state(ps).bond_law_of[b * nm + g] = interface_law;
     }
   for (std::size_t i = 0; i < ps.count(); ++i)
     if (level[i] >= 0) ps.material[i] = nm0 + level[i];
   return changed;
 }
 
-std::vector<int> boundary_layer(const ParticleSystem& ps, int axis, bool at_max, double tol) {
+std::vector<int> boundary_layer(const ParticlePart& ps, int axis, bool at_max, double tol) {
   double lo[3], hi[3];
   bounds(ps, lo, hi);
   std::vector<int> out;

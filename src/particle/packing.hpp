@@ -9,7 +9,7 @@
 #include <random>
 #include <vector>
 
-#include "particle/particle_system.hpp"
+#include "particle/mca_state.hpp"
 
 namespace shard {
 
@@ -27,15 +27,16 @@ struct PackingSpec {
   double bond_tolerance = 0.1;      ///< neighbours within (1 + tol) d are bonded
 };
 
-/// Automata on the lattice points inside the box, with the volume and face area of the
-/// lattice's Voronoi cell. No pairs yet: call finish_sample() after materials, pores etc.
-ParticleSystem build_packing(const PackingSpec& spec, std::vector<MCAMaterial> materials);
+/// A particle part of automata (an MCA state) on the lattice points inside the box, with the
+/// volume and face area of the lattice's Voronoi cell. No pairs yet: call finish_sample() after
+/// materials, pores etc.
+ParticlePart build_packing(const PackingSpec& spec, std::vector<MCAMaterial> materials);
 
-/// Bonds neighbours and finalizes (masses, adjacency).
-void finish_sample(ParticleSystem& ps, double bond_tolerance = 0.1);
+/// Bonds neighbours, computes the fabric and finalizes (masses, pair laws, adjacency).
+void finish_sample(ParticlePart& ps, double bond_tolerance = 0.1);
 
 /// Material `material` for every automaton whose centre satisfies `inside`.
-void assign_material(ParticleSystem& ps, const std::function<bool(const double*)>& inside, int material);
+void assign_material(ParticlePart& ps, const std::function<bool(const double*)>& inside, int material);
 
 /// Uniform number in [0, 1) from the top 53 bits of a 64-bit draw (portable).
 double uniform01(std::mt19937_64& rng);
@@ -49,7 +50,7 @@ struct InclusionSpec {
 };
 /// Places non-overlapping inclusions at random until the fraction of inclusion automata reaches
 /// the target; returns the number of inclusions.
-int add_inclusions(ParticleSystem& ps, const InclusionSpec& spec);
+int add_inclusions(ParticlePart& ps, const InclusionSpec& spec);
 
 struct PoreSpec {
   double porosity = 0.1;        ///< fraction of automata removed
@@ -57,7 +58,7 @@ struct PoreSpec {
   std::uint64_t seed = 1;
 };
 /// Removes automata at random (before bonding); returns the number of pores made.
-int add_pores(ParticleSystem& ps, const PoreSpec& spec);
+int add_pores(ParticlePart& ps, const PoreSpec& spec);
 
 struct InterphaseSpec {
   int inclusion_material = 1, matrix_material = 0;
@@ -67,9 +68,9 @@ struct InterphaseSpec {
 /// Matrix automata within `width` of an inclusion automaton get graded materials (properties
 /// linear from inclusion to matrix over the width). Bond laws of the graded materials copy the
 /// matrix–inclusion law, or the matrix law. Returns the number of automata changed.
-int add_interphase(ParticleSystem& ps, const InterphaseSpec& spec);
+int add_interphase(ParticlePart& ps, const InterphaseSpec& spec);
 
 /// Automata whose coordinate `axis` is within `tol` of the extreme (min or max) of the sample.
-std::vector<int> boundary_layer(const ParticleSystem& ps, int axis, bool at_max, double tol);
+std::vector<int> boundary_layer(const ParticlePart& ps, int axis, bool at_max, double tol);
 
 }  // namespace shard

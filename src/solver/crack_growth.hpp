@@ -14,8 +14,8 @@
 #include "material/material.hpp"
 #include "model/model.hpp"
 #include "core/energy_ledger.hpp"
-#include "solver/step_event.hpp"
-#include "solver/topology.hpp"
+#include "model/step_event.hpp"
+#include "model/topology.hpp"
 
 namespace shard {
 

@@ -7,7 +7,7 @@
 
 #include <cstdint>
 
-#include "solver/step_event.hpp"
+#include "model/step_event.hpp"
 
 namespace shard {
 

@@ -8,6 +8,7 @@
 
 #include "core/error.hpp"
 #include "solver/erosion.hpp"
+#include "solver/integrator.hpp"
 #include "solver/particle_integration.hpp"
 
 namespace shard {
@@ -16,21 +17,6 @@ namespace {
 /// Nodes per chunk of the nodal update. Sums are formed per chunk and then added in chunk order,
 /// so the energies are the same, bit for bit, for any number of threads.
 constexpr std::size_t kNodeChunk = 2048;
-
-/// The degree of freedom a particle constraint holds: its velocity, force and inertia
-/// (translation components 0..dim−1, rotation components after them).
-struct ParticleDof {
-  double& velocity;
-  double& force;
-  double inertia;
-};
-ParticleDof particle_dof(ParticleSystem& ps, const PrescribedDof& c) {
-  const bool rot = c.component >= ps.dim;
-  const std::size_t slot = static_cast<std::size_t>(rot ? ps.rot_dim() : ps.dim) * c.point +
-                           (rot ? c.component - ps.dim : c.component);
-  return {(rot ? ps.omega : ps.v)[slot], (rot ? ps.torque : ps.force)[slot],
-          rot ? ps.inertia[c.point] : ps.mass[c.point]};
-}
 
 [[noreturn]] void inverted_element(const Model& model, const Part& part, std::int64_t element, double time,
                                    std::int64_t step) {
@@ -67,13 +53,22 @@ std::vector<EnergyTerm> solver_energy_terms() {
           {"damping", "dissipated by mass-proportional damping", r::damping, {{G::dissipated, +1}}, ""}};
 }
 
+std::vector<EnergyTerm> particle_energy_terms() {
+  using G = EnergyGroup;
+  namespace r = energy_rank;
+  return {{"particle_elastic", "elastic energy the particles' models store now (automata and their pairs)",
+           r::particle_elastic, {{G::internal, +1}}, "-"},
+          {"particle_friction", "dissipated by sliding between particles (unlinked pairs of automata)",
+           r::particle_friction, {{G::dissipated, +1}}, "friction"}};
+}
+
 ExplicitSolver::ExplicitSolver(Model& model,
                                const std::vector<std::unique_ptr<Material>>& materials,
                                const Loads& loads, SolverSettings settings)
     : model_(model), materials_(materials), loads_(loads), settings_(settings) {
   // The ledger: each piece that does work registers its terms (the contact on attaching).
   EnergyLedger& E = state_.energy;
-  for (auto* terms : {solver_energy_terms, element_energy_terms, mca_energy_terms})
+  for (auto* terms : {solver_energy_terms, element_energy_terms, particle_energy_terms})
     for (auto& t : terms()) E.add(std::move(t));
   terms_ = {E.find("kinetic"),  E.find("initial"),   E.find("external_work"), E.find("damping"),
             E.find("stress_work"), E.find("viscosity"), E.find("hourglass"), E.find("plastic"),
@@ -81,9 +76,8 @@ ExplicitSolver::ExplicitSolver(Model& model,
             E.find("particle_friction")};
   topology_.add(*this);
   topology_changed(model_, Remap{});
-  // The solver's own events: every run compacts eroded elements and lets automata find new
-  // contacts; events a scenario asks for (crack growth) are added after them.
-  own_events_.push_back(std::make_unique<ParticleContactUpdate>());
+  // The solver's own event: every run compacts eroded elements; the events a scenario asks for
+  // (crack growth, the automata's contact search) are added after it.
   own_events_.push_back(std::make_unique<ErosionCompaction>());
   for (auto& e : own_events_) add_event(*e);
 }
@@ -102,6 +96,9 @@ void ExplicitSolver::attach_contact(ContactSystem* contact) {
 }
 
 void ExplicitSolver::topology_changed(const Model& model, const Remap&) {
+  // Non-local neighbourhoods are checked against the points' reference positions every step
+  // (split nodes keep them): kept unless parts come or go.
+  part_caches_.resize(model.parts.size());
   node_dofs_ = prescribed_node_dofs(model);
   particle_dofs_.clear();
   for (const ParticlePart& pp : model.particle_parts) particle_dofs_.push_back(prescribed_particle_dofs(pp));
@@ -117,7 +114,6 @@ void ExplicitSolver::initialise() {
   for (const auto& c : node_dofs_)
     model_.nodes.v[static_cast<std::size_t>(dim) * c.point + c.component] =
         loads_.tables[loads_.prescriptions[c.prescription].table].at(0.0);
-  double kinetic = 0;
   for (std::size_t i = 0; i < model_.nodes.count(); ++i) {
     const double m = model_.nodes.mass[i];
     if (!(m > 0)) {
@@ -127,13 +123,14 @@ void ExplicitSolver::initialise() {
              "outside the parts?)";
       throw RunError(out.str());
     }
-    for (int k = 0; k < dim; ++k) kinetic += 0.5 * m * model_.nodes.v[dim * i + k] * model_.nodes.v[dim * i + k];
   }
-  for (std::size_t p = 0; p < model_.particle_parts.size(); ++p)
+  double kinetic = kinetic_energy(model_.nodes);
+  for (std::size_t p = 0; p < model_.particle_parts.size(); ++p) {
+    const MovingPoints points = moving_points(model_.particle_parts[p]);
     for (const auto& c : particle_dofs_[p])
-      particle_dof(model_.particle_parts[p].system, c).velocity =
-          loads_.tables[loads_.prescriptions[c.prescription].table].at(0.0);
-  for (const ParticlePart& pp : model_.particle_parts) kinetic += mca_kinetic_energy(pp.system);
+      dof_of(points, c).velocity = loads_.tables[loads_.prescriptions[c.prescription].table].at(0.0);
+  }
+  for (const ParticlePart& pp : model_.particle_parts) kinetic += kinetic_energy(pp);
   EnergyLedger ledger = std::move(state_.energy);  // the registered terms stay
   ledger.clear();
   state_ = SolverState{};
@@ -153,8 +150,10 @@ void ExplicitSolver::add_element_forces(ForceSums& total) {
   ctx.dt = state_.dt_half;
   ctx.q_linear = settings_.q_linear;
   ctx.q_quadratic = settings_.q_quadratic;
-  for (Part& part : model_.parts) {
-    const ForceSums sums = add_internal_forces(part, *materials_[part.material], model_.nodes, ctx);
+  part_caches_.resize(model_.parts.size());
+  for (std::size_t p = 0; p < model_.parts.size(); ++p) {
+    Part& part = model_.parts[p];
+    const ForceSums sums = add_internal_forces(part, *materials_[part.material], model_.nodes, ctx, part_caches_[p]);
     if (sums.inverted_element >= 0) inverted_element(model_, part, sums.inverted_element, state_.time, state_.step);
     total.add(sums);
   }
@@ -173,19 +172,16 @@ double ExplicitSolver::add_particle_forces() {
   // (a state function) and each part's limit on the next step.
   auto& E = state_.energy;
   double particle_dt = std::numeric_limits<double>::infinity();
-  particle_scratch_.resize(model_.particle_parts.size());
   double particle_elastic = 0;
-  for (std::size_t p = 0; p < model_.particle_parts.size(); ++p) {
-    ParticlePart& pp = model_.particle_parts[p];
-    const MCADissipation d =
-        particle_forces(pp, state_.step, state_.dt_half, settings_.gravity, particle_scratch_[p]);
+  for (ParticlePart& pp : model_.particle_parts) {
+    const ParticleWork d = particle_forces(pp, state_.step, state_.dt_half, settings_.gravity);
     // The pair forces did the plastic and breaking work beyond what they store: stress work.
-    E[terms_.stress_work] += d.plastic + d.breaking;
+    E[terms_.stress_work] += d.plastic + d.fracture;
     E[terms_.plastic] += d.plastic;
-    E[terms_.fracture] += d.breaking;
+    E[terms_.fracture] += d.fracture;
     E[terms_.particle_friction] += d.friction;
-    particle_elastic += mca_elastic_energy(pp.system);
-    if (pp.system.count() > 0) particle_dt = std::min(particle_dt, particle_time_step_limit(pp));
+    particle_elastic += pp.model ? pp.model->stored_energy(pp) : 0.0;
+    if (pp.count() > 0) particle_dt = std::min(particle_dt, particle_time_step_limit(pp));
   }
   E[terms_.particle_elastic] = particle_elastic;
   return particle_dt;
@@ -259,43 +255,17 @@ double ExplicitSolver::choose_time_step(double element_stable_dt, double particl
   return dt;
 }
 
-void ExplicitSolver::apply_prescribed_velocities(double dt_n, double d1, double d2, double back, double ahead,
-                                                 double& external_back, double& external_ahead) {
-  // Prescribed velocities: replace the force by the one that gives v+ = v_prescribed; the
-  // difference is the reaction, whose work is external work.
-  const int dim = model_.dim();
-  double* V = model_.nodes.v.data();
-  double* F = model_.nodes.force.data();
-  const double* M = model_.nodes.mass.data();
+void ExplicitSolver::apply_prescribed_velocities(const AdvanceCoefficients& c, double& external_back,
+                                                 double& external_ahead) {
+  // Prescribed velocities, nodes and particles alike: the force becomes the one that gives
+  // v+ = v_prescribed; the difference is the reaction, whose work is external work. The
+  // particles' reactions are summed per group for the history (load-displacement curves).
   const double t_half = state_.time + 0.5 * state_.dt_next;
-  for (const auto& c : node_dofs_) {
-    const std::size_t dof = static_cast<std::size_t>(dim) * c.point + c.component;
-    const double m = M[c.point];
-    const double vp = loads_.tables[loads_.prescriptions[c.prescription].table].at(t_half);
-    const double f_needed = m * (vp / d2 - d1 * V[dof]) / dt_n;
-    const double reaction = f_needed - F[dof];
-    external_back += reaction * back * V[dof];
-    external_ahead += reaction * ahead * vp;
-    F[dof] = f_needed;
-  }
-  // The same for prescribed velocities and angular velocities of automata; the reactions are
-  // summed per group for the history (load-displacement curves of virtual tests).
+  apply_prescribed(moving_points(model_.nodes), node_dofs_, loads_, c, t_half, external_back, external_ahead, nullptr);
   particle_reactions_.assign(6 * loads_.particle_groups.size(), 0.0);
   for (std::size_t p = 0; p < model_.particle_parts.size(); ++p)
-    for (const auto& c : particle_dofs_[p]) {
-      const ParticleDof dof = particle_dof(model_.particle_parts[p].system, c);
-      const Prescription& pr = loads_.prescriptions[c.prescription];
-      double& f = dof.force;
-      double& v = dof.velocity;
-      const double m = dof.inertia;
-      const double vp = loads_.tables[pr.table].at(t_half);
-      const double f_needed = m * (vp / d2 - d1 * v) / dt_n;
-      const double reaction = f_needed - f;
-      external_back += reaction * back * v;
-      external_ahead += reaction * ahead * vp;
-      f = f_needed;
-      if (pr.group >= 0) particle_reactions_[6 * pr.group + c.component] += reaction;
-    }
+    apply_prescribed(moving_points(model_.particle_parts[p]), particle_dofs_[p], loads_, c, t_half, external_back,
+                     external_ahead, &particle_reactions_);
 }
 
 void ExplicitSolver::book_contact_work(double dt_n, double d1, double d2, double back, double ahead,
@@ -325,117 +295,66 @@ void ExplicitSolver::book_contact_work(double dt_n, double d1, double d2, double
     }
 }
 
-void ExplicitSolver::advance_nodes(double dt_n, double dt_next, double d1, double d2, double back,
-                                   double ahead, double sums[5]) {
-  auto& nodes = model_.nodes;
-  const int dim = model_.dim();
-  const double alpha = settings_.mass_damping;
-  double* V = nodes.v.data();
-  const double* F = nodes.force.data();
-  const double* M = nodes.mass.data();
-  double* X = nodes.x.data();
-  const auto& g = settings_.gravity;
-  const bool gravity = g[0] != 0 || g[1] != 0 || g[2] != 0;
-  const std::size_t n = nodes.count();
-  const std::size_t chunks = (n + kNodeChunk - 1) / kNodeChunk;
-  constexpr int kSums = 6;  // kinetic, damping back/ahead, gravity back/ahead, first bad node
-  chunk_sums_.assign(kSums * chunks, 0.0);
-#pragma omp parallel for schedule(static)
-  for (std::size_t ch = 0; ch < chunks; ++ch) {
-    double kinetic = 0, damp_back = 0, damp_ahead = 0, grav_back = 0, grav_ahead = 0, bad = -1;
-    const std::size_t end = std::min(n, (ch + 1) * kNodeChunk);
-    for (std::size_t i = ch * kNodeChunk; i < end; ++i) {
-      const double m = M[i];
-      double v2 = 0, vb = 0, va = 0, gb = 0, ga = 0;
-      for (int k = 0; k < dim; ++k) {
-        const std::size_t dof = dim * i + k;
-        const double v_old = V[dof];
-        if (gravity) gb += g[k] * v_old;
-        const double v_new = (d1 * V[dof] + dt_n * (F[dof] / m)) * d2;
-        const double v_mean = 0.5 * (v_old + v_new);
-        v2 += v_mean * v_mean;
-        vb += v_mean * v_old;
-        va += v_mean * v_new;
-        if (gravity) ga += g[k] * v_new;
-        V[dof] = v_new;
-        X[dof] += dt_next * v_new;
-      }
-      grav_back += m * gb * back;
-      grav_ahead += m * ga * ahead;
-      if (!std::isfinite(v2) && bad < 0) bad = static_cast<double>(i);
-      kinetic += 0.5 * m * v2;
-      damp_back += alpha * m * vb * back;  // damping force α m v_n at t_n
-      damp_ahead += alpha * m * va * ahead;
-    }
-    double* out = &chunk_sums_[kSums * ch];
-    out[0] = kinetic;
-    out[1] = damp_back;
-    out[2] = damp_ahead;
-    out[3] = grav_back;
-    out[4] = grav_ahead;
-    out[5] = bad;
-  }
-  for (std::size_t ch = 0; ch < chunks; ++ch) {
-    const double* in = &chunk_sums_[kSums * ch];
-    if (in[5] >= 0) {
-      std::ostringstream out;
-      out << "the velocity of node " << static_cast<std::int64_t>(in[5]) << " is not finite at t = " << state_.time
-          << " s, step " << state_.step << " (the run has become unstable)";
-      throw RunError(out.str());
-    }
-    for (int k = 0; k < 5; ++k) sums[k] += in[k];
-  }
-}
-
 void ExplicitSolver::advance() {
   run_events(StepEvent::Phase::after_forces);
-  const double dt_next = state_.dt_next;
-  const double dt_n = state_.step == 0 ? 0.5 * dt_next : 0.5 * (state_.dt_half + dt_next);
+  AdvanceCoefficients c;
+  c.dt_next = state_.dt_next;
+  c.dt_n = state_.step == 0 ? 0.5 * c.dt_next : 0.5 * (state_.dt_half + c.dt_next);
   // Central difference with mass-proportional damping taken at the mid-point:
   // m (v+ − v−)/Δt = F − α m (v+ + v−)/2  ⇒  v+ = ((1 − αΔt/2) v− + Δt F/m) / (1 + αΔt/2).
-  const double alpha = settings_.mass_damping;
-  const double d1 = 1.0 - 0.5 * alpha * dt_n;
-  const double d2 = 1.0 / (1.0 + 0.5 * alpha * dt_n);
-  const double* V = model_.nodes.v.data();
-  const double* F = model_.nodes.force.data();
-  const double* M = model_.nodes.mass.data();
-  const int dim = model_.dim();
-
+  c.alpha = settings_.mass_damping;
+  c.d1 = 1.0 - 0.5 * c.alpha * c.dt_n;
+  c.d2 = 1.0 / (1.0 + 0.5 * c.alpha * c.dt_n);
+  c.gravity = settings_.gravity;
   // Work of a nodal force F_n is split at t_n: ½Δt_n−1/2 F_n·v_n−1/2 closes the interval
   // [t_n−1/2, t_n] and ½Δt_n+1/2 F_n·v_n+1/2 opens [t_n, t_n+1/2]. The second half is booked
   // next step, so that the reported energies all end at t_n, where the element stress work ends.
-  const double back = 0.5 * state_.dt_half, ahead = 0.5 * dt_next;
+  c.back = 0.5 * state_.dt_half;
+  c.ahead = 0.5 * c.dt_next;
   double external_back = 0, external_ahead = 0;
-  apply_prescribed_velocities(dt_n, d1, d2, back, ahead, external_back, external_ahead);
+  apply_prescribed_velocities(c, external_back, external_ahead);
+  const int dim = model_.dim();
+  const double* V = model_.nodes.v.data();
+  const double* F = model_.nodes.force.data();
+  const double* M = model_.nodes.mass.data();
   for (const auto& [dof, f] : applied_) {
     const double m = M[dof / dim];
-    external_back += f * back * V[dof];
-    external_ahead += f * ahead * ((d1 * V[dof] + dt_n * (F[dof] / m)) * d2);
+    external_back += f * c.back * V[dof];
+    external_ahead += f * c.ahead * ((c.d1 * V[dof] + c.dt_n * (F[dof] / m)) * c.d2);
   }
   double contact_back = 0, contact_ahead = 0, wall_back = 0, wall_ahead = 0;
-  book_contact_work(dt_n, d1, d2, back, ahead, dt_next, contact_back, contact_ahead, wall_back, wall_ahead);
+  book_contact_work(c.dt_n, c.d1, c.d2, c.back, c.ahead, c.dt_next, contact_back, contact_ahead, wall_back,
+                    wall_ahead);
 
   // kinetic, damping back/ahead, external back/ahead (the nodes' gravity work adds to the latter)
   double sums[5] = {0, 0, 0, external_back, external_ahead};
-  advance_nodes(dt_n, dt_next, d1, d2, back, ahead, sums);
+  const std::int64_t bad_node = advance_points(moving_points(model_.nodes), c, sums, block_sums_);
+  if (bad_node >= 0) {
+    std::ostringstream out;
+    out << "the velocity of node " << bad_node << " is not finite at t = " << state_.time << " s, step "
+        << state_.step << " (the run has become unstable)";
+    throw RunError(out.str());
+  }
   double kinetic = sums[0], damp_back = sums[1], damp_ahead = sums[2];
   external_back = sums[3];
   external_ahead = sums[4];
   for (ParticlePart& pp : model_.particle_parts) {
-    const ParticleAdvanceSums ps = advance_particles(pp, dt_n, dt_next, alpha, settings_.gravity, back, ahead);
-    if (ps.bad_automaton >= 0) {
+    double ps[5] = {0, 0, 0, 0, 0};
+    const std::int64_t bad = advance_points(moving_points(pp), c, ps, block_sums_);
+    if (bad >= 0) {
       std::ostringstream out;
-      out << "the velocity of automaton " << ps.bad_automaton << " of particle part '" << pp.name
-          << "' is not finite at t = " << state_.time << " s, step " << state_.step
+      out << "the velocity of particle " << bad << " of particle part '" << pp.name << "' is not finite at t = "
+          << state_.time << " s, step " << state_.step
           << " (the run has become unstable: lower the part's time_step_safety)";
       throw RunError(out.str());
     }
-    kinetic += ps.kinetic;
-    damp_back += ps.damping_back;
-    damp_ahead += ps.damping_ahead;
-    external_back += ps.gravity_back;
-    external_ahead += ps.gravity_ahead;
+    kinetic += ps[0];
+    damp_back += ps[1];
+    damp_ahead += ps[2];
+    external_back += ps[3];
+    external_ahead += ps[4];
   }
+  const double dt_next = c.dt_next;
   auto& E = state_.energy;
   E[terms_.kinetic] = kinetic;
   E[terms_.damping] += state_.pending_damping + damp_back;
@@ -463,7 +382,7 @@ void ExplicitSolver::remove_event(const StepEvent& event) {
 void ExplicitSolver::run_events(StepEvent::Phase phase) {
   for (StepEvent* event : events_) {
     if (event->phase() != phase) continue;
-    EventContext context{state_.step, state_.time, state_.eroded_elements, state_.energy, topology_, loads_};
+    EventContext context{state_.step, state_.time, state_.eroded_elements, state_.energy, topology_};
     event->run(model_, context);
   }
 }

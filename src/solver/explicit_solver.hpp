@@ -3,7 +3,7 @@
 //
 // A step is two phases: compute_forces() at t_n (stresses, internal, contact and applied forces,
 // the stable step) and advance() (velocities to t_n+1/2 with the prescribed motion, energies at
-// t_n, positions to t_n+1). Step events (src/solver/step_event.hpp) run between the phases and
+// t_n, positions to t_n+1). Step events (src/model/step_event.hpp) run between the phases and
 // after the advance; topology changes go through topology() so that every cache follows.
 #pragma once
 
@@ -16,11 +16,11 @@
 #include "fem/internal_forces.hpp"
 #include "material/material.hpp"
 #include "model/model.hpp"
-#include "particle/mca.hpp"
 #include "core/energy_ledger.hpp"
+#include "solver/integrator.hpp"
 #include "solver/loads.hpp"
-#include "solver/step_event.hpp"
-#include "solver/topology.hpp"
+#include "model/step_event.hpp"
+#include "model/topology.hpp"
 
 namespace shard {
 
@@ -96,10 +96,7 @@ class ExplicitSolver : private TopologyListener {
   double add_particle_forces();
   double choose_time_step(double element_dt, double particle_dt);
   /// External work of the prescribed velocities of the nodes and particles (back, ahead halves).
-  void apply_prescribed_velocities(double dt_n, double d1, double d2, double back, double ahead,
-                                   double& external_back, double& external_ahead);
-  void advance_nodes(double dt_n, double dt_next, double d1, double d2, double back, double ahead,
-                     double sums[5]);
+  void apply_prescribed_velocities(const AdvanceCoefficients& c, double& external_back, double& external_ahead);
   void book_contact_work(double dt_n, double d1, double d2, double back, double ahead, double dt_next,
                          double& contact_back, double& contact_ahead, double& wall_back, double& wall_ahead);
 
@@ -112,9 +109,9 @@ class ExplicitSolver : private TopologyListener {
   std::vector<StepEvent*> events_;
   std::vector<std::unique_ptr<StepEvent>> own_events_;
   std::vector<std::pair<std::int64_t, double>> applied_;  // (dof, force) of pressure loads
-  std::vector<double> chunk_sums_;
+  std::vector<double> block_sums_;
+  std::vector<PartCache> part_caches_;  ///< per part (derived from the Model, checked as used)
   ContactSystem* contact_ = nullptr;
-  std::vector<MCAScratch> particle_scratch_;
   std::vector<double> particle_reactions_;
   /// The prescribed degrees of freedom of the nodes and of each particle part, from their
   /// `prescribed` fields; rebuilt after every topology change.
@@ -130,6 +127,10 @@ class ExplicitSolver : private TopologyListener {
 /// The energy terms the integrator itself books: kinetic energy, the initial kinetic energy,
 /// external work (loads, prescribed motion, moving walls, gravity) and mass damping.
 std::vector<EnergyTerm> solver_energy_terms();
+/// The energy terms of particle models (src/model/particles.hpp): the elastic energy they store
+/// now (a state function, not accumulated) and their sliding friction. Their plastic work and
+/// bond-breaking release go into the common "plastic" and "fracture" terms.
+std::vector<EnergyTerm> particle_energy_terms();
 
 /// Lumped (row-sum) nodal masses of every part, added into model.nodes.mass.
 void lump_masses(Model& model, const std::vector<std::unique_ptr<Material>>& materials);

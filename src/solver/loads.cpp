@@ -42,7 +42,7 @@ std::vector<PrescribedDof> prescribed_node_dofs(const Model& model) {
 }
 
 std::vector<PrescribedDof> prescribed_particle_dofs(const ParticlePart& part) {
-  return dofs_of(part.prescribed, static_cast<std::size_t>(part.system.dim + part.system.rot_dim()));
+  return dofs_of(part.prescribed, static_cast<std::size_t>(part.dim + part.rot_dim()));
 }
 
 void add_pressure_forces(const Model& model, const Loads& loads, double t,

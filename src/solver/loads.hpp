@@ -25,11 +25,11 @@ struct PressureLoad {
   int table;
 };
 
-/// A named set of automata whose reaction and mean displacement are reported.
+/// A group of particles whose reaction and mean displacement are reported: the particle set of
+/// that name of its part (so that its members follow every topology change).
 struct ParticleGroup {
   std::string name;
   int part = 0;
-  std::vector<std::int32_t> automata;
 };
 
 struct Loads {

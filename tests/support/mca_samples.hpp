@@ -7,8 +7,9 @@
 #include <cstdio>
 #include <vector>
 
-#include "particle/mca_stepper.hpp"
 #include "particle/packing.hpp"
+#include "particle/mca.hpp"
+#include "support/particle_run.hpp"
 
 namespace shard::testing {
 
@@ -22,7 +23,7 @@ inline MCAMaterial mca_steel_like(double E = 200e9, double nu = 0.25, double rho
 }
 
 /// A box sample of `cells` lattice spacings per side (2D: z ignored).
-inline ParticleSystem mca_box(Lattice lattice, double d, double nx, double ny, double nz,
+inline ParticlePart mca_box(Lattice lattice, double d, double nx, double ny, double nz,
                               std::vector<MCAMaterial> mats, double angle = 0,
                               PlaneMode plane = PlaneMode::plane_strain) {
   PackingSpec spec;
@@ -32,14 +33,14 @@ inline ParticleSystem mca_box(Lattice lattice, double d, double nx, double ny, d
   spec.angle = angle;
   spec.plane = plane;
   spec.thickness = d;
-  ParticleSystem ps = build_packing(spec, std::move(mats));
+  ParticlePart ps = build_packing(spec, std::move(mats));
   finish_sample(ps);
   return ps;
 }
 
 /// Bonds a built packing of one material with a Drucker–Prager law that breaks at a constant
 /// crack speed (unstable mode) and gives broken pairs Amontons friction, and finishes it.
-inline void bond_drucker_prager(ParticleSystem& ps, double sigma_t, double sigma_c, double crack_speed,
+inline void bond_drucker_prager(ParticlePart& ps, double sigma_t, double sigma_c, double crack_speed,
                                 double friction = 0.3) {
   BondLaw law;
   law.criterion = BondCriterion::drucker_prager;
@@ -48,8 +49,8 @@ inline void bond_drucker_prager(ParticleSystem& ps, double sigma_t, double sigma
   law.breaking = BondBreaking::unstable;
   law.crack_speed = crack_speed;
   law.friction = friction;
-  ps.bond_laws = {law};
-  ps.set_bond_law(0, 0, 0);
+  mca_state(ps).bond_laws = {law};
+  mca_state(ps).set_bond_law(0, 0, 0);
   finish_sample(ps);
 }
 
@@ -73,7 +74,7 @@ struct InteriorState {
 };
 
 /// Interior measures: automata further than `margin` from the sample's bounding box.
-inline InteriorState interior_state(const ParticleSystem& ps, const std::vector<double>& x0, int axis,
+inline InteriorState interior_state(const ParticlePart& ps, const std::vector<double>& x0, int axis,
                                     int lateral, double margin) {
   double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
   const int D = ps.dim;
@@ -94,8 +95,8 @@ inline InteriorState interior_state(const ParticleSystem& ps, const std::vector<
     Y.push_back(x0[D * i + lateral]);
     W.push_back(ps.x[D * i + lateral] - x0[D * i + lateral]);
     const int slot = axis;  // xx, yy, zz slots are 0, 1, 2
-    s += ps.stress[6 * i + slot];
-    si += ps.stress_int[i];
+    s += mca_state(ps).stress[6 * i + slot];
+    si += mca_state(ps).stress_int[i];
     ++count;
   }
   InteriorState out;
@@ -115,16 +116,16 @@ inline double ramp(double t, double t_ramp, double v) {
 /// Uniaxial test along `axis`: the min face held (axial component only), the max face moved at
 /// −v (compression) with a smooth ramp; lateral faces free.
 struct UniaxialRun {
-  ParticleSystem& ps;
-  MCAStepper stepper;
+  ParticleRun stepper;
   std::vector<double> x0;
   int axis;
   int top = -1, bottom = -1;
 
-  UniaxialRun(ParticleSystem& sample, int axis_, double v, double t_ramp, double safety = 0.5,
+  UniaxialRun(ParticlePart sample, int axis_, double v, double t_ramp, double safety = 0.5,
               double layer_cells = 0)
-      : ps(sample), stepper(sample, safety), x0(sample.x), axis(axis_) {
-    const double tol = (layer_cells > 0 ? layer_cells : 0.01) * ps.d[0];
+      : stepper(std::move(sample), safety), x0(stepper.part().x), axis(axis_) {
+    const ParticlePart& ps = stepper.part();
+    const double tol = (layer_cells > 0 ? layer_cells : 0.01) * 2 * ps.radius[0];
     VelocityBC b;
     b.automata = boundary_layer(ps, axis, false, tol);
     b.component = axis;
@@ -136,6 +137,7 @@ struct UniaxialRun {
     t.velocity = [v, t_ramp](double time) { return ramp(time, t_ramp, v); };
     top = stepper.add_velocity_bc(t);
   }
+  ParticlePart& ps() { return stepper.part(); }
 };
 
 /// Time for a longitudinal wave to cross `length`.

@@ -20,19 +20,21 @@ double breaking_stress(const BondLaw& law, double sign) {
   spec.lattice = Lattice::simple_cubic;
   spec.size = d;
   spec.hi[0] = 1.2 * d, spec.hi[1] = 0.5 * d, spec.hi[2] = 0.5 * d;
-  ParticleSystem ps = build_packing(spec, {testing::mca_steel_like(E, 0.25)});
-  ps.bond_laws = {law};
-  ps.set_bond_law(0, 0, 0);
-  finish_sample(ps);
+  ParticlePart sample = build_packing(spec, {testing::mca_steel_like(E, 0.25)});
+  mca_state(sample).bond_laws = {law};
+  mca_state(sample).set_bond_law(0, 0, 0);
+  finish_sample(sample);
+  testing::ParticleRun stepper(std::move(sample), 0.5);
+  const ParticlePart& ps = stepper.part();
+  const PairList& pairs = mca_state(ps).pairs;
   EXPECT_EQ(ps.count(), 2u);
-  EXPECT_EQ(ps.pairs.count(), 1u);
-  MCAStepper stepper(ps, 0.5);
+  EXPECT_EQ(pairs.count(), 1u);
   const double dt = stepper.time_step();
   const double strength = std::max({law.sigma_t, law.sigma_c, law.sigma_vm});
   const double speed = 2e-5 * strength / E * d / dt;  // about 2e-5 of the strength per step
   for (int a = 0; a < 2; ++a)
     for (int c = 0; c < 3; ++c) {
-      VelocityBC bc;
+      testing::VelocityBC bc;
       bc.automata = {a};
       bc.component = c;
       const double v = (a == 1 && c == 0) ? sign * speed : 0.0;
@@ -43,15 +45,15 @@ double breaking_stress(const BondLaw& law, double sign) {
       stepper.add_velocity_bc(bc);
     }
   double last = 0;
-  for (int k = 0; k < 2000000 && ps.pairs.state[0] == PairState::linked; ++k) {
-    last = ps.pairs.eta[0];
+  for (int k = 0; k < 2000000 && pairs.state_of(0) == PairState::linked; ++k) {
+    last = pairs.eta[0];
     stepper.step();
   }
-  EXPECT_EQ(ps.pairs.state[0], PairState::unlinked);
+  EXPECT_EQ(pairs.state_of(0), PairState::unlinked);
   // After breaking in tension the pair carries nothing; in compression it keeps pushing.
   if (sign > 0) {
     stepper.step();
-    EXPECT_EQ(ps.force[0], 0.0);
+    EXPECT_EQ(stepper.group_force(0), 0.0);  // on automaton 0, along the pair
   }
   return last;
 }
@@ -120,15 +122,17 @@ Gradual pull_gradual(const BondLaw& law) {
   spec.lattice = Lattice::simple_cubic;
   spec.size = d;
   spec.hi[0] = 1.2 * d, spec.hi[1] = 0.5 * d, spec.hi[2] = 0.5 * d;
-  ParticleSystem ps = build_packing(spec, {testing::mca_steel_like(E, 0.25)});
-  ps.bond_laws = {law};
-  ps.set_bond_law(0, 0, 0);
-  finish_sample(ps);
-  MCAStepper stepper(ps, 0.5);
+  ParticlePart sample = build_packing(spec, {testing::mca_steel_like(E, 0.25)});
+  mca_state(sample).bond_laws = {law};
+  mca_state(sample).set_bond_law(0, 0, 0);
+  finish_sample(sample);
+  testing::ParticleRun stepper(std::move(sample), 0.5);
+  const ParticlePart& ps = stepper.part();
+  const PairList& pairs = mca_state(ps).pairs;
   const double speed = 2e-5 * law.sigma_t / E * d / stepper.time_step();
   for (int a = 0; a < 2; ++a)
     for (int c = 0; c < 3; ++c) {
-      VelocityBC bc;
+      testing::VelocityBC bc;
       bc.automata = {a};
       bc.component = c;
       const double v = (a == 1 && c == 0) ? speed : 0.0;
@@ -137,9 +141,9 @@ Gradual pull_gradual(const BondLaw& law) {
     }
   Gradual g;
   double t_onset = 0;
-  for (int k = 0; k < 4000000 && ps.pairs.state[0] != PairState::unlinked; ++k) {
+  for (int k = 0; k < 4000000 && pairs.state_of(0) != PairState::unlinked; ++k) {
     stepper.step();
-    if (g.onset_strain < 0 && ps.pairs.state[0] == PairState::breaking) {
+    if (g.onset_strain < 0 && pairs.state_of(0) == PairState::breaking) {
       g.onset_strain = (ps.x[3] - ps.x[0] - d) / d;
       t_onset = stepper.time();
     }

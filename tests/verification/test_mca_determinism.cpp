@@ -29,10 +29,12 @@ Result run(int threads) {
   spec.lattice = Lattice::fcc;
   spec.size = 1e-3;
   spec.hi[0] = spec.hi[1] = spec.hi[2] = 12e-3;
-  ParticleSystem ps = build_packing(spec, {m});
-  testing::bond_drucker_prager(ps, 100e6, 800e6, 3000, 0.3);
-  MCAStepper stepper(ps, 0.5);
-  VelocityBC bottom, top;
+  ParticlePart sample = build_packing(spec, {m});
+  testing::bond_drucker_prager(sample, 100e6, 800e6, 3000, 0.3);
+  testing::ParticleRun stepper(std::move(sample), 0.5);
+  const ParticlePart& ps = stepper.part();
+  const PairList& pairs = mca_state(ps).pairs;
+  testing::VelocityBC bottom, top;
   bottom.automata = boundary_layer(ps, 2, false, 1e-6);
   bottom.component = 2;
   bottom.velocity = [](double) { return 0.0; };
@@ -42,14 +44,14 @@ Result run(int threads) {
   stepper.add_velocity_bc(bottom);
   stepper.add_velocity_bc(top);
   for (int k = 0; k < 150; ++k) stepper.step();
-  Result r{ps.x, ps.v, ps.omega, ps.pairs.eta, ps.pairs.k_link, {}, 0};
-  const MCAEnergy& e = stepper.energy();
+  Result r{ps.x, ps.v, ps.omega, pairs.eta, pairs.k_link, {}, 0};
+  const testing::ParticleEnergy e = stepper.energy();
   const double en[5] = {e.kinetic, e.elastic, e.plastic, e.breaking, e.friction};
   std::memcpy(r.energy, en, sizeof en);
-  for (PairState s : ps.pairs.state) r.broken += s != PairState::linked;
+  for (std::size_t p = 0; p < pairs.count(); ++p) r.broken += pairs.state_of(p) != PairState::linked;
   std::printf("[ MCA determinism ] %d thread(s): %zu automata, %zu pairs, %zu breaking or broken, plastic %.4g J, "
               "breaking %.4g J, friction %.4g J\n",
-              omp_get_max_threads(), ps.count(), ps.pairs.count(), r.broken, e.plastic, e.breaking, e.friction);
+              omp_get_max_threads(), ps.count(), pairs.count(), r.broken, e.plastic, e.breaking, e.friction);
   return r;
 }
 

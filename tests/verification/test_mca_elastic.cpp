@@ -18,15 +18,16 @@ struct Measured {
   double E, nu;
 };
 
-Measured compress(ParticleSystem ps, int axis, int lateral, double margin_cells, double layer) {
-  const MCAMaterial m = ps.materials[0];
+Measured compress(ParticlePart sample, int axis, int lateral, double margin_cells, double layer) {
+  const MCAMaterial m = mca_state(sample).materials[0];
   double extent = 0;
-  for (std::size_t i = 0; i < ps.count(); ++i) extent = std::max(extent, ps.coord(i, axis));
+  for (std::size_t i = 0; i < sample.count(); ++i) extent = std::max(extent, sample.coord(i, axis));
   const double T = testing::transit_time(m, extent);
   const double strain_rate = 1e-3 / (20 * T);  // 1e-3 strain at the end
-  testing::UniaxialRun run(ps, axis, -strain_rate * extent, 10 * T, 0.5, layer);
+  testing::UniaxialRun run(std::move(sample), axis, -strain_rate * extent, 10 * T, 0.5, layer);
   run.stepper.advance_to(20 * T);
-  const auto s = testing::interior_state(ps, run.x0, axis, lateral, margin_cells * ps.d[0]);
+  const ParticlePart& ps = run.ps();
+  const auto s = testing::interior_state(ps, run.x0, axis, lateral, margin_cells * 2 * ps.radius[0]);
   Measured out{s.stress_axial / s.strain_axial, -s.strain_lateral / s.strain_axial};
   std::printf("[ MCA elastic ] %zu automata, %ld steps: E = %.5g GPa, nu = %.4f (strain %.3g)\n",
               ps.count(), run.stepper.steps(), out.E / 1e9, out.nu, s.strain_axial);
@@ -35,7 +36,7 @@ Measured compress(ParticleSystem ps, int axis, int lateral, double margin_cells,
 
 void expect_3d(Lattice lattice, double n_cells, double angle) {
   const double E = 200e9, nu = 0.25, d = 1e-3;
-  ParticleSystem ps = testing::mca_box(lattice, d, n_cells, n_cells, n_cells, {testing::mca_steel_like(E, nu)}, angle);
+  ParticlePart ps = testing::mca_box(lattice, d, n_cells, n_cells, n_cells, {testing::mca_steel_like(E, nu)}, angle);
   const Measured r = compress(std::move(ps), 2, 0, 2.0, angle != 0 ? 0.7 : 0.0);
   EXPECT_NEAR(r.E / E, 1.0, 0.03);
   EXPECT_NEAR(r.nu / nu, 1.0, 0.03);
@@ -43,7 +44,7 @@ void expect_3d(Lattice lattice, double n_cells, double angle) {
 
 void expect_2d(Lattice lattice, PlaneMode plane, double angle) {
   const double E = 70e9, nu = 0.3, d = 1e-3;
-  ParticleSystem ps = testing::mca_box(lattice, d, 30, 30, 0, {testing::mca_steel_like(E, nu, 2700)}, angle, plane);
+  ParticlePart ps = testing::mca_box(lattice, d, 30, 30, 0, {testing::mca_steel_like(E, nu, 2700)}, angle, plane);
   const Measured r = compress(std::move(ps), 1, 0, 3.0, angle != 0 ? 0.7 : 0.0);
   const bool strain = plane == PlaneMode::plane_strain;
   const double E_in = strain ? E / (1 - nu * nu) : E, nu_in = strain ? nu / (1 - nu) : nu;

@@ -19,7 +19,7 @@
 namespace shard {
 namespace {
 
-void print(const char* name, const MCAEnergy& e) {
+void print(const char* name, const testing::ParticleEnergy& e) {
   std::printf("[ MCA energy ] %s: kinetic %.4g, elastic %.4g, plastic %.4g, breaking %.4g, friction %.4g, "
               "external %.4g, initial %.4g J; residual %.3g J (%.3g %%)\n",
               name, e.kinetic, e.elastic, e.plastic, e.breaking, e.friction, e.external_work, e.initial, e.residual(),
@@ -27,7 +27,7 @@ void print(const char* name, const MCAEnergy& e) {
 }
 
 TEST(MCAEnergy, FreeVibration3D) {
-  ParticleSystem ps = testing::mca_box(Lattice::fcc, 1e-3, 6, 6, 6, {testing::mca_steel_like()});
+  ParticlePart ps = testing::mca_box(Lattice::fcc, 1e-3, 6, 6, 6, {testing::mca_steel_like()});
   double L = 0;
   for (std::size_t i = 0; i < ps.count(); ++i) L = std::max(L, ps.coord(i, 2));
   for (std::size_t i = 0; i < ps.count(); ++i) {
@@ -36,22 +36,23 @@ TEST(MCAEnergy, FreeVibration3D) {
     ps.v[3 * i + 2] = 1.0 * std::cos(M_PI * x);  // shear-like
     ps.omega[3 * i + 1] = 100.0 * std::sin(2 * M_PI * x);
   }
-  MCAStepper stepper(ps, 0.5);
-  stepper.advance_to(20 * testing::transit_time(ps.materials[0], L));
+  const MCAMaterial material = mca_state(ps).materials[0];
+  testing::ParticleRun stepper(std::move(ps), 0.5);
+  stepper.advance_to(20 * testing::transit_time(material, L));
   print("free vibration", stepper.energy());
   EXPECT_GT(stepper.energy().elastic, 0.1 * stepper.energy().initial);
   EXPECT_LT(stepper.energy().relative_error(), 0.01);
 }
 
 TEST(MCAEnergy, Impact2D) {
-  ParticleSystem ps = testing::mca_box(Lattice::hexagonal_2d, 1e-3, 60, 10, 0, {testing::mca_steel_like(70e9, 0.3, 2700)});
-  VelocityBC bc;
+  ParticlePart ps = testing::mca_box(Lattice::hexagonal_2d, 1e-3, 60, 10, 0, {testing::mca_steel_like(70e9, 0.3, 2700)});
+  testing::VelocityBC bc;
   bc.automata = boundary_layer(ps, 0, false, 1e-5);
   bc.component = 0;
-  const double T = testing::transit_time(ps.materials[0], 60e-3);
+  const double T = testing::transit_time(mca_state(ps).materials[0], 60e-3);
   // a smooth blow (half sine over half a transit), then held
   bc.velocity = [T](double t) { return t < 0.5 * T ? 5.0 * std::sin(2 * M_PI * t / T) : 0.0; };
-  MCAStepper stepper(ps, 0.5);
+  testing::ParticleRun stepper(std::move(ps), 0.5);
   stepper.add_velocity_bc(bc);
   stepper.advance_to(4 * T);
   print("impact", stepper.energy());
@@ -60,20 +61,21 @@ TEST(MCAEnergy, Impact2D) {
 
 TEST(MCAEnergy, FractureBooksBreaking) {
   MCAMaterial m = testing::mca_steel_like(70e9, 0.0, 2500);
-  ParticleSystem ps = [&] {
+  ParticlePart sample = [&] {
     PackingSpec spec;
     spec.lattice = Lattice::hexagonal_2d;
     spec.size = 1e-3;
     spec.hi[0] = 20e-3, spec.hi[1] = 40e-3;
     spec.plane = PlaneMode::plane_stress;
     spec.thickness = 1e-3;
-    ParticleSystem s = build_packing(spec, {m});
+    ParticlePart s = build_packing(spec, {m});
     testing::bond_drucker_prager(s, 70e6, 700e6, 100, 0.3);
     return s;
   }();
   const double T = testing::transit_time(m, 40e-3);
-  MCAStepper stepper(ps, 0.5);
-  VelocityBC bottom, top;
+  testing::ParticleRun stepper(std::move(sample), 0.5);
+  const ParticlePart& ps = stepper.part();
+  testing::VelocityBC bottom, top;
   bottom.automata = boundary_layer(ps, 1, false, 1e-5);
   bottom.component = 1;
   bottom.velocity = [](double) { return 0.0; };
@@ -88,11 +90,12 @@ TEST(MCAEnergy, FractureBooksBreaking) {
     peak = std::max(peak, -stepper.group_force(top_bc));
   }
   std::size_t broken = 0;
-  for (PairState s : ps.pairs.state) broken += s == PairState::unlinked;
-  const MCAEnergy& e = stepper.energy();
+  const PairList& pairs = mca_state(ps).pairs;
+  for (std::size_t p = 0; p < pairs.count(); ++p) broken += pairs.state_of(p) == PairState::unlinked;
+  const testing::ParticleEnergy e = stepper.energy();
   print("fracture", e);
   std::printf("[ MCA energy ] fracture: %zu of %zu bonds broken, peak force %.4g N, final force %.4g N\n", broken,
-              ps.pairs.count(), peak, -stepper.group_force(top_bc));
+              pairs.count(), peak, -stepper.group_force(top_bc));
   EXPECT_GT(broken, 10u);
   EXPECT_LT(-stepper.group_force(top_bc), 0.05 * peak);  // separated
   EXPECT_GT(e.breaking, 10 * std::abs(e.residual()));
@@ -107,25 +110,27 @@ TEST(MCAEnergy, NewContactBouncesElastically) {
   spec.lattice = Lattice::simple_cubic;
   spec.size = 1e-3;
   spec.hi[0] = 1.2e-3, spec.hi[1] = 0.5e-3, spec.hi[2] = 0.5e-3;
-  ParticleSystem ps = build_packing(spec, {testing::mca_steel_like()});
-  ps.x[3] += 0.5e-3;  // move the second automaton away: a 0.5 mm gap
-  finish_sample(ps, 0.1);
-  ps.v[0] = 1.0;
-  ps.v[3] = -1.0;
+  ParticlePart sample = build_packing(spec, {testing::mca_steel_like()});
+  sample.x[3] += 0.5e-3;  // move the second automaton away: a 0.5 mm gap
+  finish_sample(sample, 0.1);
+  sample.v[0] = 1.0;
+  sample.v[3] = -1.0;
   // (after finish_sample: the automata are now 1.5 d apart, too far to bond)
-  ASSERT_EQ(ps.pairs.count(), 0u);
-  MCAStepper stepper(ps, 0.2);
+  ASSERT_EQ(mca_state(sample).pairs.count(), 0u);
+  testing::ParticleRun stepper(std::move(sample), 0.2);
   stepper.set_contact_update(1, 0.1e-3);
+  const ParticlePart& ps = stepper.part();
+  const PairList& pairs = mca_state(ps).pairs;
   std::size_t most_pairs = 0;
   for (int k = 0; k < 200000 && stepper.time() < 1.5e-3; ++k) {
     stepper.step();
-    most_pairs = std::max(most_pairs, ps.pairs.count());
+    most_pairs = std::max(most_pairs, pairs.count());
   }
   print("contact", stepper.energy());
   std::printf("[ MCA energy ] contact: velocities after %.5f and %.5f m/s (before +1 and -1), pairs at the end %zu\n",
-              ps.v[0], ps.v[3], ps.pairs.count());
+              ps.v[0], ps.v[3], pairs.count());
   EXPECT_EQ(most_pairs, 1u);
-  EXPECT_EQ(ps.pairs.count(), 0u);
+  EXPECT_EQ(pairs.count(), 0u);
   EXPECT_NEAR(ps.v[0], -1.0, 0.02);
   EXPECT_NEAR(ps.v[3], 1.0, 0.02);
   EXPECT_NEAR(ps.v[0] + ps.v[3], 0.0, 1e-12);

@@ -11,27 +11,28 @@
 namespace shard {
 namespace {
 
-std::size_t max_coordination(const ParticleSystem& ps) {
+std::size_t max_coordination(const ParticlePart& ps) {
   std::size_t best = 0;
+  const PairAdjacency& adjacency = mca_state(ps).adjacency;
   for (std::size_t i = 0; i < ps.count(); ++i)
-    best = std::max<std::size_t>(best, ps.adjacency.start[i + 1] - ps.adjacency.start[i]);
+    best = std::max<std::size_t>(best, adjacency.start[i + 1] - adjacency.start[i]);
   return best;
 }
 
 TEST(MCAPacking, CoordinationAndFabric) {
   const auto m = testing::mca_steel_like();
-  const ParticleSystem fcc = testing::mca_box(Lattice::fcc, 1e-3, 5, 5, 5, {m});
-  const ParticleSystem sc = testing::mca_box(Lattice::simple_cubic, 1e-3, 5, 5, 5, {m});
-  const ParticleSystem hex = testing::mca_box(Lattice::hexagonal_2d, 1e-3, 8, 8, 0, {m});
+  const ParticlePart fcc = testing::mca_box(Lattice::fcc, 1e-3, 5, 5, 5, {m});
+  const ParticlePart sc = testing::mca_box(Lattice::simple_cubic, 1e-3, 5, 5, 5, {m});
+  const ParticlePart hex = testing::mca_box(Lattice::hexagonal_2d, 1e-3, 8, 8, 0, {m});
   EXPECT_EQ(max_coordination(fcc), 12u);
   EXPECT_EQ(max_coordination(sc), 6u);
   EXPECT_EQ(max_coordination(hex), 6u);
   // interior automata need no fabric correction: A = I
   std::size_t interior = 0;
   for (std::size_t i = 0; i < fcc.count(); ++i)
-    if (fcc.adjacency.start[i + 1] - fcc.adjacency.start[i] == 12) {
+    if (mca_state(fcc).adjacency.start[i + 1] - mca_state(fcc).adjacency.start[i] == 12) {
       ++interior;
-      EXPECT_EQ(fcc.fabric_index[i], -1);
+      EXPECT_EQ(mca_state(fcc).fabric_index[i], -1);
     }
   std::printf("[ MCA packing ] FCC %zu automata (%zu with 12 neighbours), SC %zu, hexagonal %zu\n", fcc.count(),
               interior, sc.count(), hex.count());
@@ -46,11 +47,12 @@ TEST(MCAPacking, InclusionsPoresInterphaseRepeatWithSeed) {
     spec.lattice = Lattice::hexagonal_2d;
     spec.size = 1e-6;
     spec.hi[0] = 60e-6, spec.hi[1] = 40e-6;
-    ParticleSystem ps = build_packing(spec, {matrix, carbide});
-    ps.bond_laws = {BondLaw{}, BondLaw{}};
-    ps.set_bond_law(0, 0, 0);
-    ps.set_bond_law(0, 1, 1);
-    ps.set_bond_law(1, 1, 0);
+    ParticlePart ps = build_packing(spec, {matrix, carbide});
+    MCAState& s = mca_state(ps);
+    s.bond_laws = {BondLaw{}, BondLaw{}};
+    s.set_bond_law(0, 0, 0);
+    s.set_bond_law(0, 1, 1);
+    s.set_bond_law(1, 1, 0);
     InclusionSpec inc;
     inc.material = 1;
     inc.volume_fraction = 0.3;
@@ -77,10 +79,10 @@ TEST(MCAPacking, InclusionsPoresInterphaseRepeatWithSeed) {
     EXPECT_GT(n_inc, 5);
     EXPECT_GT(graded, 0);
     EXPECT_NEAR(1.0 - double(ps.count()) / before, 0.05, 0.01);
-    EXPECT_EQ(ps.materials.size(), 4u);
+    EXPECT_EQ(mca_state(ps).materials.size(), 4u);
     return ps;
   };
-  const ParticleSystem a = build(7), b = build(7), c = build(8);
+  const ParticlePart a = build(7), b = build(7), c = build(8);
   EXPECT_TRUE(a.x == b.x);
   EXPECT_TRUE(a.material == b.material);
   EXPECT_FALSE(a.material == c.material && a.x == c.x);

@@ -26,7 +26,8 @@ double curve_stress(const MCAMaterial& m, double e) {
 
 void check_curve(const MCAMaterial& m, Lattice lattice, int cells) {
   const double d = 1e-3;
-  ParticleSystem ps = testing::mca_box(lattice, d, cells, cells, cells, {m});
+  testing::ParticleRun stepper(testing::mca_box(lattice, d, cells, cells, cells, {m}), 0.5);
+  const ParticlePart& ps = stepper.part();
   const double L = cells * d;
   const double T = testing::transit_time(m, L);
   const double e_max = 6 * yield_radius(m, 0) / m.young;  // load to six times the yield strain
@@ -36,8 +37,7 @@ void check_curve(const MCAMaterial& m, Lattice lattice, int cells) {
     if (t < t_load) return testing::ramp(t, 5 * T, -v);
     return -v + testing::ramp(t - t_load, 5 * T, 2 * v);
   };
-  MCAStepper stepper(ps, 0.5);
-  VelocityBC bottom, top;
+  testing::VelocityBC bottom, top;
   bottom.automata = boundary_layer(ps, 2, false, 0.01 * d);
   bottom.component = 2;
   bottom.velocity = [](double) { return 0.0; };

@@ -23,11 +23,13 @@ double front_speed(Lattice lattice, double E, double nu, double rho) {
   spec.hi[0] = (n - 1) * d, spec.hi[1] = 0.5 * d, spec.hi[2] = 0.5 * d;
   spec.plane = PlaneMode::plane_stress;
   spec.thickness = d;
-  ParticleSystem ps = build_packing(spec, {testing::mca_steel_like(E, nu, rho)});
-  finish_sample(ps);
-  EXPECT_EQ(ps.count(), static_cast<std::size_t>(n));
-  MCAStepper stepper(ps, 0.5);
-  VelocityBC bc;
+  ParticlePart sample = build_packing(spec, {testing::mca_steel_like(E, nu, rho)});
+  finish_sample(sample);
+  EXPECT_EQ(sample.count(), static_cast<std::size_t>(n));
+  testing::ParticleRun stepper(std::move(sample), 0.5);
+  const ParticlePart& ps = stepper.part();
+  const PairList& pairs = mca_state(ps).pairs;
+  testing::VelocityBC bc;
   bc.automata = {0};
   bc.component = 0;
   bc.velocity = [v](double) { return v; };
@@ -38,8 +40,8 @@ double front_speed(Lattice lattice, double E, double nu, double rho) {
   const double plateau = rho * c * v;
   // The last pair (from the driven end) still above half the plateau, interpolated.
   double front = -1;
-  for (std::size_t p = ps.pairs.count() - 1; p > 0; --p) {
-    const double s = -ps.pairs.eta[p], s_prev = -ps.pairs.eta[p - 1];
+  for (std::size_t p = pairs.count() - 1; p > 0; --p) {
+    const double s = -pairs.eta[p], s_prev = -pairs.eta[p - 1];
     if (s < 0.5 * plateau && s_prev >= 0.5 * plateau) {
       const double f = (s_prev - 0.5 * plateau) / (s_prev - s);
       front = (p - 1 + 0.5 + f) * d;
@@ -48,8 +50,8 @@ double front_speed(Lattice lattice, double E, double nu, double rho) {
   }
   const double speed = front / stepper.time();
   std::printf("[ MCA wave ] %s chain: front %.4g m at %.4g s: c = %.5g m/s (sqrt(E/rho) = %.5g), plateau %.4g MPa (rho c v = %.4g)\n",
-              ps.dim == 3 ? "3D" : "2D", front, stepper.time(), speed, c, -ps.pairs.eta[20] / 1e6, plateau / 1e6);
-  EXPECT_NEAR(-ps.pairs.eta[20] / plateau, 1.0, 0.03);
+              ps.dim == 3 ? "3D" : "2D", front, stepper.time(), speed, c, -pairs.eta[20] / 1e6, plateau / 1e6);
+  EXPECT_NEAR(-pairs.eta[20] / plateau, 1.0, 0.03);
   return speed / c;
 }
 

@@ -408,8 +408,9 @@ TEST(RotatingCrack, NonlocalAverageKeepsUniformFieldsAndSpreadsByTheBellWeight) 
   part.volume.assign(n, 0.5 * cell * cell);
   part.eroded.assign(n, 0);
   const NonlocalSpec spec{length, 0, 1};
+  NonlocalNeighbours neighbours;
   for (std::size_t i = 0; i < n; ++i) part.state[slots * i] = 0.7;
-  average_nonlocal(part, model.nodes, spec, slots);
+  average_nonlocal(part, model.nodes, spec, slots, neighbours);
   double worst = 0;
   for (std::size_t i = 0; i < n; ++i) worst = std::max(worst, std::abs(part.state[slots * i + 1] - 0.7));
   // One point at 1 in the middle: its neighbours get w(r) / Σ_j w(r_j) (equal volumes).
@@ -421,7 +422,7 @@ TEST(RotatingCrack, NonlocalAverageKeepsUniformFieldsAndSpreadsByTheBellWeight) 
     if (d < best) best = d, centre = i;
   }
   for (std::size_t i = 0; i < n; ++i) part.state[slots * i] = i == centre ? 1.0 : 0.0;
-  average_nonlocal(part, model.nodes, spec, slots);
+  average_nonlocal(part, model.nodes, spec, slots, neighbours);
   double worst_spread = 0, reach = 0;
   for (std::size_t i = 0; i < n; ++i) {
     double sum = 0;

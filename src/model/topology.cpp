@@ -1,4 +1,4 @@
-#include "solver/topology.hpp"
+#include "model/topology.hpp"
 
 #include <algorithm>
 

@@ -2,15 +2,14 @@
 // erosion, the automata's search for new contacts; conversion to particles and remeshing next).
 // The solver keeps a registered list and runs each event at its phase; an event changes the
 // topology only through the Topology it is given (apply or announce), so that every cache
-// follows (src/solver/topology.hpp). Recipe for a new event: docs/architecture.md.
+// follows (src/model/topology.hpp). Recipe for a new event: docs/architecture.md.
 #pragma once
 
 #include <cstdint>
 
-#include "model/model.hpp"
 #include "core/energy_ledger.hpp"
-#include "solver/loads.hpp"
-#include "solver/topology.hpp"
+#include "model/model.hpp"
+#include "model/topology.hpp"
 
 namespace shard {
 
@@ -21,7 +20,6 @@ struct EventContext {
   std::int64_t eroded_elements = 0;  ///< elements eroded since the start of the run
   EnergyLedger& energy;  ///< to book what the event releases or removes
   Topology& topology;     ///< the only way to change the topology
-  const Loads& loads;
 };
 
 class StepEvent {

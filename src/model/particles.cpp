@@ -1,0 +1,29 @@
+#include "model/particles.hpp"
+
+#include <algorithm>
+
+#include "model/remap.hpp"
+
+namespace shard {
+
+const ParticleSet* ParticlePart::find_set(const std::string& set_name) const {
+  for (const auto& s : sets)
+    if (s.name == set_name) return &s;
+  return nullptr;
+}
+
+std::int32_t ParticlePart::add_particle(const double* position, double particle_radius, int particle_material) {
+  // A particle born from nothing: one remap, so that every declared field (the model's too)
+  // grows with it; then its own values.
+  EntityRemap grow = EntityRemap::identity(count());
+  const std::int32_t i = grow.add_born(-1);
+  std::int64_t next = 0;
+  for (const auto existing : id) next = std::max(next, existing + 1);
+  apply_particle_remap(*this, &grow, nullptr, &next);
+  for (int a = 0; a < dim; ++a) x[static_cast<std::size_t>(dim) * i + a] = position[a];
+  radius[i] = particle_radius;
+  material[i] = particle_material;
+  return i;
+}
+
+}  // namespace shard

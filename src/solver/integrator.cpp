@@ -1,0 +1,171 @@
+#include "solver/integrator.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/deterministic_sum.hpp"
+
+namespace shard {
+
+MovingPoints moving_points(NodeArrays& nodes) {
+  MovingPoints p;
+  p.count = nodes.count();
+  p.dim = nodes.dim;
+  p.x = nodes.x.data();
+  p.v = nodes.v.data();
+  p.force = nodes.force.data();
+  p.mass = nodes.mass.data();
+  p.block = 2048;
+  return p;
+}
+
+MovingPoints moving_points(ParticlePart& part) {
+  MovingPoints p;
+  p.count = part.count();
+  p.dim = part.dim;
+  p.x = part.x.data();
+  p.v = part.v.data();
+  p.force = part.force.data();
+  p.mass = part.mass.data();
+  p.rot_dim = part.rot_dim();
+  p.theta = part.theta.data();
+  p.omega = part.omega.data();
+  p.torque = part.torque.data();
+  p.inertia = part.inertia.data();
+  p.dtheta = part.dtheta.data();
+  p.x_old = part.x_old.data();
+  p.block = 1024;
+  return p;
+}
+
+DofRef dof_of(const MovingPoints& p, const PrescribedDof& d) {
+  const bool rot = d.component >= p.dim;
+  const std::size_t i = static_cast<std::size_t>(d.point);
+  if (!rot) {
+    const std::size_t slot = static_cast<std::size_t>(p.dim) * i + d.component;
+    return {p.v[slot], p.force[slot], p.mass[i]};
+  }
+  const std::size_t slot = static_cast<std::size_t>(p.rot_dim) * i + (d.component - p.dim);
+  return {p.omega[slot], p.torque[slot], p.inertia[i]};
+}
+
+void apply_prescribed(const MovingPoints& p, const std::vector<PrescribedDof>& dofs, const Loads& loads,
+                      const AdvanceCoefficients& c, double time_half, double& external_back,
+                      double& external_ahead, std::vector<double>* group_reactions) {
+  for (const auto& d : dofs) {
+    const DofRef dof = dof_of(p, d);
+    const Prescription& pr = loads.prescriptions[d.prescription];
+    const double vp = loads.tables[pr.table].at(time_half);
+    const double f_needed = dof.inertia * (vp / c.d2 - c.d1 * dof.velocity) / c.dt_n;
+    const double reaction = f_needed - dof.force;
+    external_back += reaction * c.back * dof.velocity;
+    external_ahead += reaction * c.ahead * vp;
+    dof.force = f_needed;
+    if (group_reactions && pr.group >= 0) (*group_reactions)[6 * pr.group + d.component] += reaction;
+  }
+}
+
+namespace {
+
+/// One point's velocities (translation or rotation: `width` components of mass or inertia m) to
+/// t_n+1/2, and its contributions to the block sums.
+struct PointSums {
+  double kinetic = 0, damp_back = 0, damp_ahead = 0, grav_back = 0, grav_ahead = 0;
+};
+inline double kick(double* V, const double* F, int width, double m, const AdvanceCoefficients& c,
+                   const double* g, PointSums& s) {
+  double v2 = 0, vb = 0, va = 0, gb = 0, ga = 0;
+  for (int k = 0; k < width; ++k) {
+    const double v_old = V[k];
+    if (g) gb += g[k] * v_old;
+    const double v_new = (c.d1 * v_old + c.dt_n * (F[k] / m)) * c.d2;
+    const double v_mean = 0.5 * (v_old + v_new);
+    v2 += v_mean * v_mean;
+    vb += v_mean * v_old;
+    va += v_mean * v_new;
+    if (g) ga += g[k] * v_new;
+    V[k] = v_new;
+  }
+  if (g) {
+    s.grav_back += m * gb * c.back;
+    s.grav_ahead += m * ga * c.ahead;
+  }
+  s.kinetic += 0.5 * m * v2;
+  s.damp_back += c.alpha * m * vb * c.back;  // damping force α m v_n at t_n
+  s.damp_ahead += c.alpha * m * va * c.ahead;
+  return v2;
+}
+
+}  // namespace
+
+std::int64_t advance_points(const MovingPoints& p, const AdvanceCoefficients& c, double sums[5],
+                            std::vector<double>& scratch) {
+  const int D = p.dim, R = p.rot_dim;
+  const bool gravity = c.gravity[0] != 0 || c.gravity[1] != 0 || c.gravity[2] != 0;
+  const double* g = gravity ? c.gravity.data() : nullptr;
+  const std::size_t n = p.count;
+  const std::size_t blocks = (n + p.block - 1) / p.block;
+  constexpr int kSums = 6;  // kinetic, damping back/ahead, gravity back/ahead, first bad point
+  scratch.assign(kSums * blocks, 0.0);
+#pragma omp parallel for schedule(static)
+  for (std::size_t b = 0; b < blocks; ++b) {
+    PointSums s;
+    double bad = -1;
+    for (std::size_t i = b * p.block; i < std::min(n, (b + 1) * p.block); ++i) {
+      const double v2 = kick(&p.v[D * i], &p.force[D * i], D, p.mass[i], c, g, s);
+      if (!std::isfinite(v2) && bad < 0) bad = static_cast<double>(i);
+      if (R > 0) {
+        // The particles' inertia is isotropic: Euler's equations have no gyroscopic term.
+        const double w2 = kick(&p.omega[R * i], &p.torque[R * i], R, p.inertia[i], c, nullptr, s);
+        if (!std::isfinite(w2) && bad < 0) bad = static_cast<double>(i);
+      }
+      for (int k = 0; k < D; ++k) {
+        if (p.x_old) p.x_old[D * i + k] = p.x[D * i + k];
+        p.x[D * i + k] += c.dt_next * p.v[D * i + k];
+      }
+      for (int k = 0; k < R; ++k) {
+        p.dtheta[R * i + k] = c.dt_next * p.omega[R * i + k];
+        p.theta[R * i + k] += p.dtheta[R * i + k];
+      }
+    }
+    double* out = &scratch[kSums * b];
+    out[0] = s.kinetic;
+    out[1] = s.damp_back;
+    out[2] = s.damp_ahead;
+    out[3] = s.grav_back;
+    out[4] = s.grav_ahead;
+    out[5] = bad;
+  }
+  std::int64_t first_bad = -1;
+  for (std::size_t b = 0; b < blocks; ++b) {
+    const double* in = &scratch[kSums * b];
+    if (in[5] >= 0 && first_bad < 0) first_bad = static_cast<std::int64_t>(in[5]);
+    for (int k = 0; k < 5; ++k) sums[k] += in[k];
+  }
+  return first_bad;
+}
+
+double kinetic_energy(const NodeArrays& nodes) {
+  const int dim = nodes.dim;
+  double kinetic = 0;
+  for (std::size_t i = 0; i < nodes.count(); ++i)
+    for (int k = 0; k < dim; ++k) kinetic += 0.5 * nodes.mass[i] * nodes.v[dim * i + k] * nodes.v[dim * i + k];
+  return kinetic;
+}
+
+double kinetic_energy(const ParticlePart& part) {
+  const std::size_t n = part.count();
+  const int D = part.dim, R = part.rot_dim();
+  std::vector<double> e(n);
+  auto dot = [](const double* a, int w) {
+    double s = 0;
+    for (int k = 0; k < w; ++k) s += a[k] * a[k];
+    return s;
+  };
+#pragma omp parallel for schedule(static)
+  for (std::size_t i = 0; i < n; ++i)
+    e[i] = 0.5 * part.mass[i] * dot(&part.v[D * i], D) + 0.5 * part.inertia[i] * dot(&part.omega[R * i], R);
+  return deterministic_sum(e);
+}
+
+}  // namespace shard

@@ -1,0 +1,76 @@
+// One integrator for every moving point: the finite-element nodes and the particles of each
+// particle part are the same kind of thing to it (positions, velocities, forces, masses), and
+// particles add rotation (angle, angular velocity, torque, isotropic inertia). Central
+// difference with mass-proportional damping at the mid-point, prescribed velocity components by
+// one path, and the energy sums in fixed blocks. Theory: docs/theory/time_integration_and_energy.md.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "model/model.hpp"
+#include "solver/loads.hpp"
+
+namespace shard {
+
+/// A set of moving points as the integrator sees it.
+struct MovingPoints {
+  std::size_t count = 0;
+  int dim = 0;
+  double* x = nullptr;
+  double* v = nullptr;
+  double* force = nullptr;
+  const double* mass = nullptr;
+  int rot_dim = 0;  ///< 0: no rotation (nodes)
+  double* theta = nullptr;
+  double* omega = nullptr;
+  double* torque = nullptr;
+  const double* inertia = nullptr;
+  double* dtheta = nullptr;  ///< the rotation increments of the step, kept (particles)
+  double* x_old = nullptr;   ///< the positions before the drift, kept (particles)
+  /// Points per block of the energy sums (the blocks are summed in order: the same bits for any
+  /// thread count): 2048 for nodes, 1024 for particles.
+  std::size_t block = 2048;
+};
+
+MovingPoints moving_points(NodeArrays& nodes);
+MovingPoints moving_points(ParticlePart& part);
+
+/// The coefficients of one advance: v+ = (d1 v− + Δt_n F/m) d2, x += Δt_n+1/2 v+, and the half
+/// intervals the work of the forces at t_n is split into (back: [t_n−1/2, t_n], ahead:
+/// [t_n, t_n+1/2]).
+struct AdvanceCoefficients {
+  double dt_n = 0, dt_next = 0, d1 = 1, d2 = 1, alpha = 0, back = 0, ahead = 0;
+  std::array<double, 3> gravity{0, 0, 0};
+};
+
+/// The degree of freedom a prescription holds: its velocity, force and inertia (translation
+/// components 0..dim−1, rotation components after them).
+struct DofRef {
+  double& velocity;
+  double& force;
+  double inertia;
+};
+DofRef dof_of(const MovingPoints& p, const PrescribedDof& d);
+
+/// Replaces the force of each prescribed degree of freedom by the one that gives it its
+/// prescribed velocity at t_n+1/2 (`time_half`); adds the work of the reactions to
+/// external_back/ahead and, per prescription group, the reaction to `group_reactions` (6 per
+/// group) when given.
+void apply_prescribed(const MovingPoints& p, const std::vector<PrescribedDof>& dofs, const Loads& loads,
+                      const AdvanceCoefficients& c, double time_half, double& external_back,
+                      double& external_ahead, std::vector<double>* group_reactions);
+
+/// Velocities to t_n+1/2 and positions to t_n+1 (rotations too). sums[0..4] (kinetic at t_n,
+/// damping back and ahead, gravity work back and ahead) are added to, block by block. Returns
+/// the first point whose velocity is not finite, or −1. `scratch` holds the block sums.
+std::int64_t advance_points(const MovingPoints& p, const AdvanceCoefficients& c, double sums[5],
+                            std::vector<double>& scratch);
+
+/// Kinetic energy of the nodes at rest positions (the initial energy of a run).
+double kinetic_energy(const NodeArrays& nodes);
+/// Kinetic energy of a particle part, translation and rotation, in blocks of 2048.
+double kinetic_energy(const ParticlePart& part);
+
+}  // namespace shard
