@@ -42,6 +42,25 @@ std::int32_t EntityRemap::add_born(std::int32_t parent, double share) {
   return static_cast<std::int32_t>(source.size()) - 1;
 }
 
+void EntityRemap::set_parents(std::size_t i, const std::vector<std::int32_t>& list, const std::vector<double>& weights) {
+  // Rebuild the lists in entity order with i's replaced (parents are set rarely, by whole remaps).
+  std::vector<std::vector<std::pair<std::int32_t, double>>> of(source.size());
+  for (std::size_t e = 0; e < source.size() && e + 1 < parent_begin.size(); ++e)
+    for (std::int32_t q = parent_begin[e]; q < parent_begin[e + 1]; ++q) of[e].emplace_back(parents[q], parent_weight[q]);
+  of[i].clear();
+  for (std::size_t q = 0; q < list.size(); ++q) of[i].emplace_back(list[q], weights[q]);
+  parent_begin.assign(1, 0);
+  parents.clear();
+  parent_weight.clear();
+  for (const auto& l : of) {
+    for (const auto& [p, w] : l) {
+      parents.push_back(p);
+      parent_weight.push_back(w);
+    }
+    parent_begin.push_back(static_cast<std::int32_t>(parents.size()));
+  }
+}
+
 std::vector<std::int32_t> EntityRemap::new_of_old() const {
   std::vector<std::int32_t> out(old_count, -1);
   for (std::size_t i = 0; i < source.size(); ++i)
@@ -82,30 +101,39 @@ T initial_value(const FieldInfo& info) {
   else return static_cast<T>(static_cast<long long>(info.initial));
 }
 
+/// The weighted sum of component k over the listed parents of new entity i.
+template <class T>
+T parents_sum(const std::vector<T>& old, std::size_t comps, std::size_t k, const EntityRemap& r, std::size_t i) {
+  T sum = 0;
+  for (std::int32_t q = r.parent_begin[i]; q < r.parent_begin[i + 1]; ++q)
+    sum += r.parent_weight[q] * old[comps * r.parents[q] + k];
+  return sum;
+}
+
 /// The value component k of new entity i takes, for every rule but `share`'s continued entities
-/// (which need the sums of their born children) and `recompute` (handled as a whole).
+/// (which need the sums of their born children and of what they absorb) and `recompute`
+/// (handled as a whole).
 template <class T>
 T rule_value(const std::vector<T>& old, std::size_t comps, std::size_t k, const FieldInfo& info,
              const EntityRemap& r, std::size_t i, std::int64_t* next_id) {
   const std::int32_t s = r.source[i];
   if (info.follow == Follow::stable_id && r.born[i]) return static_cast<T>((*next_id)++);
   if (!r.born[i]) return old[comps * s + k];
-  if (s < 0 || info.follow == Follow::fresh) return initial_value<T>(info);
+  const bool several = r.has_parents(i);
+  if ((s < 0 && !several) || info.follow == Follow::fresh) return initial_value<T>(info);
   if constexpr (std::is_floating_point_v<T>) {
-    if (info.follow == Follow::share) return r.weight_of(i) * old[comps * s + k];
-    if (info.follow == Follow::interpolate && !r.parent_begin.empty()) {
-      T sum = 0;
-      for (std::int32_t q = r.parent_begin[i]; q < r.parent_begin[i + 1]; ++q)
-        sum += r.parent_weight[q] * old[comps * r.parents[q] + k];
-      return sum;
+    if (info.follow == Follow::share || info.follow == Follow::interpolate) {
+      if (several) return parents_sum(old, comps, k, r, i);
+      if (info.follow == Follow::share) return r.weight_of(i) * old[comps * s + k];
     }
   }
-  return old[comps * s + k];
+  return old[comps * (s >= 0 ? s : r.parents[r.parent_begin[i]]) + k];
 }
 
 /// Applies an entity remap to one field: see Follow for the rules. A continued parent of born
 /// `share` entities keeps its value less what they took, summed in their order (so that the
-/// parts add up to the whole as the sum of the pieces, for mass and momentum).
+/// parts add up to the whole as the sum of the pieces, for mass and momentum), plus what it
+/// absorbs of removed entities.
 template <class T>
 void remap_values(std::vector<T>& a, const FieldInfo& info, const EntityRemap& r, std::int64_t* next_id) {
   // An empty array of some entities is a field not in use; with no entities yet, one whose
@@ -122,6 +150,8 @@ void remap_values(std::vector<T>& a, const FieldInfo& info, const EntityRemap& r
   }
   constexpr bool floating = std::is_floating_point_v<T>;
   const bool shares = floating && info.follow == Follow::share;
+  // A born entity with one parent takes its share from that parent (a split).
+  auto splits_off = [&](std::size_t i) { return r.born[i] && r.source[i] >= 0 && !r.has_parents(i); };
   if (r.appends_only()) {
     // In place: the old entities keep their slots, the born ones are appended (a crack adds a few
     // nodes to many): what their parents give up is summed per parent and taken off at the end.
@@ -132,7 +162,7 @@ void remap_values(std::vector<T>& a, const FieldInfo& info, const EntityRemap& r
       if (!shares) return;
       std::map<std::size_t, T> taken;
       for (std::size_t i = r.old_count; i < n_new; ++i)
-        if (r.source[i] >= 0)
+        if (splits_off(i))
           for (std::size_t k = 0; k < comps; ++k) taken[comps * r.source[i] + k] += a[comps * i + k];
       for (const auto& [slot, value] : taken) a[slot] -= value;
     }
@@ -145,12 +175,16 @@ void remap_values(std::vector<T>& a, const FieldInfo& info, const EntityRemap& r
     if (shares) {
       std::vector<T> taken(a.size(), T{});  // per old value: what its born children took
       for (std::size_t i = 0; i < n_new; ++i)
-        if (r.born[i] && r.source[i] >= 0)
+        if (splits_off(i))
           for (std::size_t k = 0; k < comps; ++k) taken[comps * r.source[i] + k] += out[comps * i + k];
-      for (std::size_t i = 0; i < n_new; ++i)
-        if (!r.born[i])
-          for (std::size_t k = 0; k < comps; ++k)
-            out[comps * i + k] = a[comps * r.source[i] + k] - taken[comps * r.source[i] + k];
+      for (std::size_t i = 0; i < n_new; ++i) {
+        if (r.born[i]) continue;
+        for (std::size_t k = 0; k < comps; ++k) {
+          T v = a[comps * r.source[i] + k] - taken[comps * r.source[i] + k];
+          if (r.has_parents(i)) v += parents_sum(a, comps, k, r, i);  // what it absorbs
+          out[comps * i + k] = v;
+        }
+      }
     }
   }
   a = std::move(out);
@@ -305,14 +339,18 @@ void apply_remap(Model& model, const Remap& remap) {
   std::vector<std::int32_t> node_map;
   if (remap.nodes) {
     validate(*remap.nodes, model.nodes.count(), "nodes");
-    model.visit_node_fields([&](const FieldInfo& info, auto& a) { remap_values(a, info, *remap.nodes, &model.next_node_id); });
+    model.visit_node_fields([&](const FieldInfo& info, auto& a) {
+      if (info.location == Location::node) remap_values(a, info, *remap.nodes, &model.next_node_id);
+    });
     node_map = remap.nodes->new_of_old();
   }
   std::map<int, std::vector<std::int32_t>> element_maps;
   for (const auto& [p, r] : remap.elements) {
     Part& part = model.parts.at(p);
     validate(r, part.element_count(), ("elements of part " + part.name).c_str());
-    part.visit_fields([&](const FieldInfo& info, auto& a) { remap_values(a, info, r, &model.next_element_id); });
+    part.visit_fields([&](const FieldInfo& info, auto& a) {
+      if (info.location == Location::element) remap_values(a, info, r, &model.next_element_id);
+    });
     element_maps[p] = r.new_of_old();
   }
   if (remap.nodes && !remap.nodes->appends_only())

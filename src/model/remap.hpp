@@ -29,8 +29,11 @@ struct EntityRemap {
   std::vector<std::uint8_t> born;
   /// Per new entity, its share of its parent (Follow::share) ; empty: 1 for all.
   std::vector<double> weight;
-  /// Born entities with several parents (Follow::interpolate): parents of new entity i are
-  /// parents[parent_begin[i] .. parent_begin[i+1]) with parent_weight; empty: one parent each.
+  /// Entities with several parents, parents[parent_begin[i] .. parent_begin[i+1]) with
+  /// parent_weight (parent_begin empty: none has). A born entity with parents takes their weighted
+  /// sum in its `share` and `interpolate` fields (a merge, or a remeshed node) and its first
+  /// parent's value in the others; a continued entity absorbs its parents (removed entities): its
+  /// `share` fields add their weighted values, its others stay its own.
   std::vector<std::int32_t> parent_begin, parents;
   std::vector<double> parent_weight;
 
@@ -42,6 +45,12 @@ struct EntityRemap {
   static EntityRemap keeping(const std::vector<std::uint8_t>& keep);
   /// Appends a born entity; returns its new index.
   std::int32_t add_born(std::int32_t parent, double share = 1.0);
+  /// Gives new entity i (the last added, or any: parents are kept in entity order) the parents
+  /// listed, with their weights.
+  void set_parents(std::size_t i, const std::vector<std::int32_t>& list, const std::vector<double>& weights);
+  bool has_parents(std::size_t i) const {
+    return i + 1 < parent_begin.size() && parent_begin[i + 1] > parent_begin[i];
+  }
 
   std::size_t new_count() const { return source.size(); }
   double weight_of(std::size_t i) const { return weight.empty() ? 1.0 : weight[i]; }

@@ -78,11 +78,19 @@ ExplicitSolver::ExplicitSolver(Model& model,
   topology_changed(model_, Remap{});
   // The solver's own event: every run compacts eroded elements; the events a scenario asks for
   // (crack growth, the automata's contact search) are added after it.
-  own_events_.push_back(std::make_unique<ErosionCompaction>());
+  if (settings_.compact_eroded_elements) own_events_.push_back(std::make_unique<ErosionCompaction>());
   for (auto& e : own_events_) add_event(*e);
 }
 
 ExplicitSolver::~ExplicitSolver() = default;
+
+void ExplicitSolver::restored() {
+  for (ParticlePart& part : model_.particle_parts) {
+    if (part.model) part.model->after_change(part);
+    part.stable_time_step = 0;
+  }
+  topology_.reset(model_);
+}
 
 void ExplicitSolver::attach_contact(ContactSystem* contact) {
   if (contact_) topology_.remove(*contact_);

@@ -32,6 +32,9 @@ struct SolverSettings {
   double mass_damping = 0;  ///< α of the damping force −α m v (1/s)
   double max_time_step = 0; ///< 0: no limit
   std::array<double, 3> gravity{0, 0, 0};  ///< body force per unit mass (m/s²)
+  /// Eroded elements leave their part at the end of the step they erode in (ErosionCompaction);
+  /// false keeps them in place, flagged and carrying nothing (for comparison).
+  bool compact_eroded_elements = true;
 };
 
 /// Scalars of the integrator's state; with the Model's arrays this is everything a restart needs.
@@ -61,8 +64,9 @@ class ExplicitSolver : private TopologyListener {
 
   /// Lumped masses, initial energies, and sanity checks (zero masses). Call once on a new run.
   void initialise();
-  /// After the model and state were read from a checkpoint: every topology cache rebuilds.
-  void restored() { topology_.reset(model_); }
+  /// After the model and state were read from a checkpoint: the particle models rebuild what
+  /// derives from their pairs, and every topology cache rebuilds.
+  void restored();
 
   /// Phase 1 at t_n: stresses and internal forces from the last increment, loads, stable step.
   /// After this the Model holds a consistent state at t_n (positions, stresses) for output.
