@@ -157,256 +157,301 @@ std::string check_scenario(const std::filesystem::path& file) {
   return out.str();
 }
 
-RunSummary run_scenario(const std::filesystem::path& file, const RunOptions& options) {
+namespace {
+
+/// One run: the simulation, its solver and its outputs (history, frames, checkpoints, summary).
+class RunDriver {
+ public:
+  RunDriver(const std::filesystem::path& file, const RunOptions& options)
+      : options_(options), p_(prepare(file)), sc_(p_.scenario), sim_(p_.sim), solver_ptr_(make_solver(sim_)),
+        solver_(*solver_ptr_), contact_(solver_.contact()), cracks_(sim_.crack_growth()),
+        fingerprint_(fingerprint_of(sc_)), dir_(options.output_dir), history_path_(dir_ / "history.csv"),
+        dim_(sim_.model.dim()), pvd_(dir_ / "frames.pvd"),
+        progress_(options.quiet, sc_.output.log_interval, sc_.end_time) {
 #ifdef _OPENMP
-  if (options.threads > 0) omp_set_num_threads(options.threads);
-  const int threads = omp_get_max_threads();
-#else
-  const int threads = 1;
+    threads_ = omp_get_max_threads();
 #endif
-  // Everything is validated before the output folder is touched.
-  Prepared p = prepare(file);
-  Scenario& sc = p.scenario;
-  Simulation& sim = p.sim;
-  const auto solver_ptr = make_solver(sim);
-  ExplicitSolver& solver = *solver_ptr;
-  const ContactSystem* contact = solver.contact();
-  const CrackGrowth* cracks = sim.crack_growth();
-  const std::string fingerprint = fingerprint_of(sc);
-  OutputCursor cursor;
-  if (options.restart) {
-    read_checkpoint(*options.restart, sim.model, solver.state(), cursor, fingerprint);
-    // Cracks and erosion changed the mesh since set-up: every cache of the topology (the contact
-    // surface, the prescribed degrees of freedom) follows the checkpoint's model.
-    solver.restored();
-  } else {
-    solver.initialise();
-  }
-
-  const auto& dir = options.output_dir;
-  std::filesystem::create_directories(dir);
-  write_text_atomically(dir / "resolved.yaml", "# " + sc.file.string() + ", resolved by shard " +
-                                                   SHARD_VERSION + " (SI units)\n" +
-                                                   to_yaml_text(sc.resolved));
-  const std::filesystem::path history_path = dir / "history.csv";
-  // Extra history columns, in the order the rows write them.
-  std::vector<std::string> extra_columns;
-  const char* axes[3] = {"x", "y", "z"};
-  const int dim = sim.model.dim();
-  // Regions of automata with conditions or monitors: the reaction on them and their mean
-  // displacement, for load-displacement curves of virtual tests.
-  for (const auto& g : sim.loads.particle_groups) {
-    for (int k = 0; k < dim; ++k) extra_columns.push_back("reaction_" + g.name + "_" + axes[k]);
-    for (int k = 0; k < dim; ++k) extra_columns.push_back("displacement_" + g.name + "_" + axes[k]);
-  }
-  for (const auto& pp : sim.model.particle_parts) extra_columns.push_back("linked_bonds_" + pp.name);
-  if (cracks) extra_columns.push_back("fragments");
-  // Contact forces per part pair and per wall: what load cells and crush tests measure.
-  if (contact) {
-    for (const auto& [a, b] : contact->reported_pairs())
-      for (int k = 0; k < dim; ++k)
-        extra_columns.push_back("contact_force_" + sim.model.parts[a].name + "_from_" +
-                                sim.model.parts[b].name + "_" + axes[k]);
-    for (const auto& w : contact->settings().walls)
-      for (int k = 0; k < dim; ++k) extra_columns.push_back("wall_" + w.name + "_force_" + axes[k]);
-  }
-  PvdCollection pvd(dir / "frames.pvd");
-  std::vector<PvdCollection> particle_pvd;
-  for (const auto& pp : sim.model.particle_parts) particle_pvd.emplace_back(dir / ("particles_" + pp.name + ".pvd"));
-  std::ofstream history;
-  if (options.restart) {
-    if (!std::filesystem::exists(history_path) ||
-        std::filesystem::file_size(history_path) < cursor.history_bytes)
-      throw InputError(options.restart->string(), 0, "--restart",
-                       "restart into the output folder of the run that wrote the checkpoint (" +
-                           history_path.string() + " is missing or shorter than at the checkpoint)");
-    std::filesystem::resize_file(history_path, cursor.history_bytes);
-    if (std::filesystem::exists(dir / "frames.pvd")) pvd = PvdCollection::read(dir / "frames.pvd");
-    pvd.keep_first(static_cast<std::size_t>(cursor.next_frame));
-    for (auto& c : particle_pvd) {
-      if (std::filesystem::exists(c.path())) c = PvdCollection::read(c.path());
-      c.keep_first(static_cast<std::size_t>(cursor.next_frame));
+    if (options_.restart) {
+      read_checkpoint(*options_.restart, sim_.model, solver_.state(), cursor_, fingerprint_);
+      // Cracks and erosion changed the mesh since set-up: every cache of the topology (the contact
+      // surface, the prescribed degrees of freedom, the automata's pairs) follows the checkpoint.
+      solver_.restored();
+    } else {
+      solver_.initialise();
     }
-    history.open(history_path, std::ios::app);
-  } else {
-    history.open(history_path, std::ios::trunc);
-    history << "time,step,dt";
-    for (const auto& c : solver.state().energy.column_names()) history << ',' << c;
-    for (const auto& c : extra_columns) history << ',' << c;
-    history << '\n';
+    for (const auto& pp : sim_.model.particle_parts) particles_ += pp.count();
   }
 
-  const auto& out = sc.output;
-  const double end = sc.end_time;
-  auto due = [](double t, std::int64_t index, double interval) {
+  RunSummary run() {
+    open_outputs();
+    start_ = Clock::now();
+    first_step_ = solver_.state().step;
+    try {
+      loop();
+    } catch (const RunError& e) {
+      progress_.finish();
+      history_.flush();
+      status_ = "failed";
+      message_ = e.what();
+      write_summary();
+      throw;
+    }
+    progress_.finish();
+    history_.flush();
+    write_summary();
+    if (cracks_) write_fragments_csv(dir_ / "fragments.csv", find_fragments(sim_.model).list, dim_);
+    RunSummary summary;
+    summary.steps = solver_.state().step;
+    summary.end_time = solver_.state().time - solver_.state().dt_half;
+    summary.wall_seconds = std::chrono::duration<double>(Clock::now() - start_).count();
+    summary.energy_balance_error = solver_.state().energy.relative_error();
+    return summary;
+  }
+
+ private:
+  static bool due(double t, std::int64_t index, double interval) {
     return interval <= 0 || t >= static_cast<double>(index) * interval * (1 - 1e-9);
-  };
-  Progress progress(options.quiet, out.log_interval, end);
-  const auto start = Clock::now();
-  const std::int64_t first_step = solver.state().step;
-  std::string status = "completed", message;
-  std::size_t particles = 0;
-  for (const auto& pp : sim.model.particle_parts) particles += pp.count();
-  auto write_summary = [&]() {
-    const double wall = std::chrono::duration<double>(Clock::now() - start).count();
-    const auto& s = solver.state();
-    const double steps = static_cast<double>(s.step - first_step);
-    std::ostringstream j;
-    j.precision(10);
-    j << "{\n  \"status\": " << json_string(status) << ",\n  \"message\": " << json_string(message)
-      << ",\n  \"scenario\": " << json_string(sc.file.string()) << ",\n  \"steps\": " << s.step
-      << ",\n  \"end_time\": " << s.time - s.dt_half << ",\n  \"wall_seconds\": " << wall
-      << ",\n  \"threads\": " << threads << ",\n  \"elements\": " << sim.model.element_count()
-      << ",\n  \"nodes\": " << sim.model.nodes.count() << ",\n  \"particles\": " << particles
-      << ",\n  \"element_steps_per_second\": "
-      << (wall > 0 ? steps * static_cast<double>(sim.model.element_count()) / wall : 0.0)
-      << ",\n  \"particle_steps_per_second\": "
-      << (wall > 0 ? steps * static_cast<double>(particles) / wall : 0.0)
-      << ",\n  \"eroded_elements\": " << s.eroded_elements
-      << ",\n  \"energy_balance_error\": " << s.energy.relative_error()
-      << ",\n  \"energy\": {";
-    const auto names = s.energy.column_names();
-    const auto values = s.energy.column_values();
-    for (std::size_t i = 0; i < names.size(); ++i)
-      j << (i ? ", " : "") << json_string(names[i]) << ": " << values[i];
-    j << "}";
-    // Where each region of automata started: gauge lengths for strains from its displacement.
-    if (!sim.loads.particle_groups.empty()) {
-      j << ",\n  \"particle_groups\": {";
-      for (std::size_t gi = 0; gi < sim.loads.particle_groups.size(); ++gi) {
-        const auto& g = sim.loads.particle_groups[gi];
-        const auto& pp = sim.model.particle_parts[g.part];
-        const auto& members = pp.find_set(g.name)->members;
-        j << (gi ? ", " : "") << json_string(g.name) << ": {\"automata\": " << members.size()
-          << ", \"initial_centroid\": [";
-        for (int k = 0; k < dim; ++k) {
-          double c = 0;
-          for (auto a : members) c += pp.x0[dim * a + k];
-          j << (k ? ", " : "") << c / static_cast<double>(members.size());
-        }
-        j << "]}";
-      }
-      j << "}";
-    }
-    j << ",\n  \"peak_memory_mb\": " << peak_memory_mb() << "\n}\n";
-    write_text_atomically(dir / "summary.json", j.str());
-  };
+  }
 
-  try {
+  /// Extra history columns, in the order the rows write them.
+  std::vector<std::string> extra_columns() const {
+    std::vector<std::string> columns;
+    const char* axes[3] = {"x", "y", "z"};
+    // Regions of automata with conditions or monitors: the reaction on them and their mean
+    // displacement, for load-displacement curves of virtual tests.
+    for (const auto& g : sim_.loads.particle_groups) {
+      for (int k = 0; k < dim_; ++k) columns.push_back("reaction_" + g.name + "_" + axes[k]);
+      for (int k = 0; k < dim_; ++k) columns.push_back("displacement_" + g.name + "_" + axes[k]);
+    }
+    for (const auto& pp : sim_.model.particle_parts) columns.push_back("linked_bonds_" + pp.name);
+    if (cracks_) columns.push_back("fragments");
+    // Contact forces per part pair and per wall: what load cells and crush tests measure.
+    if (contact_) {
+      for (const auto& [a, b] : contact_->reported_pairs())
+        for (int k = 0; k < dim_; ++k)
+          columns.push_back("contact_force_" + sim_.model.parts[a].name + "_from_" + sim_.model.parts[b].name + "_" +
+                            axes[k]);
+      for (const auto& w : contact_->settings().walls)
+        for (int k = 0; k < dim_; ++k) columns.push_back("wall_" + w.name + "_force_" + axes[k]);
+    }
+    return columns;
+  }
+
+  void open_outputs() {
+    std::filesystem::create_directories(dir_);
+    write_text_atomically(dir_ / "resolved.yaml", "# " + sc_.file.string() + ", resolved by shard " + SHARD_VERSION +
+                                                      " (SI units)\n" + to_yaml_text(sc_.resolved));
+    for (const auto& pp : sim_.model.particle_parts)
+      particle_pvd_.emplace_back(dir_ / ("particles_" + pp.name + ".pvd"));
+    if (options_.restart) {
+      if (!std::filesystem::exists(history_path_) || std::filesystem::file_size(history_path_) < cursor_.history_bytes)
+        throw InputError(options_.restart->string(), 0, "--restart",
+                         "restart into the output folder of the run that wrote the checkpoint (" +
+                             history_path_.string() + " is missing or shorter than at the checkpoint)");
+      std::filesystem::resize_file(history_path_, cursor_.history_bytes);
+      if (std::filesystem::exists(dir_ / "frames.pvd")) pvd_ = PvdCollection::read(dir_ / "frames.pvd");
+      pvd_.keep_first(static_cast<std::size_t>(cursor_.next_frame));
+      for (auto& c : particle_pvd_) {
+        if (std::filesystem::exists(c.path())) c = PvdCollection::read(c.path());
+        c.keep_first(static_cast<std::size_t>(cursor_.next_frame));
+      }
+      history_.open(history_path_, std::ios::app);
+    } else {
+      history_.open(history_path_, std::ios::trunc);
+      history_ << "time,step,dt";
+      for (const auto& c : solver_.state().energy.column_names()) history_ << ',' << c;
+      for (const auto& c : extra_columns()) history_ << ',' << c;
+      history_ << '\n';
+    }
+  }
+
+  void loop() {
+    const auto& out = sc_.output;
+    const double end = sc_.end_time;
     while (true) {
-      solver.compute_forces();
-      const SolverState& s = solver.state();
+      solver_.compute_forces();
+      const SolverState& s = solver_.state();
       const double t = s.time;
       const bool final = t >= end * (1 - 1e-12);
-      if (final || due(t, cursor.next_frame, out.frame_interval)) {
-        char name[32];
-        std::snprintf(name, sizeof name, "frame_%05lld.vtu", static_cast<long long>(cursor.next_frame));
-        VtuGrid frame = make_frame(sim.model, sim.materials, out.fields, t);
-        if (contact) {
-          VtuField p{"contact_pressure", 1, contact->nodal_pressure(sim.model)};
-          frame.point_fields.push_back(std::move(p));
-        }
-        if (!sim.model.parts.empty()) {
-          write_vtu(dir / name, frame);
-          pvd.add(t, name);
-        }
-        for (std::size_t p = 0; p < sim.model.particle_parts.size(); ++p) {
-          const auto& pp = sim.model.particle_parts[p];
-          char pname[160];
-          std::snprintf(pname, sizeof pname, "particles_%s_%05lld.vtu", pp.name.c_str(),
-                        static_cast<long long>(cursor.next_frame));
-          write_vtu(dir / pname, make_particle_frame(pp, t));
-          particle_pvd[p].add(t, pname);
-        }
-        cursor.next_frame = static_cast<std::int64_t>(std::floor(t / out.frame_interval * (1 + 1e-9))) + 1;
+      if (final || due(t, cursor_.next_frame, out.frame_interval)) {
+        write_frames(t);
+        cursor_.next_frame = static_cast<std::int64_t>(std::floor(t / out.frame_interval * (1 + 1e-9))) + 1;
       }
       const std::int64_t step = s.step;
       const double dt_used = s.dt_half;
-      solver.advance();
-      if (final || due(t, cursor.next_history, out.history_interval)) {
-        char buffer[64];
-        std::snprintf(buffer, sizeof buffer, "%.12e,%lld,%.12e", t, static_cast<long long>(step), dt_used);
-        history << buffer;
-        for (double v : s.energy.column_values()) {
-          std::snprintf(buffer, sizeof buffer, ",%.12e", v);
-          history << buffer;
-        }
-        const auto& reactions = solver.particle_group_reactions();
-        for (std::size_t gi = 0; gi < sim.loads.particle_groups.size(); ++gi) {
-          const auto& g = sim.loads.particle_groups[gi];
-          const auto& pp = sim.model.particle_parts[g.part];
-          for (int k = 0; k < dim; ++k) {
-            std::snprintf(buffer, sizeof buffer, ",%.12e", reactions.empty() ? 0.0 : reactions[6 * gi + k]);
-            history << buffer;
-          }
-          // x_old holds the positions at t_n once the step has advanced to t_n+1.
-          for (int k = 0; k < dim; ++k) {
-            double u = 0;
-            const auto& members = pp.find_set(g.name)->members;
-            for (auto a : members) u += pp.x_old[dim * a + k] - pp.x0[dim * a + k];
-            std::snprintf(buffer, sizeof buffer, ",%.12e", u / static_cast<double>(members.size()));
-            history << buffer;
-          }
-        }
-        for (const auto& pp : sim.model.particle_parts) {
-          // Pairs still fully linked (k_link = 1); the bonds broken so far are the drop from row 1.
-          std::int64_t linked = 0;
-          const PairList& pairs = mca_state(pp).pairs;
-          for (std::size_t p = 0; p < pairs.count(); ++p) linked += pairs.state_of(p) == PairState::linked;
-          history << ',' << linked;
-        }
-        if (cracks) history << ',' << find_fragments(sim.model).list.size();
-        if (contact) {
-          for (const auto* values : {&contact->pair_forces(), &contact->wall_forces()})
-            for (double v : *values) {
-              std::snprintf(buffer, sizeof buffer, ",%.12e", v);
-              history << buffer;
-            }
-        }
-        history << '\n';
+      solver_.advance();
+      if (final || due(t, cursor_.next_history, out.history_interval)) {
+        write_history_row(t, step, dt_used);
         if (out.history_interval > 0)
-          cursor.next_history = static_cast<std::int64_t>(std::floor(t / out.history_interval * (1 + 1e-9))) + 1;
+          cursor_.next_history = static_cast<std::int64_t>(std::floor(t / out.history_interval * (1 + 1e-9))) + 1;
       }
-      progress.update(s, t, final);
+      progress_.update(s, t, final);
       if (final) break;
-      if (sc.max_steps > 0 && s.step >= sc.max_steps)
-        throw RunError("reached analysis.max_steps = " + std::to_string(sc.max_steps) + " at t = " +
+      if (sc_.max_steps > 0 && s.step >= sc_.max_steps)
+        throw RunError("reached analysis.max_steps = " + std::to_string(sc_.max_steps) + " at t = " +
                        format_time(s.time) + " before end_time = " + format_time(end));
-      const bool stop = options.until && s.time >= *options.until * (1 - 1e-12);
-      const bool checkpoint_due =
-          out.checkpoint_interval > 0 && due(s.time, cursor.next_checkpoint, out.checkpoint_interval);
-      if (stop || checkpoint_due) {
-        history.flush();
-        cursor.history_bytes = std::filesystem::file_size(history_path);
-        if (checkpoint_due)
-          cursor.next_checkpoint = static_cast<std::int64_t>(std::floor(s.time / out.checkpoint_interval * (1 + 1e-9))) + 1;
-        write_checkpoint(dir / "checkpoint.bin", sim.model, s, cursor, fingerprint);
-        if (stop) {
-          status = "stopped";
-          message = "stopped at t = " + format_time(s.time) + " (--until); continue with --restart " +
-                    (dir / "checkpoint.bin").string();
-          break;
-        }
+      if (checkpoint_or_stop()) break;
+    }
+  }
+
+  void write_frames(double t) {
+    char name[32];
+    std::snprintf(name, sizeof name, "frame_%05lld.vtu", static_cast<long long>(cursor_.next_frame));
+    VtuGrid frame = make_frame(sim_.model, sim_.materials, sc_.output.fields, t);
+    if (contact_) {
+      VtuField p{"contact_pressure", 1, contact_->nodal_pressure(sim_.model)};
+      frame.point_fields.push_back(std::move(p));
+    }
+    if (!sim_.model.parts.empty()) {
+      write_vtu(dir_ / name, frame);
+      pvd_.add(t, name);
+    }
+    for (std::size_t p = 0; p < sim_.model.particle_parts.size(); ++p) {
+      const auto& pp = sim_.model.particle_parts[p];
+      char pname[160];
+      std::snprintf(pname, sizeof pname, "particles_%s_%05lld.vtu", pp.name.c_str(),
+                    static_cast<long long>(cursor_.next_frame));
+      write_vtu(dir_ / pname, make_particle_frame(pp, t));
+      particle_pvd_[p].add(t, pname);
+    }
+  }
+
+  void write_number(double v) {
+    char buffer[64];
+    std::snprintf(buffer, sizeof buffer, ",%.12e", v);
+    history_ << buffer;
+  }
+
+  void write_history_row(double t, std::int64_t step, double dt_used) {
+    const SolverState& s = solver_.state();
+    char buffer[64];
+    std::snprintf(buffer, sizeof buffer, "%.12e,%lld,%.12e", t, static_cast<long long>(step), dt_used);
+    history_ << buffer;
+    for (double v : s.energy.column_values()) write_number(v);
+    const auto& reactions = solver_.particle_group_reactions();
+    for (std::size_t gi = 0; gi < sim_.loads.particle_groups.size(); ++gi) {
+      const auto& g = sim_.loads.particle_groups[gi];
+      const auto& pp = sim_.model.particle_parts[g.part];
+      for (int k = 0; k < dim_; ++k) write_number(reactions.empty() ? 0.0 : reactions[6 * gi + k]);
+      // x_old holds the positions at t_n once the step has advanced to t_n+1.
+      const auto& members = pp.find_set(g.name)->members;
+      for (int k = 0; k < dim_; ++k) {
+        double u = 0;
+        for (auto a : members) u += pp.x_old[dim_ * a + k] - pp.x0[dim_ * a + k];
+        write_number(u / static_cast<double>(members.size()));
       }
     }
-  } catch (const RunError& e) {
-    progress.finish();
-    history.flush();
-    status = "failed";
-    message = e.what();
-    write_summary();
-    throw;
+    for (const auto& pp : sim_.model.particle_parts) {
+      // Pairs still fully linked (k_link = 1); the bonds broken so far are the drop from row 1.
+      std::int64_t linked = 0;
+      const PairList& pairs = mca_state(pp).pairs;
+      for (std::size_t p = 0; p < pairs.count(); ++p) linked += pairs.state_of(p) == PairState::linked;
+      history_ << ',' << linked;
+    }
+    if (cracks_) history_ << ',' << find_fragments(sim_.model).list.size();
+    if (contact_)
+      for (const auto* values : {&contact_->pair_forces(), &contact_->wall_forces()})
+        for (double v : *values) write_number(v);
+    history_ << '\n';
   }
-  progress.finish();
-  history.flush();
-  write_summary();
-  if (cracks) write_fragments_csv(dir / "fragments.csv", find_fragments(sim.model).list, dim);
-  RunSummary summary;
-  summary.steps = solver.state().step;
-  summary.end_time = solver.state().time - solver.state().dt_half;
-  summary.wall_seconds = std::chrono::duration<double>(Clock::now() - start).count();
-  summary.energy_balance_error = solver.state().energy.relative_error();
-  return summary;
+
+  /// A checkpoint when one is due or the run stops here (--until); true when it stops.
+  bool checkpoint_or_stop() {
+    const auto& out = sc_.output;
+    const SolverState& s = solver_.state();
+    const bool stop = options_.until && s.time >= *options_.until * (1 - 1e-12);
+    const bool checkpoint_due = out.checkpoint_interval > 0 && due(s.time, cursor_.next_checkpoint, out.checkpoint_interval);
+    if (!stop && !checkpoint_due) return false;
+    history_.flush();
+    cursor_.history_bytes = std::filesystem::file_size(history_path_);
+    if (checkpoint_due)
+      cursor_.next_checkpoint = static_cast<std::int64_t>(std::floor(s.time / out.checkpoint_interval * (1 + 1e-9))) + 1;
+    write_checkpoint(dir_ / "checkpoint.bin", sim_.model, s, cursor_, fingerprint_);
+    if (!stop) return false;
+    status_ = "stopped";
+    message_ = "stopped at t = " + format_time(s.time) + " (--until); continue with --restart " +
+               (dir_ / "checkpoint.bin").string();
+    return true;
+  }
+
+  void write_summary() {
+    const double wall = std::chrono::duration<double>(Clock::now() - start_).count();
+    const auto& s = solver_.state();
+    const double steps = static_cast<double>(s.step - first_step_);
+    const double elements = static_cast<double>(sim_.model.element_count());
+    std::ostringstream j;
+    j.precision(10);
+    j << "{\n  \"status\": " << json_string(status_) << ",\n  \"message\": " << json_string(message_)
+      << ",\n  \"scenario\": " << json_string(sc_.file.string()) << ",\n  \"steps\": " << s.step
+      << ",\n  \"end_time\": " << s.time - s.dt_half << ",\n  \"wall_seconds\": " << wall
+      << ",\n  \"threads\": " << threads_ << ",\n  \"elements\": " << sim_.model.element_count()
+      << ",\n  \"nodes\": " << sim_.model.nodes.count() << ",\n  \"particles\": " << particles_
+      << ",\n  \"element_steps_per_second\": " << (wall > 0 ? steps * elements / wall : 0.0)
+      << ",\n  \"particle_steps_per_second\": "
+      << (wall > 0 ? steps * static_cast<double>(particles_) / wall : 0.0)
+      << ",\n  \"eroded_elements\": " << s.eroded_elements
+      << ",\n  \"energy_balance_error\": " << s.energy.relative_error() << ",\n  \"energy\": {";
+    const auto names = s.energy.column_names();
+    const auto values = s.energy.column_values();
+    for (std::size_t i = 0; i < names.size(); ++i) j << (i ? ", " : "") << json_string(names[i]) << ": " << values[i];
+    j << "}";
+    write_particle_groups(j);
+    j << ",\n  \"peak_memory_mb\": " << peak_memory_mb() << "\n}\n";
+    write_text_atomically(dir_ / "summary.json", j.str());
+  }
+
+  /// Where each region of automata started: gauge lengths for strains from its displacement.
+  void write_particle_groups(std::ostringstream& j) const {
+    if (sim_.loads.particle_groups.empty()) return;
+    j << ",\n  \"particle_groups\": {";
+    for (std::size_t gi = 0; gi < sim_.loads.particle_groups.size(); ++gi) {
+      const auto& g = sim_.loads.particle_groups[gi];
+      const auto& pp = sim_.model.particle_parts[g.part];
+      const auto& members = pp.find_set(g.name)->members;
+      j << (gi ? ", " : "") << json_string(g.name) << ": {\"automata\": " << members.size()
+        << ", \"initial_centroid\": [";
+      for (int k = 0; k < dim_; ++k) {
+        double c = 0;
+        for (auto a : members) c += pp.x0[dim_ * a + k];
+        j << (k ? ", " : "") << c / static_cast<double>(members.size());
+      }
+      j << "]}";
+    }
+    j << "}";
+  }
+
+  const RunOptions& options_;
+  Prepared p_;
+  Scenario& sc_;
+  Simulation& sim_;
+  std::unique_ptr<ExplicitSolver> solver_ptr_;
+  ExplicitSolver& solver_;
+  const ContactSystem* contact_;
+  const CrackGrowth* cracks_;
+  const std::string fingerprint_;
+  const std::filesystem::path dir_, history_path_;
+  const int dim_;
+  int threads_ = 1;
+  OutputCursor cursor_;
+  PvdCollection pvd_;
+  std::vector<PvdCollection> particle_pvd_;
+  std::ofstream history_;
+  Progress progress_;
+  Clock::time_point start_ = Clock::now();
+  std::int64_t first_step_ = 0;
+  std::size_t particles_ = 0;
+  std::string status_ = "completed", message_;
+};
+
+}  // namespace
+
+RunSummary run_scenario(const std::filesystem::path& file, const RunOptions& options) {
+#ifdef _OPENMP
+  if (options.threads > 0) omp_set_num_threads(options.threads);
+#endif
+  // Everything is validated before the output folder is touched.
+  RunDriver driver(file, options);
+  return driver.run();
 }
 
 }  // namespace shard

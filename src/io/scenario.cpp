@@ -308,28 +308,49 @@ int component_index(const std::string& c) { return c == "x" ? 0 : c == "y" ? 1 :
 
 }  // namespace
 
-Scenario read_scenario(const std::filesystem::path& path) {
-  const std::string file = path.string();
-  if (!std::filesystem::exists(path))
-    throw InputError(file, 0, "", "scenario file not found");
-  YAML::Node root;
-  try {
-    root = YAML::LoadFile(file);
-  } catch (const YAML::ParserException& e) {
-    const auto [line, reason] = yaml_syntax_error(file, e.mark.line + 1, e.msg);
-    throw InputError(file, line, "", reason);
-  } catch (const YAML::BadFile&) {
-    throw InputError(file, 0, "", "cannot read the scenario file");
+namespace {
+
+/// Reads the sections of a scenario in order; what later sections check against (the dimension,
+/// the material and part names) is kept between them.
+class ScenarioReader {
+ public:
+  ScenarioReader(const YAML::Node& root, const std::filesystem::path& path, Scenario& scenario)
+      : file(path.string()), sc(scenario), top_list(top_keys()), top(root, file, "", top_list, sc.resolved, 0) {}
+
+  void read() {
+    sc.title = top.text("title");
+    analysis();
+    mesh();
+    materials();
+    parts();
+    initial_conditions();
+    boundary_conditions();
+    loads();
+    contact();
+    walls();
+    cracking();
+    scenario_detail::read_particle_sections(top, sc);
+    output();
   }
-  if (!root.IsMap()) throw InputError(file, 1, "", "a scenario is a YAML map of sections (analysis:, mesh:, ...)");
 
-  Scenario sc;
-  sc.file = std::filesystem::absolute(path);
-  sc.resolved = YAML::Node(YAML::NodeType::Map);
-  const KeyList top_list = top_keys();
-  Section top(root, file, "", top_list, sc.resolved, 0);
-  sc.title = top.text("title");
+ private:
+  YAML::Node list_of(const std::string& key) {
+    const YAML::Node n = top.value(key);
+    if (!n.IsDefined() || n.IsNull()) return YAML::Node(YAML::NodeType::Sequence);
+    if (!n.IsSequence())
+      top.fail(key, "expected a list (entries starting with '- '), got " + Section::shape(n));
+    return n;
+  }
+  void check_part(Section& sec, const std::string& key, const std::string& name) {
+    if (std::find(part_names.begin(), part_names.end(), name) == part_names.end()) {
+      std::string reason = "no part named '" + name + "'";
+      const std::string close = closest_match(name, part_names);
+      if (!close.empty()) reason += " (did you mean '" + close + "'?)";
+      sec.fail(key, reason);
+    }
+  }
 
+  void analysis() {
   // analysis
   const KeyList a_keys = analysis_keys();
   Section analysis(top.value("analysis"), file, "analysis", a_keys, sc.resolved["analysis"], top.line("analysis"));
@@ -343,7 +364,7 @@ Scenario read_scenario(const std::filesystem::path& path) {
   sc.mass_damping = analysis.number("mass_damping");
   sc.initial_temperature = analysis.number("initial_temperature");
   sc.max_steps = analysis.integer("max_steps");
-  const std::size_t dim = static_cast<std::size_t>(sc.dim());
+  dim = static_cast<std::size_t>(sc.dim());
   if (analysis.has("gravity")) {
     const auto g = analysis.vector("gravity", dim);
     std::copy(g.begin(), g.end(), sc.gravity.begin());
@@ -353,9 +374,11 @@ Scenario read_scenario(const std::filesystem::path& path) {
     for (std::size_t k = 0; k < dim; ++k) zero.push_back(0.0);
     sc.resolved["analysis"]["gravity"] = zero;
   }
-  const std::vector<std::string> components =
-      dim == 3 ? std::vector<std::string>{"x", "y", "z"} : std::vector<std::string>{"x", "y"};
+  components = dim == 3 ? std::vector<std::string>{"x", "y", "z"} : std::vector<std::string>{"x", "y"};
 
+  }
+
+  void mesh() {
   // mesh: needed by finite-element parts; a scenario of particle parts alone has none
   if (!top.has("parts") && !top.has("particles"))
     throw InputError(file, 1, "parts",
@@ -379,6 +402,9 @@ Scenario read_scenario(const std::filesystem::path& path) {
   sc.mesh_size = mesh.optional_number("size").value_or(0.0);
   }
 
+  }
+
+  void materials() {
   // materials
   const YAML::Node materials = top.value("materials");
   if (!materials.IsMap() || materials.size() == 0)
@@ -445,9 +471,11 @@ Scenario read_scenario(const std::filesystem::path& path) {
     }
     sc.materials.push_back(std::move(mat));
   }
-  std::vector<std::string> material_names;
   for (const auto& m : sc.materials) material_names.push_back(m.name);
 
+  }
+
+  void parts() {
   // parts
   const YAML::Node parts = top.value_or_null("parts");
   if (top.has("parts") && (!parts.IsMap() || parts.size() == 0))
@@ -499,17 +527,11 @@ Scenario read_scenario(const std::filesystem::path& path) {
     }
     sc.parts.push_back(std::move(part));
   }
-  std::vector<std::string> part_names;
   for (const auto& p : sc.parts) part_names.push_back(p.name);
 
-  auto list_of = [&](const std::string& key) {
-    const YAML::Node n = top.value(key);
-    if (!n.IsDefined() || n.IsNull()) return YAML::Node(YAML::NodeType::Sequence);
-    if (!n.IsSequence())
-      top.fail(key, "expected a list (entries starting with '- '), got " + Section::shape(n));
-    return n;
-  };
+  }
 
+  void initial_conditions() {
   // initial conditions
   const KeyList ic_keys = initial_condition_keys();
   const YAML::Node ics = list_of("initial_conditions");
@@ -533,9 +555,11 @@ Scenario read_scenario(const std::filesystem::path& path) {
   }
   sc.resolved["initial_conditions"] = ic_out;
 
+  }
+
+  void boundary_conditions() {
   // boundary conditions
   const KeyList bc_keys = boundary_condition_keys();
-  const KeyList vc_keys = velocity_component_keys();
   const YAML::Node bcs = list_of("boundary_conditions");
   YAML::Node bc_out(YAML::NodeType::Sequence);
   for (std::size_t i = 0; i < (bcs.IsSequence() ? bcs.size() : 0); ++i) {
@@ -592,6 +616,9 @@ Scenario read_scenario(const std::filesystem::path& path) {
   }
   sc.resolved["boundary_conditions"] = bc_out;
 
+  }
+
+  void loads() {
   // loads
   const KeyList l_keys = load_keys();
   const YAML::Node loads = list_of("loads");
@@ -608,15 +635,9 @@ Scenario read_scenario(const std::filesystem::path& path) {
   }
   sc.resolved["loads"] = load_out;
 
-  // contact
-  auto check_part = [&](Section& sec, const std::string& key, const std::string& name) {
-    if (std::find(part_names.begin(), part_names.end(), name) == part_names.end()) {
-      std::string reason = "no part named '" + name + "'";
-      const std::string close = closest_match(name, part_names);
-      if (!close.empty()) reason += " (did you mean '" + close + "'?)";
-      sec.fail(key, reason);
-    }
-  };
+  }
+
+  void contact() {
   if (top.has("contact")) {
     const KeyList c_keys = contact_keys();
     Section c(top.value("contact"), file, "contact", c_keys, sc.resolved["contact"], top.line("contact"));
@@ -686,6 +707,9 @@ Scenario read_scenario(const std::filesystem::path& path) {
     sc.contact = ci;
   }
 
+  }
+
+  void walls() {
   // rigid walls
   if (top.has("walls")) {
     const YAML::Node walls = list_of("walls");
@@ -736,6 +760,9 @@ Scenario read_scenario(const std::filesystem::path& path) {
     sc.resolved["walls"] = out;
   }
 
+  }
+
+  void cracking() {
   if (top.has("cracking")) {
     const KeyList k_keys = cracking_keys();
     Section k(top.value("cracking"), file, "cracking", k_keys, sc.resolved["cracking"], top.line("cracking"));
@@ -762,8 +789,9 @@ Scenario read_scenario(const std::filesystem::path& path) {
     sc.cracking = ci;
   }
 
-  scenario_detail::read_particle_sections(top, sc);
+  }
 
+  void output() {
   // output
   const KeyList o_keys = output_keys();
   Section out(top.value("output"), file, "output", o_keys, sc.resolved["output"], top.line("output"));
@@ -795,6 +823,38 @@ Scenario read_scenario(const std::filesystem::path& path) {
     for (const auto& n : kFieldNames) fo.push_back(n);
     sc.resolved["output"]["fields"] = fo;
   }
+  }
+
+  const std::string file;
+  Scenario& sc;
+  const KeyList top_list;
+  Section top;
+  const KeyList vc_keys = velocity_component_keys();
+  std::size_t dim = 2;
+  std::vector<std::string> components, material_names, part_names;
+};
+
+}  // namespace
+
+Scenario read_scenario(const std::filesystem::path& path) {
+  const std::string file = path.string();
+  if (!std::filesystem::exists(path))
+    throw InputError(file, 0, "", "scenario file not found");
+  YAML::Node root;
+  try {
+    root = YAML::LoadFile(file);
+  } catch (const YAML::ParserException& e) {
+    const auto [line, reason] = yaml_syntax_error(file, e.mark.line + 1, e.msg);
+    throw InputError(file, line, "", reason);
+  } catch (const YAML::BadFile&) {
+    throw InputError(file, 0, "", "cannot read the scenario file");
+  }
+  if (!root.IsMap()) throw InputError(file, 1, "", "a scenario is a YAML map of sections (analysis:, mesh:, ...)");
+
+  Scenario sc;
+  sc.file = std::filesystem::absolute(path);
+  sc.resolved = YAML::Node(YAML::NodeType::Map);
+  ScenarioReader(root, path, sc).read();
   return sc;
 }
 
