@@ -239,15 +239,75 @@ AutomatonMaterialInput read_automaton_material(const YAML::Node& body, const std
   return m;
 }
 
-void read_particle_sections(Section& top, Scenario& sc) {
-  const std::string& file = top.file();
-  const std::size_t dim = static_cast<std::size_t>(sc.dim());
-  const auto materials = automaton_names(sc);
-  auto material_index = [&](const std::string& name) {
-    return static_cast<int>(std::find(materials.begin(), materials.end(), name) - materials.begin());
-  };
+namespace {
 
-  // bonds
+// The automaton materials of the scenario, by name, for checking references to them.
+struct AutomatonMaterials {
+  std::vector<std::string> names;
+  bool has(const std::string& name) const {
+    return std::find(names.begin(), names.end(), name) != names.end();
+  }
+  void require(Section& s, const char* key, const std::string& name, const std::string& what) const {
+    if (!has(name)) no_such(s, key, what, name, names);
+  }
+};
+
+void read_bond_criterion(Section& s, YAML::Node& out, BondLaw& law) {
+  const std::string criterion = s.choice("criterion").value_or("drucker_prager");
+  out["criterion"] = criterion;
+  law.criterion = criterion == "none"             ? BondCriterion::none
+                  : criterion == "drucker_prager" ? BondCriterion::drucker_prager
+                  : criterion == "von_mises"      ? BondCriterion::von_mises
+                                                  : BondCriterion::mohr_coulomb;
+  if (law.criterion == BondCriterion::drucker_prager || law.criterion == BondCriterion::mohr_coulomb) {
+    for (const char* key : {"tensile_strength", "compressive_strength"})
+      if (!s.has(key)) s.fail(key, std::string("criterion '") + criterion + "' needs '" + key + "'");
+    law.sigma_t = s.number("tensile_strength");
+    law.sigma_c = s.number("compressive_strength");
+  } else if (law.criterion == BondCriterion::von_mises) {
+    if (!s.has("von_mises_strength")) s.fail("von_mises_strength", "criterion 'von_mises' needs 'von_mises_strength'");
+    law.sigma_vm = s.number("von_mises_strength");
+  }
+}
+
+void read_bond_breaking(Section& s, YAML::Node& out, BondLaw& law) {
+  const std::string breaking = s.choice("breaking").value_or("unstable");
+  out["breaking"] = breaking;
+  law.breaking = breaking == "instant" ? BondBreaking::instant
+                 : breaking == "stable" ? BondBreaking::stable
+                                        : BondBreaking::unstable;
+  if (law.breaking == BondBreaking::stable) {
+    if (!s.has("breaking_strain")) s.fail("breaking_strain", "stable breaking needs 'breaking_strain'");
+    law.strain_width = s.number("breaking_strain");
+  }
+  if (law.breaking == BondBreaking::unstable && law.criterion != BondCriterion::none) {
+    if (!s.has("crack_speed")) s.fail("crack_speed", "unstable breaking needs 'crack_speed'");
+    law.crack_speed = s.number("crack_speed");
+  }
+  law.friction = s.number("friction");
+}
+
+BondInput read_bond(Section& s, YAML::Node& out, const Scenario& sc, const AutomatonMaterials& materials) {
+  BondInput b;
+  b.line = s.line();
+  const YAML::Node pair = s.value("materials");
+  if (!pair.IsSequence() || pair.size() != 2 || !pair[0].IsScalar() || !pair[1].IsScalar())
+    s.fail("materials", "expected two automaton material names, e.g. [tic, nicr]");
+  b.material_a = pair[0].Scalar();
+  b.material_b = pair[1].Scalar();
+  for (const auto& m : {b.material_a, b.material_b}) materials.require(s, "materials", m, "automaton material");
+  for (const auto& other : sc.bonds)
+    if ((other.material_a == b.material_a && other.material_b == b.material_b) ||
+        (other.material_a == b.material_b && other.material_b == b.material_a))
+      s.fail("materials", "a second bond for these materials (the first is at line " +
+                              std::to_string(other.line) + ")");
+  out["materials"] = pair;
+  read_bond_criterion(s, out, b.law);
+  read_bond_breaking(s, out, b.law);
+  return b;
+}
+
+void read_bonds(Section& top, Scenario& sc, const AutomatonMaterials& materials) {
   static const KeyList b_keys = bond_keys();
   const YAML::Node bonds = top.value_or_null("bonds");
   if (bonds.IsDefined() && !bonds.IsNull() && !bonds.IsSequence())
@@ -255,64 +315,121 @@ void read_particle_sections(Section& top, Scenario& sc) {
   YAML::Node bonds_out(YAML::NodeType::Sequence);
   for (std::size_t i = 0; bonds.IsSequence() && i < bonds.size(); ++i) {
     YAML::Node out(YAML::NodeType::Map);
-    Section s(bonds[i], file, "bonds[" + std::to_string(i + 1) + "]", b_keys, out, line_of(bonds[i]));
-    BondInput b;
-    b.line = s.line();
-    const YAML::Node pair = s.value("materials");
-    if (!pair.IsSequence() || pair.size() != 2 || !pair[0].IsScalar() || !pair[1].IsScalar())
-      s.fail("materials", "expected two automaton material names, e.g. [tic, nicr]");
-    b.material_a = pair[0].Scalar();
-    b.material_b = pair[1].Scalar();
-    for (const auto& m : {b.material_a, b.material_b})
-      if (material_index(m) == static_cast<int>(materials.size()))
-        no_such(s, "materials", "automaton material", m, materials);
-    for (const auto& other : sc.bonds)
-      if ((other.material_a == b.material_a && other.material_b == b.material_b) ||
-          (other.material_a == b.material_b && other.material_b == b.material_a))
-        s.fail("materials", "a second bond for these materials (the first is at line " +
-                                std::to_string(other.line) + ")");
-    out["materials"] = pair;
-    const std::string criterion = s.choice("criterion").value_or("drucker_prager");
-    out["criterion"] = criterion;
-    BondLaw& law = b.law;
-    law.criterion = criterion == "none"             ? BondCriterion::none
-                    : criterion == "drucker_prager" ? BondCriterion::drucker_prager
-                    : criterion == "von_mises"      ? BondCriterion::von_mises
-                                                    : BondCriterion::mohr_coulomb;
-    if (law.criterion == BondCriterion::drucker_prager || law.criterion == BondCriterion::mohr_coulomb) {
-      for (const char* key : {"tensile_strength", "compressive_strength"})
-        if (!s.has(key)) s.fail(key, std::string("criterion '") + criterion + "' needs '" + key + "'");
-      law.sigma_t = s.number("tensile_strength");
-      law.sigma_c = s.number("compressive_strength");
-    } else if (law.criterion == BondCriterion::von_mises) {
-      if (!s.has("von_mises_strength")) s.fail("von_mises_strength", "criterion 'von_mises' needs 'von_mises_strength'");
-      law.sigma_vm = s.number("von_mises_strength");
-    }
-    const std::string breaking = s.choice("breaking").value_or("unstable");
-    out["breaking"] = breaking;
-    law.breaking = breaking == "instant" ? BondBreaking::instant
-                   : breaking == "stable" ? BondBreaking::stable
-                                          : BondBreaking::unstable;
-    if (law.breaking == BondBreaking::stable) {
-      if (!s.has("breaking_strain")) s.fail("breaking_strain", "stable breaking needs 'breaking_strain'");
-      law.strain_width = s.number("breaking_strain");
-    }
-    if (law.breaking == BondBreaking::unstable && law.criterion != BondCriterion::none) {
-      if (!s.has("crack_speed")) s.fail("crack_speed", "unstable breaking needs 'crack_speed'");
-      law.crack_speed = s.number("crack_speed");
-    }
-    law.friction = s.number("friction");
-    sc.bonds.push_back(b);
+    Section s(bonds[i], top.file(), "bonds[" + std::to_string(i + 1) + "]", b_keys, out, line_of(bonds[i]));
+    sc.bonds.push_back(read_bond(s, out, sc, materials));
     bonds_out.push_back(out);
   }
   if (top.has("bonds")) sc.resolved["bonds"] = bonds_out;
+}
 
-  // particle parts
-  static const KeyList p_keys = particle_part_keys();
-  static const KeyList r_keys = region_keys();
+PackingSpec read_packing(Section& s, const Scenario& sc) {
+  const std::size_t dim = static_cast<std::size_t>(sc.dim());
+  if (sc.formulation == Formulation::axisymmetric)
+    s.fail("lattice", "particle parts are plane strain, plane stress or 3D, not axisymmetric");
+  const std::string lattice = *s.choice("lattice");
+  const bool lattice_3d = lattice == "fcc" || lattice == "simple_cubic";
+  if (lattice_3d != (dim == 3))
+    s.fail("lattice", "lattice '" + lattice + "' does not fit this " + std::to_string(dim) +
+                          "D model (2D: hexagonal, square; 3D: fcc, simple_cubic)");
+  PackingSpec k;
+  k.lattice = lattice == "hexagonal" ? Lattice::hexagonal_2d
+              : lattice == "square"  ? Lattice::square_2d
+              : lattice == "fcc"     ? Lattice::fcc
+                                     : Lattice::simple_cubic;
+  k.size = s.number("automaton_size");
+  const auto lo = s.vector("min", dim), hi = s.vector("max", dim);
+  for (std::size_t a = 0; a < dim; ++a) {
+    k.lo[a] = lo[a];
+    k.hi[a] = hi[a];
+    if (!(hi[a] > lo[a] + k.size))
+      s.fail("max", "the sample box must be larger than one automaton along every axis");
+  }
+  k.angle = s.number("angle") * M_PI / 180.0;
+  k.plane = dim == 3 ? PlaneMode::none
+            : sc.formulation == Formulation::plane_stress ? PlaneMode::plane_stress
+                                                          : PlaneMode::plane_strain;
+  k.thickness = sc.thickness;
+  k.bond_tolerance = s.number("bond_tolerance");
+  return k;
+}
+
+void read_material_regions(Section& s, const std::string& path, std::size_t dim,
+                           const AutomatonMaterials& materials, ParticlePartInput& p) {
+  const YAML::Node regions = s.value_or_null("regions");
+  YAML::Node regions_out(YAML::NodeType::Sequence);
+  for (std::size_t r = 0; regions.IsSequence() && r < regions.size(); ++r) {
+    KeyList rk = region_keys();
+    rk.add("material", ValueKind::text, "automaton material of the region").must_be_given();
+    YAML::Node out(YAML::NodeType::Map);
+    Section rs(regions[r], s.file(), path + ".regions[" + std::to_string(r + 1) + "]", rk, out,
+               line_of(regions[r]));
+    const std::string m = rs.text("material");
+    materials.require(rs, "material", m, "automaton material");
+    RegionInput g = read_region(rs, dim);
+    if (g.kind == RegionInput::Kind::side && g.depth == 0) g.depth = 0.5 * p.packing.size;
+    p.material_regions.emplace_back(m, g);
+    regions_out.push_back(out);
+  }
+  s.resolved()["regions"] = regions_out;
+}
+
+void read_microstructure(Section& s, const std::string& path, const AutomatonMaterials& materials,
+                         ParticlePartInput& p) {
   static const KeyList i_keys = inclusion_keys();
   static const KeyList o_keys = pore_keys();
   static const KeyList g_keys = interphase_keys();
+  const std::string& file = s.file();
+  if (s.has("inclusions")) {
+    Section is(s.value("inclusions"), file, path + ".inclusions", i_keys, s.resolved()["inclusions"], s.line("inclusions"));
+    InclusionSpec spec;
+    p.inclusion_material = is.text("material");
+    materials.require(is, "material", p.inclusion_material, "automaton material");
+    spec.volume_fraction = is.number("volume_fraction");
+    spec.diameter = is.number("diameter");
+    spec.seed = static_cast<std::uint64_t>(is.integer("seed"));
+    p.inclusions = spec;
+  }
+  if (s.has("pores")) {
+    Section ps(s.value("pores"), file, path + ".pores", o_keys, s.resolved()["pores"], s.line("pores"));
+    PoreSpec spec;
+    spec.porosity = ps.number("porosity");
+    if (ps.has("with_neighbours")) {
+      const std::string b = ps.value("with_neighbours").Scalar();
+      if (b != "true" && b != "false") ps.fail("with_neighbours", "expected true or false");
+      spec.with_neighbours = b == "true";
+    }
+    spec.seed = static_cast<std::uint64_t>(ps.integer("seed"));
+    p.pores = spec;
+  }
+  if (s.has("interphase")) {
+    Section gs(s.value("interphase"), file, path + ".interphase", g_keys, s.resolved()["interphase"], s.line("interphase"));
+    if (!p.inclusions) s.fail("interphase", "an interphase grades from the inclusions to the matrix: give 'inclusions' too");
+    InterphaseSpec spec;
+    spec.width = gs.number("width");
+    spec.levels = static_cast<int>(gs.integer("levels"));
+    if (spec.levels < 1) gs.fail("levels", "at least one level");
+    p.interphase = spec;
+  }
+}
+
+void read_particle_part(Section& s, const std::string& path, const Scenario& sc,
+                        const AutomatonMaterials& materials, ParticlePartInput& p) {
+  const std::size_t dim = static_cast<std::size_t>(sc.dim());
+  p.packing = read_packing(s, sc);
+  p.material = s.text("material");
+  materials.require(s, "material", p.material, "automaton material (model: automaton)");
+  read_material_regions(s, path, dim, materials, p);
+  read_microstructure(s, path, materials, p);
+  p.time_step_safety = s.number("time_step_safety");
+  p.contact_update_interval = static_cast<int>(s.integer("contact_update_interval"));
+  if (p.contact_update_interval < 0) s.fail("contact_update_interval", "must be 0 or more");
+  p.contact_skin = s.number("contact_skin", 0.1 * p.packing.size);
+  if (s.has("velocity")) copy3(s.vector("velocity", dim), p.velocity);
+}
+
+void read_particle_parts(Section& top, Scenario& sc, const AutomatonMaterials& materials) {
+  static const KeyList p_keys = particle_part_keys();
+  const std::string& file = top.file();
   const YAML::Node parts = top.value_or_null("particles");
   if (parts.IsDefined() && !parts.IsNull() && !parts.IsMap())
     top.fail("particles", "expected a map of named particle parts, e.g.\n  particles:\n    sample: {lattice: hexagonal, automaton_size: 3 um, min: [0, 0], max: [130 um, 24 um], material: nicr}");
@@ -327,147 +444,89 @@ void read_particle_sections(Section& top, Scenario& sc) {
       throw InputError(file, p.line, path, "a part named '" + p.name + "' exists already; part names must differ");
     names.push_back(p.name);
     Section s(it->second, file, path, p_keys, sc.resolved["particles"][p.name], p.line);
-    if (sc.formulation == Formulation::axisymmetric)
-      s.fail("lattice", "particle parts are plane strain, plane stress or 3D, not axisymmetric");
-    const std::string lattice = *s.choice("lattice");
-    const bool lattice_3d = lattice == "fcc" || lattice == "simple_cubic";
-    if (lattice_3d != (dim == 3))
-      s.fail("lattice", "lattice '" + lattice + "' does not fit this " + std::to_string(dim) +
-                            "D model (2D: hexagonal, square; 3D: fcc, simple_cubic)");
-    PackingSpec& k = p.packing;
-    k.lattice = lattice == "hexagonal" ? Lattice::hexagonal_2d
-                : lattice == "square"  ? Lattice::square_2d
-                : lattice == "fcc"     ? Lattice::fcc
-                                       : Lattice::simple_cubic;
-    k.size = s.number("automaton_size");
-    const auto lo = s.vector("min", dim), hi = s.vector("max", dim);
-    for (std::size_t a = 0; a < dim; ++a) {
-      k.lo[a] = lo[a];
-      k.hi[a] = hi[a];
-      if (!(hi[a] > lo[a] + k.size))
-        s.fail("max", "the sample box must be larger than one automaton along every axis");
-    }
-    k.angle = s.number("angle") * M_PI / 180.0;
-    k.plane = dim == 3 ? PlaneMode::none
-              : sc.formulation == Formulation::plane_stress ? PlaneMode::plane_stress
-                                                            : PlaneMode::plane_strain;
-    k.thickness = sc.thickness;
-    k.bond_tolerance = s.number("bond_tolerance");
-    p.material = s.text("material");
-    if (material_index(p.material) == static_cast<int>(materials.size()))
-      no_such(s, "material", "automaton material (model: automaton)", p.material, materials);
-    const YAML::Node regions = s.value_or_null("regions");
-    YAML::Node regions_out(YAML::NodeType::Sequence);
-    for (std::size_t r = 0; regions.IsSequence() && r < regions.size(); ++r) {
-      KeyList rk = region_keys();
-      rk.add("material", ValueKind::text, "automaton material of the region").must_be_given();
-      YAML::Node out(YAML::NodeType::Map);
-      Section rs(regions[r], file, path + ".regions[" + std::to_string(r + 1) + "]", rk, out, line_of(regions[r]));
-      const std::string m = rs.text("material");
-      if (material_index(m) == static_cast<int>(materials.size()))
-        no_such(rs, "material", "automaton material", m, materials);
-      RegionInput g = read_region(rs, dim);
-      if (g.kind == RegionInput::Kind::side && g.depth == 0) g.depth = 0.5 * k.size;
-      p.material_regions.emplace_back(m, g);
-      regions_out.push_back(out);
-    }
-    s.resolved()["regions"] = regions_out;
-    if (s.has("inclusions")) {
-      Section is(s.value("inclusions"), file, path + ".inclusions", i_keys, s.resolved()["inclusions"], s.line("inclusions"));
-      InclusionSpec spec;
-      p.inclusion_material = is.text("material");
-      if (material_index(p.inclusion_material) == static_cast<int>(materials.size()))
-        no_such(is, "material", "automaton material", p.inclusion_material, materials);
-      spec.volume_fraction = is.number("volume_fraction");
-      spec.diameter = is.number("diameter");
-      spec.seed = static_cast<std::uint64_t>(is.integer("seed"));
-      p.inclusions = spec;
-    }
-    if (s.has("pores")) {
-      Section ps(s.value("pores"), file, path + ".pores", o_keys, s.resolved()["pores"], s.line("pores"));
-      PoreSpec spec;
-      spec.porosity = ps.number("porosity");
-      if (ps.has("with_neighbours")) {
-        const std::string b = ps.value("with_neighbours").Scalar();
-        if (b != "true" && b != "false") ps.fail("with_neighbours", "expected true or false");
-        spec.with_neighbours = b == "true";
-      }
-      spec.seed = static_cast<std::uint64_t>(ps.integer("seed"));
-      p.pores = spec;
-    }
-    if (s.has("interphase")) {
-      Section gs(s.value("interphase"), file, path + ".interphase", g_keys, s.resolved()["interphase"], s.line("interphase"));
-      if (!p.inclusions) s.fail("interphase", "an interphase grades from the inclusions to the matrix: give 'inclusions' too");
-      InterphaseSpec spec;
-      spec.width = gs.number("width");
-      spec.levels = static_cast<int>(gs.integer("levels"));
-      if (spec.levels < 1) gs.fail("levels", "at least one level");
-      p.interphase = spec;
-    }
-    p.time_step_safety = s.number("time_step_safety");
-    p.contact_update_interval = static_cast<int>(s.integer("contact_update_interval"));
-    if (p.contact_update_interval < 0) s.fail("contact_update_interval", "must be 0 or more");
-    p.contact_skin = s.number("contact_skin", 0.1 * k.size);
-    if (s.has("velocity")) copy3(s.vector("velocity", dim), p.velocity);
+    read_particle_part(s, path, sc, materials, p);
     sc.particle_parts.push_back(std::move(p));
   }
+}
 
-  // conditions on regions of automata
-  static const KeyList c_keys = particle_condition_keys();
+void read_fixed_components(Section& s, YAML::Node& out, std::size_t dim, ParticleBoundaryInput& c) {
+  const YAML::Node fix = s.value("fix");
+  if (!fix.IsSequence()) s.fail("fix", "expected a list of components such as [x, y, rotation]");
+  for (const auto& f : fix) {
+    const std::string name = f.IsScalar() ? f.Scalar() : "?";
+    if (name == "rotation") {
+      c.fix_rotation = true;
+      continue;
+    }
+    const int k = name == "x" ? 0 : name == "y" ? 1 : name == "z" ? 2 : -1;
+    if (k < 0 || k >= static_cast<int>(dim))
+      s.fail("fix", "'" + name + "' is not a component here (use " + (dim == 3 ? "x, y, z" : "x, y") + ", rotation)");
+    c.velocity[k] = TimeTable::constant(0.0);
+  }
+  out["fix"] = fix;
+}
+
+void read_velocity_components(Section& s, const std::string& path, YAML::Node& out, std::size_t dim,
+                              ParticleBoundaryInput& c) {
   static const KeyList v_keys = velocity_component_keys();
+  const char* axes[3] = {"x", "y", "z"};
+  Section v(s.value("velocity"), s.file(), path + ".velocity", v_keys, out["velocity"], s.line("velocity"));
+  for (std::size_t k = 0; k < 3; ++k)
+    if (v.has(axes[k])) {
+      if (k >= dim) v.fail("z", "a 2D model has no z component");
+      if (c.velocity[k]) v.fail(axes[k], std::string("component ") + axes[k] + " is also in 'fix'");
+      c.velocity[k] = v.table(axes[k]);
+    }
+}
+
+ParticleBoundaryInput read_particle_condition(Section& s, const std::string& path, YAML::Node& out,
+                                              const Scenario& sc, std::vector<std::string>& condition_names) {
+  static const KeyList r_keys = region_keys();
+  const std::size_t dim = static_cast<std::size_t>(sc.dim());
+  std::vector<std::string> particle_names;
+  for (const auto& p : sc.particle_parts) particle_names.push_back(p.name);
+  ParticleBoundaryInput c;
+  c.line = s.line();
+  c.name = s.text("name");
+  if (std::find(condition_names.begin(), condition_names.end(), c.name) != condition_names.end())
+    s.fail("name", "a second condition named '" + c.name + "'; names must differ");
+  condition_names.push_back(c.name);
+  c.part = s.text("part");
+  const auto part = std::find(particle_names.begin(), particle_names.end(), c.part);
+  if (part == particle_names.end()) no_such(s, "part", "particle part", c.part, particle_names);
+  Section rs(s.value("region"), s.file(), path + ".region", r_keys, out["region"], s.line("region"));
+  c.region = read_region(rs, dim);
+  if (c.region.kind == RegionInput::Kind::side && c.region.depth == 0)
+    c.region.depth = 0.5 * sc.particle_parts[part - particle_names.begin()].packing.size;
+  if (s.has("fix")) read_fixed_components(s, out, dim, c);
+  if (s.has("velocity")) read_velocity_components(s, path, out, dim, c);
+  return c;
+}
+
+void read_particle_conditions(Section& top, Scenario& sc) {
+  static const KeyList c_keys = particle_condition_keys();
   const YAML::Node conditions = top.value_or_null("particle_boundary_conditions");
   if (conditions.IsDefined() && !conditions.IsNull() && !conditions.IsSequence())
     top.fail("particle_boundary_conditions", "expected a list (entries starting with '- ')");
-  std::vector<std::string> particle_names, condition_names;
-  for (const auto& p : sc.particle_parts) particle_names.push_back(p.name);
+  std::vector<std::string> condition_names;
   YAML::Node c_out(YAML::NodeType::Sequence);
-  const char* axes[3] = {"x", "y", "z"};
   for (std::size_t i = 0; conditions.IsSequence() && i < conditions.size(); ++i) {
     YAML::Node out(YAML::NodeType::Map);
     const std::string path = "particle_boundary_conditions[" + std::to_string(i + 1) + "]";
-    Section s(conditions[i], file, path, c_keys, out, line_of(conditions[i]));
-    ParticleBoundaryInput c;
-    c.line = s.line();
-    c.name = s.text("name");
-    if (std::find(condition_names.begin(), condition_names.end(), c.name) != condition_names.end())
-      s.fail("name", "a second condition named '" + c.name + "'; names must differ");
-    condition_names.push_back(c.name);
-    c.part = s.text("part");
-    const auto part = std::find(particle_names.begin(), particle_names.end(), c.part);
-    if (part == particle_names.end()) no_such(s, "part", "particle part", c.part, particle_names);
-    Section rs(s.value("region"), file, path + ".region", r_keys, out["region"], s.line("region"));
-    c.region = read_region(rs, dim);
-    if (c.region.kind == RegionInput::Kind::side && c.region.depth == 0)
-      c.region.depth = 0.5 * sc.particle_parts[part - particle_names.begin()].packing.size;
-    if (s.has("fix")) {
-      const YAML::Node fix = s.value("fix");
-      if (!fix.IsSequence()) s.fail("fix", "expected a list of components such as [x, y, rotation]");
-      for (const auto& f : fix) {
-        const std::string name = f.IsScalar() ? f.Scalar() : "?";
-        if (name == "rotation") {
-          c.fix_rotation = true;
-          continue;
-        }
-        const int k = name == "x" ? 0 : name == "y" ? 1 : name == "z" ? 2 : -1;
-        if (k < 0 || k >= static_cast<int>(dim))
-          s.fail("fix", "'" + name + "' is not a component here (use " + (dim == 3 ? "x, y, z" : "x, y") + ", rotation)");
-        c.velocity[k] = TimeTable::constant(0.0);
-      }
-      out["fix"] = fix;
-    }
-    if (s.has("velocity")) {
-      Section v(s.value("velocity"), file, path + ".velocity", v_keys, out["velocity"], s.line("velocity"));
-      for (std::size_t k = 0; k < 3; ++k)
-        if (v.has(axes[k])) {
-          if (k >= dim) v.fail("z", "a 2D model has no z component");
-          if (c.velocity[k]) v.fail(axes[k], std::string("component ") + axes[k] + " is also in 'fix'");
-          c.velocity[k] = v.table(axes[k]);
-        }
-    }
-    sc.particle_conditions.push_back(std::move(c));
+    Section s(conditions[i], top.file(), path, c_keys, out, line_of(conditions[i]));
+    sc.particle_conditions.push_back(read_particle_condition(s, path, out, sc, condition_names));
     c_out.push_back(out);
   }
   if (top.has("particle_boundary_conditions")) sc.resolved["particle_boundary_conditions"] = c_out;
+}
+
+}  // namespace
+
+void read_particle_sections(Section& top, Scenario& sc) {
+  const AutomatonMaterials materials{automaton_names(sc)};
+  read_bonds(top, sc, materials);
+  read_particle_parts(top, sc, materials);
+  read_particle_conditions(top, sc);
 }
 
 std::vector<SchemaSection> particle_schema() {
