@@ -319,6 +319,232 @@ std::vector<std::int32_t> split_nodes(Model& model, std::span<const double> dens
   return parent;
 }
 
+namespace {
+
+// Chooses the edges to open at each failed node, in order of failure (paper, "Discrete fracture
+// insertion"); the edges chosen so far (`cut`) steer the choices that follow.
+class CrackPlanner {
+ public:
+  CrackPlanner(Model& model, std::span<const CrackingPart> parts, std::vector<char> wanted,
+               int min_fragment, CrackInsertion& out)
+      : parts_(parts), out_(out), min_fragment_(min_fragment), X_(model.nodes.x.data()),
+        on_crack_(model.crack_face_nodes()) {
+    if (min_fragment > 1) sizer_.emplace(model, part_begin_of(model), wanted, min_fragment);
+    fans_.emplace(build_fans(model, std::move(wanted), true));
+  }
+
+  const Fans& fans() const { return *fans_; }
+
+  void plan(std::int32_t p, const double* n) {
+    const std::vector<FanEntry> fan = fans_->of(p);
+    const Wedges w = wedges_of(p, fan, cut_);
+    const double t[2] = {-n[1], n[0]};  // the crack line, normal to the fracture direction
+    bool incident_cut = false;
+    for (const auto& f : fan) incident_cut = incident_cut || cut_.count(edge_key(p, f.b)) > 0;
+    if (w.count >= 2 && incident_cut) {  // the crack already passes through p
+      out_.cracked_nodes.push_back(p);
+      return;
+    }
+    if (fan.empty() || w.count != 1 || !w.manifold || !(t[0] * t[0] + t[1] * t[1] > 0)) {
+      out_.skipped_nodes.push_back(p);
+      return;
+    }
+    if (w.loop())
+      plan_interior(p, fan, w, t);
+    else
+      plan_wedge(p, fan, w, t);
+  }
+
+ private:
+  void open(std::int32_t p, std::int32_t r) {
+    cut_.insert(edge_key(p, r));
+    out_.opened_edges.push_back({p, r});
+  }
+  void skip(std::int32_t p) { out_.skipped_nodes.push_back(p); }
+  void refuse(std::int32_t p) {
+    out_.skipped_nodes.push_back(p);
+    ++out_.small_fragment_refusals;
+  }
+
+  // The minimum-fragment rule: every edge in `ends` may open together (with those of `cut`).
+  // (The candidates join `cut` for the check and leave it again: the walk never crosses the
+  // candidate it sizes anyway, and copying `cut` would cost its size per failed node.)
+  bool leaves_large_pieces(std::initializer_list<std::int32_t> ends, std::int32_t p) {
+    if (!sizer_) return true;
+    std::vector<std::uint64_t> added;
+    for (const std::int32_t r : ends)
+      if (cut_.insert(edge_key(p, r)).second) added.push_back(edge_key(p, r));
+    bool ok = true;
+    for (const std::int32_t r : ends) ok = ok && sizer_->leaves_large_pieces(p, r, cut_, min_fragment_);
+    for (const std::uint64_t key : added) cut_.erase(key);
+    return ok;
+  }
+
+  // An edge p–b_i can open if both triangles that share it belong to cracking parts.
+  bool can_open(const std::vector<FanEntry>& fan, const Wedges& w, int i) const {
+    return w.next[i] >= 0 && parts_[fan[i].part].cracks && parts_[fan[w.next[i]].part].cracks;
+  }
+
+  void direction_to(std::int32_t p, std::int32_t r, double* d) const {
+    d[0] = X_[2 * r] - X_[2 * p];
+    d[1] = X_[2 * r + 1] - X_[2 * p + 1];
+    const double l = std::hypot(d[0], d[1]);
+    d[0] /= l;
+    d[1] /= l;
+  }
+
+  void plan_interior(std::int32_t p, const std::vector<FanEntry>& fan, const Wedges& w, const double* t);
+  void plan_wedge(std::int32_t p, const std::vector<FanEntry>& fan, const Wedges& w, const double* t);
+
+  std::span<const CrackingPart> parts_;
+  CrackInsertion& out_;
+  int min_fragment_;
+  const double* X_;
+  std::vector<char> on_crack_;  // copies of split nodes and the nodes they were split from
+  std::optional<PieceSizer> sizer_;
+  std::optional<Fans> fans_;
+  std::unordered_set<std::uint64_t> cut_;
+};
+
+void CrackPlanner::plan_interior(std::int32_t p, const std::vector<FanEntry>& fan, const Wedges& w,
+                                 const double* t) {
+  // An intact interior node next to a crack does not start a crack of its own: the smeared
+  // band ahead of a tip is one or two elements wide, and its nodes a row off the crack line
+  // fail too; the crack reaches them from its tip, or not at all.
+  bool near_crack = false;
+  for (const auto& f : fan) near_crack = near_crack || on_crack_[f.b] || on_crack_[f.a];
+  if (near_crack) return skip(p);
+  // Interior node: the crack passes through p, so it leaves along two edges, the best
+  // aligned with +t and with −t (paper, Figure 4(c): the failure plane through the node).
+  int best[2] = {-1, -1};
+  double score[2] = {-2, -2};
+  for (int side = 0; side < 2; ++side)
+    for (int i = 0; i < static_cast<int>(fan.size()); ++i) {
+      if (!can_open(fan, w, i) || (side == 1 && i == best[0])) continue;
+      double d[2];
+      direction_to(p, fan[i].b, d);
+      const double c = (side == 0 ? 1.0 : -1.0) * (d[0] * t[0] + d[1] * t[1]);
+      if (c > score[side]) {
+        score[side] = c;
+        best[side] = i;
+      }
+    }
+  if (best[0] < 0 || best[1] < 0) return skip(p);
+  if (!leaves_large_pieces({fan[best[0]].b, fan[best[1]].b}, p)) return refuse(p);
+  open(p, fan[best[0]].b);
+  open(p, fan[best[1]].b);
+  out_.cracked_nodes.push_back(p);
+}
+
+void CrackPlanner::plan_wedge(std::int32_t p, const std::vector<FanEntry>& fan, const Wedges& w,
+                              const double* t) {
+  // One wedge bounded by two free edges: the free boundary, a crack tip (the two faces of the
+  // crack that ends here) or one face of a crack. The crack line enters the material on one
+  // side only; it is the direction ±t deepest inside the wedge (farthest, in angle, from its
+  // bounding edges): into the body at a boundary node, ahead of the crack at a tip.
+  int start = 0;
+  while (w.prev[start] >= 0) ++start;
+  std::vector<int> order;
+  for (int i = start; i >= 0; i = w.next[i]) order.push_back(i);
+  double d_start[2];
+  direction_to(p, fan[order.front()].a, d_start);
+  std::vector<double> phi(order.size());  // angle of edge p–b of each triangle, from d_start
+  double sum = 0;
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    double da[2], db[2];
+    direction_to(p, fan[order[k]].a, da);
+    direction_to(p, fan[order[k]].b, db);
+    sum += angle_between(da, db);
+    phi[k] = sum;
+  }
+  const double wedge = sum, two_pi = 2.0 * std::numbers::pi;
+  auto depth = [&](const double* s) {
+    double a = angle_between(d_start, s);
+    if (a < 0) a += two_pi;
+    return a <= wedge ? std::min(a, wedge - a) : -std::min(a - wedge, two_pi - a);
+  };
+  const double minus_t[2] = {-t[0], -t[1]};
+  const double* s = depth(t) >= depth(minus_t) ? t : minus_t;
+  const double s_depth = depth(s);
+  double phi_s = angle_between(d_start, s);
+  if (phi_s < 0) phi_s += two_pi;
+  int best = -1;
+  double best_gap = 0;
+  for (std::size_t k = 0; k + 1 < order.size(); ++k) {
+    if (!can_open(fan, w, order[k])) continue;
+    const double gap = std::abs(phi[k] - phi_s);
+    if (best < 0 || gap < best_gap) {
+      best = order[k];
+      best_gap = gap;
+    }
+  }
+  if (!(s_depth > 0) || best < 0) return skip(p);
+  if (!leaves_large_pieces({fan[best].b}, p)) return refuse(p);
+  open(p, fan[best].b);
+  out_.cracked_nodes.push_back(p);
+}
+
+// Heals one failed element: its stress and damage state go back to zero, and the elastic
+// energy it stored is returned (booked as released by the crack).
+double reinitialise_element(Part& part, std::size_t e, const CrackingPart& cp, double volume) {
+  const int npts = part.type->points;
+  const std::size_t state_size = part.point_count() > 0 ? part.state.size() / part.point_count() : 0;
+  double released = 0;
+  for (int q = 0; q < npts; ++q) {
+    double* s = &part.stress[kTensorSize * (npts * e + q)];
+    const double pressure = -(s[xx] + s[yy] + s[zz]) / 3.0;
+    const double dev_sq = (s[xx] + pressure) * (s[xx] + pressure) + (s[yy] + pressure) * (s[yy] + pressure) +
+                          (s[zz] + pressure) * (s[zz] + pressure) +
+                          2.0 * (s[xy] * s[xy] + s[yz] * s[yz] + s[zx] * s[zx]);
+    double* state = &part.state[state_size * (npts * e + q)];
+    if (cp.energy_density_index >= 0)
+      released += state[cp.energy_density_index] * volume;
+    else if (cp.moduli.bulk > 0 && cp.moduli.shear > 0)
+      released += (pressure * pressure / (2.0 * cp.moduli.bulk) + dev_sq / (4.0 * cp.moduli.shear)) * volume;
+    std::fill_n(s, kTensorSize, 0.0);
+    state[cp.factor_index] = 0.0;
+    if (cp.energy_density_index >= 0) state[cp.energy_density_index] = 0.0;
+    for (const int k : cp.reset_indices) state[k] = 0.0;
+  }
+  return released;
+}
+
+bool element_failed(const Part& part, std::size_t e, int factor_index, double threshold) {
+  const int npts = part.type->points;
+  const std::size_t state_size = part.point_count() > 0 ? part.state.size() / part.point_count() : 0;
+  bool failed = false;
+  for (int q = 0; q < npts; ++q)
+    failed = failed || part.state[state_size * (npts * e + q) + factor_index] >= threshold;
+  return failed;
+}
+
+// Re-initialise the failed elements around each cracked node: their damage has become the
+// discrete crack (paper, "Discrete fracture insertion": failed elements heal and their state
+// is reinitialised). The stored elastic energy they give up is reported for the balance.
+void reinitialise_failed_elements(Model& model, std::span<const CrackingPart> parts, const Fans& fans,
+                                  double threshold, CrackInsertion& out) {
+  std::vector<std::int64_t> seen;
+  for (const std::int32_t p : out.cracked_nodes)
+    for (const std::int64_t g : fans.elements_of(p)) seen.push_back(g);
+  std::sort(seen.begin(), seen.end());
+  seen.erase(std::unique(seen.begin(), seen.end()), seen.end());
+  const std::vector<std::int64_t>& offset = fans.part_begin;
+  for (const std::int64_t g : seen) {
+    const std::size_t pi = std::upper_bound(offset.begin(), offset.end(), g) - offset.begin() - 1;
+    const CrackingPart& cp = parts[pi];
+    if (!cp.cracks || cp.factor_index < 0) continue;
+    Part& part = model.parts[pi];
+    const std::size_t e = static_cast<std::size_t>(g - offset[pi]);
+    if (!element_failed(part, e, cp.factor_index, threshold)) continue;
+    const double volume =
+        std::abs(element_measure(part, model.nodes, e, model.formulation, model.thickness)) / part.type->points;
+    out.released_energy += reinitialise_element(part, e, cp, volume);
+    ++out.reinitialised_elements;
+  }
+}
+
+}  // namespace
+
 CrackInsertion insert_cracks(Model& model, std::span<const CrackingPart> parts,
                              std::span<const double> nodal_factor, std::span<const double> nodal_normal,
                              const CrackInsertionSettings& settings) {
@@ -342,202 +568,14 @@ CrackInsertion insert_cracks(Model& model, std::span<const CrackingPart> parts,
   // The edges opened run from a failed node to a neighbour: those are all the nodes to look at.
   std::vector<char> wanted(nn, 0);
   for (const auto p : failed) wanted[p] = 1;
-  std::optional<PieceSizer> sizer;
-  const int min_fragment = settings.min_fragment_elements;
-  if (min_fragment > 1) sizer.emplace(model, part_begin_of(model), wanted, min_fragment);
-  const Fans fans = build_fans(model, std::move(wanted), true);
-  const double* X = model.nodes.x.data();
-  std::unordered_set<std::uint64_t> cut;
-  auto open = [&](std::int32_t p, std::int32_t r) {
-    cut.insert(edge_key(p, r));
-    out.opened_edges.push_back({p, r});
-  };
-  // The minimum-fragment rule: every edge in `edges` may open together (with those of `cut`).
-  // (The candidates join `cut` for the check and leave it again: the walk never crosses the
-  // candidate it sizes anyway, and copying `cut` would cost its size per failed node.)
-  auto leaves_large_pieces = [&](std::initializer_list<std::int32_t> ends, std::int32_t p) {
-    if (!sizer) return true;
-    std::vector<std::uint64_t> added;
-    for (const std::int32_t r : ends)
-      if (cut.insert(edge_key(p, r)).second) added.push_back(edge_key(p, r));
-    bool ok = true;
-    for (const std::int32_t r : ends) ok = ok && sizer->leaves_large_pieces(p, r, cut, min_fragment);
-    for (const std::uint64_t key : added) cut.erase(key);
-    return ok;
-  };
-  auto refuse = [&](std::int32_t p) {
-    out.skipped_nodes.push_back(p);
-    ++out.small_fragment_refusals;
-  };
-
-  // Nodes on a crack already: copies of a split node and the nodes they were split from.
-  const std::vector<char> on_crack = model.crack_face_nodes();
-
-  for (const std::int32_t p : failed) {
-    const std::vector<FanEntry> fan = fans.of(p);
-    const Wedges w = wedges_of(p, fan, cut);
-    const double* n = &nodal_normal[2 * p];
-    const double t[2] = {-n[1], n[0]};  // the crack line, normal to the fracture direction
-    bool incident_cut = false;
-    for (const auto& f : fan) incident_cut = incident_cut || cut.count(edge_key(p, f.b)) > 0;
-    if (w.count >= 2 && incident_cut) {  // the crack already passes through p
-      out.cracked_nodes.push_back(p);
-      continue;
-    }
-    if (fan.empty() || w.count != 1 || !w.manifold || !(t[0] * t[0] + t[1] * t[1] > 0)) {
-      out.skipped_nodes.push_back(p);
-      continue;
-    }
-    // An edge p–b_i can open if both triangles that share it belong to cracking parts.
-    auto can_open = [&](int i) {
-      return w.next[i] >= 0 && parts[fan[i].part].cracks && parts[fan[w.next[i]].part].cracks;
-    };
-    auto direction_to = [&](std::int32_t r, double* d) {
-      d[0] = X[2 * r] - X[2 * p];
-      d[1] = X[2 * r + 1] - X[2 * p + 1];
-      const double l = std::hypot(d[0], d[1]);
-      d[0] /= l;
-      d[1] /= l;
-    };
-
-    if (w.loop()) {
-      // An intact interior node next to a crack does not start a crack of its own: the smeared
-      // band ahead of a tip is one or two elements wide, and its nodes a row off the crack line
-      // fail too; the crack reaches them from its tip, or not at all.
-      bool near_crack = false;
-      for (const auto& f : fan) near_crack = near_crack || on_crack[f.b] || on_crack[f.a];
-      if (near_crack) {
-        out.skipped_nodes.push_back(p);
-        continue;
-      }
-      // Interior node: the crack passes through p, so it leaves along two edges, the best
-      // aligned with +t and with −t (paper, Figure 4(c): the failure plane through the node).
-      int best[2] = {-1, -1};
-      double score[2] = {-2, -2};
-      for (int side = 0; side < 2; ++side)
-        for (int i = 0; i < static_cast<int>(fan.size()); ++i) {
-          if (!can_open(i) || (side == 1 && i == best[0])) continue;
-          double d[2];
-          direction_to(fan[i].b, d);
-          const double c = (side == 0 ? 1.0 : -1.0) * (d[0] * t[0] + d[1] * t[1]);
-          if (c > score[side]) {
-            score[side] = c;
-            best[side] = i;
-          }
-        }
-      if (best[0] < 0 || best[1] < 0) {
-        out.skipped_nodes.push_back(p);
-        continue;
-      }
-      if (!leaves_large_pieces({fan[best[0]].b, fan[best[1]].b}, p)) {
-        refuse(p);
-        continue;
-      }
-      open(p, fan[best[0]].b);
-      open(p, fan[best[1]].b);
-      out.cracked_nodes.push_back(p);
-      continue;
-    }
-
-    // One wedge bounded by two free edges: the free boundary, a crack tip (the two faces of the
-    // crack that ends here) or one face of a crack. The crack line enters the material on one
-    // side only; it is the direction ±t deepest inside the wedge (farthest, in angle, from its
-    // bounding edges): into the body at a boundary node, ahead of the crack at a tip.
-    int start = 0;
-    while (w.prev[start] >= 0) ++start;
-    std::vector<int> order;
-    for (int i = start; i >= 0; i = w.next[i]) order.push_back(i);
-    double d_start[2];
-    direction_to(fan[order.front()].a, d_start);
-    std::vector<double> phi(order.size());  // angle of edge p–b of each triangle, from d_start
-    double sum = 0;
-    for (std::size_t k = 0; k < order.size(); ++k) {
-      double da[2], db[2];
-      direction_to(fan[order[k]].a, da);
-      direction_to(fan[order[k]].b, db);
-      sum += angle_between(da, db);
-      phi[k] = sum;
-    }
-    const double wedge = sum, two_pi = 2.0 * std::numbers::pi;
-    auto depth = [&](const double* s) {
-      double a = angle_between(d_start, s);
-      if (a < 0) a += two_pi;
-      return a <= wedge ? std::min(a, wedge - a) : -std::min(a - wedge, two_pi - a);
-    };
-    const double minus_t[2] = {-t[0], -t[1]};
-    const double* s = depth(t) >= depth(minus_t) ? t : minus_t;
-    const double s_depth = depth(s);
-    double phi_s = angle_between(d_start, s);
-    if (phi_s < 0) phi_s += two_pi;
-    int best = -1;
-    double best_gap = 0;
-    for (std::size_t k = 0; k + 1 < order.size(); ++k) {
-      if (!can_open(order[k])) continue;
-      const double gap = std::abs(phi[k] - phi_s);
-      if (best < 0 || gap < best_gap) {
-        best = order[k];
-        best_gap = gap;
-      }
-    }
-    if (!(s_depth > 0) || best < 0) {
-      out.skipped_nodes.push_back(p);
-      continue;
-    }
-    if (!leaves_large_pieces({fan[best].b}, p)) {
-      refuse(p);
-      continue;
-    }
-    open(p, fan[best].b);
-    out.cracked_nodes.push_back(p);
-  }
+  CrackPlanner planner(model, parts, std::move(wanted), settings.min_fragment_elements, out);
+  for (const std::int32_t p : failed) planner.plan(p, &nodal_normal[2 * p]);
 
   std::vector<double> density(parts.size());
   for (std::size_t i = 0; i < parts.size(); ++i) density[i] = parts[i].density;
-  out.remap = split_on_fans(model, fans, density, out.opened_edges, out.parent);
+  out.remap = split_on_fans(model, planner.fans(), density, out.opened_edges, out.parent);
   apply_remap(model, out.remap);
-
-  // Re-initialise the failed elements around each cracked node: their damage has become the
-  // discrete crack (paper, "Discrete fracture insertion": failed elements heal and their state
-  // is reinitialised). The stored elastic energy they give up is reported for the balance.
-  std::vector<std::int64_t> seen;
-  for (const std::int32_t p : out.cracked_nodes)
-    for (const std::int64_t g : fans.elements_of(p)) seen.push_back(g);
-  std::sort(seen.begin(), seen.end());
-  seen.erase(std::unique(seen.begin(), seen.end()), seen.end());
-  const std::vector<std::int64_t>& offset = fans.part_begin;
-  for (const std::int64_t g : seen) {
-    const std::size_t pi = std::upper_bound(offset.begin(), offset.end(), g) - offset.begin() - 1;
-    const CrackingPart& cp = parts[pi];
-    if (!cp.cracks || cp.factor_index < 0) continue;
-    Part& part = model.parts[pi];
-    const std::size_t e = static_cast<std::size_t>(g - offset[pi]);
-    const int npts = part.type->points;
-    const std::size_t state_size = part.point_count() > 0 ? part.state.size() / part.point_count() : 0;
-    bool element_failed = false;
-    for (int q = 0; q < npts; ++q)
-      element_failed = element_failed ||
-                       part.state[state_size * (npts * e + q) + cp.factor_index] >= threshold;
-    if (!element_failed) continue;
-    const double volume =
-        std::abs(element_measure(part, model.nodes, e, model.formulation, model.thickness)) / npts;
-    for (int q = 0; q < npts; ++q) {
-      double* s = &part.stress[kTensorSize * (npts * e + q)];
-      const double pressure = -(s[xx] + s[yy] + s[zz]) / 3.0;
-      const double dev_sq = (s[xx] + pressure) * (s[xx] + pressure) + (s[yy] + pressure) * (s[yy] + pressure) +
-                            (s[zz] + pressure) * (s[zz] + pressure) +
-                            2.0 * (s[xy] * s[xy] + s[yz] * s[yz] + s[zx] * s[zx]);
-      double* state = &part.state[state_size * (npts * e + q)];
-      if (cp.energy_density_index >= 0)
-        out.released_energy += state[cp.energy_density_index] * volume;
-      else if (cp.moduli.bulk > 0 && cp.moduli.shear > 0)
-        out.released_energy += (pressure * pressure / (2.0 * cp.moduli.bulk) + dev_sq / (4.0 * cp.moduli.shear)) * volume;
-      std::fill_n(s, kTensorSize, 0.0);
-      state[cp.factor_index] = 0.0;
-      if (cp.energy_density_index >= 0) state[cp.energy_density_index] = 0.0;
-      for (const int k : cp.reset_indices) state[k] = 0.0;
-    }
-    ++out.reinitialised_elements;
-  }
+  reinitialise_failed_elements(model, parts, planner.fans(), threshold, out);
   return out;
 }
 
