@@ -1,5 +1,5 @@
-// The MCA force law (docs/theory/mca.md). Equation numbers: the MCA paper,
-// /work/shared/papers/mca-composites.txt.
+// The MCA force law (docs/theory/mca.md). Equation numbers: the MCA paper (Psakhie et al.,
+// Defence Technology 11, 2015).
 //
 // One evaluation, after the automata have moved from x_old to x and turned by dtheta:
 //   0. predictor of each automaton's mean stress (velocity Verlet with a predictor, section 2);
