@@ -253,6 +253,213 @@ inline void pair_force(PairList& P, std::size_t p, const double* n, double* F) {
   }
 }
 
+/// Where a pair was and is: the centre-to-centre vectors before (o), after (n) and at mid-step
+/// (m), their lengths and unit vectors, the relative displacement du and dr = ln − lo.
+template <int D>
+struct PairMotion {
+  double ro[D], rn[D], rm[D], du[D];
+  double lo, ln, lm, dr;
+  double no[3] = {0, 0, 0}, nn[3] = {0, 0, 0}, nm[3] = {0, 0, 0};
+
+  PairMotion(const std::vector<double>& x_old, const std::vector<double>& x, int i, int j) {
+    for (int a = 0; a < D; ++a) {
+      ro[a] = x_old[D * j + a] - x_old[D * i + a];
+      rn[a] = x[D * j + a] - x[D * i + a];
+      rm[a] = 0.5 * (ro[a] + rn[a]);
+      du[a] = rn[a] - ro[a];
+    }
+    lo = std::sqrt(dot(ro, ro, D));
+    ln = std::sqrt(dot(rn, rn, D));
+    lm = std::sqrt(dot(rm, rm, D));
+    dr = dot(du, rm, D) * 2 / (ln + lo);  // = ln − lo, without cancellation
+    // One division per length, not per component: this loop is most of a particle step.
+    const double inv_lo = 1 / lo, inv_ln = 1 / ln, inv_lm = 1 / lm;
+    for (int a = 0; a < D; ++a) {
+      no[a] = ro[a] * inv_lo;
+      nn[a] = rn[a] * inv_ln;
+      nm[a] = rm[a] * inv_lm;
+    }
+  }
+};
+
+/// What pass A needs of the two automata of a pair.
+struct PairEnds {
+  int i, j;
+  double Gi, Gj, Ri, Rj, ci, cj;
+};
+
+/// The fracture criterion on the pair tensor, eqs. (16)-(17), with the state of the last step:
+/// a linked pair that meets it starts breaking (or unlinks at once).
+template <int D>
+void check_bond_fracture(const ParticlePart& pt, MCAState& ps, std::size_t p, const BondLaw& law,
+                         const PairMotion<D>& m, const PairEnds& e) {
+  constexpr int R = D == 2 ? 1 : 3;
+  PairList& P = ps.pairs;
+  double value;
+  if (law.criterion == BondCriterion::mohr_coulomb) {
+    double T[9];
+    pair_tensor<D>(pt, ps, p, m.no, T);
+    value = criterion_value(law, T);
+  } else {
+    double mean, eq;
+    pair_invariants<D>(pt, ps, p, m.no, mean, eq);
+    value = invariant_criterion_value(law, mean, eq);
+  }
+  if (value < 1) return;
+  for (int a = 0; a < R; ++a) P.tau_c[R * p + a] = P.tau[R * p + a];
+  if (law.breaking == BondBreaking::instant || (law.breaking == BondBreaking::stable && law.strain_width <= 0) ||
+      (law.breaking == BondBreaking::unstable && law.crack_speed <= 0)) {
+    P.k_link[p] = 0;
+    P.set_state(p, PairState::unlinked);
+  } else {
+    P.set_state(p, PairState::breaking);
+    const double tn = std::sqrt(dot(&P.tau[R * p], &P.tau[R * p], R));
+    P.eps_onset[p] = pair_equivalent_strain(m.lo, P.r0[p], tn, e.Gi, e.Gj);
+  }
+}
+
+/// Shear of eqs. (11)-(12): the relative tangential displacement at the contact point, with the
+/// pair's rotation taken from the positions and each automaton's rotation from dtheta. Writes
+/// the slip and the contact shear before the step (for the friction dissipation).
+template <int D>
+void update_shear(PairList& P, std::size_t p, const PairMotion<D>& m, const PairEnds& e, const MCAScratch& s,
+                  const std::vector<double>& dth, double shear_k, double* slip, double* tc_old) {
+  const int i = e.i, j = e.j;
+  const double qi = e.Ri * (1 + P.xi_ij[p]), qj = e.Rj * (1 + P.xi_ji[p]);
+  const double inv_q = 1 / (qi + qj);
+  const double li = qi * inv_q, lj = qj * inv_q;
+  if constexpr (D == 2) {
+    const double w = li * s.spin[i] + lj * s.spin[j];
+    // displacement of the contact points by the automata's own rotation: w ẑ × r_mid
+    const double ux = m.du[0] + w * m.rm[1], uy = m.du[1] - w * m.rm[0];
+    const double dl = -m.nm[1] * ux + m.nm[0] * uy;  // along t = ẑ × n
+    slip[0] = dl;
+    tc_old[0] = P.tau_c[p];
+    P.tau[p] += shear_k * dl;
+    if (P.state_of(p) != PairState::linked) P.tau_c[p] += shear_k * dl;
+    P.phi[p] += dth[j] - dth[i];
+  } else {
+    double w[3], sp[3], dl[3];
+    for (int a = 0; a < 3; ++a) w[a] = li * s.spin[3 * i + a] + lj * s.spin[3 * j + a];
+    cross(w, m.rm, sp);
+    for (int a = 0; a < 3; ++a) dl[a] = m.du[a] - sp[a];
+    const double dln = dot(dl, m.nm, 3);
+    for (int a = 0; a < 3; ++a) dl[a] -= dln * m.nm[a];
+    // Stored vectors follow the pair: the smallest rotation n_old → n_new, then the twist about
+    // n by the mean spin of the pair.
+    double* tau = &P.tau[3 * p];
+    double* tauc = &P.tau_c[3 * p];
+    double* phi = &P.phi[3 * p];
+    const bool contact_part = P.state_of(p) != PairState::linked;  // τ_c is zero while linked
+    const MinimalRotation turn(m.no, m.nn);
+    turn.apply(tau);
+    if (contact_part) turn.apply(tauc);
+    turn.apply(phi);
+    const double twist = dot(w, m.nn, 3);
+    double nt[3], ntc[3] = {0, 0, 0};
+    cross(m.nn, tau, nt);
+    if (contact_part) cross(m.nn, tauc, ntc);
+    const double tn = dot(tau, m.nn, 3), tcn = dot(tauc, m.nn, 3);
+    for (int a = 0; a < 3; ++a) {
+      tau[a] += twist * nt[a] - tn * m.nn[a];
+      tauc[a] += twist * ntc[a] - tcn * m.nn[a];
+      tc_old[a] = tauc[a];
+      slip[a] = dl[a];
+      tau[a] += shear_k * dl[a];
+      if (P.state_of(p) != PairState::linked) tauc[a] += shear_k * dl[a];
+      phi[a] += dth[3 * j + a] - dth[3 * i + a];
+    }
+  }
+}
+
+/// Central: Δh shared by continuity of η across the contact, eqs. (8)-(9), with the many-body
+/// term A Δσ_mean of each automaton (eq. (2)).
+inline void update_central(PairList& P, std::size_t p, double dr, const PairEnds& e, const MCAScratch& s) {
+  const double ai = 2 * e.Gi, aj = 2 * e.Gj;
+  const double mi_inc = e.ci * s.mean_increment[e.i], mj_inc = e.cj * s.mean_increment[e.j];
+  const double den = ai * e.Rj + aj * e.Ri;
+  const double dxi_ij = (aj * dr + e.Rj * (mj_inc - mi_inc)) / den;
+  const double dxi_ji = (dr - dxi_ij * e.Ri) / e.Rj;
+  P.xi_ij[p] += dxi_ij;
+  P.xi_ji[p] += dxi_ji;
+  P.eta[p] += ai * dxi_ij + mi_inc;
+}
+
+/// Gradual breaking: k_link falls (stable: with the pair equivalent strain; unstable: the crack
+/// crosses the contact at V_crack).
+template <int D>
+void break_gradually(const MCAState& ps, PairList& P, std::size_t p, const BondLaw& law, double ln, double dt,
+                     const PairEnds& e) {
+  constexpr int R = D == 2 ? 1 : 3;
+  double k = P.k_link[p];
+  if (law.breaking == BondBreaking::unstable) {
+    const double width = D == 3 ? std::sqrt(P.area[p]) : P.area[p] / ps.thickness;
+    k -= law.crack_speed * dt / width;
+  } else {
+    const double tn = std::sqrt(dot(&P.tau[R * p], &P.tau[R * p], R));
+    const double eps = pair_equivalent_strain(ln, P.r0[p], tn, e.Gi, e.Gj);
+    k = std::min(k, 1 - (eps - P.eps_onset[p]) / law.strain_width);
+  }
+  if (k <= 0) {
+    k = 0;
+    P.set_state(p, PairState::unlinked);
+  }
+  P.k_link[p] = k;
+}
+
+/// Unlinked part: no tension, shear limited by Amontons' law |τ_c| ≤ μ |η| (compression).
+/// Returns the friction dissipation: the work of the contact shear over the slip (trapezoidal)
+/// less the change of what the shear spring stores; zero while the contact sticks.
+template <int R>
+double limit_contact_shear(PairList& P, std::size_t p, double mu, const double* slip, const double* tc_old,
+                           double shear_k) {
+  const double cap = mu * std::max(-P.eta[p], 0.0);
+  double* tc = &P.tau_c[R * p];
+  const double tn = std::sqrt(dot(tc, tc, R));
+  if (P.eta[p] >= 0) {
+    // apart: the contact carries nothing and keeps no shear
+    for (int a = 0; a < R; ++a) tc[a] = 0;
+  } else if (tn > cap) {
+    const double f = tn > 0 ? cap / tn : 0.0;
+    for (int a = 0; a < R; ++a) tc[a] *= f;
+  }
+  double work = 0, old2 = 0, new2 = 0;
+  for (int a = 0; a < R; ++a) {
+    work += 0.5 * (tc_old[a] + tc[a]) * slip[a];
+    old2 += tc_old[a] * tc_old[a];
+    new2 += tc[a] * tc[a];
+  }
+  return (1 - P.k_link[p]) * P.area[p] * (work - 0.5 * (new2 - old2) / shear_k);
+}
+
+/// The pair force, the contact distances q (eq. (7), scaled so that q_ij + q_ji = r) and the
+/// relative-rotation torque of eq. (14), linked part only. Adds to `breaking` the energy
+/// released by a drop of k_link this step: the linked part's store less the contact's, for the
+/// area that came unlinked, and the relative-rotation spring's share.
+template <int D>
+void finish_pair(const MCAState& ps, PairList& P, std::size_t p, const PairMotion<D>& m, const PairEnds& e,
+                 double k_old, double& breaking) {
+  constexpr int R = D == 2 ? 1 : 3;
+  const double qi = e.Ri * (1 + P.xi_ij[p]), qj = e.Rj * (1 + P.xi_ji[p]);
+  const double scale = m.ln / (qi + qj);
+  P.q_ij[p] = qi * scale;
+  P.q_ji[p] = qj * scale;
+  double F[3];
+  pair_force<D>(P, p, m.nn, F);
+  for (int a = 0; a < D; ++a) {
+    P.force[D * p + a] = F[a];
+    P.normal[D * p + a] = m.nn[a];
+  }
+  const double k = P.k_link[p];
+  for (int a = 0; a < R; ++a) P.torque_rel[R * p + a] = k * P.kappa[p] * P.phi[R * p + a];
+  if (!(k < k_old)) return;
+  const double mi = ps.sigma_mean_used[e.i], mj = ps.sigma_mean_used[e.j];
+  const double t2 = dot(&P.tau[R * p], &P.tau[R * p], R), tc2 = dot(&P.tau_c[R * p], &P.tau_c[R * p], R);
+  breaking += pair_energy(P.area[p], k_old, P.eta[p], t2, tc2, e.Ri, e.Gi, e.ci, mi, e.Rj, e.Gj, e.cj, mj) -
+              pair_energy(P.area[p], k, P.eta[p], t2, tc2, e.Ri, e.Gi, e.ci, mi, e.Rj, e.Gj, e.cj, mj);
+  breaking += 0.5 * (k_old - k) * P.kappa[p] * dot(&P.phi[R * p], &P.phi[R * p], R);
+}
+
 /// Pass A over pairs [p0, p1): see the file comment. sums: [0] friction, [1] breaking (torque
 /// springs only; the rest of breaking is booked in pass D).
 template <int D>
@@ -260,191 +467,23 @@ void pair_pass(const ParticlePart& pt, MCAState& ps, const std::vector<double>& 
                double dt, const MCAScratch& s, std::size_t p0, std::size_t p1, double* sums) {
   constexpr int R = D == 2 ? 1 : 3;
   PairList& P = ps.pairs;
-  const std::vector<double>& x = pt.x;
   double friction = 0, breaking = 0;
   for (std::size_t p = p0; p < p1; ++p) {
     const int i = P.i[p], j = P.j[p];
-    const double Gi = s.shear[pt.material[i]], Gj = s.shear[pt.material[j]];
-    const double Ri = pt.radius[i], Rj = pt.radius[j];
-    double ro[D], rn[D], rm[D], du[D];
-    for (int a = 0; a < D; ++a) {
-      ro[a] = x_old[D * j + a] - x_old[D * i + a];
-      rn[a] = x[D * j + a] - x[D * i + a];
-      rm[a] = 0.5 * (ro[a] + rn[a]);
-      du[a] = rn[a] - ro[a];
-    }
-    const double lo = std::sqrt(dot(ro, ro, D)), ln = std::sqrt(dot(rn, rn, D));
-    const double lm = std::sqrt(dot(rm, rm, D));
-    const double dr = dot(du, rm, D) * 2 / (ln + lo);  // = ln − lo, without cancellation
-    // One division per length, not per component: this loop is most of a particle step.
-    const double inv_lo = 1 / lo, inv_ln = 1 / ln, inv_lm = 1 / lm;
-    double no[3] = {0, 0, 0}, nn[3] = {0, 0, 0}, nm[3] = {0, 0, 0};
-    for (int a = 0; a < D; ++a) {
-      no[a] = ro[a] * inv_lo;
-      nn[a] = rn[a] * inv_ln;
-      nm[a] = rm[a] * inv_lm;
-    }
+    const PairEnds e{i, j, s.shear[pt.material[i]], s.shear[pt.material[j]], pt.radius[i], pt.radius[j],
+                     s.many_body[pt.material[i]], s.many_body[pt.material[j]]};
+    const PairMotion<D> m(x_old, pt.x, i, j);
     const double k_old = P.k_link[p];
     const BondLaw* law = P.law[p] >= 0 ? &ps.bond_laws[P.law[p]] : nullptr;
-
-    // --- fracture criterion on the pair tensor, eqs. (16)-(17), with the state of the last step
-    if (law && law->criterion != BondCriterion::none && P.state_of(p) == PairState::linked) {
-      double value;
-      if (law->criterion == BondCriterion::mohr_coulomb) {
-        double T[9];
-        pair_tensor<D>(pt, ps, p, no, T);
-        value = criterion_value(*law, T);
-      } else {
-        double mean, eq;
-        pair_invariants<D>(pt, ps, p, no, mean, eq);
-        value = invariant_criterion_value(*law, mean, eq);
-      }
-      if (value >= 1) {
-        for (int a = 0; a < R; ++a) P.tau_c[R * p + a] = P.tau[R * p + a];
-        if (law->breaking == BondBreaking::instant ||
-            (law->breaking == BondBreaking::stable && law->strain_width <= 0) ||
-            (law->breaking == BondBreaking::unstable && law->crack_speed <= 0)) {
-          P.k_link[p] = 0;
-          P.set_state(p, PairState::unlinked);
-        } else {
-          P.set_state(p, PairState::breaking);
-          const double tn = std::sqrt(dot(&P.tau[R * p], &P.tau[R * p], R));
-          P.eps_onset[p] = pair_equivalent_strain(lo, P.r0[p], tn, Gi, Gj);
-        }
-      }
-    }
-
-    // --- shear: relative tangential displacement at the contact point, eqs. (11)-(12), with the
-    // pair's rotation taken from the positions and each automaton's rotation from dtheta.
-    const double ci = s.many_body[pt.material[i]], cj = s.many_body[pt.material[j]];
-    double qi = Ri * (1 + P.xi_ij[p]), qj = Rj * (1 + P.xi_ji[p]);
-    const double inv_q = 1 / (qi + qj);
-    const double li = qi * inv_q, lj = qj * inv_q;
-    const double shear_k = 2 * Gi * Gj / (Gj * Ri + Gi * Rj);  // Δτ per Δl, eq. (13) split as (8)
+    if (law && law->criterion != BondCriterion::none && P.state_of(p) == PairState::linked)
+      check_bond_fracture<D>(pt, ps, p, *law, m, e);
+    const double shear_k = 2 * e.Gi * e.Gj / (e.Gj * e.Ri + e.Gi * e.Rj);  // Δτ per Δl, eq. (13) split as (8)
     double slip[3] = {0, 0, 0}, tc_old[3] = {0, 0, 0};  // tangential displacement, contact shear before
-    if constexpr (D == 2) {
-      const double w = li * s.spin[i] + lj * s.spin[j];
-      // displacement of the contact points by the automata's own rotation: w ẑ × r_mid
-      const double ux = du[0] + w * rm[1], uy = du[1] - w * rm[0];
-      const double dl = -nm[1] * ux + nm[0] * uy;  // along t = ẑ × n
-      slip[0] = dl;
-      tc_old[0] = P.tau_c[p];
-      P.tau[p] += shear_k * dl;
-      if (P.state_of(p) != PairState::linked) P.tau_c[p] += shear_k * dl;
-      P.phi[p] += dth[j] - dth[i];
-    } else {
-      double w[3], sp[3], dl[3];
-      for (int a = 0; a < 3; ++a) w[a] = li * s.spin[3 * i + a] + lj * s.spin[3 * j + a];
-      cross(w, rm, sp);
-      for (int a = 0; a < 3; ++a) dl[a] = du[a] - sp[a];
-      const double dln = dot(dl, nm, 3);
-      for (int a = 0; a < 3; ++a) dl[a] -= dln * nm[a];
-      // Stored vectors follow the pair: the smallest rotation n_old → n_new, then the twist about
-      // n by the mean spin of the pair.
-      double* tau = &P.tau[3 * p];
-      double* tauc = &P.tau_c[3 * p];
-      double* phi = &P.phi[3 * p];
-      const bool contact_part = P.state_of(p) != PairState::linked;  // τ_c is zero while linked
-      const MinimalRotation turn(no, nn);
-      turn.apply(tau);
-      if (contact_part) turn.apply(tauc);
-      turn.apply(phi);
-      const double twist = dot(w, nn, 3);
-      double nt[3], ntc[3] = {0, 0, 0};
-      cross(nn, tau, nt);
-      if (contact_part) cross(nn, tauc, ntc);
-      const double tn = dot(tau, nn, 3), tcn = dot(tauc, nn, 3);
-      for (int a = 0; a < 3; ++a) {
-        tau[a] += twist * nt[a] - tn * nn[a];
-        tauc[a] += twist * ntc[a] - tcn * nn[a];
-        tc_old[a] = tauc[a];
-        slip[a] = dl[a];
-        tau[a] += shear_k * dl[a];
-        if (P.state_of(p) != PairState::linked) tauc[a] += shear_k * dl[a];
-        phi[a] += dth[3 * j + a] - dth[3 * i + a];
-      }
-    }
-
-    // --- central: Δh shared by continuity of η across the contact, eqs. (8)-(9), with the
-    // many-body term A Δσ_mean of each automaton (eq. (2)).
-    {
-      const double ai = 2 * Gi, aj = 2 * Gj;
-      const double mi_inc = ci * s.mean_increment[i], mj_inc = cj * s.mean_increment[j];
-      const double den = ai * Rj + aj * Ri;
-      const double dxi_ij = (aj * dr + Rj * (mj_inc - mi_inc)) / den;
-      const double dxi_ji = (dr - dxi_ij * Ri) / Rj;
-      P.xi_ij[p] += dxi_ij;
-      P.xi_ji[p] += dxi_ji;
-      P.eta[p] += ai * dxi_ij + mi_inc;
-    }
-
-    // --- gradual breaking: k_link falls (stable: with the pair equivalent strain; unstable: the
-    // crack crosses the contact at V_crack).
-    if (P.state_of(p) == PairState::breaking) {
-      double k = P.k_link[p];
-      if (law->breaking == BondBreaking::unstable) {
-        const double width = D == 3 ? std::sqrt(P.area[p]) : P.area[p] / ps.thickness;
-        k -= law->crack_speed * dt / width;
-      } else {
-        const double tn = std::sqrt(dot(&P.tau[R * p], &P.tau[R * p], R));
-        const double e = pair_equivalent_strain(ln, P.r0[p], tn, Gi, Gj);
-        k = std::min(k, 1 - (e - P.eps_onset[p]) / law->strain_width);
-      }
-      if (k <= 0) {
-        k = 0;
-        P.set_state(p, PairState::unlinked);
-      }
-      P.k_link[p] = k;
-    }
-
-    // --- unlinked part: no tension, shear limited by Amontons' law |τ_c| ≤ μ |η| (compression)
-    if (P.k_link[p] < 1) {
-      const double mu = law ? law->friction : 0.0;
-      const double cap = mu * std::max(-P.eta[p], 0.0);
-      double* tc = &P.tau_c[R * p];
-      const double tn = std::sqrt(dot(tc, tc, R));
-      if (P.eta[p] >= 0) {
-        // apart: the contact carries nothing and keeps no shear
-        for (int a = 0; a < R; ++a) tc[a] = 0;
-      } else if (tn > cap) {
-        const double f = tn > 0 ? cap / tn : 0.0;
-        for (int a = 0; a < R; ++a) tc[a] *= f;
-      }
-      // Friction dissipation: the work of the contact shear over the slip (trapezoidal) less the
-      // change of what the shear spring stores; zero while the contact sticks.
-      double work = 0, old2 = 0, new2 = 0;
-      for (int a = 0; a < R; ++a) {
-        work += 0.5 * (tc_old[a] + tc[a]) * slip[a];
-        old2 += tc_old[a] * tc_old[a];
-        new2 += tc[a] * tc[a];
-      }
-      friction += (1 - P.k_link[p]) * P.area[p] * (work - 0.5 * (new2 - old2) / shear_k);
-    }
-
-    // --- the pair force, the contact distances q (eq. (7), scaled so that q_ij + q_ji = r) and
-    // the relative-rotation torque of eq. (14), linked part only.
-    qi = Ri * (1 + P.xi_ij[p]);
-    qj = Rj * (1 + P.xi_ji[p]);
-    const double scale = ln / (qi + qj);
-    P.q_ij[p] = qi * scale;
-    P.q_ji[p] = qj * scale;
-    double F[3];
-    pair_force<D>(P, p, nn, F);
-    for (int a = 0; a < D; ++a) {
-      P.force[D * p + a] = F[a];
-      P.normal[D * p + a] = nn[a];
-    }
-    const double k = P.k_link[p];
-    for (int a = 0; a < R; ++a) P.torque_rel[R * p + a] = k * P.kappa[p] * P.phi[R * p + a];
-    if (k < k_old) {
-      // Energy released by the drop of k_link: the linked part's store less the contact's, for
-      // the area that came unlinked, and the relative-rotation spring's share.
-      const double mi = ps.sigma_mean_used[i], mj = ps.sigma_mean_used[j];
-      const double t2 = dot(&P.tau[R * p], &P.tau[R * p], R), tc2 = dot(&P.tau_c[R * p], &P.tau_c[R * p], R);
-      breaking += pair_energy(P.area[p], k_old, P.eta[p], t2, tc2, Ri, Gi, ci, mi, Rj, Gj, cj, mj) -
-                  pair_energy(P.area[p], k, P.eta[p], t2, tc2, Ri, Gi, ci, mi, Rj, Gj, cj, mj);
-      breaking += 0.5 * (k_old - k) * P.kappa[p] * dot(&P.phi[R * p], &P.phi[R * p], R);
-    }
+    update_shear<D>(P, p, m, e, s, dth, shear_k, slip, tc_old);
+    update_central(P, p, m.dr, e, s);
+    if (P.state_of(p) == PairState::breaking) break_gradually<D>(ps, P, p, *law, m.ln, dt, e);
+    if (P.k_link[p] < 1) friction += limit_contact_shear<R>(P, p, law ? law->friction : 0.0, slip, tc_old, shear_k);
+    finish_pair<D>(ps, P, p, m, e, k_old, breaking);
   }
   sums[0] = friction;
   sums[1] = breaking;
@@ -483,11 +522,8 @@ double bond_criterion_value(const BondLaw& law, const double* T) { return criter
 
 namespace {
 
-template <int D>
-MCADissipation forces_impl(ParticlePart& pt, MCAState& ps, const std::vector<double>& x_old,
-                           const std::vector<double>& dth, double dt, bool first_step, MCAScratch& s) {
-  constexpr int R = D == 2 ? 1 : 3;
-  const std::size_t n = pt.count(), np = ps.pairs.count();
+/// The per-material coefficients of the step; true if any material is plastic.
+bool material_coefficients(const MCAState& ps, MCAScratch& s) {
   s.many_body.resize(ps.materials.size());
   s.shear.resize(ps.materials.size());
   bool any_plastic = false;
@@ -496,11 +532,17 @@ MCADissipation forces_impl(ParticlePart& pt, MCAState& ps, const std::vector<dou
     s.shear[m] = ps.materials[m].shear_modulus();
     any_plastic = any_plastic || ps.materials[m].plastic();
   }
-  s.mean_increment.resize(n);
+  return any_plastic;
+}
 
-  // 0. predictor of the mean stress at the end of the step (linear extrapolation of the last
-  // two steps); the pair forces receive its increment over what they already hold. The
-  // rotation increments in Cayley form, once per automaton.
+/// 0. Predictor of the mean stress at the end of the step (linear extrapolation of the last two
+/// steps); the pair forces receive its increment over what they already hold. The rotation
+/// increments in Cayley form, once per automaton.
+template <int D>
+void predict_mean_stress(std::size_t n, MCAState& ps, const std::vector<double>& dth, bool first_step,
+                         MCAScratch& s) {
+  constexpr int R = D == 2 ? 1 : 3;
+  s.mean_increment.resize(n);
   s.spin.resize(n * R);
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
@@ -510,6 +552,143 @@ MCADissipation forces_impl(ParticlePart& pt, MCAState& ps, const std::vector<dou
     s.mean_increment[i] = pred - ps.sigma_mean_used[i];
     ps.sigma_mean_used[i] = pred;
   }
+}
+
+/// B. Trial averaged stress of automaton i and the Wilkins return, eq. (15): the return factor
+/// M_i and the trial mean stress.
+template <int D>
+void return_automaton(const ParticlePart& pt, MCAState& ps, std::size_t i, MCAScratch& s) {
+  const MCAMaterial& m = ps.materials[pt.material[i]];
+  if (!m.plastic()) return;
+  double st[6];
+  gather_stress<D>(ps, i, st);
+  if constexpr (D == 2) {
+    if (ps.plane == PlaneMode::plane_stress) {
+      st[2] = 0;
+    } else {
+      // σ_zz follows the in-plane mean elastically (2ν Δσ_m2), then returns with the rest
+      const double* old = &ps.stress[6 * i];
+      st[2] = old[2] + m.poisson * ((st[0] + st[1]) - (old[0] + old[1]));
+    }
+  }
+  const double m3 = (st[0] + st[1] + st[2]) / 3;
+  s.trial_mean[i] = m3;
+  const double sint = stress_intensity(st);
+  const double ep = ps.plastic_strain[i];
+  const double dep = radial_return(m, sint, ep);
+  double M = 1;
+  if (dep > 0) {
+    const double s_new = yield_radius(m, ep + dep);
+    M = s_new / sint;
+    ps.plastic_strain[i] = ep + dep;
+  }
+  s.return_factor[i] = M;
+  if constexpr (D == 2) ps.stress[6 * i + 2] = (st[2] - m3) * M + m3;
+}
+
+/// C. Corrected specific forces of pair p: η' = (η − σ_m)M + σ_m, τ' = τ M, each side with its
+/// own automaton; the pair keeps one value, the compliance-weighted mean of the two. Returns the
+/// elastic energy the return took from the pair (booked as plastic work).
+template <int D>
+double correct_plastic_pair(const ParticlePart& pt, MCAState& ps, std::size_t p, const MCAScratch& s) {
+  constexpr int R = D == 2 ? 1 : 3;
+  PairList& P = ps.pairs;
+  const std::vector<double>& mean3 = s.trial_mean;
+  const int i = P.i[p], j = P.j[p];
+  const double Mi = s.return_factor[i], Mj = s.return_factor[j];
+  if (Mi == 1 && Mj == 1) return 0;
+  const double wi = (2 * pt.radius[i]) / ps.materials[pt.material[i]].shear_modulus();
+  const double wj = (2 * pt.radius[j]) / ps.materials[pt.material[j]].shear_modulus();
+  const double eta = P.eta[p];
+  const double Gi = ps.materials[pt.material[i]].shear_modulus(), Gj = ps.materials[pt.material[j]].shear_modulus();
+  const double ci = s.many_body[pt.material[i]], cj = s.many_body[pt.material[j]];
+  const double Ri = pt.radius[i], Rj = pt.radius[j];
+  const double mi = ps.sigma_mean_used[i], mj = ps.sigma_mean_used[j];
+  const double before = pair_energy(P.area[p], P.k_link[p], eta, dot(&P.tau[R * p], &P.tau[R * p], R),
+                                    dot(&P.tau_c[R * p], &P.tau_c[R * p], R), Ri, Gi, ci, mi, Rj, Gj, cj, mj);
+  const double ei = (eta - mean3[i]) * Mi + mean3[i], ej = (eta - mean3[j]) * Mj + mean3[j];
+  P.eta[p] = (wi * ei + wj * ej) / (wi + wj);
+  const double Mt = (wi * Mi + wj * Mj) / (wi + wj);
+  for (int a = 0; a < R; ++a) {
+    P.tau[R * p + a] *= Mt;
+    P.tau_c[R * p + a] *= Mt;
+  }
+  const double after = pair_energy(P.area[p], P.k_link[p], P.eta[p], dot(&P.tau[R * p], &P.tau[R * p], R),
+                                   dot(&P.tau_c[R * p], &P.tau_c[R * p], R), Ri, Gi, ci, mi, Rj, Gj, cj, mj);
+  double F[3];
+  pair_force<D>(P, p, &P.normal[D * p], F);
+  for (int a = 0; a < D; ++a) P.force[D * p + a] = F[a];
+  return before - after;
+}
+
+/// B and C over all automata and pairs; plastic_pairs[b]: the plastic work of pair block b.
+template <int D>
+void plastic_return(const ParticlePart& pt, MCAState& ps, MCAScratch& s, std::vector<double>& plastic_pairs) {
+  const std::size_t n = pt.count(), np = ps.pairs.count();
+  const std::size_t nba = (n + kBlock - 1) / kBlock, nbp = (np + kBlock - 1) / kBlock;
+  s.return_factor.assign(n, 1.0);
+  s.trial_mean.assign(n, 0.0);
+#pragma omp parallel for schedule(static)
+  for (std::size_t b = 0; b < nba; ++b)
+    for (std::size_t i = b * kBlock; i < std::min(n, (b + 1) * kBlock); ++i) return_automaton<D>(pt, ps, i, s);
+#pragma omp parallel for schedule(static)
+  for (std::size_t b = 0; b < nbp; ++b)
+    for (std::size_t p = b * kBlock; p < std::min(np, (b + 1) * kBlock); ++p)
+      plastic_pairs[b] += correct_plastic_pair<D>(pt, ps, p, s);
+}
+
+/// D. Gather for automaton i: force and torque of eq. (1), averaged stress (3), mean (4),
+/// intensity (5).
+template <int D>
+void gather_automaton(ParticlePart& pt, MCAState& ps, std::size_t i, bool first_step) {
+  constexpr int R = D == 2 ? 1 : 3;
+  const PairList& P = ps.pairs;
+  double f[3] = {0, 0, 0}, t[3] = {0, 0, 0}, M[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
+  for (int e = ps.adjacency.start[i]; e < ps.adjacency.start[i + 1]; ++e) {
+    const int code = ps.adjacency.pair[e];
+    const bool is_i = code >= 0;
+    const std::size_t p = is_i ? code : -code - 1;
+    const double q = is_i ? P.q_ij[p] : P.q_ji[p];
+    const double sign = is_i ? 1.0 : -1.0;
+    const double* nv = &P.normal[D * p];
+    const double* F = &P.force[D * p];
+    for (int a = 0; a < D; ++a) f[a] += sign * F[a];
+    if constexpr (D == 2) {
+      t[0] += q * (nv[0] * F[1] - nv[1] * F[0]) + sign * P.torque_rel[p];
+    } else {
+      double c[3];
+      cross(nv, F, c);
+      for (int a = 0; a < 3; ++a) t[a] += q * c[a] + sign * P.torque_rel[3 * p + a];
+    }
+    for (int r = 0; r < D; ++r)
+      for (int c = 0; c < D; ++c) M[3 * r + c] += q * nv[r] * F[c];
+  }
+  const double inv = 1 / ps.volume[i];
+  for (int k = 0; k < 9; ++k) M[k] *= inv;
+  double st[6];
+  averaged_stress(ps, i, M, st);
+  const MCAMaterial& m = ps.materials[pt.material[i]];
+  for (int a = 0; a < D; ++a) pt.force[D * i + a] = f[a];
+  for (int a = 0; a < R; ++a) pt.torque[R * i + a] = t[a];
+  double mean_mb;  // the mean stress the many-body term uses: 3D mean, 2D in-plane mean
+  if constexpr (D == 2) {
+    st[2] = m.plastic() && ps.plane == PlaneMode::plane_strain ? ps.stress[6 * i + 2] : plane_zz(ps, m, st);
+    mean_mb = 0.5 * (st[0] + st[1]);
+  } else {
+    mean_mb = (st[0] + st[1] + st[2]) / 3;
+  }
+  for (int k = 0; k < 6; ++k) ps.stress[6 * i + k] = st[k];
+  ps.sigma_mean_old[i] = first_step ? mean_mb : ps.sigma_mean[i];
+  ps.sigma_mean[i] = mean_mb;
+  ps.stress_int[i] = stress_intensity(st);
+}
+
+template <int D>
+MCADissipation forces_impl(ParticlePart& pt, MCAState& ps, const std::vector<double>& x_old,
+                           const std::vector<double>& dth, double dt, bool first_step, MCAScratch& s) {
+  const std::size_t n = pt.count(), np = ps.pairs.count();
+  const bool any_plastic = material_coefficients(ps, s);
+  predict_mean_stress<D>(n, ps, dth, first_step, s);
 
   // A. pairs
   const std::size_t nbp = (np + kBlock - 1) / kBlock;
@@ -518,123 +697,15 @@ MCADissipation forces_impl(ParticlePart& pt, MCAState& ps, const std::vector<dou
   for (std::size_t b = 0; b < nbp; ++b)
     pair_pass<D>(pt, ps, x_old, dth, dt, s, b * kBlock, std::min(np, (b + 1) * kBlock), &pair_sums[2 * b]);
 
-  const std::size_t nba = (n + kBlock - 1) / kBlock;
-
+  // B, C. plastic return
   std::vector<double> plastic_pairs(nbp, 0.0);
-  if (any_plastic) {
-    s.return_factor.assign(n, 1.0);
-    // B. trial averaged stress and Wilkins return, eq. (15)
-    std::vector<double>& mean3 = s.trial_mean;
-    mean3.assign(n, 0.0);
-#pragma omp parallel for schedule(static)
-    for (std::size_t b = 0; b < nba; ++b) {
-      for (std::size_t i = b * kBlock; i < std::min(n, (b + 1) * kBlock); ++i) {
-        const MCAMaterial& m = ps.materials[pt.material[i]];
-        if (!m.plastic()) continue;
-        double st[6];
-        gather_stress<D>(ps, i, st);
-        if constexpr (D == 2) {
-          if (ps.plane == PlaneMode::plane_stress) {
-            st[2] = 0;
-          } else {
-            // σ_zz follows the in-plane mean elastically (2ν Δσ_m2), then returns with the rest
-            const double* old = &ps.stress[6 * i];
-            st[2] = old[2] + m.poisson * ((st[0] + st[1]) - (old[0] + old[1]));
-          }
-        }
-        const double m3 = (st[0] + st[1] + st[2]) / 3;
-        mean3[i] = m3;
-        const double sint = stress_intensity(st);
-        const double ep = ps.plastic_strain[i];
-        const double dep = radial_return(m, sint, ep);
-        double M = 1;
-        if (dep > 0) {
-          const double s_new = yield_radius(m, ep + dep);
-          M = s_new / sint;
-          ps.plastic_strain[i] = ep + dep;
-        }
-        s.return_factor[i] = M;
-        if constexpr (D == 2) ps.stress[6 * i + 2] = (st[2] - m3) * M + m3;
-      }
-    }
-    // C. corrected specific forces of the pairs: η' = (η − σ_m)M + σ_m, τ' = τ M, each side
-    // with its own automaton; the pair keeps one value, the compliance-weighted mean of the two.
-#pragma omp parallel for schedule(static)
-    for (std::size_t b = 0; b < nbp; ++b)
-      for (std::size_t p = b * kBlock; p < std::min(np, (b + 1) * kBlock); ++p) {
-        PairList& P = ps.pairs;
-        const int i = P.i[p], j = P.j[p];
-        const double Mi = s.return_factor[i], Mj = s.return_factor[j];
-        if (Mi == 1 && Mj == 1) continue;
-        const double wi = (2 * pt.radius[i]) / ps.materials[pt.material[i]].shear_modulus();
-        const double wj = (2 * pt.radius[j]) / ps.materials[pt.material[j]].shear_modulus();
-        const double eta = P.eta[p];
-        const double Gi = ps.materials[pt.material[i]].shear_modulus(), Gj = ps.materials[pt.material[j]].shear_modulus();
-        const double ci = s.many_body[pt.material[i]], cj = s.many_body[pt.material[j]];
-        const double Ri = pt.radius[i], Rj = pt.radius[j];
-        const double mi = ps.sigma_mean_used[i], mj = ps.sigma_mean_used[j];
-        const double before = pair_energy(P.area[p], P.k_link[p], eta, dot(&P.tau[R * p], &P.tau[R * p], R),
-                                          dot(&P.tau_c[R * p], &P.tau_c[R * p], R), Ri, Gi, ci, mi, Rj, Gj, cj, mj);
-        const double ei = (eta - mean3[i]) * Mi + mean3[i], ej = (eta - mean3[j]) * Mj + mean3[j];
-        P.eta[p] = (wi * ei + wj * ej) / (wi + wj);
-        const double Mt = (wi * Mi + wj * Mj) / (wi + wj);
-        for (int a = 0; a < R; ++a) {
-          P.tau[R * p + a] *= Mt;
-          P.tau_c[R * p + a] *= Mt;
-        }
-        plastic_pairs[b] += before - pair_energy(P.area[p], P.k_link[p], P.eta[p], dot(&P.tau[R * p], &P.tau[R * p], R),
-                                                 dot(&P.tau_c[R * p], &P.tau_c[R * p], R), Ri, Gi, ci, mi, Rj, Gj, cj, mj);
-        double F[3];
-        pair_force<D>(P, p, &P.normal[D * p], F);
-        for (int a = 0; a < D; ++a) P.force[D * p + a] = F[a];
-      }
-  }
+  if (any_plastic) plastic_return<D>(pt, ps, s, plastic_pairs);
 
-  // D. gather: forces and torques of eq. (1), averaged stress (3), mean (4), intensity (5);
-  const PairList& P = ps.pairs;
+  // D. gather
+  const std::size_t nba = (n + kBlock - 1) / kBlock;
 #pragma omp parallel for schedule(static)
-  for (std::size_t b = 0; b < nba; ++b) {
-    for (std::size_t i = b * kBlock; i < std::min(n, (b + 1) * kBlock); ++i) {
-      double f[3] = {0, 0, 0}, t[3] = {0, 0, 0}, M[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
-      for (int e = ps.adjacency.start[i]; e < ps.adjacency.start[i + 1]; ++e) {
-        const int code = ps.adjacency.pair[e];
-        const bool is_i = code >= 0;
-        const std::size_t p = is_i ? code : -code - 1;
-        const double q = is_i ? P.q_ij[p] : P.q_ji[p];
-        const double sign = is_i ? 1.0 : -1.0;
-        const double* nv = &P.normal[D * p];
-        const double* F = &P.force[D * p];
-        for (int a = 0; a < D; ++a) f[a] += sign * F[a];
-        if constexpr (D == 2) {
-          t[0] += q * (nv[0] * F[1] - nv[1] * F[0]) + sign * P.torque_rel[p];
-        } else {
-          double c[3];
-          cross(nv, F, c);
-          for (int a = 0; a < 3; ++a) t[a] += q * c[a] + sign * P.torque_rel[3 * p + a];
-        }
-        for (int r = 0; r < D; ++r)
-          for (int c = 0; c < D; ++c) M[3 * r + c] += q * nv[r] * F[c];
-      }
-      const double inv = 1 / ps.volume[i];
-      for (int k = 0; k < 9; ++k) M[k] *= inv;
-      double st[6];
-      averaged_stress(ps, i, M, st);
-      const MCAMaterial& m = ps.materials[pt.material[i]];
-      for (int a = 0; a < D; ++a) pt.force[D * i + a] = f[a];
-      for (int a = 0; a < R; ++a) pt.torque[R * i + a] = t[a];
-      double mean_mb;  // the mean stress the many-body term uses: 3D mean, 2D in-plane mean
-      if constexpr (D == 2) {
-        st[2] = m.plastic() && ps.plane == PlaneMode::plane_strain ? ps.stress[6 * i + 2] : plane_zz(ps, m, st);
-        mean_mb = 0.5 * (st[0] + st[1]);
-      } else {
-        mean_mb = (st[0] + st[1] + st[2]) / 3;
-      }
-      for (int k = 0; k < 6; ++k) ps.stress[6 * i + k] = st[k];
-      ps.sigma_mean_old[i] = first_step ? mean_mb : ps.sigma_mean[i];
-      ps.sigma_mean[i] = mean_mb;
-      ps.stress_int[i] = stress_intensity(st);
-    }
-  }
+  for (std::size_t b = 0; b < nba; ++b)
+    for (std::size_t i = b * kBlock; i < std::min(n, (b + 1) * kBlock); ++i) gather_automaton<D>(pt, ps, i, first_step);
 
   MCADissipation out;
   for (std::size_t b = 0; b < nbp; ++b) {
