@@ -103,16 +103,55 @@ double coulomb(double* T, const double* n, const double* vt, double k, double dt
 
 }  // namespace
 
-void ContactSystem::find_facet_hits(const Model& model) {
+namespace {
+
+/// Copies of one split node (same NodeArrays::origin).
+bool is_sibling(const std::vector<std::int64_t>& origin, std::int32_t p, std::int32_t q) {
+  return p != q && static_cast<std::size_t>(std::max(p, q)) < origin.size() && origin[p] == origin[q];
+}
+
+/// 3D: node x behind triangle fn, its projection inside, the two facing each other.
+bool triangle_hit(const double* X, const std::int32_t* fn, const double* x, const double* nn,
+                  double* weights, double* normal, double& gap) {
+  const double* a = &X[3 * fn[0]];
+  const double* b = &X[3 * fn[1]];
+  const double* cc = &X[3 * fn[2]];
+  const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+  const double w[3] = {cc[0] - a[0], cc[1] - a[1], cc[2] - a[2]};
+  double n[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
+  const double n2 = n[0] * n[0] + n[1] * n[1] + n[2] * n[2], nl = std::sqrt(n2);
+  for (double& v : n) v /= nl;
+  const double r[3] = {x[0] - a[0], x[1] - a[1], x[2] - a[2]};
+  gap = r[0] * n[0] + r[1] * n[1] + r[2] * n[2];
+  if (gap >= 0 || gap < -0.5 * std::sqrt(nl)) return false;
+  // Barycentric coordinates of the projection.
+  const double p[3] = {r[0] - gap * n[0], r[1] - gap * n[1], r[2] - gap * n[2]};
+  const double d00 = u[0] * u[0] + u[1] * u[1] + u[2] * u[2];
+  const double d01 = u[0] * w[0] + u[1] * w[1] + u[2] * w[2];
+  const double d11 = w[0] * w[0] + w[1] * w[1] + w[2] * w[2];
+  const double d20 = p[0] * u[0] + p[1] * u[1] + p[2] * u[2];
+  const double d21 = p[0] * w[0] + p[1] * w[1] + p[2] * w[2];
+  const double den = d00 * d11 - d01 * d01;
+  double lb = (d11 * d20 - d01 * d21) / den, lc = (d00 * d21 - d01 * d20) / den;
+  const double la = 1 - lb - lc;
+  if (la < 0.0 || lb < 0.0 || lc < 0.0) return false;
+  if (n[0] * nn[0] + n[1] * nn[1] + n[2] * nn[2] >= 0) return false;  // not facing each other
+  weights[0] = la;
+  weights[1] = lb;
+  weights[2] = lc;
+  for (int d = 0; d < 3; ++d) normal[d] = n[d];
+  return true;
+}
+
+}  // namespace
+
+void ContactSystem::bin_facets(const Model& model) {
   const int dim = model.dim();
   const std::size_t nf = surface_.facet_count();
-  const std::size_t ns = surface_.nodes.size();
-  for (auto& h : hits_) h = Hit{};
-  if (nf == 0 || !settings_.any_pairs()) return;
   const double* X = model.nodes.x.data();
   const std::int32_t* F = surface_.facets.data();
-  // Bins. A node can be found behind a facet by at most half the facet's length (the depth
-  // limits below), so it lies in the facet's box grown by half the box's diagonal. Each facet is
+  // A node can be found behind a facet by at most half the facet's length (the depth limits of
+  // the hit tests), so it lies in the facet's box grown by half the box's diagonal. Each facet is
   // entered in every cell its grown box touches, and a node looks in its own cell only. The cell
   // follows the mean facet, not the largest: where an impact stretches one element or a crushed
   // zone is full of short crack faces, a cell sized by the largest facet held hundreds of facets
@@ -145,159 +184,165 @@ void ContactSystem::find_facet_hits(const Model& model) {
   mean /= static_cast<double>(nf);
   bin_size_ = std::max({2.5 * mean, largest / 8.0, 1e-12});
   grid_.build_boxes(facet_box_, dim, bin_size_);
+}
 
+void ContactSystem::sum_node_normals(const Model& model) {
   // Outward normal of each surface node (sum of its facets' area normals): a node only touches
   // facets that face it, which keeps coincident or nearby corners of two bodies from pushing each
   // other sideways.
+  const int dim = model.dim();
+  const double* X = model.nodes.x.data();
+  const std::int32_t* F = surface_.facets.data();
   node_normal_.assign(static_cast<std::size_t>(dim) * model.nodes.count(), 0.0);
-  for (std::size_t f = 0; f < nf; ++f) {
+  for (std::size_t f = 0; f < surface_.facet_count(); ++f) {
     const std::int32_t* fn = &F[dim * f];
     double n[3];
     facet_normal(X, dim, fn, n);
     for (int a = 0; a < dim; ++a)
       for (int d = 0; d < dim; ++d) node_normal_[dim * fn[a] + d] += n[d];
   }
-
-  const std::size_t np = model.parts.size();
-  const auto& origin = model.nodes.origin;
-  auto is_sibling = [&](std::int32_t p, std::int32_t q) {
-    return p != q && static_cast<std::size_t>(std::max(p, q)) < origin.size() && origin[p] == origin[q];
-  };
-  auto on_crack = [&](std::int32_t p) { return crack_face_[p] != 0; };
-#pragma omp parallel for schedule(static)
-  for (std::size_t i = 0; i < ns; ++i) {
-    const std::int32_t s = surface_.nodes[i];
-    const int ps = surface_.node_part[i];
-    const double* x = &X[dim * s];
-    const double* nn = &node_normal_[dim * s];
-    const std::span<const std::int32_t> candidates = grid_.cell(x);
-    Hit best;
-    double best_gap = -std::numeric_limits<double>::infinity();
-    for (const std::int32_t f : candidates) {
-      const int pf = surface_.facet_part[f];
-      if (!settings_.part_pairs[ps * np + pf]) continue;
-      const std::int32_t* fn = &F[dim * f];
-      // The faces of the node's own element neighbourhood cannot be penetrated by it; a face
-      // that ends at a copy of the node (a crack face across from the node's own) can.
-      bool own = false, sibling = false;
-      for (int a = 0; a < dim; ++a) {
-        own = own || fn[a] == s || (ps == pf && surface_.are_neighbours(i, fn[a]));
-        sibling = sibling || is_sibling(s, fn[a]);
-      }
-      if (own && !(sibling && std::find(fn, fn + dim, s) == fn + dim)) continue;
-      Hit hit;
-      hit.facet = f;
-      if (dim == 2) {
-        const double* a = &X[2 * fn[0]];
-        const double* b = &X[2 * fn[1]];
-        const double tx = b[0] - a[0], ty = b[1] - a[1];
-        const double l2 = tx * tx + ty * ty, l = std::sqrt(l2);
-        // Copies of one split node (same NodeArrays::origin) start on top of each other, so a
-        // copy always sits at a corner of its siblings' wedges. Near such a corner the contact
-        // must follow the true distance to the sibling's surface, which is continuous as the
-        // copy moves around the corner; otherwise a copy switches on at a finite depth and the
-        // penalty returns energy it never stored (docs/theory/contact.md, "Split nodes").
-        const bool sibling_a = is_sibling(s, fn[0]), sibling_b = is_sibling(s, fn[1]);
-        hit.crack_faces = ps == pf && (on_crack(s) || on_crack(fn[0]) || on_crack(fn[1]));
-        const double xi = ((x[0] - a[0]) * tx + (x[1] - a[1]) * ty) / l2;
-        if (xi < 0.0 && sibling_a) {
-          // Behind a reflex corner of the sibling's wedge (its projection falls on neither
-          // segment): the nearest point of the surface is the corner itself. Found from the
-          // segment that starts at the corner only, so that it is found once.
-          const std::int32_t g = surface_.facet_before[f];
-          if (g < 0) continue;
-          const double* p0 = &X[2 * F[2 * g]];
-          const double ux = a[0] - p0[0], uy = a[1] - p0[1];
-          if (!(ux * ty - uy * tx < 0)) continue;  // a convex corner: outside the body
-          const double lg2 = ux * ux + uy * uy;
-          if (!((x[0] - p0[0]) * ux + (x[1] - p0[1]) * uy > lg2)) continue;  // on g: g's business
-          const double behind_f = (x[0] - a[0]) * ty - (x[1] - a[1]) * tx;
-          const double behind_g = (x[0] - a[0]) * uy - (x[1] - a[1]) * ux;
-          if (!(behind_f < 0 || behind_g < 0)) continue;
-          const double dx = a[0] - x[0], dy = a[1] - x[1], d = std::hypot(dx, dy);
-          if (!(d > 0) || d > 0.5 * std::min(l, std::sqrt(lg2))) continue;
-          hit.normal[0] = dx / d;
-          hit.normal[1] = dy / d;
-          hit.gap = -d;
-          hit.weights[0] = 1;
-          hit.weights[1] = 0;
-          if (hit.gap > best_gap || (hit.gap == best_gap && f < best.facet)) {
-            best_gap = hit.gap;
-            best = hit;
-          }
-          continue;
-        }
-        // Only a node whose projection falls on the facet: past a convex corner of the master
-        // surface the next facet decides, not this one's extended line.
-        if (xi < 0.0 || xi > 1.0) continue;
-        hit.normal[0] = ty / l;
-        hit.normal[1] = -tx / l;
-        // Not facing each other: two bodies' corners that meet must not push each other
-        // sideways. A copy and its sibling's corner are not two bodies' corners: they were one
-        // point, and the test would hide a segment the copy is behind.
-        if (!sibling_a && !sibling_b && hit.normal[0] * nn[0] + hit.normal[1] * nn[1] >= 0) continue;
-        hit.gap = (x[0] - a[0]) * hit.normal[0] + (x[1] - a[1]) * hit.normal[1];
-        if (hit.gap >= 0 || hit.gap < -0.5 * l) continue;
-        // At a convex corner the body is behind both segments: a node behind this one's line
-        // but in front of the next segment's line is outside, past the corner.
-        auto past_corner = [&](std::int32_t g, const double* corner, bool before) {
-          if (g < 0) return false;
-          // A crack tip: the two faces of the crack that ends here run back to copies of one
-          // node. The body wraps all around the tip (a 360° corner), however the faces lie.
-          const std::int32_t far_g = before ? F[2 * g] : F[2 * g + 1], far_f = before ? fn[1] : fn[0];
-          if (far_g == far_f || is_sibling(far_g, far_f)) return false;
-          const double* p0 = &X[2 * F[2 * g]];
-          const double* p1 = &X[2 * F[2 * g + 1]];
-          const double ux = p1[0] - p0[0], uy = p1[1] - p0[1];
-          // Left turn from the incoming to the outgoing segment: convex (the body on the left).
-          const double turn = before ? ux * ty - uy * tx : tx * uy - ty * ux;
-          if (!(turn > 0)) return false;
-          return (x[0] - corner[0]) * uy - (x[1] - corner[1]) * ux > 0;  // in front of g's line
-        };
-        if (past_corner(surface_.facet_before[f], a, true) || past_corner(surface_.facet_after[f], b, false))
-          continue;
-        hit.weights[0] = 1 - xi;
-        hit.weights[1] = xi;
-      } else {
-        const double* a = &X[3 * fn[0]];
-        const double* b = &X[3 * fn[1]];
-        const double* cc = &X[3 * fn[2]];
-        const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
-        const double w[3] = {cc[0] - a[0], cc[1] - a[1], cc[2] - a[2]};
-        double n[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
-        const double n2 = n[0] * n[0] + n[1] * n[1] + n[2] * n[2], nl = std::sqrt(n2);
-        for (double& v : n) v /= nl;
-        const double r[3] = {x[0] - a[0], x[1] - a[1], x[2] - a[2]};
-        hit.gap = r[0] * n[0] + r[1] * n[1] + r[2] * n[2];
-        if (hit.gap >= 0 || hit.gap < -0.5 * std::sqrt(nl)) continue;
-        // Barycentric coordinates of the projection.
-        const double p[3] = {r[0] - hit.gap * n[0], r[1] - hit.gap * n[1], r[2] - hit.gap * n[2]};
-        const double d00 = u[0] * u[0] + u[1] * u[1] + u[2] * u[2];
-        const double d01 = u[0] * w[0] + u[1] * w[1] + u[2] * w[2];
-        const double d11 = w[0] * w[0] + w[1] * w[1] + w[2] * w[2];
-        const double d20 = p[0] * u[0] + p[1] * u[1] + p[2] * u[2];
-        const double d21 = p[0] * w[0] + p[1] * w[1] + p[2] * w[2];
-        const double den = d00 * d11 - d01 * d01;
-        double lb = (d11 * d20 - d01 * d21) / den, lc = (d00 * d21 - d01 * d20) / den;
-        const double la = 1 - lb - lc;
-        if (la < 0.0 || lb < 0.0 || lc < 0.0) continue;
-        if (n[0] * nn[0] + n[1] * nn[1] + n[2] * nn[2] >= 0) continue;  // not facing each other
-        hit.weights[0] = la;
-        hit.weights[1] = lb;
-        hit.weights[2] = lc;
-        for (int d = 0; d < 3; ++d) hit.normal[d] = n[d];
-      }
-      // The shallowest penetration is the face the node came through.
-      if (hit.gap > best_gap || (hit.gap == best_gap && f < best.facet)) {
-        best_gap = hit.gap;
-        best = hit;
-      }
-    }
-    hits_[i] = best;
-  }
 }
 
-void ContactSystem::add_forces(Model& model, double time, double dt, double stable_dt) {
+bool ContactSystem::reflex_corner_hit(const double* X, std::int32_t f, const double* x, Hit& hit) const {
+  // Behind a reflex corner of the sibling's wedge (its projection falls on neither segment):
+  // the nearest point of the surface is the corner itself. Found from the segment that starts
+  // at the corner only, so that it is found once.
+  const std::int32_t* F = surface_.facets.data();
+  const double* a = &X[2 * F[2 * f]];
+  const double* b = &X[2 * F[2 * f + 1]];
+  const double tx = b[0] - a[0], ty = b[1] - a[1];
+  const double l = std::sqrt(tx * tx + ty * ty);
+  const std::int32_t g = surface_.facet_before[f];
+  if (g < 0) return false;
+  const double* p0 = &X[2 * F[2 * g]];
+  const double ux = a[0] - p0[0], uy = a[1] - p0[1];
+  if (!(ux * ty - uy * tx < 0)) return false;  // a convex corner: outside the body
+  const double lg2 = ux * ux + uy * uy;
+  if (!((x[0] - p0[0]) * ux + (x[1] - p0[1]) * uy > lg2)) return false;  // on g: g's business
+  const double behind_f = (x[0] - a[0]) * ty - (x[1] - a[1]) * tx;
+  const double behind_g = (x[0] - a[0]) * uy - (x[1] - a[1]) * ux;
+  if (!(behind_f < 0 || behind_g < 0)) return false;
+  const double dx = a[0] - x[0], dy = a[1] - x[1], d = std::hypot(dx, dy);
+  if (!(d > 0) || d > 0.5 * std::min(l, std::sqrt(lg2))) return false;
+  hit.normal[0] = dx / d;
+  hit.normal[1] = dy / d;
+  hit.gap = -d;
+  hit.weights[0] = 1;
+  hit.weights[1] = 0;
+  return true;
+}
+
+// At a convex corner the body is behind both segments: a node behind facet f's line but in
+// front of the neighbouring segment g's line is outside, past the corner.
+bool ContactSystem::past_corner(const Model& model, std::int32_t f, std::int32_t g, bool before,
+                                const double* x) const {
+  if (g < 0) return false;
+  const double* X = model.nodes.x.data();
+  const std::int32_t* F = surface_.facets.data();
+  const std::int32_t* fn = &F[2 * f];
+  const double* a = &X[2 * fn[0]];
+  const double* b = &X[2 * fn[1]];
+  const double* corner = before ? a : b;
+  const double tx = b[0] - a[0], ty = b[1] - a[1];
+  // A crack tip: the two faces of the crack that ends here run back to copies of one node. The
+  // body wraps all around the tip (a 360° corner), however the faces lie.
+  const std::int32_t far_g = before ? F[2 * g] : F[2 * g + 1], far_f = before ? fn[1] : fn[0];
+  if (far_g == far_f || is_sibling(model.nodes.origin, far_g, far_f)) return false;
+  const double* p0 = &X[2 * F[2 * g]];
+  const double* p1 = &X[2 * F[2 * g + 1]];
+  const double ux = p1[0] - p0[0], uy = p1[1] - p0[1];
+  // Left turn from the incoming to the outgoing segment: convex (the body on the left).
+  const double turn = before ? ux * ty - uy * tx : tx * uy - ty * ux;
+  if (!(turn > 0)) return false;
+  return (x[0] - corner[0]) * uy - (x[1] - corner[1]) * ux > 0;  // in front of g's line
+}
+
+bool ContactSystem::segment_hit(const Model& model, std::int32_t f, std::int32_t s, int ps, int pf,
+                                const double* nn, Hit& hit) const {
+  const double* X = model.nodes.x.data();
+  const auto& origin = model.nodes.origin;
+  const std::int32_t* fn = &surface_.facets[2 * f];
+  const double* x = &X[2 * s];
+  const double* a = &X[2 * fn[0]];
+  const double* b = &X[2 * fn[1]];
+  const double tx = b[0] - a[0], ty = b[1] - a[1];
+  const double l2 = tx * tx + ty * ty, l = std::sqrt(l2);
+  // Copies of one split node start on top of each other, so a copy always sits at a corner of
+  // its siblings' wedges. Near such a corner the contact must follow the true distance to the
+  // sibling's surface, which is continuous as the copy moves around the corner; otherwise a copy
+  // switches on at a finite depth and the penalty returns energy it never stored
+  // (docs/theory/contact.md, "Split nodes").
+  const bool sibling_a = is_sibling(origin, s, fn[0]), sibling_b = is_sibling(origin, s, fn[1]);
+  hit.crack_faces = ps == pf && (crack_face_[s] != 0 || crack_face_[fn[0]] != 0 || crack_face_[fn[1]] != 0);
+  const double xi = ((x[0] - a[0]) * tx + (x[1] - a[1]) * ty) / l2;
+  if (xi < 0.0 && sibling_a) return reflex_corner_hit(X, f, x, hit);
+  // Only a node whose projection falls on the facet: past a convex corner of the master
+  // surface the next facet decides, not this one's extended line.
+  if (xi < 0.0 || xi > 1.0) return false;
+  hit.normal[0] = ty / l;
+  hit.normal[1] = -tx / l;
+  // Not facing each other: two bodies' corners that meet must not push each other sideways. A
+  // copy and its sibling's corner are not two bodies' corners: they were one point, and the test
+  // would hide a segment the copy is behind.
+  if (!sibling_a && !sibling_b && hit.normal[0] * nn[0] + hit.normal[1] * nn[1] >= 0) return false;
+  hit.gap = (x[0] - a[0]) * hit.normal[0] + (x[1] - a[1]) * hit.normal[1];
+  if (hit.gap >= 0 || hit.gap < -0.5 * l) return false;
+  if (past_corner(model, f, surface_.facet_before[f], true, x) ||
+      past_corner(model, f, surface_.facet_after[f], false, x))
+    return false;
+  hit.weights[0] = 1 - xi;
+  hit.weights[1] = xi;
+  return true;
+}
+
+// The facet surface node i is behind, if any: of all candidate facets of the parts it may
+// touch, the shallowest penetration, which is the face the node came through.
+ContactSystem::Hit ContactSystem::nearest_facet_hit(const Model& model, std::size_t i) const {
+  const int dim = model.dim();
+  const std::size_t np = model.parts.size();
+  const std::int32_t* F = surface_.facets.data();
+  const std::int32_t s = surface_.nodes[i];
+  const int ps = surface_.node_part[i];
+  const double* x = &model.nodes.x[dim * s];
+  const double* nn = &node_normal_[dim * s];
+  Hit best;
+  double best_gap = -std::numeric_limits<double>::infinity();
+  for (const std::int32_t f : grid_.cell(x)) {
+    const int pf = surface_.facet_part[f];
+    if (!settings_.part_pairs[ps * np + pf]) continue;
+    const std::int32_t* fn = &F[dim * f];
+    // The faces of the node's own element neighbourhood cannot be penetrated by it; a face
+    // that ends at a copy of the node (a crack face across from the node's own) can.
+    bool own = false, sibling = false;
+    for (int a = 0; a < dim; ++a) {
+      own = own || fn[a] == s || (ps == pf && surface_.are_neighbours(i, fn[a]));
+      sibling = sibling || is_sibling(model.nodes.origin, s, fn[a]);
+    }
+    if (own && !(sibling && std::find(fn, fn + dim, s) == fn + dim)) continue;
+    Hit hit;
+    hit.facet = f;
+    const bool found = dim == 2 ? segment_hit(model, f, s, ps, pf, nn, hit)
+                                : triangle_hit(model.nodes.x.data(), fn, x, nn, hit.weights, hit.normal, hit.gap);
+    if (!found) continue;
+    if (hit.gap > best_gap || (hit.gap == best_gap && f < best.facet)) {
+      best_gap = hit.gap;
+      best = hit;
+    }
+  }
+  return best;
+}
+
+void ContactSystem::find_facet_hits(const Model& model) {
+  for (auto& h : hits_) h = Hit{};
+  if (surface_.facet_count() == 0 || !settings_.any_pairs()) return;
+  bin_facets(model);
+  sum_node_normals(model);
+  const std::size_t ns = surface_.nodes.size();
+#pragma omp parallel for schedule(static)
+  for (std::size_t i = 0; i < ns; ++i) hits_[i] = nearest_facet_hit(model, i);
+}
+
+void ContactSystem::reset_step(Model& model) {
   const int dim = model.dim();
   const std::size_t nn = model.nodes.count();
   if (model.contact.tangential.size() != dim * nn) model.contact.tangential.assign(dim * nn, 0.0);
@@ -318,141 +363,157 @@ void ContactSystem::add_forces(Model& model, double time, double dt, double stab
   std::fill(pair_force_.begin(), pair_force_.end(), 0.0);
   std::fill(wall_force_.begin(), wall_force_.end(), 0.0);
   std::fill(normal_force_.begin(), normal_force_.end(), 0.0);
+}
+
+void ContactSystem::add_forces(Model& model, double time, double dt, double stable_dt) {
+  reset_step(model);
   if (!(stable_dt > 0) || !std::isfinite(stable_dt)) return;
   if (model.contact.penalty_time_step.empty()) model.contact.penalty_time_step.assign(1, stable_dt);
   stable_dt = model.contact.penalty_time_step[0];
-
   find_facet_hits(model);
+  for (std::size_t i = 0; i < surface_.nodes.size(); ++i) add_facet_force(model, i, dt, stable_dt);
+  for (std::size_t w = 0; w < settings_.walls.size(); ++w) add_wall_forces(model, w, time, dt, stable_dt);
+  const double* M = model.nodes.mass.data();
+  for (const std::int32_t n : stiffened_)
+    if (M[n] > 0) max_frequency2_ = std::max(max_frequency2_, row_stiffness_[n] / M[n]);
+}
+
+// The depth the penalty acts on (hit.gap less the offset carried without force) for surface
+// node s, updating its contact history.
+//
+// A node found in contact with a face of its own part for the first time, either of them on a
+// crack, should be at most as deep as its approach in this step (the relative normal velocity
+// times the step; half as much again for the turn of the facet). Deeper, it was inside before
+// the search could see it (a copy in a sibling's wedge where three or more copies meet,
+// fragments rounding each other's corners, one fragment's original boundary behind another's
+// crack face): the penalty on the whole depth would return energy it never stored. That excess
+// is carried as an offset without force, and given up as the node backs out
+// (docs/theory/contact.md, "Split nodes").
+// The same holds for a node already in contact whose depth jumps by more than its approach: its
+// hit moved to a facet it was already behind (another fragment's face in a pile of fragments,
+// the far side of a corner). The depth the penalty acts on may grow from the last step's by the
+// approach, not jump; without this, fragments pressed together pump energy into each other.
+double ContactSystem::loaded_depth(Model& model, std::int32_t s, const Hit& hit, double vn, double dt) const {
+  const double approach = std::max(0.0, -vn) * dt;
+  std::uint8_t& touching = model.contact.touching[s];
+  double& offset = model.contact.penetration_offset[s];
+  double& loaded = model.contact.loaded_gap[s];
+  if (!touching) {
+    offset = 0;
+    loaded = 0;
+    touching = 1;
+  } else {
+    offset = std::min(0.0, std::max(offset, hit.gap));
+  }
+  if (hit.crack_faces && -(hit.gap - offset) > -loaded + 1.5 * approach)
+    offset = std::min(0.0, hit.gap - loaded + approach);
+  loaded = hit.gap - offset;
+  return hit.gap - offset;
+}
+
+void ContactSystem::add_facet_force(Model& model, std::size_t i, double dt, double stable_dt) {
+  const int dim = model.dim();
+  const std::int32_t s = surface_.nodes[i];
+  double* T = &model.contact.tangential[dim * s];
+  const Hit& hit = hits_[i];
+  if (hit.facet < 0) {
+    for (int d = 0; d < dim; ++d) T[d] = 0;
+    model.contact.touching[s] = 0;
+    model.contact.penetration_offset[s] = 0;
+    model.contact.loaded_gap[s] = 0;
+    return;
+  }
   double* force = model.nodes.force.data();
   const double* V = model.nodes.v.data();
   const double* M = model.nodes.mass.data();
+  const std::int32_t* fn = &surface_.facets[dim * hit.facet];
+  // The spring moves the node and the facet's nodes in proportion 1 : w_a, so it adds
+  // k (1/M_s + Σ w_a²/M_a) ≤ k (1/M_s + 1/min M_a) to ω²: the bound uses the lightest corner,
+  // not the facet's mean mass (a light copy at a crack corner beside a heavy node would
+  // otherwise see a spring far stiffer than its own stable step allows), and holds wherever the
+  // node projects on the facet, so k does not change as it slides.
+  double lightest = M[fn[0]], vrel[3] = {0, 0, 0};
+  for (int a = 1; a < dim; ++a) lightest = std::min(lightest, M[fn[a]]);
+  const double pair_mass = 2.0 / (1.0 / M[s] + 1.0 / lightest);
+  for (int d = 0; d < dim; ++d) {
+    vrel[d] = V[dim * s + d];
+    for (int a = 0; a < dim; ++a) vrel[d] -= hit.weights[a] * V[dim * fn[a] + d];
+  }
+  const double k = penalty(pair_mass, stable_dt, settings_.time_step_reduction, settings_.penalty_scale);
+  double vn = 0;
+  for (int d = 0; d < dim; ++d) vn += vrel[d] * hit.normal[d];
+  const double fn_mag = -k * loaded_depth(model, s, hit, vn, dt);
+  max_penetration_ = std::max(max_penetration_, -hit.gap);
+  double vt[3];
+  for (int d = 0; d < dim; ++d) vt[d] = vrel[d] - vn * hit.normal[d];
+  const int ps = surface_.node_part[i], pf = surface_.facet_part[hit.facet];
+  const FrictionLaw& law = settings_.friction[part_material_[ps] * material_count_ + part_material_[pf]];
+  friction_work_ += coulomb(T, hit.normal, vt, k, dt, fn_mag, law, dim);
+  double f[3];
+  for (int d = 0; d < dim; ++d) {
+    f[d] = fn_mag * hit.normal[d] + T[d];
+    force[dim * s + d] += f[d];
+    applied_.emplace_back(static_cast<std::int64_t>(dim) * s + d, f[d]);
+    for (int a = 0; a < dim; ++a) {
+      force[dim * fn[a] + d] -= hit.weights[a] * f[d];
+      applied_.emplace_back(static_cast<std::int64_t>(dim) * fn[a] + d, -hit.weights[a] * f[d]);
+    }
+  }
+  normal_force_[i] = fn_mag;
+  ++active_;
+  add_row_stiffness(s, 2.0 * k);
+  for (int a = 0; a < dim; ++a) add_row_stiffness(fn[a], 2.0 * k * hit.weights[a]);
   const std::size_t np = model.parts.size();
-  const double r = settings_.time_step_reduction, scale = settings_.penalty_scale;
-  auto pair_index = [&](int a, int b) { return pair_of_parts_[a * np + b]; };
-  const std::int32_t* F = surface_.facets.data();
+  const int p = ps <= pf ? pair_of_parts_[ps * np + pf] : pair_of_parts_[pf * np + ps];
+  if (p >= 0)
+    for (int d = 0; d < dim; ++d) pair_force_[dim * p + d] += ps <= pf ? f[d] : -f[d];
+}
+
+void ContactSystem::add_wall_forces(Model& model, std::size_t w, double time, double dt, double stable_dt) {
+  const int dim = model.dim();
+  const std::size_t nw = settings_.walls.size();
+  double* force = model.nodes.force.data();
+  const double* V = model.nodes.v.data();
+  const double* M = model.nodes.mass.data();
+  const RigidWall& wall = settings_.walls[w];
+  double vw[3] = {0, 0, 0}, origin[3] = {0, 0, 0};
+  for (int d = 0; d < dim; ++d) {
+    vw[d] = wall.velocity[d].at(time);
+    origin[d] = wall.point[d] + model.contact.wall_offset[dim * w + d];
+  }
   for (std::size_t i = 0; i < surface_.nodes.size(); ++i) {
+    const int ps = surface_.node_part[i];
+    if (!wall.parts[ps]) continue;
     const std::int32_t s = surface_.nodes[i];
-    double* T = &model.contact.tangential[dim * s];
-    const Hit& hit = hits_[i];
-    std::uint8_t& touching = model.contact.touching[s];
-    double& offset = model.contact.penetration_offset[s];
-    if (hit.facet < 0) {
+    double* T = &model.contact.wall_tangential[(s * nw + w) * dim];
+    double gap = 0;
+    for (int d = 0; d < dim; ++d) gap += (model.nodes.x[dim * s + d] - origin[d]) * wall.normal[d];
+    if (gap >= 0) {
       for (int d = 0; d < dim; ++d) T[d] = 0;
-      touching = 0;
-      offset = 0;
-      model.contact.loaded_gap[s] = 0;
       continue;
     }
-    const std::int32_t* fn = &F[dim * hit.facet];
-    // The spring moves the node and the facet's nodes in proportion 1 : w_a, so it adds
-    // k (1/M_s + Σ w_a²/M_a) ≤ k (1/M_s + 1/min M_a) to ω²: the bound uses the lightest corner,
-    // not the facet's mean mass (a light copy at a crack corner beside a heavy node would
-    // otherwise see a spring far stiffer than its own stable step allows), and holds wherever the
-    // node projects on the facet, so k does not change as it slides.
-    double lightest = M[fn[0]], vrel[3] = {0, 0, 0};
-    for (int a = 1; a < dim; ++a) lightest = std::min(lightest, M[fn[a]]);
-    const double pair_mass = 2.0 / (1.0 / M[s] + 1.0 / lightest);
+    // the wall does not move back
+    const double k = penalty(2.0 * M[s], stable_dt, settings_.time_step_reduction, settings_.penalty_scale);
+    const double fn_mag = -k * gap;
+    add_row_stiffness(s, k);
+    max_penetration_ = std::max(max_penetration_, -gap);
+    double vrel[3] = {0, 0, 0}, vn = 0;
     for (int d = 0; d < dim; ++d) {
-      vrel[d] = V[dim * s + d];
-      for (int a = 0; a < dim; ++a) vrel[d] -= hit.weights[a] * V[dim * fn[a] + d];
+      vrel[d] = V[dim * s + d] - vw[d];
+      vn += vrel[d] * wall.normal[d];
     }
-    const double k = penalty(pair_mass, stable_dt, r, scale);
-    double vn = 0;
-    for (int d = 0; d < dim; ++d) vn += vrel[d] * hit.normal[d];
-    // A node found in contact with a face of its own part for the first time, either of them on
-    // a crack, should be at most as deep as its approach in this step (the relative normal
-    // velocity times the step; half as much again for the turn of the facet). Deeper, it was
-    // inside before the search could see it (a copy in a sibling's wedge where three or more
-    // copies meet, fragments rounding each other's corners, one fragment's original boundary
-    // behind another's crack face): the penalty on the whole depth would return energy it
-    // never stored. That excess is carried as an offset without force, and given up as the node
-    // backs out (docs/theory/contact.md, "Split nodes").
-    // The same holds for a node already in contact whose depth jumps by more than its approach:
-    // its hit moved to a facet it was already behind (another fragment's face in a pile of
-    // fragments, the far side of a corner). The depth the penalty acts on may grow from the last
-    // step's by the approach, not jump; without this, fragments pressed together pump energy
-    // into each other.
-    const double approach = std::max(0.0, -vn) * dt;
-    double& loaded = model.contact.loaded_gap[s];
-    if (!touching) {
-      offset = 0;
-      loaded = 0;
-      touching = 1;
-    } else {
-      offset = std::min(0.0, std::max(offset, hit.gap));
-    }
-    if (hit.crack_faces && -(hit.gap - offset) > -loaded + 1.5 * approach)
-      offset = std::min(0.0, hit.gap - loaded + approach);
-    loaded = hit.gap - offset;
-    const double fn_mag = -k * (hit.gap - offset);
-    max_penetration_ = std::max(max_penetration_, -hit.gap);
     double vt[3];
-    for (int d = 0; d < dim; ++d) vt[d] = vrel[d] - vn * hit.normal[d];
-    const int ps = surface_.node_part[i], pf = surface_.facet_part[hit.facet];
-    const FrictionLaw& law = settings_.friction[part_material_[ps] * material_count_ + part_material_[pf]];
-    friction_work_ += coulomb(T, hit.normal, vt, k, dt, fn_mag, law, dim);
-    double f[3];
+    for (int d = 0; d < dim; ++d) vt[d] = vrel[d] - vn * wall.normal[d];
+    friction_work_ += coulomb(T, wall.normal.data(), vt, k, dt, fn_mag, wall.friction, dim);
     for (int d = 0; d < dim; ++d) {
-      f[d] = fn_mag * hit.normal[d] + T[d];
-      force[dim * s + d] += f[d];
-      applied_.emplace_back(static_cast<std::int64_t>(dim) * s + d, f[d]);
-      for (int a = 0; a < dim; ++a) {
-        force[dim * fn[a] + d] -= hit.weights[a] * f[d];
-        applied_.emplace_back(static_cast<std::int64_t>(dim) * fn[a] + d, -hit.weights[a] * f[d]);
-      }
+      const double f = fn_mag * wall.normal[d] + T[d];
+      force[dim * s + d] += f;
+      applied_.emplace_back(static_cast<std::int64_t>(dim) * s + d, f);
+      wall_force_[dim * w + d] -= f;
     }
-    normal_force_[i] = fn_mag;
+    normal_force_[i] += fn_mag;
     ++active_;
-    add_row_stiffness(s, 2.0 * k);
-    for (int a = 0; a < dim; ++a) add_row_stiffness(fn[a], 2.0 * k * hit.weights[a]);
-    const int p = ps <= pf ? pair_index(ps, pf) : pair_index(pf, ps);
-    if (p >= 0)
-      for (int d = 0; d < dim; ++d) pair_force_[dim * p + d] += ps <= pf ? f[d] : -f[d];
   }
-
-  // Rigid walls.
-  for (std::size_t w = 0; w < nw; ++w) {
-    const RigidWall& wall = settings_.walls[w];
-    double vw[3] = {0, 0, 0}, origin[3] = {0, 0, 0};
-    for (int d = 0; d < dim; ++d) {
-      vw[d] = wall.velocity[d].at(time);
-      origin[d] = wall.point[d] + model.contact.wall_offset[dim * w + d];
-    }
-    for (std::size_t i = 0; i < surface_.nodes.size(); ++i) {
-      const int ps = surface_.node_part[i];
-      if (!wall.parts[ps]) continue;
-      const std::int32_t s = surface_.nodes[i];
-      double* T = &model.contact.wall_tangential[(s * nw + w) * dim];
-      double gap = 0;
-      for (int d = 0; d < dim; ++d) gap += (model.nodes.x[dim * s + d] - origin[d]) * wall.normal[d];
-      if (gap >= 0) {
-        for (int d = 0; d < dim; ++d) T[d] = 0;
-        continue;
-      }
-      const double k = penalty(2.0 * M[s], stable_dt, r, scale);  // the wall does not move back
-      const double fn_mag = -k * gap;
-      add_row_stiffness(s, k);
-      max_penetration_ = std::max(max_penetration_, -gap);
-      double vrel[3] = {0, 0, 0}, vn = 0;
-      for (int d = 0; d < dim; ++d) {
-        vrel[d] = V[dim * s + d] - vw[d];
-        vn += vrel[d] * wall.normal[d];
-      }
-      double vt[3];
-      for (int d = 0; d < dim; ++d) vt[d] = vrel[d] - vn * wall.normal[d];
-      friction_work_ += coulomb(T, wall.normal.data(), vt, k, dt, fn_mag, wall.friction, dim);
-      for (int d = 0; d < dim; ++d) {
-        const double f = fn_mag * wall.normal[d] + T[d];
-        force[dim * s + d] += f;
-        applied_.emplace_back(static_cast<std::int64_t>(dim) * s + d, f);
-        wall_force_[dim * w + d] -= f;
-      }
-      normal_force_[i] += fn_mag;
-      ++active_;
-    }
-  }
-  for (const std::int32_t n : stiffened_)
-    if (M[n] > 0) max_frequency2_ = std::max(max_frequency2_, row_stiffness_[n] / M[n]);
 }
 
 void ContactSystem::add_row_stiffness(std::int32_t node, double stiffness) {

@@ -98,6 +98,17 @@ class ContactSystem final : public TopologyListener {
     bool crack_faces = false;  ///< node and facet of one part, either on a crack face (2D cracks)
   };
   void find_facet_hits(const Model& model);
+  void bin_facets(const Model& model);
+  void sum_node_normals(const Model& model);
+  Hit nearest_facet_hit(const Model& model, std::size_t i) const;
+  bool segment_hit(const Model& model, std::int32_t f, std::int32_t s, int ps, int pf, const double* nn,
+                   Hit& hit) const;
+  bool reflex_corner_hit(const double* X, std::int32_t f, const double* x, Hit& hit) const;
+  bool past_corner(const Model& model, std::int32_t f, std::int32_t g, bool before, const double* x) const;
+  void reset_step(Model& model);
+  double loaded_depth(Model& model, std::int32_t s, const Hit& hit, double vn, double dt) const;
+  void add_facet_force(Model& model, std::size_t i, double dt, double stable_dt);
+  void add_wall_forces(Model& model, std::size_t w, double time, double dt, double stable_dt);
   void add_row_stiffness(std::int32_t node, double stiffness);
 
   ContactSettings settings_;
