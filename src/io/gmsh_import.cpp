@@ -368,7 +368,9 @@ class CellChecker {
 
 }  // namespace
 
-MeshData load_gmsh_mesh(const fs::path& file, const GmshOptions& options) {
+namespace {
+
+void check_options(const fs::path& file, const GmshOptions& options) {
   if (!(options.scale > 0) || !std::isfinite(options.scale)) {
     fail(file, "mesh scale must be a positive finite number");
   }
@@ -384,12 +386,11 @@ MeshData load_gmsh_mesh(const fs::path& file, const GmshOptions& options) {
   if (!fs::is_regular_file(file, ec)) {
     fail(file, "mesh file '" + file.string() + "' is not a regular file");
   }
+}
 
-  std::lock_guard lock(gmsh_mutex());
-  GmshSession session(options.quiet);
-
-  call_gmsh(file, "read '" + file.string() + "'", [&] { gmsh::open(file.string()); });
-
+// The physical groups of the open model up to the mesh dimension (set in `mesh_dim`: the one
+// asked for, or the highest dimension with a physical group).
+gmsh::vectorpair physical_groups(const fs::path& file, const GmshOptions& options, int& mesh_dim) {
   gmsh::vectorpair physical;
   gmsh::model::getPhysicalGroups(physical, -1);
   std::erase_if(physical, [](const std::pair<int, int>& dt) { return dt.first <= 0; });
@@ -406,66 +407,158 @@ MeshData load_gmsh_mesh(const fs::path& file, const GmshOptions& options) {
     fail(file, "the file has physical curves only; a mesh needs a physical surface (2D) or a "
                "physical volume (3D), e.g. Physical Surface(\"plate\") = {1};");
   }
-  const int mesh_dim = options.dimension > 0 ? options.dimension : max_dim;
+  mesh_dim = options.dimension > 0 ? options.dimension : max_dim;
   if (mesh_dim > max_dim) {
     fail(file, "dimension " + std::to_string(mesh_dim) + " was asked for but the file has no "
                "physical group of that dimension (highest: " + std::to_string(max_dim) + ")");
   }
   std::erase_if(physical, [&](const std::pair<int, int>& dt) { return dt.first > mesh_dim; });
+  return physical;
+}
 
-  if (lower_extension(file) != ".msh") {
-    std::vector<int> existing;
-    gmsh::model::mesh::getElementTypes(existing, mesh_dim, -1);
-    if (existing.empty()) {
-      // Set after open so they win over options the geometry file itself sets.
-      gmsh::option::setNumber("Mesh.ElementOrder", 1);
-      if (options.mesh_size > 0) {
-        gmsh::option::setNumber("Mesh.MeshSizeMax", options.mesh_size);
-        gmsh::option::setNumber("Mesh.MeshSizeMin", 0);
+// A geometry file (.geo, CAD) without a mesh of this dimension is meshed here.
+void mesh_if_needed(const fs::path& file, const GmshOptions& options, int mesh_dim) {
+  if (lower_extension(file) == ".msh") return;
+  std::vector<int> existing;
+  gmsh::model::mesh::getElementTypes(existing, mesh_dim, -1);
+  if (!existing.empty()) return;
+  // Set after open so they win over options the geometry file itself sets.
+  gmsh::option::setNumber("Mesh.ElementOrder", 1);
+  if (options.mesh_size > 0) {
+    gmsh::option::setNumber("Mesh.MeshSizeMax", options.mesh_size);
+    gmsh::option::setNumber("Mesh.MeshSizeMin", 0);
+  }
+  call_gmsh(file, "mesh '" + file.string() + "' in " + std::to_string(mesh_dim) + "D",
+            [&] { gmsh::model::mesh::generate(mesh_dim); });
+}
+
+// One physical group's cells with Gmsh tags, by cell type; the node tags it uses are appended to
+// `used_nodes`.
+RawGroup read_group(const fs::path& file, int group_dim, int group_tag, std::vector<std::size_t>& used_nodes) {
+  RawGroup group;
+  group.dim = group_dim;
+  group.tag = group_tag;
+  gmsh::model::getPhysicalName(group_dim, group_tag, group.name);
+  if (group.name.empty()) group.name = "group" + std::to_string(group_tag);
+  std::vector<int> entities;
+  gmsh::model::getEntitiesForPhysicalGroup(group_dim, group_tag, entities);
+  for (int entity : entities) {
+    std::vector<int> types;
+    std::vector<std::vector<std::size_t>> element_tags, node_tags;
+    gmsh::model::mesh::getElements(types, element_tags, node_tags, group_dim, entity);
+    for (std::size_t t = 0; t < types.size(); ++t) {
+      CellType type{};
+      if (!from_gmsh_type(types[t], type)) {
+        fail(file, unsupported_type_reason(group.name, group_dim, types[t]));
       }
-      call_gmsh(file, "mesh '" + file.string() + "' in " + std::to_string(mesh_dim) + "D",
-                [&] { gmsh::model::mesh::generate(mesh_dim); });
+      auto block = std::find_if(group.blocks.begin(), group.blocks.end(),
+                                [&](const RawBlock& b) { return b.type == type; });
+      if (block == group.blocks.end()) {
+        block = group.blocks.insert(
+            std::upper_bound(group.blocks.begin(), group.blocks.end(), type,
+                             [](CellType a, const RawBlock& b) { return a < b.type; }),
+            RawBlock{type, {}, {}});
+      }
+      block->element_tags.insert(block->element_tags.end(), element_tags[t].begin(),
+                                 element_tags[t].end());
+      block->node_tags.insert(block->node_tags.end(), node_tags[t].begin(), node_tags[t].end());
+      used_nodes.insert(used_nodes.end(), node_tags[t].begin(), node_tags[t].end());
     }
   }
+  return group;
+}
 
-  // Gather each group's cells with Gmsh tags.
+// Coordinates (3 per node) of the nodes with the given tags (sorted, unique).
+std::vector<double> node_coordinates(const fs::path& file, const std::vector<std::size_t>& used_nodes) {
+  std::vector<std::size_t> all_tags;
+  std::vector<double> all_coords, parametric;
+  gmsh::model::mesh::getNodes(all_tags, all_coords, parametric, -1, -1, false, false);
+  std::vector<std::size_t> by_tag(all_tags.size());
+  for (std::size_t i = 0; i < by_tag.size(); ++i) by_tag[i] = i;
+  std::sort(by_tag.begin(), by_tag.end(),
+            [&](std::size_t a, std::size_t b) { return all_tags[a] < all_tags[b]; });
+  std::vector<double> coordinates(3 * used_nodes.size());
+  std::size_t j = 0;  // merge walk: both lists sorted by tag
+  for (std::size_t i = 0; i < used_nodes.size(); ++i) {
+    while (j < by_tag.size() && all_tags[by_tag[j]] < used_nodes[i]) ++j;
+    if (j == by_tag.size() || all_tags[by_tag[j]] != used_nodes[i]) {
+      fail(file, "an element refers to node " + std::to_string(used_nodes[i]) +
+                     ", which the file does not define");
+    }
+    for (int k = 0; k < 3; ++k) coordinates[3 * i + k] = all_coords[3 * by_tag[j] + k];
+  }
+  return coordinates;
+}
+
+// Diagonal of the nodes' bounding box.
+double extent_of(const std::vector<double>& coordinates) {
+  if (coordinates.empty()) return 0;
+  Vec3 lo{}, hi{};
+  for (int k = 0; k < 3; ++k) lo[k] = hi[k] = coordinates[k];
+  for (std::size_t i = 0; 3 * i < coordinates.size(); ++i) {
+    for (int k = 0; k < 3; ++k) {
+      lo[k] = std::min(lo[k], coordinates[3 * i + k]);
+      hi[k] = std::max(hi[k], coordinates[3 * i + k]);
+    }
+  }
+  return norm(sub(hi, lo));
+}
+
+void flatten_to_plane(const fs::path& file, MeshData& mesh, const std::vector<std::size_t>& used_nodes,
+                      double extent) {
+  for (std::size_t i = 0; i < used_nodes.size(); ++i) {
+    double& z = mesh.coordinates[3 * i + 2];
+    if (std::abs(z) > kPlaneTolerance * extent) {
+      std::ostringstream out;
+      out << std::setprecision(10) << "a 2D mesh must lie in the z = 0 plane, but node "
+          << used_nodes[i] << " has z = " << z
+          << "; draw the geometry in the x-y plane (or Rotate it there in the .geo)";
+      fail(file, out.str());
+    }
+    z = 0;  // round-off from CAD kernels would otherwise leak into 2D kinematics
+  }
+}
+
+// A group's cells numbered by the kept nodes, each checked (and turned to positive orientation).
+MeshGroup number_group(RawGroup& raw, const MeshData& mesh, const std::vector<std::size_t>& used_nodes,
+                       CellChecker& checker) {
+  MeshGroup group;
+  group.name = std::move(raw.name);
+  group.dim = raw.dim;
+  group.tag = raw.tag;
+  for (RawBlock& raw_block : raw.blocks) {
+    CellBlock block{raw_block.type, {}};
+    block.connectivity.resize(raw_block.node_tags.size());
+    for (std::size_t i = 0; i < raw_block.node_tags.size(); ++i) {
+      const auto it = std::lower_bound(used_nodes.begin(), used_nodes.end(), raw_block.node_tags[i]);
+      block.connectivity[i] = static_cast<std::int32_t>(it - used_nodes.begin());
+    }
+    const auto n = static_cast<std::size_t>(nodes_per_cell(block.type));
+    for (std::size_t c = 0; c < raw_block.element_tags.size(); ++c) {
+      checker.check(group.name, block.type, raw_block.element_tags[c], &block.connectivity[c * n],
+                    mesh.coordinates, used_nodes);
+    }
+    group.blocks.push_back(std::move(block));
+  }
+  return group;
+}
+
+}  // namespace
+
+MeshData load_gmsh_mesh(const fs::path& file, const GmshOptions& options) {
+  check_options(file, options);
+  std::lock_guard lock(gmsh_mutex());
+  GmshSession session(options.quiet);
+  call_gmsh(file, "read '" + file.string() + "'", [&] { gmsh::open(file.string()); });
+  int mesh_dim = 0;
+  const gmsh::vectorpair physical = physical_groups(file, options, mesh_dim);
+  mesh_if_needed(file, options, mesh_dim);
+
   std::vector<RawGroup> raw_groups;
   raw_groups.reserve(physical.size());
   std::vector<std::size_t> used_nodes;
-  for (const auto& [group_dim, group_tag] : physical) {
-    RawGroup group;
-    group.dim = group_dim;
-    group.tag = group_tag;
-    gmsh::model::getPhysicalName(group_dim, group_tag, group.name);
-    if (group.name.empty()) group.name = "group" + std::to_string(group_tag);
-    std::vector<int> entities;
-    gmsh::model::getEntitiesForPhysicalGroup(group_dim, group_tag, entities);
-    for (int entity : entities) {
-      std::vector<int> types;
-      std::vector<std::vector<std::size_t>> element_tags, node_tags;
-      gmsh::model::mesh::getElements(types, element_tags, node_tags, group_dim, entity);
-      for (std::size_t t = 0; t < types.size(); ++t) {
-        CellType type{};
-        if (!from_gmsh_type(types[t], type)) {
-          fail(file, unsupported_type_reason(group.name, group_dim, types[t]));
-        }
-        auto block = std::find_if(group.blocks.begin(), group.blocks.end(),
-                                  [&](const RawBlock& b) { return b.type == type; });
-        if (block == group.blocks.end()) {
-          block = group.blocks.insert(
-              std::upper_bound(group.blocks.begin(), group.blocks.end(), type,
-                               [](CellType a, const RawBlock& b) { return a < b.type; }),
-              RawBlock{type, {}, {}});
-        }
-        block->element_tags.insert(block->element_tags.end(), element_tags[t].begin(),
-                                   element_tags[t].end());
-        block->node_tags.insert(block->node_tags.end(), node_tags[t].begin(),
-                                node_tags[t].end());
-        used_nodes.insert(used_nodes.end(), node_tags[t].begin(), node_tags[t].end());
-      }
-    }
-    raw_groups.push_back(std::move(group));
-  }
+  for (const auto& [group_dim, group_tag] : physical)
+    raw_groups.push_back(read_group(file, group_dim, group_tag, used_nodes));
 
   // Keep only referenced nodes, numbered by increasing Gmsh tag: independent of the order in which
   // groups and entities list them.
@@ -474,83 +567,16 @@ MeshData load_gmsh_mesh(const fs::path& file, const GmshOptions& options) {
   if (used_nodes.size() > static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max())) {
     fail(file, "the mesh has more nodes than shard's 32-bit node ids can number");
   }
-
-  std::vector<std::size_t> all_tags;
-  std::vector<double> all_coords, parametric;
-  gmsh::model::mesh::getNodes(all_tags, all_coords, parametric, -1, -1, false, false);
-  std::vector<std::size_t> by_tag(all_tags.size());
-  for (std::size_t i = 0; i < by_tag.size(); ++i) by_tag[i] = i;
-  std::sort(by_tag.begin(), by_tag.end(),
-            [&](std::size_t a, std::size_t b) { return all_tags[a] < all_tags[b]; });
-
   MeshData mesh;
   mesh.dim = mesh_dim;
   mesh.source = file.string();
-  mesh.coordinates.resize(3 * used_nodes.size());
-  {
-    std::size_t j = 0;  // merge walk: both lists sorted by tag
-    for (std::size_t i = 0; i < used_nodes.size(); ++i) {
-      while (j < by_tag.size() && all_tags[by_tag[j]] < used_nodes[i]) ++j;
-      if (j == by_tag.size() || all_tags[by_tag[j]] != used_nodes[i]) {
-        fail(file, "an element refers to node " + std::to_string(used_nodes[i]) +
-                       ", which the file does not define");
-      }
-      for (int k = 0; k < 3; ++k) mesh.coordinates[3 * i + k] = all_coords[3 * by_tag[j] + k];
-    }
-  }
-
-  double extent = 0;
-  if (!used_nodes.empty()) {
-    Vec3 lo{}, hi{};
-    for (int k = 0; k < 3; ++k) lo[k] = hi[k] = mesh.coordinates[k];
-    for (std::size_t i = 0; i < used_nodes.size(); ++i) {
-      for (int k = 0; k < 3; ++k) {
-        lo[k] = std::min(lo[k], mesh.coordinates[3 * i + k]);
-        hi[k] = std::max(hi[k], mesh.coordinates[3 * i + k]);
-      }
-    }
-    extent = norm(sub(hi, lo));
-  }
-
-  if (mesh_dim == 2) {
-    for (std::size_t i = 0; i < used_nodes.size(); ++i) {
-      double& z = mesh.coordinates[3 * i + 2];
-      if (std::abs(z) > kPlaneTolerance * extent) {
-        std::ostringstream out;
-        out << std::setprecision(10) << "a 2D mesh must lie in the z = 0 plane, but node "
-            << used_nodes[i] << " has z = " << z
-            << "; draw the geometry in the x-y plane (or Rotate it there in the .geo)";
-        fail(file, out.str());
-      }
-      z = 0;  // round-off from CAD kernels would otherwise leak into 2D kinematics
-    }
-  }
+  mesh.coordinates = node_coordinates(file, used_nodes);
+  const double extent = extent_of(mesh.coordinates);
+  if (mesh_dim == 2) flatten_to_plane(file, mesh, used_nodes, extent);
 
   CellChecker checker(file, mesh_dim, extent);
   mesh.groups.reserve(raw_groups.size());
-  for (RawGroup& raw : raw_groups) {
-    MeshGroup group;
-    group.name = std::move(raw.name);
-    group.dim = raw.dim;
-    group.tag = raw.tag;
-    for (RawBlock& raw_block : raw.blocks) {
-      CellBlock block{raw_block.type, {}};
-      block.connectivity.resize(raw_block.node_tags.size());
-      for (std::size_t i = 0; i < raw_block.node_tags.size(); ++i) {
-        const auto it =
-            std::lower_bound(used_nodes.begin(), used_nodes.end(), raw_block.node_tags[i]);
-        block.connectivity[i] = static_cast<std::int32_t>(it - used_nodes.begin());
-      }
-      const auto n = static_cast<std::size_t>(nodes_per_cell(block.type));
-      for (std::size_t c = 0; c < raw_block.element_tags.size(); ++c) {
-        checker.check(group.name, block.type, raw_block.element_tags[c],
-                      &block.connectivity[c * n], mesh.coordinates, used_nodes);
-      }
-      group.blocks.push_back(std::move(block));
-    }
-    mesh.groups.push_back(std::move(group));
-  }
-
+  for (RawGroup& raw : raw_groups) mesh.groups.push_back(number_group(raw, mesh, used_nodes, checker));
   for (double& x : mesh.coordinates) x *= options.scale;
   return mesh;
 }
