@@ -288,37 +288,16 @@ void build_particle_parts(const Scenario& sc, Simulation& sim) {
 
 }  // namespace
 
-Simulation build_simulation(Scenario& sc, const MeshData& mesh) {
-  Simulation sim;
-  Model& model = sim.model;
-  const int dim = sc.dim();
-  const std::string file = shown_path(sc.file);
-  model.formulation = sc.formulation;
-  model.thickness = sc.thickness;
-  model.nodes.dim = dim;
+namespace {
 
-  for (const auto& m : sc.materials)
-    sim.materials.push_back(MaterialRegistry::find(m.model)->create(m.name, m.values));
+// The node set of a physical group on the kept nodes, made once and shared by every condition
+// that names the group.
+struct GroupNodeSets {
+  Model& model;
+  const std::vector<std::int32_t>& renumber;
+  const std::string& file;
 
-  // Parts: elements from the physical groups, in mesh node numbering until assembled.
-  std::vector<Part> parts;
-  for (const auto& pin : sc.parts) parts.push_back(part_of(sc, mesh, pin));
-  const std::vector<std::int32_t> renumber =
-      assemble_nodes_and_parts(model, mesh, dim, std::move(parts));
-  if (sc.formulation == Formulation::axisymmetric) {
-    for (std::size_t i = 0; i < model.nodes.count(); ++i)
-      if (model.nodes.x0[2 * i] < -1e-12) {
-        std::ostringstream out;
-        out << "axisymmetric models lie at r = x >= 0; node at (" << model.nodes.x0[2 * i] << ", "
-            << model.nodes.x0[2 * i + 1] << ") has x < 0";
-        throw InputError(file, sc.mesh_line, "mesh.file", out.str());
-      }
-  }
-  for (std::size_t p = 0; p < model.parts.size(); ++p)
-    prepare_part(model, p, *sim.materials[model.parts[p].material], sc.initial_temperature);
-
-  // Node sets (and facet sets for boundary groups) of every physical group, on the kept nodes.
-  auto node_set_of_group = [&](const MeshGroup& g, int line, const std::string& key) -> const NodeSet& {
+  const NodeSet& of(const MeshGroup& g, int line, const std::string& key) {
     if (const NodeSet* s = model.find_node_set(g.name)) return *s;
     try {
       model.node_sets.push_back(node_set_of(g, renumber));
@@ -326,133 +305,180 @@ Simulation build_simulation(Scenario& sc, const MeshData& mesh) {
       throw InputError(file, line, key, e.what());
     }
     return model.node_sets.back();
-  };
+  }
+};
 
-  // Initial velocities.
+// Parts: elements from the physical groups, in mesh node numbering until assembled. Returns the
+// mesh-to-model node numbering.
+std::vector<std::int32_t> build_parts(Scenario& sc, const MeshData& mesh, Simulation& sim) {
+  Model& model = sim.model;
+  std::vector<Part> parts;
+  for (const auto& pin : sc.parts) parts.push_back(part_of(sc, mesh, pin));
+  std::vector<std::int32_t> renumber = assemble_nodes_and_parts(model, mesh, sc.dim(), std::move(parts));
+  if (sc.formulation == Formulation::axisymmetric) {
+    for (std::size_t i = 0; i < model.nodes.count(); ++i)
+      if (model.nodes.x0[2 * i] < -1e-12) {
+        std::ostringstream out;
+        out << "axisymmetric models lie at r = x >= 0; node at (" << model.nodes.x0[2 * i] << ", "
+            << model.nodes.x0[2 * i + 1] << ") has x < 0";
+        throw InputError(shown_path(sc.file), sc.mesh_line, "mesh.file", out.str());
+      }
+  }
+  for (std::size_t p = 0; p < model.parts.size(); ++p)
+    prepare_part(model, p, *sim.materials[model.parts[p].material], sc.initial_temperature);
+  return renumber;
+}
+
+void apply_initial_velocities(const Scenario& sc, Model& model) {
+  const int dim = sc.dim();
   for (const auto& ic : sc.initial_velocities) {
     for (const auto& part : model.parts)
       if (part.name == ic.part)
         for (auto n : part.connectivity)
           for (int k = 0; k < dim; ++k) model.nodes.v[dim * n + k] = ic.velocity[k];
   }
+}
 
-  // Boundary conditions: one constraint per (node, component); a later entry overrides.
+// Boundary conditions: one constraint per (node, component); a later entry overrides.
+void apply_boundary_conditions(const Scenario& sc, const MeshData& mesh, Simulation& sim, GroupNodeSets& sets) {
   std::map<std::pair<std::int32_t, int>, int> constraint_table;
   for (std::size_t i = 0; i < sc.boundary_conditions.size(); ++i) {
     const auto& bc = sc.boundary_conditions[i];
     const std::string key = "boundary_conditions[" + std::to_string(i + 1) + "].group";
     const MeshGroup& g = find_group(sc, mesh, bc.group, bc.line, key, -1);
-    const NodeSet& set = node_set_of_group(g, bc.line, key);
-    for (int k = 0; k < dim; ++k) {
+    const NodeSet& set = sets.of(g, bc.line, key);
+    for (int k = 0; k < sc.dim(); ++k) {
       if (!bc.velocity[k]) continue;
       sim.loads.tables.push_back(*bc.velocity[k]);
       const int table = static_cast<int>(sim.loads.tables.size()) - 1;
       for (auto n : set.nodes) constraint_table[{n, k}] = table;
     }
   }
-  for (const auto& [dof, table] : constraint_table) prescribe_node(model, sim.loads, dof.first, dof.second, table);
+  for (const auto& [dof, table] : constraint_table)
+    prescribe_node(sim.model, sim.loads, dof.first, dof.second, table);
+}
 
-  // Pressure loads on boundary facets.
+// Pressure loads on boundary facets.
+void apply_pressures(const Scenario& sc, const MeshData& mesh, Simulation& sim, GroupNodeSets& sets,
+                     const std::vector<std::int32_t>& renumber) {
+  Model& model = sim.model;
   for (std::size_t i = 0; i < sc.pressures.size(); ++i) {
     const auto& p = sc.pressures[i];
     const std::string key = "loads[" + std::to_string(i + 1) + "].group";
-    const MeshGroup& g = find_group(sc, mesh, p.group, p.line, key, dim - 1);
-    node_set_of_group(g, p.line, key);
+    const MeshGroup& g = find_group(sc, mesh, p.group, p.line, key, sc.dim() - 1);
+    sets.of(g, p.line, key);
     FacetSet fs;
     try {
       fs = facet_set_of(model, g, renumber);
     } catch (const AssemblyError& e) {
-      throw InputError(file, p.line, key, e.what());
+      throw InputError(shown_path(sc.file), p.line, key, e.what());
     }
     model.facet_sets.push_back(std::move(fs));
     sim.loads.tables.push_back(p.pressure);
     sim.loads.pressures.push_back({static_cast<int>(model.facet_sets.size()) - 1,
                                    static_cast<int>(sim.loads.tables.size()) - 1});
   }
+}
 
-  // Contact and rigid walls.
-  const std::size_t np = model.parts.size(), nm = sim.materials.size();
-  auto part_index = [&](const std::string& name) {
-    for (std::size_t p = 0; p < np; ++p)
-      if (model.parts[p].name == name) return static_cast<int>(p);
-    return -1;
-  };
-  // Cracking parts: the crack faces they grow must close and slide, so each is in contact
-  // with itself (contact is switched on for them if the scenario has none).
-  std::vector<int> cracking_parts;
-  if (sc.cracking) {
-    for (std::size_t p = 0; p < np; ++p) {
-      const Part& part = model.parts[p];
-      const bool named = std::find(sc.cracking->parts.begin(), sc.cracking->parts.end(), part.name) !=
-                         sc.cracking->parts.end();
-      const bool can = part.type->is_triangle() && sim.materials[part.material]->failure_map_slots();
-      if (named && !can)
-        throw InputError(file, sc.cracking->line, "cracking.parts",
-                         "part '" + part.name + "' cannot crack: cracks are inserted in tri3 parts of "
-                         "a material with a failure map (rotating_crack); it has " +
-                             part.type->name + " elements of '" +
-                             std::string(sim.materials[part.material]->model()) + "'");
-      if (named || (sc.cracking->parts.empty() && can)) cracking_parts.push_back(static_cast<int>(p));
-    }
-    if (cracking_parts.empty())
-      throw InputError(file, sc.cracking->line, "cracking",
-                       "no part can crack: cracks are inserted in tri3 parts of a material with a "
-                       "failure map (rotating_crack)");
-    sim.cracking =
-        CrackGrowthSettings{cracking_parts, sc.cracking->failure_threshold, sc.cracking->min_fragment_elements};
+int part_index(const Model& model, const std::string& name) {
+  for (std::size_t p = 0; p < model.parts.size(); ++p)
+    if (model.parts[p].name == name) return static_cast<int>(p);
+  return -1;
+}
+
+// Cracking parts: those named (or, when none is named, every part that can crack).
+std::vector<int> cracking_parts(const Scenario& sc, Simulation& sim) {
+  std::vector<int> out;
+  if (!sc.cracking) return out;
+  const std::string file = shown_path(sc.file);
+  for (std::size_t p = 0; p < sim.model.parts.size(); ++p) {
+    const Part& part = sim.model.parts[p];
+    const bool named = std::find(sc.cracking->parts.begin(), sc.cracking->parts.end(), part.name) !=
+                       sc.cracking->parts.end();
+    const bool can = part.type->is_triangle() && sim.materials[part.material]->failure_map_slots();
+    if (named && !can)
+      throw InputError(file, sc.cracking->line, "cracking.parts",
+                       "part '" + part.name + "' cannot crack: cracks are inserted in tri3 parts of "
+                       "a material with a failure map (rotating_crack); it has " +
+                           part.type->name + " elements of '" +
+                           std::string(sim.materials[part.material]->model()) + "'");
+    if (named || (sc.cracking->parts.empty() && can)) out.push_back(static_cast<int>(p));
   }
-  if (sc.contact || !sc.walls.empty() || !cracking_parts.empty()) {
-    ContactSettings cs;
-    cs.part_pairs.assign(np * np, 0);
-    cs.friction.assign(nm * nm, FrictionLaw{});
-    if (sc.contact) {
-      const ContactInput& ci = *sc.contact;
-      for (std::size_t a = 0; a < np; ++a)
-        for (std::size_t b = 0; b < np; ++b)
-          if (ci.all_pairs && (a != b || ci.self_contact)) cs.part_pairs[a * np + b] = 1;
-      for (const auto& [a, b] : ci.pairs) {
-        const int ia = part_index(a), ib = part_index(b);
-        cs.part_pairs[ia * np + ib] = cs.part_pairs[ib * np + ia] = 1;
-      }
-      std::fill(cs.friction.begin(), cs.friction.end(), FrictionLaw{ci.friction, ci.dynamic_friction});
-      for (const auto& f : ci.material_friction) {
-        std::size_t ma = 0, mb = 0;
-        for (std::size_t m = 0; m < nm; ++m) {
-          if (sc.materials[m].name == f.material_a) ma = m;
-          if (sc.materials[m].name == f.material_b) mb = m;
-        }
-        cs.friction[ma * nm + mb] = cs.friction[mb * nm + ma] = {f.static_coefficient, f.dynamic_coefficient};
-      }
-      cs.penalty_scale = ci.penalty_scale;
-      cs.time_step_reduction = ci.time_step_reduction;
-    }
-    for (int p : cracking_parts) {
-      cs.part_pairs[p * np + p] = 1;
-      const std::size_t m = static_cast<std::size_t>(model.parts[p].material);
-      bool given = false;
-      if (sc.contact)
-        for (const auto& f : sc.contact->material_friction)
-          given = given || (f.material_a == sc.materials[m].name && f.material_b == f.material_a);
-      if (!given) cs.friction[m * nm + m] = {sc.cracking->friction, sc.cracking->friction};
-    }
-    for (const auto& wi : sc.walls) {
-      RigidWall w;
-      w.name = wi.name;
-      w.point = wi.point;
-      w.normal = wi.normal;
-      for (int k = 0; k < 3; ++k)
-        if (wi.velocity[k]) w.velocity[k] = *wi.velocity[k];
-      w.friction = {wi.friction, wi.dynamic_friction};
-      w.parts.assign(np, wi.parts.empty() ? 1 : 0);
-      for (const auto& name : wi.parts) w.parts[part_index(name)] = 1;
-      cs.walls.push_back(w);
-    }
-    sim.contact = cs;
+  if (out.empty())
+    throw InputError(file, sc.cracking->line, "cracking",
+                     "no part can crack: cracks are inserted in tri3 parts of a material with a "
+                     "failure map (rotating_crack)");
+  sim.cracking = CrackGrowthSettings{out, sc.cracking->failure_threshold, sc.cracking->min_fragment_elements};
+  return out;
+}
+
+// The pairs of parts in contact and the friction of each pair of materials, from `contact:`.
+void contact_pairs_and_friction(const Scenario& sc, const Model& model, ContactSettings& cs) {
+  const std::size_t np = model.parts.size(), nm = sc.materials.size();
+  const ContactInput& ci = *sc.contact;
+  for (std::size_t a = 0; a < np; ++a)
+    for (std::size_t b = 0; b < np; ++b)
+      if (ci.all_pairs && (a != b || ci.self_contact)) cs.part_pairs[a * np + b] = 1;
+  for (const auto& [a, b] : ci.pairs) {
+    const int ia = part_index(model, a), ib = part_index(model, b);
+    cs.part_pairs[ia * np + ib] = cs.part_pairs[ib * np + ia] = 1;
   }
+  std::fill(cs.friction.begin(), cs.friction.end(), FrictionLaw{ci.friction, ci.dynamic_friction});
+  for (const auto& f : ci.material_friction) {
+    std::size_t ma = 0, mb = 0;
+    for (std::size_t m = 0; m < nm; ++m) {
+      if (sc.materials[m].name == f.material_a) ma = m;
+      if (sc.materials[m].name == f.material_b) mb = m;
+    }
+    cs.friction[ma * nm + mb] = cs.friction[mb * nm + ma] = {f.static_coefficient, f.dynamic_coefficient};
+  }
+  cs.penalty_scale = ci.penalty_scale;
+  cs.time_step_reduction = ci.time_step_reduction;
+}
 
-  build_particle_parts(sc, sim);
+// The crack faces a cracking part grows must close and slide, so each is in contact with itself
+// (contact is switched on for them if the scenario has none), with the cracking friction unless
+// `contact:` gives one for its material.
+void self_contact_of_cracking_parts(const Scenario& sc, const Model& model, const std::vector<int>& cracking,
+                                    ContactSettings& cs) {
+  const std::size_t np = model.parts.size(), nm = sc.materials.size();
+  for (int p : cracking) {
+    cs.part_pairs[p * np + p] = 1;
+    const std::size_t m = static_cast<std::size_t>(model.parts[p].material);
+    bool given = false;
+    if (sc.contact)
+      for (const auto& f : sc.contact->material_friction)
+        given = given || (f.material_a == sc.materials[m].name && f.material_b == f.material_a);
+    if (!given) cs.friction[m * nm + m] = {sc.cracking->friction, sc.cracking->friction};
+  }
+}
 
-  SolverSettings& s = sim.settings;
+RigidWall rigid_wall(const WallInput& wi, const Model& model) {
+  RigidWall w;
+  w.name = wi.name;
+  w.point = wi.point;
+  w.normal = wi.normal;
+  for (int k = 0; k < 3; ++k)
+    if (wi.velocity[k]) w.velocity[k] = *wi.velocity[k];
+  w.friction = {wi.friction, wi.dynamic_friction};
+  w.parts.assign(model.parts.size(), wi.parts.empty() ? 1 : 0);
+  for (const auto& name : wi.parts) w.parts[part_index(model, name)] = 1;
+  return w;
+}
+
+void build_contact(const Scenario& sc, Simulation& sim, const std::vector<int>& cracking) {
+  if (!sc.contact && sc.walls.empty() && cracking.empty()) return;
+  const std::size_t np = sim.model.parts.size(), nm = sim.materials.size();
+  ContactSettings cs;
+  cs.part_pairs.assign(np * np, 0);
+  cs.friction.assign(nm * nm, FrictionLaw{});
+  if (sc.contact) contact_pairs_and_friction(sc, sim.model, cs);
+  self_contact_of_cracking_parts(sc, sim.model, cracking, cs);
+  for (const auto& wi : sc.walls) cs.walls.push_back(rigid_wall(wi, sim.model));
+  sim.contact = cs;
+}
+
+void solver_settings(const Scenario& sc, SolverSettings& s) {
   s.gravity = sc.gravity;
   s.end_time = sc.end_time;
   s.time_step_safety = sc.time_step_safety;
@@ -460,9 +486,33 @@ Simulation build_simulation(Scenario& sc, const MeshData& mesh) {
   s.q_quadratic = sc.bulk_viscosity_quadratic;
   s.mass_damping = sc.mass_damping;
   s.max_time_step = sc.max_time_step;
+}
+
+}  // namespace
+
+Simulation build_simulation(Scenario& sc, const MeshData& mesh) {
+  Simulation sim;
+  Model& model = sim.model;
+  const std::string file = shown_path(sc.file);
+  model.formulation = sc.formulation;
+  model.thickness = sc.thickness;
+  model.nodes.dim = sc.dim();
+  for (const auto& m : sc.materials)
+    sim.materials.push_back(MaterialRegistry::find(m.model)->create(m.name, m.values));
+
+  const std::vector<std::int32_t> renumber = build_parts(sc, mesh, sim);
+  GroupNodeSets sets{model, renumber, file};
+  apply_initial_velocities(sc, model);
+  apply_boundary_conditions(sc, mesh, sim, sets);
+  apply_pressures(sc, mesh, sim, sets, renumber);
+  build_contact(sc, sim, cracking_parts(sc, sim));
+  build_particle_parts(sc, sim);
+  solver_settings(sc, sim.settings);
+
   model.assign_ids();
   if (sim.contact)
-    sim.contact_system.emplace(sim.model, *sim.contact, sim.part_materials(), static_cast<int>(nm));
+    sim.contact_system.emplace(sim.model, *sim.contact, sim.part_materials(),
+                               static_cast<int>(sim.materials.size()));
   if (sim.cracking) sim.events.push_back(std::make_unique<CrackGrowth>(sim.model, sim.materials, *sim.cracking));
   return sim;
 }
