@@ -120,27 +120,9 @@ struct Hex8Full {
       for (int r = 0; r < 3; ++r) F[3 * cn[a] + r] -= f[a][r];
   }
 
-  /// Crack-band width: the side of a cube of the element's volume.
-  static double band_width(const StepContext&, const Workspace& ws, std::size_t i) {
-    const double v = ws.volume[i];
-    return v > 0.0 ? std::cbrt(v) : 0.0;
-  }
+  static double band_width(const StepContext&, const Workspace& ws, std::size_t i) { return hex8_band_width(ws, i); }
 };
 
-class Hex8Element final : public ElementKernel {
- public:
-  ForceSums internal_forces(Part& part, const Material& material, NodeArrays& nodes,
-                            const StepContext& ctx) const override {
-    return run_part<Hex8Full>(part, material, nodes, ctx);
-  }
-  void lump_masses(const Part& part, const NodeArrays& nodes, double rho, Formulation, double,
-                   double* mass) const override {
-    lump_hex8_masses(part, nodes, rho, mass);
-  }
-  double measure(const Part& part, const NodeArrays& nodes, std::size_t e, Formulation, double) const override {
-    return hex8_measure(part, nodes, e);
-  }
-};
 
 ElementType hex8_type() {
   ElementType t = hexahedron("hex8", "8-node hexahedron, 2×2×2 Gauss points", 8);
@@ -149,7 +131,7 @@ ElementType hex8_type() {
   return t;
 }
 
-const bool registered = register_element(hex8_type(), std::make_unique<Hex8Element>());
+const bool registered = register_element(hex8_type(), std::make_unique<HexahedronKernel<Hex8Full>>());
 
 }  // namespace
 

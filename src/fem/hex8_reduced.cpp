@@ -116,27 +116,9 @@ struct Hex8Reduced {
             vol * (S[r][0] * g[3 * a] + S[r][1] * g[3 * a + 1] + S[r][2] * g[3 * a + 2]);
   }
 
-  /// Crack-band width: the side of a cube of the element's volume.
-  static double band_width(const StepContext&, const Workspace& ws, std::size_t i) {
-    const double v = ws.volume[i];
-    return v > 0.0 ? std::cbrt(v) : 0.0;
-  }
+  static double band_width(const StepContext&, const Workspace& ws, std::size_t i) { return hex8_band_width(ws, i); }
 };
 
-class Hex8ReducedElement final : public ElementKernel {
- public:
-  ForceSums internal_forces(Part& part, const Material& material, NodeArrays& nodes,
-                            const StepContext& ctx) const override {
-    return run_part<Hex8Reduced>(part, material, nodes, ctx);
-  }
-  void lump_masses(const Part& part, const NodeArrays& nodes, double rho, Formulation, double,
-                   double* mass) const override {
-    lump_hex8_masses(part, nodes, rho, mass);
-  }
-  double measure(const Part& part, const NodeArrays& nodes, std::size_t e, Formulation, double) const override {
-    return hex8_measure(part, nodes, e);
-  }
-};
 
 ElementType hex8_reduced_type() {
   ElementType t =
@@ -145,7 +127,7 @@ ElementType hex8_reduced_type() {
   return t;
 }
 
-const bool registered = register_element(hex8_reduced_type(), std::make_unique<Hex8ReducedElement>());
+const bool registered = register_element(hex8_reduced_type(), std::make_unique<HexahedronKernel<Hex8Reduced>>());
 
 }  // namespace
 
