@@ -54,7 +54,8 @@ ContactSurface extract_contact_surface(const Model& model) {
         Face f{{-1, -1, -1, -1}, count, static_cast<std::int32_t>(p)};
         for (int i = 0; i < count; ++i) f.nodes[i] = cn[local[i]];
         Key k{f.nodes};
-        std::sort(k.sorted.begin(), k.sorted.begin() + count);
+        // All four slots: the unused ones (−1) sort first alike for every face of that size.
+        std::sort(k.sorted.begin(), k.sorted.end());
         auto [it, inserted] = seen.emplace(k, static_cast<int>(faces.size()));
         if (inserted) faces.push_back(f);
         else it->second = -1;

@@ -9,6 +9,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <memory>
 #include <string>
 #include <string_view>
@@ -31,6 +32,9 @@ struct ParticleWork {
   double plastic = 0;   ///< plastic work of the particles (their stresses' return)
   double fracture = 0;  ///< released by breaking bonds
   double friction = 0;  ///< dissipated by sliding contacts
+  /// The elastic energy the model stores after these forces (J), when the evaluation gives it
+  /// on the way (it then equals stored_energy() to the bit); NaN when it does not.
+  double stored = std::numeric_limits<double>::quiet_NaN();
 };
 
 /// The interaction model of a particle part (the MCA bonds and many-body law today; contact laws

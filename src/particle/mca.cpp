@@ -253,6 +253,38 @@ inline void pair_force(PairList& P, std::size_t p, const double* n, double* F) {
   }
 }
 
+/// K of a material: relates the many-body mean stress to the volume change.
+inline double many_body_bulk(const MCAMaterial& mat, double c, int dim) {
+  return mat.shear_modulus() / (1 - c) / (dim == 3 ? 1.5 : 1.0);
+}
+
+/// The many-body (volumetric) energy of automaton i: A σ̂²/(2K) per unit volume, scaled by the
+/// share of a full neighbourhood the automaton has (tr A / dim). c, K: per material.
+inline double automaton_energy(const ParticlePart& pt, const MCAState& ps, std::size_t i, const double* c,
+                               const double* K) {
+  const int mat = pt.material[i];
+  const double m = ps.sigma_mean_used[i];
+  double share = 1;
+  if (ps.fabric_index[i] >= 0) {
+    const double* A = &ps.fabric[9 * ps.fabric_index[i]];
+    share = (A[0] + A[4] + (ps.dim == 3 ? A[8] : 0.0)) / ps.dim;
+  }
+  return share * ps.volume[i] * c[mat] * m * m / (2 * K[mat]);
+}
+
+/// The energy pair p stores: central, shear and relative-rotation springs. c, G: per material.
+inline double pair_stored_energy(const ParticlePart& pt, const MCAState& ps, std::size_t p, const double* c,
+                                 const double* G) {
+  const PairList& P = ps.pairs;
+  const int R = ps.rot_dim();
+  const int i = P.i[p], j = P.j[p];
+  const int mi = pt.material[i], mj = pt.material[j];
+  return pair_energy(P.area[p], P.k_link[p], P.eta[p], dot(&P.tau[R * p], &P.tau[R * p], R),
+                     dot(&P.tau_c[R * p], &P.tau_c[R * p], R), pt.radius[i], G[mi], c[mi], ps.sigma_mean_used[i],
+                     pt.radius[j], G[mj], c[mj], ps.sigma_mean_used[j]) +
+         0.5 * P.k_link[p] * P.kappa[p] * dot(&P.phi[R * p], &P.phi[R * p], R);
+}
+
 /// Where a pair was and is: the centre-to-centre vectors before (o), after (n) and at mid-step
 /// (m), their lengths and unit vectors, the relative displacement du and dr = ln − lo.
 template <int D>
@@ -526,10 +558,12 @@ namespace {
 bool material_coefficients(const MCAState& ps, MCAScratch& s) {
   s.many_body.resize(ps.materials.size());
   s.shear.resize(ps.materials.size());
+  s.bulk.resize(ps.materials.size());
   bool any_plastic = false;
   for (std::size_t m = 0; m < ps.materials.size(); ++m) {
     s.many_body[m] = many_body_coefficient(ps.materials[m], ps.dim, ps.plane);
     s.shear[m] = ps.materials[m].shear_modulus();
+    s.bulk[m] = many_body_bulk(ps.materials[m], s.many_body[m], ps.dim);
     any_plastic = any_plastic || ps.materials[m].plastic();
   }
   return any_plastic;
@@ -539,8 +573,9 @@ bool material_coefficients(const MCAState& ps, MCAScratch& s) {
 /// steps); the pair forces receive its increment over what they already hold. The rotation
 /// increments in Cayley form, once per automaton.
 template <int D>
-void predict_mean_stress(std::size_t n, MCAState& ps, const std::vector<double>& dth, bool first_step,
+void predict_mean_stress(const ParticlePart& pt, MCAState& ps, const std::vector<double>& dth, bool first_step,
                          MCAScratch& s) {
+  const std::size_t n = pt.count();
   constexpr int R = D == 2 ? 1 : 3;
   s.mean_increment.resize(n);
   s.spin.resize(n * R);
@@ -683,12 +718,26 @@ void gather_automaton(ParticlePart& pt, MCAState& ps, std::size_t i, bool first_
   ps.stress_int[i] = stress_intensity(st);
 }
 
+/// The energy the automata store after the step, in two flat passes over automata and pairs (as
+/// mca_elastic_energy, into the scratch that persists from step to step: this pass vectorises,
+/// where the same arithmetic inside pass A would not).
+double stored_energy_after_step(const ParticlePart& pt, const MCAState& ps, MCAScratch& s) {
+  const std::size_t n = pt.count(), np = ps.pairs.count();
+  s.energy.resize(n + np);
+  double* e = s.energy.data();
+#pragma omp parallel for schedule(static)
+  for (std::size_t i = 0; i < n; ++i) e[i] = automaton_energy(pt, ps, i, s.many_body.data(), s.bulk.data());
+#pragma omp parallel for schedule(static)
+  for (std::size_t p = 0; p < np; ++p) e[n + p] = pair_stored_energy(pt, ps, p, s.many_body.data(), s.shear.data());
+  return deterministic_sum(s.energy);
+}
+
 template <int D>
 MCADissipation forces_impl(ParticlePart& pt, MCAState& ps, const std::vector<double>& x_old,
                            const std::vector<double>& dth, double dt, bool first_step, MCAScratch& s) {
   const std::size_t n = pt.count(), np = ps.pairs.count();
   const bool any_plastic = material_coefficients(ps, s);
-  predict_mean_stress<D>(n, ps, dth, first_step, s);
+  predict_mean_stress<D>(pt, ps, dth, first_step, s);
 
   // A. pairs
   const std::size_t nbp = (np + kBlock - 1) / kBlock;
@@ -713,6 +762,7 @@ MCADissipation forces_impl(ParticlePart& pt, MCAState& ps, const std::vector<dou
     out.breaking += pair_sums[2 * b + 1];
   }
   for (std::size_t b = 0; b < nbp; ++b) out.plastic += plastic_pairs[b];
+  out.stored = stored_energy_after_step(pt, ps, s);
   return out;
 }
 
@@ -729,40 +779,17 @@ MCADissipation mca_forces(ParticlePart& pt, double dt, bool first_step) {
 double mca_elastic_energy(const ParticlePart& pt) {
   const MCAState& ps = mca_state(pt);
   const std::size_t n = pt.count(), np = ps.pairs.count();
-  const int R = ps.rot_dim();
-  const PairList& P = ps.pairs;
-  std::vector<double> c(ps.materials.size()), K(ps.materials.size());
+  std::vector<double> c(ps.materials.size()), K(ps.materials.size()), G(ps.materials.size());
   for (std::size_t m = 0; m < c.size(); ++m) {
-    const MCAMaterial& mat = ps.materials[m];
-    c[m] = many_body_coefficient(mat, ps.dim, ps.plane);
-    // the bulk modulus that relates the many-body mean stress to the volume change
-    K[m] = mat.shear_modulus() / (1 - c[m]) / (ps.dim == 3 ? 1.5 : 1.0);
+    c[m] = many_body_coefficient(ps.materials[m], ps.dim, ps.plane);
+    K[m] = many_body_bulk(ps.materials[m], c[m], ps.dim);
+    G[m] = ps.materials[m].shear_modulus();
   }
   std::vector<double> e(n + np);
-  // Many-body (volumetric) part per automaton: A σ̂²/(2K) per unit volume, scaled by the share
-  // of a full neighbourhood the automaton has (tr A / dim).
 #pragma omp parallel for schedule(static)
-  for (std::size_t i = 0; i < n; ++i) {
-    const int mat = pt.material[i];
-    const double m = ps.sigma_mean_used[i];
-    double share = 1;
-    if (ps.fabric_index[i] >= 0) {
-      const double* A = &ps.fabric[9 * ps.fabric_index[i]];
-      share = (A[0] + A[4] + (ps.dim == 3 ? A[8] : 0.0)) / ps.dim;
-    }
-    e[i] = share * ps.volume[i] * c[mat] * m * m / (2 * K[mat]);
-  }
-  // Pairwise part: central, shear and relative-rotation springs.
+  for (std::size_t i = 0; i < n; ++i) e[i] = automaton_energy(pt, ps, i, c.data(), K.data());
 #pragma omp parallel for schedule(static)
-  for (std::size_t p = 0; p < np; ++p) {
-    const int i = P.i[p], j = P.j[p];
-    const int mi = pt.material[i], mj = pt.material[j];
-    e[n + p] = pair_energy(P.area[p], P.k_link[p], P.eta[p], dot(&P.tau[R * p], &P.tau[R * p], R),
-                           dot(&P.tau_c[R * p], &P.tau_c[R * p], R), pt.radius[i], ps.materials[mi].shear_modulus(),
-                           c[mi], ps.sigma_mean_used[i], pt.radius[j], ps.materials[mj].shear_modulus(), c[mj],
-                           ps.sigma_mean_used[j]) +
-               0.5 * P.k_link[p] * P.kappa[p] * dot(&P.phi[R * p], &P.phi[R * p], R);
-  }
+  for (std::size_t p = 0; p < np; ++p) e[n + p] = pair_stored_energy(pt, ps, p, c.data(), G.data());
   return deterministic_sum(e);
 }
 

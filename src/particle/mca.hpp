@@ -16,6 +16,7 @@ struct MCADissipation {
   double plastic = 0;   ///< Wilkins return, Σ V σ_pl Δε_p
   double breaking = 0;  ///< elastic energy released when k_link drops
   double friction = 0;  ///< Amontons sliding of unlinked pairs
+  double stored = 0;    ///< the elastic energy after the step, = mca_elastic_energy() to the bit
 };
 
 /// Pair and automaton forces for the configuration at the end of a step: the automata moved

@@ -136,7 +136,7 @@ void MCAState::after_change(const ParticlePart&) { build_adjacency(); }
 
 ParticleWork MCAState::forces(ParticlePart& part, double dt, bool first_step) {
   const MCADissipation d = mca_forces(part, dt, first_step);
-  return {d.plastic, d.breaking, d.friction};
+  return {d.plastic, d.breaking, d.friction, d.stored};
 }
 
 double MCAState::stored_energy(const ParticlePart& part) const { return mca_elastic_energy(part); }

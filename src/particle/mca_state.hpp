@@ -106,6 +106,9 @@ struct MCAScratch {
   std::vector<double> many_body;       ///< A of eq. (2) per material
   std::vector<double> shear;           ///< G per material
   std::vector<double> spin;            ///< rotation increments in Cayley form, per automaton
+  std::vector<double> bulk;            ///< K per material: relates the many-body mean stress to the volume change
+  /// The stored energy after the evaluation: per automaton (many-body part), then per pair.
+  std::vector<double> energy;
 };
 
 /// The MCA state of a particle part.

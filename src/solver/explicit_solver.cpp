@@ -188,7 +188,7 @@ double ExplicitSolver::add_particle_forces() {
     E[terms_.plastic] += d.plastic;
     E[terms_.fracture] += d.fracture;
     E[terms_.particle_friction] += d.friction;
-    particle_elastic += pp.model ? pp.model->stored_energy(pp) : 0.0;
+    if (pp.model) particle_elastic += std::isnan(d.stored) ? pp.model->stored_energy(pp) : d.stored;
     if (pp.count() > 0) particle_dt = std::min(particle_dt, particle_time_step_limit(pp));
   }
   E[terms_.particle_elastic] = particle_elastic;
