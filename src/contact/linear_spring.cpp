@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 
 #include "contact/pair_law.hpp"
 
@@ -10,9 +11,19 @@ namespace shard {
 
 namespace {
 
-enum Param { modulus, tangential_ratio, friction, damping_ratio, limit_damping };
+enum Param { modulus, tangential_ratio, friction, damping_ratio, limit_damping, restitution };
 
 double normal_stiffness(std::span<const double> p, const ContactState& c) { return p[modulus] * c.effective_radius; }
+
+/// ζ: the given fraction of critical, or the one that gives restitution e of a head-on impact,
+/// e = exp(−πζ/√(1−ζ²)) inverted: ζ = −ln e / √(π² + ln² e).
+double damping_fraction(std::span<const double> p) {
+  const double e = p[restitution];
+  if (e < 0) return p[damping_ratio];
+  if (e == 0) return 1.0;
+  const double l = std::log(std::min(e, 1.0));
+  return -l / std::sqrt(std::numbers::pi * std::numbers::pi + l * l);
+}
 
 double dot3(const double* a, const double* b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
@@ -36,7 +47,7 @@ ContactResponse linear_spring(std::span<const double> p, const ContactState& c, 
     return out;
   }
   const double kn = normal_stiffness(p, c), kt = p[tangential_ratio] * kn;
-  const double cn = 2 * p[damping_ratio] * std::sqrt(kn * c.effective_mass);
+  const double cn = 2 * damping_fraction(p) * std::sqrt(kn * c.effective_mass);
   // Normal: F_n = k_n δ − c_n v_n. As the bodies part, the dashpot pulls at the end of the
   // contact; that is what makes e = exp(−πζ/√(1−ζ²)) exact. limit_damping = 1 forbids the pull
   // (F_n ≥ 0): the bodies then part earlier, a little faster.
@@ -66,7 +77,8 @@ const bool registered = register_pair_law(PairLaw{
      {"tangential_ratio", "", "k_t / k_n (2/7 is the common choice for spheres)", 2.0 / 7.0},
      {"friction", "", "Coulomb coefficient μ: |F_t| ≤ μ F_n", 0.0},
      {"damping_ratio", "", "ζ: normal dashpot c_n = 2 ζ √(k_n m*), a fraction of critical", 0.0},
-     {"limit_damping", "", "1: the dashpot never pulls the bodies together (F_n ≥ 0); 0: it may", 0.0}},
+     {"limit_damping", "", "1: the dashpot never pulls the bodies together (F_n ≥ 0); 0: it may", 0.0},
+     {"restitution", "", "e of a head-on impact, sets ζ instead of damping_ratio (−1: not given)", -1.0}},
     3,
     linear_spring,
     [](std::span<const double> p, const ContactState& c) {

@@ -2,7 +2,7 @@
 // particle–wall): each law is a pure function, one file per law, registered by name. A law sees
 // only the contact's geometry and relative motion, its own parameters and its own history slots;
 // it returns the forces, what it stores and what it dissipated. Where the pair is, who owns its
-// history and how the forces reach the points is the caller's (src/contact/interaction_list.hpp).
+// history and how the forces reach the points is the caller's (src/model/interaction_list.hpp).
 // Theory: docs/theory/contact_laws.md.
 #pragma once
 
@@ -24,6 +24,8 @@ struct ContactState {
   double effective_radius = 0;            ///< R* = R_a R_b / (R_a + R_b); R for a flat partner (m)
   double effective_mass = 0;              ///< m* = m_a m_b / (m_a + m_b); m for a fixed partner (kg)
   double dt = 0;                          ///< the step over which the history advances (s)
+  /// The second body is rigid (a wall): laws built from elastic moduli take its compliance as 0.
+  bool rigid_partner = false;
 };
 
 /// What a law returns for one contact at one step. The force acts on the second body; the first

@@ -1,11 +1,11 @@
-// The id-keyed interaction list (src/contact/interaction_list.hpp): a contact keeps its history
+// The id-keyed interaction list (src/model/interaction_list.hpp): a contact keeps its history
 // while it stays a candidate, whatever the order the broad phase finds it in.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <random>
 
-#include "contact/interaction_list.hpp"
+#include "model/interaction_list.hpp"
 
 namespace shard {
 namespace {

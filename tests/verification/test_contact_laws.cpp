@@ -76,7 +76,7 @@ TEST(LinearSpringLaw, IsRegisteredWithItsParameters) {
   EXPECT_THROW(pair_law_parameters(*law, {}), std::invalid_argument);  // the modulus has no default
   EXPECT_THROW(pair_law_parameters(*law, {{"modulus", 1e9}, {"stiffnes", 1.0}}), std::invalid_argument);
   const auto p = pair_law_parameters(*law, {{"modulus", 1e9}, {"friction", 0.3}});
-  EXPECT_EQ(p, (std::vector<double>{1e9, 2.0 / 7.0, 0.3, 0.0, 0.0}));
+  EXPECT_EQ(p, (std::vector<double>{1e9, 2.0 / 7.0, 0.3, 0.0, 0.0, -1.0}));
 }
 
 TEST(LinearSpringLaw, HeadOnCollisionRestitutionAndContactTime) {
@@ -95,6 +95,38 @@ TEST(LinearSpringLaw, HeadOnCollisionRestitutionAndContactTime) {
     EXPECT_NEAR(c.restitution, e, 0.02 * e);
     EXPECT_NEAR(c.contact_time, tc, 0.01 * tc);
     EXPECT_GE(c.steps_in_contact, 50);
+    EXPECT_LT(c.momentum_error, 1e-12);
+  }
+}
+
+TEST(LinearSpringLaw, RestitutionGivenDirectly) {
+  // e given instead of ζ: the law inverts e = exp(−πζ/√(1−ζ²)) itself.
+  const PairLaw& law = *find_pair_law("linear_spring");
+  const double R = 1e-3, m = 2500 * 4.0 / 3.0 * std::numbers::pi * R * R * R, kn = 1e8 * 0.5 * R;
+  for (const double e : {0.9, 0.3}) {
+    const auto p = pair_law_parameters(law, {{"modulus", 1e8}, {"restitution", e}});
+    const Collision c = collide(law, p, m, m, R, 1.0, std::numbers::pi * std::sqrt(0.5 * m / kn) / 200);
+    std::printf("restitution %.2f given: measured %.4f\n", e, c.restitution);
+    EXPECT_NEAR(c.restitution, e, 0.01 * e);
+  }
+}
+
+TEST(HertzMindlinLaw, ContactTimeAndRestitutionOfAHeadOnImpact) {
+  // Two glass beads of 2 mm diameter (E 70 GPa, ν 0.22, ρ 2500 kg/m³) at 0.5 m/s. Hertz's
+  // contact time t_c = 2.87 (m*² / (R* E*² v))^(1/5), v the approach speed (Johnson 1985, §11.4).
+  const PairLaw& law = *find_pair_law("hertz_mindlin");
+  const double R = 1e-3, E = 70e9, nu = 0.22, m = 2500 * 4.0 / 3.0 * std::numbers::pi * R * R * R, v0 = 0.5;
+  const double mstar = 0.5 * m, rstar = 0.5 * R, estar = E / (2 * (1 - nu * nu));
+  const double tc = 2.87 * std::pow(mstar * mstar / (rstar * estar * estar * v0), 0.2);
+  for (const double e : {1.0, 0.8, 0.55}) {
+    const auto p = pair_law_parameters(law, {{"young", E}, {"poisson", nu}, {"restitution", e}});
+    const Collision c = collide(law, p, m, m, R, v0, tc / 400);
+    std::printf("Hertz e = %.2f: measured %.4f, t_c %.4e s (Hertz %.4e), %d steps, momentum %.1e\n", e,
+                c.restitution, c.contact_time, tc, c.steps_in_contact, c.momentum_error);
+    EXPECT_NEAR(c.restitution, e, 0.02 * e);
+    if (e == 1.0) {
+      EXPECT_NEAR(c.contact_time, tc, 0.02 * tc);
+    }
     EXPECT_LT(c.momentum_error, 1e-12);
   }
 }

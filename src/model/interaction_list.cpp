@@ -1,4 +1,4 @@
-#include "contact/interaction_list.hpp"
+#include "model/interaction_list.hpp"
 
 #include <algorithm>
 
