@@ -33,7 +33,7 @@ double damping_beta(double e) {
 }
 
 /// The tangential spring carried into the current tangent plane (its length kept), then advanced.
-void advance_tangential_spring(const ContactState& c, double* xi) {
+void advance_tangential_spring(const ContactKinematics& c, double* xi) {
   const double before = dot3(xi, xi);
   const double xn = dot3(xi, c.normal);
   for (int a = 0; a < 3; ++a) xi[a] -= xn * c.normal[a];
@@ -43,7 +43,7 @@ void advance_tangential_spring(const ContactState& c, double* xi) {
   for (int a = 0; a < 3; ++a) xi[a] += c.tangential_velocity[a] * c.dt;
 }
 
-ContactResponse hertz_mindlin(std::span<const double> p, const ContactState& c, std::span<double> history) {
+ContactResponse hertz_mindlin(std::span<const double> p, const ContactKinematics& c, std::span<double> history) {
   ContactResponse out;
   double* xi = history.data();
   if (!(c.overlap > 0)) {
@@ -87,7 +87,7 @@ ContactResponse hertz_mindlin(std::span<const double> p, const ContactState& c, 
   return out;
 }
 
-double hertz_stiffness(std::span<const double> p, const ContactState& c) {
+double hertz_stiffness(std::span<const double> p, const ContactKinematics& c) {
   double e_star, g_star;
   effective_moduli(p, c.rigid_partner, e_star, g_star);
   // At no overlap the tangent stiffness is 0: take the one at 1 % of R* (a deep contact for

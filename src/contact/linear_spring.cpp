@@ -13,7 +13,7 @@ namespace {
 
 enum Param { modulus, tangential_ratio, friction, damping_ratio, limit_damping, restitution };
 
-double normal_stiffness(std::span<const double> p, const ContactState& c) { return p[modulus] * c.effective_radius; }
+double normal_stiffness(std::span<const double> p, const ContactKinematics& c) { return p[modulus] * c.effective_radius; }
 
 /// ζ: the given fraction of critical, or the one that gives restitution e of a head-on impact,
 /// e = exp(−πζ/√(1−ζ²)) inverted: ζ = −ln e / √(π² + ln² e).
@@ -29,7 +29,7 @@ double dot3(const double* a, const double* b) { return a[0] * b[0] + a[1] * b[1]
 
 /// The tangential spring ξ carried into the current tangent plane (its length kept: the pair
 /// turned, the spring did not stretch), then advanced by the tangential motion of the step.
-void advance_tangential_spring(const ContactState& c, double* xi) {
+void advance_tangential_spring(const ContactKinematics& c, double* xi) {
   const double before = dot3(xi, xi);
   const double xn = dot3(xi, c.normal);
   for (int a = 0; a < 3; ++a) xi[a] -= xn * c.normal[a];
@@ -39,7 +39,7 @@ void advance_tangential_spring(const ContactState& c, double* xi) {
   for (int a = 0; a < 3; ++a) xi[a] += c.tangential_velocity[a] * c.dt;
 }
 
-ContactResponse linear_spring(std::span<const double> p, const ContactState& c, std::span<double> history) {
+ContactResponse linear_spring(std::span<const double> p, const ContactKinematics& c, std::span<double> history) {
   ContactResponse out;
   double* xi = history.data();
   if (!(c.overlap > 0)) {  // apart: the contact keeps nothing
@@ -81,7 +81,7 @@ const bool registered = register_pair_law(PairLaw{
      {"restitution", "", "e of a head-on impact, sets ζ instead of damping_ratio (−1: not given)", -1.0}},
     3,
     linear_spring,
-    [](std::span<const double> p, const ContactState& c) {
+    [](std::span<const double> p, const ContactKinematics& c) {
       return std::max(1.0, p[tangential_ratio]) * normal_stiffness(p, c);
     }});
 

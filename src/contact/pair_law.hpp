@@ -15,7 +15,7 @@ namespace shard {
 
 /// One contact at one step, in the frame of the contact. The normal points from the first body
 /// to the second; velocities are the second body's relative to the first at the contact point.
-struct ContactState {
+struct ContactKinematics {
   int dim = 3;                            ///< 2 or 3 (vectors have 3 slots either way)
   double overlap = 0;                     ///< δ > 0 when the bodies overlap (m)
   double normal[3] = {0, 0, 0};           ///< unit normal n
@@ -53,11 +53,11 @@ struct PairLaw {
   std::vector<PairLawParameter> parameters;    ///< in the order `evaluate` reads them
   int history_size = 0;                        ///< doubles of history per contact
   /// The law itself: params in the declared order; history zero at the first touch.
-  std::function<ContactResponse(std::span<const double> params, const ContactState&, std::span<double> history)>
+  std::function<ContactResponse(std::span<const double> params, const ContactKinematics&, std::span<double> history)>
       evaluate;
   /// The largest stiffness dF/dδ of the law at this contact (N/m), for the stable step
   /// ω² = k/m*: the caller's Δt ≤ 2/ω.
-  std::function<double(std::span<const double> params, const ContactState&)> stiffness;
+  std::function<double(std::span<const double> params, const ContactKinematics&)> stiffness;
 };
 
 /// Registers a law; false if the name is taken (each law's file registers itself once).

@@ -11,7 +11,7 @@ namespace shard {
 
 namespace {
 
-constexpr char kMagic[8] = {'S', 'H', 'A', 'R', 'D', 'C', 'K', '2'};
+constexpr char kMagic[8] = {'S', 'H', 'A', 'R', 'D', 'C', 'K', '3'};
 
 /// Scalars of SolverState and OutputCursor in one fixed order, for both directions.
 template <class F>
@@ -27,6 +27,7 @@ void visit_scalars(SolverState& s, OutputCursor& c, F&& f) {
   f(s.pending_damping);
   f(s.pending_contact);
   f(s.pending_wall);
+  f(s.pending_particle_wall);
   f(c.next_frame);
   f(c.next_history);
   f(c.next_checkpoint);

@@ -31,7 +31,8 @@ inline std::int64_t facet_key(std::int64_t element_id, int local_face) { return 
 
 class InteractionList {
  public:
-  explicit InteractionList(int history_size = 0) : history_size_(history_size) {}
+  InteractionList() = default;
+  explicit InteractionList(int history_size) : history_size_(history_size) {}
 
   std::size_t size() const { return keys_.size(); }
   int history_size() const { return history_size_; }
@@ -61,7 +62,7 @@ class InteractionList {
  private:
   void store_key_arrays();
 
-  int history_size_;
+  int history_size_ = 0;
   std::vector<InteractionKey> keys_;  // sorted, unique
   std::vector<double> history_;       // history_size_ per key
   // The keys as plain arrays, for checkpoints.

@@ -15,6 +15,7 @@
 
 #include "core/voigt.hpp"
 #include "model/fields.hpp"
+#include "model/interaction_list.hpp"
 #include "model/element_type.hpp"
 #include "model/particles.hpp"
 
@@ -182,6 +183,9 @@ struct Model {
   std::vector<NodeSet> node_sets;
   std::vector<FacetSet> facet_sets;
   ContactState contact;
+  /// Contacts of particles with particles and walls, keyed by stable ids, with their laws'
+  /// history (src/contact/particle_contact.hpp sizes it for its law).
+  InteractionList particle_contacts;
   /// The next stable id of a node, an element and a particle (ids are never reused).
   std::int64_t next_node_id = 0, next_element_id = 0, next_particle_id = 0;
 
@@ -227,6 +231,7 @@ struct Model {
       f(prefix + "owner_element", field("owner_element", Location::model, 0), s.owner_element);
       f(prefix + "owner_corner", field("owner_corner", Location::model, 0), s.owner_corner);
     }
+    particle_contacts.visit_fields(as("particle_contacts."));
     for (auto& p : parts) p.visit_fields(as("part." + p.name + "."));
     for (auto& pp : particle_parts) {
       pp.visit_all_fields(as("particles." + pp.name + "."));

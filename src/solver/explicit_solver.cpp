@@ -89,6 +89,7 @@ void ExplicitSolver::restored() {
     if (part.model) part.model->after_change(part);
     part.stable_time_step = 0;
   }
+  model_.particle_contacts.restored();
   topology_.reset(model_);
 }
 
@@ -101,6 +102,19 @@ void ExplicitSolver::attach_contact(ContactSystem* contact) {
   terms_.wall_work = state_.energy.find("wall_work");
   terms_.contact_work = state_.energy.find("contact_work");
   terms_.friction = state_.energy.find("friction");
+}
+
+void ExplicitSolver::attach_particle_contact(ParticleContact* contact) {
+  if (particle_contact_) topology_.remove(*particle_contact_);
+  particle_contact_ = contact;
+  if (!particle_contact_) return;
+  topology_.add(*particle_contact_);
+  const int history = ParticleContact::history_size(*particle_contact_->settings().law);
+  if (model_.particle_contacts.history_size() != history) model_.particle_contacts = InteractionList(history);
+  for (auto& t : ParticleContact::energy_terms()) state_.energy.add(std::move(t));
+  terms_.particle_contact_elastic = state_.energy.find("particle_contact_elastic");
+  terms_.particle_contact_dissipation = state_.energy.find("particle_contact_dissipation");
+  terms_.particle_wall_work = state_.energy.find("particle_wall_work");
 }
 
 void ExplicitSolver::topology_changed(const Model& model, const Remap&) {
@@ -192,6 +206,16 @@ double ExplicitSolver::add_particle_forces() {
     if (pp.count() > 0) particle_dt = std::min(particle_dt, particle_time_step_limit(pp));
   }
   E[terms_.particle_elastic] = particle_elastic;
+  if (particle_contact_) {
+    // Contacts of particles come after the models' forces (which start from zero).
+    const ParticleContactWork w = particle_contact_->add_forces(model_, state_.time, state_.dt_half);
+    E[terms_.particle_contact_elastic] = w.stored;
+    E[terms_.particle_contact_dissipation] += w.dissipated;
+    const auto& wf = particle_contact_->wall_forces();
+    state_.particle_wall_force_on_bodies.assign(wf.size(), 0.0);
+    for (std::size_t i = 0; i < wf.size(); ++i) state_.particle_wall_force_on_bodies[i] = -wf[i];
+    particle_dt = std::min(particle_dt, particle_contact_->stable_time_step(model_));
+  }
   return particle_dt;
 }
 
@@ -278,27 +302,40 @@ void ExplicitSolver::apply_prescribed_velocities(const AdvanceCoefficients& c, d
 
 void ExplicitSolver::book_contact_work(double dt_n, double d1, double d2, double back, double ahead,
                                        double dt_next, double& contact_back, double& contact_ahead,
-                                       double& wall_back, double& wall_ahead) {
+                                       double& wall_back, double& wall_ahead, double& particle_wall_back,
+                                       double& particle_wall_ahead) {
   // Work of the contact forces on the nodes, and of moving rigid walls on the bodies they push
-  // (F_wall→body · v_wall, external work).
-  if (!contact_) return;
+  // (F_wall→body · v_wall, external work); the particles' share of the walls' work is its own term.
   const int dim = model_.dim();
-  const double* V = model_.nodes.v.data();
-  const double* F = model_.nodes.force.data();
-  const double* M = model_.nodes.mass.data();
-  auto new_velocity = [&](std::size_t dof, double m) { return (d1 * V[dof] + dt_n * (F[dof] / m)) * d2; };
-  for (const auto& [dof, f] : contact_->applied_forces()) {
-    contact_back += f * back * V[dof];
-    contact_ahead += f * ahead * new_velocity(dof, M[dof / dim]);
+  if (contact_) {
+    const double* V = model_.nodes.v.data();
+    const double* F = model_.nodes.force.data();
+    const double* M = model_.nodes.mass.data();
+    auto new_velocity = [&](std::size_t dof, double m) { return (d1 * V[dof] + dt_n * (F[dof] / m)) * d2; };
+    for (const auto& [dof, f] : contact_->applied_forces()) {
+      contact_back += f * back * V[dof];
+      contact_ahead += f * ahead * new_velocity(dof, M[dof / dim]);
+    }
   }
-  const auto& walls = contact_->settings().walls;
+  const std::vector<RigidWall>* walls = contact_ ? &contact_->settings().walls
+                                        : particle_contact_ ? &particle_contact_->settings().walls
+                                                            : nullptr;
+  if (!walls) return;
   const auto& f = state_.wall_force_on_bodies;
-  for (std::size_t w = 0; w < walls.size(); ++w)
+  const auto& fp = state_.particle_wall_force_on_bodies;
+  if (model_.contact.wall_offset.size() != walls->size() * dim) model_.contact.wall_offset.assign(walls->size() * dim, 0.0);
+  for (std::size_t w = 0; w < walls->size(); ++w)
     for (int k = 0; k < dim; ++k) {
-      const double vb = walls[w].velocity[k].at(state_.time - 0.5 * state_.dt_half);
-      const double va = walls[w].velocity[k].at(state_.time + 0.5 * dt_next);
-      wall_back += f[dim * w + k] * back * vb;
-      wall_ahead += f[dim * w + k] * ahead * va;
+      const double vb = (*walls)[w].velocity[k].at(state_.time - 0.5 * state_.dt_half);
+      const double va = (*walls)[w].velocity[k].at(state_.time + 0.5 * dt_next);
+      if (dim * w + k < f.size()) {
+        wall_back += f[dim * w + k] * back * vb;
+        wall_ahead += f[dim * w + k] * ahead * va;
+      }
+      if (dim * w + k < fp.size()) {
+        particle_wall_back += fp[dim * w + k] * back * vb;
+        particle_wall_ahead += fp[dim * w + k] * ahead * va;
+      }
       model_.contact.wall_offset[dim * w + k] += va * dt_next;
     }
 }
@@ -330,9 +367,9 @@ void ExplicitSolver::advance() {
     external_back += f * c.back * V[dof];
     external_ahead += f * c.ahead * ((c.d1 * V[dof] + c.dt_n * (F[dof] / m)) * c.d2);
   }
-  double contact_back = 0, contact_ahead = 0, wall_back = 0, wall_ahead = 0;
+  double contact_back = 0, contact_ahead = 0, wall_back = 0, wall_ahead = 0, pwall_back = 0, pwall_ahead = 0;
   book_contact_work(c.dt_n, c.d1, c.d2, c.back, c.ahead, c.dt_next, contact_back, contact_ahead, wall_back,
-                    wall_ahead);
+                    wall_ahead, pwall_back, pwall_ahead);
 
   // kinetic, damping back/ahead, external back/ahead (the nodes' gravity work adds to the latter)
   double sums[5] = {0, 0, 0, external_back, external_ahead};
@@ -371,6 +408,8 @@ void ExplicitSolver::advance() {
     E[terms_.wall_work] += state_.pending_wall + wall_back;
     E[terms_.contact_work] += state_.pending_contact + contact_back;
   }
+  if (particle_contact_) E[terms_.particle_wall_work] += state_.pending_particle_wall + pwall_back;
+  state_.pending_particle_wall = pwall_ahead;
   state_.pending_damping = damp_ahead;
   state_.pending_external = external_ahead;
   state_.pending_wall = wall_ahead;

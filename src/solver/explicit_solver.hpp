@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "contact/contact.hpp"
+#include "contact/particle_contact.hpp"
 #include "fem/internal_forces.hpp"
 #include "material/material.hpp"
 #include "model/model.hpp"
@@ -52,6 +53,9 @@ struct SolverState {
   double pending_external = 0, pending_damping = 0, pending_contact = 0, pending_wall = 0;
   /// The wall forces on the bodies at t_n (dim per wall), for the work of moving walls.
   std::vector<double> wall_force_on_bodies;
+  /// The same for particles on the walls (their work is booked apart: src/contact/particle_contact.hpp).
+  double pending_particle_wall = 0;
+  std::vector<double> particle_wall_force_on_bodies;
 };
 
 class ExplicitSolver : private TopologyListener {
@@ -78,12 +82,16 @@ class ExplicitSolver : private TopologyListener {
   /// Contact between parts and with rigid walls (optional; not owned). It follows every
   /// topology change.
   void attach_contact(ContactSystem* contact);
+  /// Contact of particles with particles and walls (optional; not owned). Attach before a
+  /// checkpoint is restored: it sizes the Model's interaction list for its law.
+  void attach_particle_contact(ParticleContact* contact);
   /// Adds an event to the registered list (not owned); events of one phase run in the order added.
   void add_event(StepEvent& event) { events_.push_back(&event); }
   void remove_event(const StepEvent& event);
   /// The hook through which every topology change goes (listeners may be added).
   Topology& topology() { return topology_; }
   const ContactSystem* contact() const { return contact_; }
+  const ParticleContact* particle_contact() const { return particle_contact_; }
 
   bool finished() const;
   const SolverState& state() const { return state_; }
@@ -102,7 +110,8 @@ class ExplicitSolver : private TopologyListener {
   /// External work of the prescribed velocities of the nodes and particles (back, ahead halves).
   void apply_prescribed_velocities(const AdvanceCoefficients& c, double& external_back, double& external_ahead);
   void book_contact_work(double dt_n, double d1, double d2, double back, double ahead, double dt_next,
-                         double& contact_back, double& contact_ahead, double& wall_back, double& wall_ahead);
+                         double& contact_back, double& contact_ahead, double& wall_back, double& wall_ahead,
+                         double& particle_wall_back, double& particle_wall_ahead);
 
   Model& model_;
   const std::vector<std::unique_ptr<Material>>& materials_;
@@ -116,6 +125,7 @@ class ExplicitSolver : private TopologyListener {
   std::vector<double> block_sums_;
   std::vector<PartCache> part_caches_;  ///< per part (derived from the Model, checked as used)
   ContactSystem* contact_ = nullptr;
+  ParticleContact* particle_contact_ = nullptr;
   std::vector<double> particle_reactions_;
   /// The prescribed degrees of freedom of the nodes and of each particle part, from their
   /// `prescribed` fields; rebuilt after every topology change.
@@ -124,7 +134,8 @@ class ExplicitSolver : private TopologyListener {
   /// Handles of the ledger terms the solver books (−1: not registered, no contact).
   struct Terms {
     int kinetic, initial, external_work, damping, stress_work, viscosity, hourglass, plastic, heat, fracture,
-        eroded, particle_elastic, particle_friction, wall_work = -1, contact_work = -1, friction = -1;
+        eroded, particle_elastic, particle_friction, wall_work = -1, contact_work = -1, friction = -1,
+        particle_contact_elastic = -1, particle_contact_dissipation = -1, particle_wall_work = -1;
   } terms_;
 };
 

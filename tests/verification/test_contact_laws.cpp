@@ -27,7 +27,7 @@ Collision collide(const PairLaw& law, const std::vector<double>& params, double 
   std::vector<double> history(law.history_size, 0.0);
   double overlap = 0;
   auto forces = [&](double vrel) {
-    ContactState c;
+    ContactKinematics c;
     c.overlap = 2 * R - (x[1] - x[0]);
     c.normal[0] = 1;
     c.normal_velocity = vrel;
@@ -135,7 +135,7 @@ TEST(LinearSpringLaw, PressedContactSlidesAtTheCoulombLimitAndDissipatesMuFnTime
   const PairLaw& law = *find_pair_law("linear_spring");
   const double mu = 0.4, k0 = 2e8, R = 1e-3;
   const auto p = pair_law_parameters(law, {{"modulus", k0}, {"friction", mu}});
-  ContactState c;
+  ContactKinematics c;
   c.overlap = 1e-6;
   c.normal[2] = 1;
   c.tangential_velocity[0] = 0.01;
@@ -167,7 +167,7 @@ TEST(LinearSpringLaw, PressedContactSlidesAtTheCoulombLimitAndDissipatesMuFnTime
 TEST(LinearSpringLaw, OpeningContactForgetsItsHistory) {
   const PairLaw& law = *find_pair_law("linear_spring");
   const auto p = pair_law_parameters(law, {{"modulus", 1e8}, {"friction", 0.5}});
-  ContactState c;
+  ContactKinematics c;
   c.overlap = 1e-6;
   c.normal[1] = 1;
   c.tangential_velocity[0] = 1;

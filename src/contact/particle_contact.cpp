@@ -1,0 +1,385 @@
+#include "contact/particle_contact.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "core/deterministic_sum.hpp"
+
+namespace shard {
+
+namespace {
+
+inline void cross(const double* a, const double* b, double* out) {
+  out[0] = a[1] * b[2] - a[2] * b[1];
+  out[1] = a[2] * b[0] - a[0] * b[2];
+  out[2] = a[0] * b[1] - a[1] * b[0];
+}
+inline double dot3(const double* a, const double* b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+
+/// The relative velocity of body 2's contact point to body 1's (arms from the centres), split
+/// into its normal and tangential parts.
+void relative_motion(const double* va, const double* wa, const double* arm_a, const double* vb, const double* wb,
+                     const double* arm_b, ContactKinematics& c, double* rel) {
+  double spin_a[3], spin_b[3];
+  cross(wa, arm_a, spin_a);
+  cross(wb, arm_b, spin_b);
+  for (int k = 0; k < 3; ++k) rel[k] = vb[k] + spin_b[k] - va[k] - spin_a[k];
+  c.normal_velocity = dot3(rel, c.normal);
+  for (int k = 0; k < 3; ++k) c.tangential_velocity[k] = rel[k] - c.normal_velocity * c.normal[k];
+}
+
+bool takes_part(const ParticleContactSettings& s, std::size_t part) {
+  return s.parts.empty() || (part < s.parts.size() && s.parts[part]);
+}
+
+/// Values the contact keeps after the law's own history: the force on b and the stored energy.
+constexpr int kHistoryTail = 4;
+
+}  // namespace
+
+std::vector<EnergyTerm> ParticleContact::energy_terms() {
+  using G = EnergyGroup;
+  namespace r = energy_rank;
+  return {{"particle_contact_elastic", "elastic energy in the contacts of particles now (a state)",
+           r::particle_contact, {{G::contact, +1}}, "-"},
+          {"particle_contact_dissipation", "dissipated by damping and sliding in particle contacts",
+           r::particle_contact + 1, {{G::dissipated, +1}}, ""},
+          {"particle_wall_work", "work of moving rigid walls on particles (part of external_work)",
+           r::particle_contact + 2, {{G::external, +1}}, "external_work"}};
+}
+
+ParticleContact::ParticleContact(ParticleContactSettings settings) : settings_(std::move(settings)) {
+  if (!settings_.law) throw std::invalid_argument("particle contact needs a pair law");
+  if (settings_.params.size() != settings_.law->parameters.size())
+    throw std::invalid_argument("particle contact: the law's parameters are not complete");
+  if (settings_.wall_params.empty()) settings_.wall_params = settings_.params;
+}
+
+void ParticleContact::gather(Model& model) {
+  const std::size_t n = part_of_.size();
+#pragma omp parallel for schedule(static)
+  for (std::size_t i = 0; i < n; ++i) {
+    const ParticlePart& p = model.particle_parts[part_of_[i]];
+    const std::size_t j = index_in_part_[i];
+    const int D = p.dim, R = p.rot_dim();
+    for (int k = 0; k < 3; ++k) {
+      x_[3 * i + k] = k < D ? p.x[D * j + k] : 0.0;
+      v_[3 * i + k] = k < D ? p.v[D * j + k] : 0.0;
+      w_[3 * i + k] = R == 3 ? p.omega[3 * j + k] : (k == 2 ? p.omega[j] : 0.0);
+    }
+  }
+}
+
+bool ParticleContact::list_is_stale(const Model& model) const {
+  if (stale_ || x_at_build_.size() != x_.size()) return true;
+  double moved2 = 0;
+  for (std::size_t k = 0; k < x_.size(); k += 3) {
+    double d2 = 0;
+    for (int a = 0; a < 3; ++a) d2 += (x_[k + a] - x_at_build_[k + a]) * (x_[k + a] - x_at_build_[k + a]);
+    moved2 = std::max(moved2, d2);
+  }
+  double wall_moved2 = 0;
+  const int dim = model.dim();
+  for (std::size_t w = 0; w < settings_.walls.size(); ++w) {
+    double d2 = 0;
+    for (int a = 0; a < dim; ++a) {
+      const double d = model.contact.wall_offset[dim * w + a] - wall_offset_at_build_[dim * w + a];
+      d2 += d * d;
+    }
+    wall_moved2 = std::max(wall_moved2, d2);
+  }
+  // Two particles close by at most twice the largest move, a particle and a wall by the sum of
+  // theirs: either within the skin keeps every contact in the list.
+  const double moved = std::sqrt(moved2);
+  return 2 * moved > skin_ || moved + std::sqrt(wall_moved2) > skin_;
+}
+
+void ParticleContact::rebuild_list(Model& model) {
+  // The taking particles, flat, in part order.
+  part_of_.clear();
+  index_in_part_.clear();
+  flat_of_id_.assign(static_cast<std::size_t>(model.next_particle_id), -1);
+  for (std::size_t p = 0; p < model.particle_parts.size(); ++p) {
+    if (!takes_part(settings_, p)) continue;
+    const ParticlePart& part = model.particle_parts[p];
+    for (std::size_t j = 0; j < part.count(); ++j) {
+      flat_of_id_.at(static_cast<std::size_t>(part.id[j])) = static_cast<std::int32_t>(part_of_.size());
+      part_of_.push_back(static_cast<std::int32_t>(p));
+      index_in_part_.push_back(static_cast<std::int32_t>(j));
+    }
+  }
+  const std::size_t n = part_of_.size();
+  x_.resize(3 * n);
+  v_.resize(3 * n);
+  w_.resize(3 * n);
+  radius_.resize(n);
+  mass_.resize(n);
+  std::vector<std::int64_t> ids(n);
+  double r_min = std::numeric_limits<double>::infinity(), r_max = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const ParticlePart& part = model.particle_parts[part_of_[i]];
+    radius_[i] = part.radius[index_in_part_[i]];
+    mass_[i] = part.mass[index_in_part_[i]];
+    ids[i] = part.id[index_in_part_[i]];
+    r_min = std::min(r_min, radius_[i]);
+    r_max = std::max(r_max, radius_[i]);
+  }
+  gather(model);
+  skin_ = settings_.skin > 0 ? settings_.skin : (n > 0 ? 0.1 * r_min : 0.0);
+
+  std::vector<InteractionKey> candidates;
+  if (n > 0) {
+    grid_.build_points(x_, 3, 2 * r_max + skin_);
+    for (std::size_t i = 0; i < n; ++i)
+      grid_.for_near(&x_[3 * i], [&](std::int32_t j) {
+        if (ids[j] <= ids[i]) return;
+        double d2 = 0;
+        for (int a = 0; a < 3; ++a) d2 += (x_[3 * j + a] - x_[3 * i + a]) * (x_[3 * j + a] - x_[3 * i + a]);
+        const double reach = radius_[i] + radius_[j] + skin_;
+        if (d2 < reach * reach) candidates.push_back({InteractionKind::particle_particle, ids[i], ids[j]});
+      });
+  }
+  const int dim = model.dim();
+  if (model.contact.wall_offset.size() != settings_.walls.size() * dim)
+    model.contact.wall_offset.assign(settings_.walls.size() * dim, 0.0);
+  for (std::size_t w = 0; w < settings_.walls.size(); ++w) {
+    const RigidWall& wall = settings_.walls[w];
+    for (std::size_t i = 0; i < n; ++i) {
+      double d = 0;
+      for (int a = 0; a < dim; ++a) d += (x_[3 * i + a] - wall.point[a] - model.contact.wall_offset[dim * w + a]) * wall.normal[a];
+      if (d - radius_[i] < skin_)
+        candidates.push_back({InteractionKind::particle_wall, ids[i], static_cast<std::int64_t>(w)});
+    }
+  }
+  model.particle_contacts.update(std::move(candidates));
+
+  // The listed interactions by flat index, and each particle's in list order.
+  const InteractionList& list = model.particle_contacts;
+  const std::size_t m = list.size();
+  first_.resize(m);
+  second_.resize(m);
+  std::vector<std::int32_t> count(n + 1, 0);
+  for (std::size_t k = 0; k < m; ++k) {
+    const InteractionKey& key = list.key(k);
+    first_[k] = flat_of_id_.at(static_cast<std::size_t>(key.first));
+    second_[k] = key.kind == InteractionKind::particle_wall ? -1 - static_cast<std::int32_t>(key.second)
+                                                            : flat_of_id_.at(static_cast<std::size_t>(key.second));
+    ++count[first_[k] + 1];
+    if (second_[k] >= 0) ++count[second_[k] + 1];
+  }
+  for (std::size_t i = 0; i < n; ++i) count[i + 1] += count[i];
+  incident_begin_ = count;
+  incident_.resize(static_cast<std::size_t>(count[n]));
+  for (std::size_t k = 0; k < m; ++k) {
+    incident_[count[first_[k]]++] = static_cast<std::int32_t>(2 * k);
+    if (second_[k] >= 0) incident_[count[second_[k]]++] = static_cast<std::int32_t>(2 * k + 1);
+  }
+  force_.resize(3 * m);
+  torque_a_.resize(3 * m);
+  torque_b_.resize(3 * m);
+  stored_.resize(m);
+  dissipated_.resize(m);
+  x_at_build_ = x_;
+  wall_offset_at_build_ = model.contact.wall_offset;
+  stale_ = false;
+}
+
+namespace {
+
+/// One listed interaction at one step: the law where the bodies overlap, and the energy account
+/// of the contact over the increment. The history holds the law's slots, then the force on the
+/// second body and the stored energy of the last step (kHistoryTail values).
+struct ContactEvaluation {
+  const PairLaw* law;
+  const std::vector<double>* params;
+  ContactKinematics c;
+  double arm_a[3] = {0, 0, 0}, arm_b[3] = {0, 0, 0};
+  double rel[3] = {0, 0, 0};  ///< velocity of b's contact point relative to a's (m/s)
+
+  /// f: the force on body b. Returns the energy dissipated over the increment: what the contact
+  /// forces took from the bodies, ½ (f_n−1 + f_n)·v_rel Δt (the trapezoid the integrator's work
+  /// uses), less the growth of the stored energy.
+  double run(std::span<double> history, double* f, double* torque_b, double& stored) {
+    const std::size_t h = law->history_size;
+    double* previous = history.data() + h;
+    ContactResponse r;
+    if (c.overlap > 0) {
+      r = law->evaluate(*params, c, history.first(h));
+    } else {
+      std::fill_n(history.data(), h, 0.0);
+    }
+    for (int q = 0; q < 3; ++q) f[q] = r.normal_force * c.normal[q] + r.tangential_force[q];
+    cross(arm_b, f, torque_b);
+    for (int q = 0; q < 3; ++q) torque_b[q] += r.rolling_torque[q];
+    stored = r.stored_energy;
+    double work = 0;
+    for (int q = 0; q < 3; ++q) work += 0.5 * (previous[q] + f[q]) * rel[q];
+    const double dissipated = -work * c.dt - (stored - previous[3]);
+    std::copy_n(f, 3, previous);
+    previous[3] = stored;
+    return dissipated;
+  }
+};
+
+}  // namespace
+
+int ParticleContact::history_size(const PairLaw& law) { return law.history_size + kHistoryTail; }
+
+void ParticleContact::evaluate_contacts(Model& model, double time, double dt) {
+  InteractionList& list = model.particle_contacts;
+  const std::size_t m = first_.size();
+  const int dim = model.dim();
+  const std::size_t law_slots = settings_.law->history_size;
+  // The walls where they are at t_n, moving at their velocity of the increment.
+  std::vector<double> wall_velocity(3 * settings_.walls.size(), 0.0), wall_origin(3 * settings_.walls.size(), 0.0);
+  for (std::size_t w = 0; w < settings_.walls.size(); ++w)
+    for (int a = 0; a < dim; ++a) {
+      wall_velocity[3 * w + a] = settings_.walls[w].velocity[a].at(time - 0.5 * dt);
+      wall_origin[3 * w + a] = settings_.walls[w].point[a] + model.contact.wall_offset[dim * w + a];
+    }
+  std::size_t active = 0;
+#pragma omp parallel for schedule(static) reduction(+ : active)
+  for (std::size_t k = 0; k < m; ++k) {
+    const std::int32_t a = first_[k], b = second_[k];
+    double* fa = &force_[3 * k];
+    double* ta = &torque_a_[3 * k];
+    double* tb = &torque_b_[3 * k];
+    std::span<double> history = list.history(k);
+    ContactEvaluation ev{settings_.law, b < 0 ? &settings_.wall_params : &settings_.params, {}};
+    ev.c.dim = dim;
+    ev.c.dt = dt;
+    geometry(k, wall_origin, ev.c);
+    const double* tail = history.data() + law_slots;
+    if (!(ev.c.overlap > 0) && tail[0] == 0 && tail[1] == 0 && tail[2] == 0 && tail[3] == 0) {
+      // Apart now and at the last step: nothing acts, nothing to book.
+      std::fill_n(fa, 3, 0.0), std::fill_n(ta, 3, 0.0), std::fill_n(tb, 3, 0.0);
+      stored_[k] = dissipated_[k] = 0;
+      continue;
+    }
+    if (ev.c.overlap > 0) ++active;
+    double f[3];
+    if (b >= 0) {
+      for (int q = 0; q < 3; ++q) ev.arm_a[q] = radius_[a] * ev.c.normal[q], ev.arm_b[q] = -radius_[b] * ev.c.normal[q];
+      relative_motion(&v_[3 * a], &w_[3 * a], ev.arm_a, &v_[3 * b], &w_[3 * b], ev.arm_b, ev.c, ev.rel);
+      ev.c.effective_radius = radius_[a] * radius_[b] / (radius_[a] + radius_[b]);
+      ev.c.effective_mass = mass_[a] * mass_[b] / (mass_[a] + mass_[b]);
+      dissipated_[k] = ev.run(history, f, tb, stored_[k]);
+      // On a: −f at arm_a, and the opposite of the law's own torque (tb less the moment of f).
+      double ma[3], mb[3];
+      cross(ev.arm_a, f, ma);
+      cross(ev.arm_b, f, mb);
+      for (int q = 0; q < 3; ++q) fa[q] = -f[q], ta[q] = -ma[q] - (tb[q] - mb[q]);
+    } else {
+      // The wall is body 1, the particle body 2 (stored in the a slots).
+      const std::size_t w = static_cast<std::size_t>(-1 - b);
+      const double still[3] = {0, 0, 0};
+      for (int q = 0; q < 3; ++q) ev.arm_b[q] = -radius_[a] * ev.c.normal[q];
+      relative_motion(&wall_velocity[3 * w], still, ev.arm_a, &v_[3 * a], &w_[3 * a], ev.arm_b, ev.c, ev.rel);
+      ev.c.effective_radius = radius_[a];
+      ev.c.effective_mass = mass_[a];
+      ev.c.rigid_partner = true;
+      dissipated_[k] = ev.run(history, f, ta, stored_[k]);
+      for (int q = 0; q < 3; ++q) fa[q] = f[q], tb[q] = 0;
+    }
+  }
+  active_ = active;
+}
+
+void ParticleContact::geometry(std::size_t k, const std::vector<double>& wall_origin, ContactKinematics& c) const {
+  const std::int32_t a = first_[k], b = second_[k];
+  if (b >= 0) {
+    double d[3], dist2 = 0;
+    for (int q = 0; q < 3; ++q) d[q] = x_[3 * b + q] - x_[3 * a + q], dist2 += d[q] * d[q];
+    const double dist = std::sqrt(dist2);
+    c.overlap = radius_[a] + radius_[b] - dist;
+    if (dist > 0)
+      for (int q = 0; q < 3; ++q) c.normal[q] = d[q] / dist;
+    return;
+  }
+  const std::size_t w = static_cast<std::size_t>(-1 - b);
+  const RigidWall& rw = settings_.walls[w];
+  double dist = 0;
+  for (int q = 0; q < c.dim; ++q) dist += (x_[3 * a + q] - wall_origin[3 * w + q]) * rw.normal[q];
+  c.overlap = radius_[a] - dist;
+  for (int q = 0; q < 3; ++q) c.normal[q] = rw.normal[q];
+}
+
+void ParticleContact::scatter(Model& model) {
+  const std::size_t n = part_of_.size();
+#pragma omp parallel for schedule(static)
+  for (std::size_t i = 0; i < n; ++i) {
+    double f[3] = {0, 0, 0}, t[3] = {0, 0, 0};
+    for (std::int32_t e = incident_begin_[i]; e < incident_begin_[i + 1]; ++e) {
+      const std::size_t k = static_cast<std::size_t>(incident_[e]) / 2;
+      const bool side_b = incident_[e] & 1;
+      const double* tk = side_b ? &torque_b_[3 * k] : &torque_a_[3 * k];
+      for (int q = 0; q < 3; ++q) {
+        f[q] += side_b ? -force_[3 * k + q] : force_[3 * k + q];
+        t[q] += tk[q];
+      }
+    }
+    ParticlePart& p = model.particle_parts[part_of_[i]];
+    const std::size_t j = index_in_part_[i];
+    const int D = p.dim;
+    for (int q = 0; q < D; ++q) p.force[D * j + q] += f[q];
+    if (p.rot_dim() == 3) {
+      for (int q = 0; q < 3; ++q) p.torque[3 * j + q] += t[q];
+    } else {
+      p.torque[j] += t[2];
+    }
+  }
+  // The walls' share, in list order.
+  const int dim = model.dim();
+  wall_force_.assign(settings_.walls.size() * dim, 0.0);
+  for (std::size_t k = 0; k < first_.size(); ++k)
+    if (second_[k] < 0)
+      for (int q = 0; q < dim; ++q) wall_force_[dim * static_cast<std::size_t>(-1 - second_[k]) + q] -= force_[3 * k + q];
+}
+
+ParticleContactWork ParticleContact::add_forces(Model& model, double time, double dt) {
+  if (!stale_) gather(model);
+  if (list_is_stale(model)) rebuild_list(model);
+  evaluate_contacts(model, time, dt);
+  scatter(model);
+  return {deterministic_sum(stored_), deterministic_sum(dissipated_)};
+}
+
+double ParticleContact::stable_time_step(const Model& model) {
+  if (stable_dt_ > 0) return stable_dt_;
+  const PairLaw& law = *settings_.law;
+  double r_max = 0, m_max = 0;
+  for (std::size_t p = 0; p < model.particle_parts.size(); ++p) {
+    if (!takes_part(settings_, p)) continue;
+    for (std::size_t j = 0; j < model.particle_parts[p].count(); ++j) {
+      r_max = std::max(r_max, model.particle_parts[p].radius[j]);
+      m_max = std::max(m_max, model.particle_parts[p].mass[j]);
+    }
+  }
+  // The stiffest contact a particle can make: with its like, with the largest particle, or with
+  // a wall; ω² = k/m* with the law's largest stiffness there.
+  double omega2 = 0;
+  auto consider = [&](double r_star, double m_star, bool rigid, const std::vector<double>& params) {
+    if (!(m_star > 0) || !(r_star > 0)) return;
+    ContactKinematics c;
+    c.effective_radius = r_star;
+    c.effective_mass = m_star;
+    c.rigid_partner = rigid;
+    omega2 = std::max(omega2, law.stiffness(params, c) / m_star);
+  };
+  for (std::size_t p = 0; p < model.particle_parts.size(); ++p) {
+    if (!takes_part(settings_, p)) continue;
+    const ParticlePart& part = model.particle_parts[p];
+    for (std::size_t j = 0; j < part.count(); ++j) {
+      const double r = part.radius[j], m = part.mass[j];
+      consider(0.5 * r, 0.5 * m, false, settings_.params);
+      consider(r * r_max / (r + r_max), m * m_max / (m + m_max), false, settings_.params);
+      if (!settings_.walls.empty()) consider(r, m, true, settings_.wall_params);
+    }
+  }
+  stable_dt_ = omega2 > 0 ? settings_.time_step_safety * 2 / std::sqrt(omega2) : std::numeric_limits<double>::infinity();
+  return stable_dt_;
+}
+
+}  // namespace shard

@@ -1,0 +1,105 @@
+// Contact of particles with each other and with rigid walls: discrete elements, and the
+// automata of any particle part that asks for it (they then touch walls and other parts). One
+// interaction list keyed by stable ids (src/model/interaction_list.hpp, held by the Model so that
+// checkpoints keep it) and one registered pair law (src/contact/pair_law.hpp) evaluated as a pure
+// function per contact. Theory: docs/theory/particle_contact.md.
+//
+// A Verlet list: the list holds every pair closer than the sum of radii plus a skin, found
+// again when a particle or a wall has moved by more than half the skin since the last search, or
+// after a topology change. Each step the law runs once per listed pair that overlaps, in
+// parallel; each particle then sums its contacts in the list's order, so the forces are the same
+// bits for any thread count and after a restart (a pair apart contributes nothing, whenever the
+// list was built).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "contact/contact.hpp"
+#include "contact/pair_law.hpp"
+#include "core/cell_grid.hpp"
+#include "core/energy_ledger.hpp"
+#include "model/model.hpp"
+#include "model/topology.hpp"
+
+namespace shard {
+
+struct ParticleContactSettings {
+  const PairLaw* law = nullptr;
+  std::vector<double> params;       ///< the law's parameters between particles (declared order)
+  std::vector<double> wall_params;  ///< against walls (empty: the same)
+  /// Neighbour-list skin (m); 0: a tenth of the smallest radius.
+  double skin = 0;
+  /// Per particle part: 1 if its particles take part. Empty: every part.
+  std::vector<char> parts;
+  /// Rigid planes (the same list, in the same order, as the finite-element contact's, whose
+  /// displacements Model::contact.wall_offset holds).
+  std::vector<RigidWall> walls;
+  /// Multiplies the contact stable step 2/ω, ω² = k/m* of the stiffest possible contact.
+  double time_step_safety = 0.08;
+};
+
+/// What the contacts did in one evaluation.
+struct ParticleContactWork {
+  double stored = 0;       ///< elastic energy in the contacts now (J)
+  /// Dissipated by damping and sliding over the last increment (J): the work the contact forces
+  /// took from the bodies less the growth of the stored energy.
+  double dissipated = 0;
+};
+
+class ParticleContact final : public TopologyListener {
+ public:
+  explicit ParticleContact(ParticleContactSettings settings);
+  /// Values per interaction in the Model's list: the law's history, then the contact's force and
+  /// stored energy at the last step (for the trapezoid of its work).
+  static int history_size(const PairLaw& law);
+
+  /// Its energy terms: the elastic energy in the contacts (a state), what damping and sliding
+  /// dissipated, and the work of moving walls on the particles (external).
+  static std::vector<EnergyTerm> energy_terms();
+
+  /// Adds contact forces and torques at t_n to the particles' force and torque; `dt` is the
+  /// increment the tangential springs advance by (t_n−1 → t_n). Call after the particle models.
+  ParticleContactWork add_forces(Model& model, double time, double dt);
+  /// Force of the particles on each wall at the last call (dim per wall).
+  const std::vector<double>& wall_forces() const { return wall_force_; }
+  /// The stable step of the stiffest contact the particles can make (before any topology change
+  /// it is computed once), times the safety factor.
+  double stable_time_step(const Model& model);
+  const ParticleContactSettings& settings() const { return settings_; }
+  /// Contacts (overlapping pairs and wall contacts) at the last call.
+  std::size_t active_contacts() const { return active_; }
+
+  void topology_changed(const Model&, const Remap&) override { stale_ = true; stable_dt_ = 0; }
+
+ private:
+  /// Where the listed particles are in the flat arrays (index over the taking parts).
+  void gather(Model& model);
+  bool list_is_stale(const Model& model) const;
+  void rebuild_list(Model& model);
+  void evaluate_contacts(Model& model, double time, double dt);
+  /// Overlap and normal of listed interaction k at the gathered positions.
+  void geometry(std::size_t k, const std::vector<double>& wall_origin, ContactKinematics& c) const;
+  void scatter(Model& model);
+
+  ParticleContactSettings settings_;
+  // Flat copies of the taking particles, 3 slots per vector whatever the dimension.
+  std::vector<std::int32_t> part_of_, index_in_part_;
+  std::vector<double> x_, v_, w_, radius_, mass_;
+  std::vector<double> x_at_build_, wall_offset_at_build_;
+  std::vector<std::int32_t> flat_of_id_;  ///< particle id → flat index (−1: not taking part)
+  // Per listed interaction: flat indices (b = −1 − wall for a wall), and per step the force on
+  // b, the torques on a and b, the stored and dissipated energy.
+  std::vector<std::int32_t> first_, second_;
+  std::vector<double> force_, torque_a_, torque_b_, stored_, dissipated_;
+  // Per flat particle, its interactions in list order (CSR), with the side it is on.
+  std::vector<std::int32_t> incident_begin_, incident_;
+  std::vector<double> wall_force_;
+  CellGrid grid_;
+  double skin_ = 0;
+  double stable_dt_ = 0;
+  bool stale_ = true;
+  std::size_t active_ = 0;
+};
+
+}  // namespace shard

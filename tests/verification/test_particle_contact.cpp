@@ -1,0 +1,219 @@
+// Discrete-element particles in a run (src/contact/particle_contact.hpp, docs/theory/
+// particle_contact.md): collisions through the run's integrator against the closed forms of the
+// linear and Hertz laws, a grain on an incline (sliding, sticking, rolling), and a pile of grains
+// in a box: energy balance, and the same bits for 1 and 2 threads and across a restart.
+#include <gtest/gtest.h>
+#include <omp.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <numbers>
+
+#include "io/checkpoint.hpp"
+#include "support/dem_run.hpp"
+
+namespace shard {
+namespace {
+
+using testing::DemRun;
+
+struct Impact {
+  double restitution = 0, contact_time = 0, momentum_error = 0;
+  int steps = 0;
+};
+
+// Two equal spheres (radius R, density rho) meet head-on at relative speed v0.
+Impact head_on(DemRun& run, double R, double rho, double v0, double dt) {
+  run.add({-R - 1e-7, 0, 0}, {0.5 * v0, 0, 0}, R, rho);
+  run.add({R + 1e-7, 0, 0}, {-0.5 * v0, 0, 0}, R, rho);
+  run.settings_.max_time_step = dt;
+  ParticlePart& p = run.part();
+  const double m = p.mass[0];
+  Impact out;
+  double t_in = -1, before = -1e-7;
+  for (int s = 0; s < 100000; ++s) {
+    run.solver().compute_forces();
+    const double overlap = 2 * R - (p.x[3] - p.x[0]), t = run.time();
+    // Contact starts and ends between steps: interpolated linearly in the overlap.
+    if (overlap > 0 && before <= 0) t_in = t - dt * overlap / (overlap - before);
+    if (overlap > 0) ++out.steps;
+    if (overlap <= 0 && before > 0) {
+      out.contact_time = t - dt * overlap / (overlap - before) - t_in;
+      run.solver().advance();
+      break;
+    }
+    before = overlap;
+    run.solver().advance();
+  }
+  out.restitution = (p.v[3] - p.v[0]) / v0;
+  out.momentum_error = std::abs(m * p.v[0] + m * p.v[3]) / (m * std::abs(p.v[0]) + m * std::abs(p.v[3]));
+  return out;
+}
+
+TEST(ParticleContact, LinearSpringHeadOnThroughTheRun) {
+  const double R = 1e-3, rho = 2500, k0 = 1e8, m = rho * 4.0 / 3.0 * std::numbers::pi * R * R * R;
+  const double kn = k0 * 0.5 * R, mstar = 0.5 * m;
+  for (const double e : {1.0, 0.8, 0.55}) {
+    const double l = std::log(e), zeta = -l / std::sqrt(std::numbers::pi * std::numbers::pi + l * l);
+    const double cn = 2 * zeta * std::sqrt(kn * mstar);
+    const double tc = std::numbers::pi / std::sqrt(kn / mstar - (cn / (2 * mstar)) * (cn / (2 * mstar)));
+    DemRun run(3, "linear_spring", {{"modulus", k0}, {"restitution", e}});
+    const Impact c = head_on(run, R, rho, 1.0, tc / 100);
+    std::printf("linear e = %.2f: measured %.4f, t_c %.4e s (closed form %.4e), %d steps, momentum %.1e\n", e,
+                c.restitution, c.contact_time, tc, c.steps, c.momentum_error);
+    EXPECT_NEAR(c.restitution, e, 0.02 * e);
+    EXPECT_NEAR(c.contact_time, tc, 0.01 * tc);
+    EXPECT_GE(c.steps, 50);
+    EXPECT_LT(c.momentum_error, 1e-12);
+  }
+}
+
+TEST(ParticleContact, HertzMindlinHeadOnThroughTheRun) {
+  const double R = 1e-3, rho = 2500, E = 70e9, nu = 0.22, v0 = 0.5;
+  const double m = rho * 4.0 / 3.0 * std::numbers::pi * R * R * R, estar = E / (2 * (1 - nu * nu));
+  const double tc = 2.87 * std::pow(0.25 * m * m / (0.5 * R * estar * estar * v0), 0.2);
+  DemRun run(3, "hertz_mindlin", {{"young", E}, {"poisson", nu}});
+  const Impact c = head_on(run, R, rho, v0, tc / 100);
+  std::printf("Hertz: e %.4f, t_c %.4e s (Hertz %.4e), %d steps, momentum %.1e\n", c.restitution, c.contact_time, tc,
+              c.steps, c.momentum_error);
+  EXPECT_NEAR(c.contact_time, tc, 0.02 * tc);
+  EXPECT_NEAR(c.restitution, 1.0, 0.01);
+  EXPECT_LT(c.momentum_error, 1e-12);
+}
+
+struct InclineResult {
+  double acceleration = 0, travel = 0;
+};
+
+// A sphere resting on a floor (normal +z) under gravity tilted by θ about y: the incline. The
+// first `settle` seconds let the contact come to rest; the acceleration along the slope is then
+// fitted from the velocity over the next `measure` seconds.
+InclineResult incline(double theta, double mu, bool rolling) {
+  const double R = 1e-3, rho = 2500, g = 9.81;
+  DemRun run(3, "linear_spring", {{"modulus", 1e8}, {"friction", mu}, {"restitution", 0.3}});
+  run.settings_.gravity = {g * std::sin(theta), 0, -g * std::cos(theta)};
+  run.add_wall({0, 0, 0}, {0, 0, 1});
+  const double m = rho * 4.0 / 3.0 * std::numbers::pi * R * R * R;
+  const double sink = m * g * std::cos(theta) / (1e8 * R);  // the static overlap
+  run.add({0, 0, R - sink}, {0, 0, 0}, R, rho);
+  if (!rolling) run.hold_rotation(0);
+  ParticlePart& p = run.part();
+  const double settle = 5e-3, measure = 5e-3;
+  while (run.time() < settle) run.step();
+  const double t0 = run.time(), v0 = p.v[0], x0 = p.x[0];
+  while (run.time() < settle + measure) run.step();
+  return {(p.v[0] - v0) / (run.time() - t0), p.x[0] - x0};
+}
+
+TEST(ParticleContact, GrainOnAnInclineSlidesSticksOrRolls) {
+  const double g = 9.81, mu = 0.3;
+  // Held against rotation (a block): slides at g(sin θ − μ cos θ) when tan θ > μ.
+  const double steep = 30 * std::numbers::pi / 180;
+  const InclineResult slide = incline(steep, mu, false);
+  const double expected = g * (std::sin(steep) - mu * std::cos(steep));
+  std::printf("slides: a = %.5f m/s² (g(sin θ − μ cos θ) = %.5f)\n", slide.acceleration, expected);
+  EXPECT_NEAR(slide.acceleration, expected, 0.02 * expected);
+  // tan θ < μ: stays where it is (the tangential spring's stretch only).
+  const double gentle = 10 * std::numbers::pi / 180;
+  const InclineResult stick = incline(gentle, mu, false);
+  std::printf("sticks: travel %.3e m over 5 ms, a = %.2e m/s²\n", stick.travel, stick.acceleration);
+  EXPECT_LT(std::abs(stick.travel), 1e-8);  // sliding would go 2e-5 m
+  // Free to turn, a solid sphere rolls without slip (tan θ < 7μ/2) at 5/7 g sin θ.
+  const InclineResult roll = incline(gentle, mu, true);
+  const double rolling = 5.0 / 7.0 * g * std::sin(gentle);
+  std::printf("rolls: a = %.5f m/s² (5/7 g sin θ = %.5f)\n", roll.acceleration, rolling);
+  EXPECT_NEAR(roll.acceleration, rolling, 0.02 * rolling);
+}
+
+// Grains dropped into a box (a floor and four side walls) under gravity, with friction and
+// damping: a pile that is still moving when the run stops.
+DemRun& fill_box(DemRun& run, int per_side) {
+  const double R = 1e-3, L = 2.4e-3 * per_side;
+  run.settings_.gravity = {0, 0, -9.81 * 100};
+  run.add_wall({0, 0, 0}, {0, 0, 1});
+  run.add_wall({0, 0, 0}, {1, 0, 0});
+  run.add_wall({L, 0, 0}, {-1, 0, 0});
+  run.add_wall({0, 0, 0}, {0, 1, 0});
+  run.add_wall({0, L, 0}, {0, -1, 0});
+  for (int k = 0; k < per_side; ++k)
+    for (int j = 0; j < per_side; ++j)
+      for (int i = 0; i < per_side; ++i) {
+        // A slight, reproducible offset per grain so that the pile is not a lattice.
+        const double jitter = 0.1e-3 * std::sin(1.7 * i + 2.3 * j + 3.1 * k);
+        run.add({1.2e-3 + 2.4e-3 * i + jitter, 1.2e-3 + 2.4e-3 * j - jitter, 1.2e-3 + 2.2e-3 * k}, {0.05, -0.03, 0},
+                R, 2600);
+      }
+  return run;
+}
+
+DemRun pile_run() {
+  return DemRun(3, "linear_spring", {{"modulus", 2e8}, {"friction", 0.5}, {"restitution", 0.6}});
+}
+
+TEST(ParticleContact, PileInABoxKeepsItsEnergyBalance) {
+  DemRun run = pile_run();
+  fill_box(run, 8);
+  double worst = 0;
+  for (int s = 0; s < 12000; ++s) {
+    run.step();
+    worst = std::max(worst, std::abs(run.solver().state().energy.relative_error()));
+  }
+  const EnergyLedger& E = run.solver().state().energy;
+  std::printf("pile of 512: %zu contacts, kinetic %.3e J, contact elastic %.3e J, dissipated %.3e J, gravity work "
+              "%.3e J, worst balance error %.2e\n",
+              run.contact().active_contacts(), E.value("kinetic"), E.value("particle_contact_elastic"),
+              E.value("particle_contact_dissipation"), E.value("external_work"), worst);
+  EXPECT_GT(run.contact().active_contacts(), 512u);  // it has settled into a pile
+  EXPECT_GT(E.value("particle_contact_dissipation"), 0.1 * E.value("external_work"));
+  EXPECT_LT(worst, 2e-3);
+}
+
+std::vector<double> pile_state(int threads, int steps, int restart_at) {
+  omp_set_num_threads(threads);
+  DemRun run = pile_run();
+  fill_box(run, 6);
+  const auto path = std::filesystem::temp_directory_path() / "shard_dem_restart.ckpt";
+  for (int s = 0; s < steps; ++s) {
+    if (s == restart_at) {
+      OutputCursor cursor;
+      write_checkpoint(path, run.model_, run.solver().state(), cursor, "pile");
+      DemRun again = pile_run();
+      fill_box(again, 6);
+      again.start();
+      read_checkpoint(path, again.model_, again.solver().state(), cursor, "pile");
+      again.solver().restored();
+      for (int r = s; r < steps; ++r) again.step();
+      std::filesystem::remove(path);
+      std::vector<double> out = again.part().x;
+      out.insert(out.end(), again.part().omega.begin(), again.part().omega.end());
+      out.push_back(again.solver().state().energy.value("particle_contact_dissipation"));
+      return out;
+    }
+    run.step();
+  }
+  std::vector<double> out = run.part().x;
+  out.insert(out.end(), run.part().omega.begin(), run.part().omega.end());
+  out.push_back(run.solver().state().energy.value("particle_contact_dissipation"));
+  return out;
+}
+
+TEST(ParticleContact, SameBitsForAnyThreadCountAndAcrossARestart) {
+  const int steps = 3000;
+  const std::vector<double> one = pile_state(1, steps, -1);
+  const std::vector<double> two = pile_state(2, steps, -1);
+  const std::vector<double> restarted = pile_state(2, steps, 1700);
+  omp_set_num_threads(1);
+  std::size_t differ_threads = 0, differ_restart = 0;
+  for (std::size_t i = 0; i < one.size(); ++i) {
+    differ_threads += one[i] != two[i];
+    differ_restart += one[i] != restarted[i];
+  }
+  std::printf("%zu values: %zu differ between 1 and 2 threads, %zu after a restart at step 1700\n", one.size(),
+              differ_threads, differ_restart);
+  EXPECT_EQ(differ_threads, 0u);
+  EXPECT_EQ(differ_restart, 0u);
+}
+
+}  // namespace
+}  // namespace shard
