@@ -20,7 +20,7 @@ inline double dot3(const double* a, const double* b) { return a[0] * b[0] + a[1]
 
 /// The relative velocity of body 2's contact point to body 1's (arms from the centres), split
 /// into its normal and tangential parts.
-void relative_motion(const double* va, const double* wa, const double* arm_a, const double* vb, const double* wb,
+[[gnu::always_inline]] inline void relative_motion(const double* va, const double* wa, const double* arm_a, const double* vb, const double* wb,
                      const double* arm_b, ContactKinematics& c, double* rel) {
   double spin_a[3], spin_b[3];
   cross(wa, arm_a, spin_a);
@@ -181,6 +181,7 @@ void ParticleContact::rebuild_list(Model& model) {
   torque_b_.resize(3 * m);
   stored_.resize(m);
   dissipated_.resize(m);
+  acting_.resize(m);
   x_at_build_ = x_;
   wall_offset_at_build_ = model.contact.wall_offset;
   stale_ = false;
@@ -254,11 +255,12 @@ void ParticleContact::evaluate_contacts(Model& model, double time, double dt) {
     const double* tail = history.data() + law_slots;
     if (!(ev.c.overlap > 0) && tail[0] == 0 && tail[1] == 0 && tail[2] == 0 && tail[3] == 0) {
       // Apart now and at the last step: nothing acts, nothing to book.
-      std::fill_n(fa, 3, 0.0), std::fill_n(ta, 3, 0.0), std::fill_n(tb, 3, 0.0);
+      acting_[k] = 0;
       stored_[k] = dissipated_[k] = 0;
       continue;
     }
     if (ev.c.overlap > 0) ++active;
+    acting_[k] = 1;
     double f[3];
     if (b >= 0) {
       for (int q = 0; q < 3; ++q) ev.arm_a[q] = radius_[a] * ev.c.normal[q], ev.arm_b[q] = -radius_[b] * ev.c.normal[q];
@@ -287,7 +289,7 @@ void ParticleContact::evaluate_contacts(Model& model, double time, double dt) {
   active_ = active;
 }
 
-void ParticleContact::geometry(std::size_t k, const std::vector<double>& wall_origin, ContactKinematics& c) const {
+inline void ParticleContact::geometry(std::size_t k, const std::vector<double>& wall_origin, ContactKinematics& c) const {
   const std::int32_t a = first_[k], b = second_[k];
   if (b >= 0) {
     double d[3], dist2 = 0;
@@ -313,6 +315,7 @@ void ParticleContact::scatter(Model& model) {
     double f[3] = {0, 0, 0}, t[3] = {0, 0, 0};
     for (std::int32_t e = incident_begin_[i]; e < incident_begin_[i + 1]; ++e) {
       const std::size_t k = static_cast<std::size_t>(incident_[e]) / 2;
+      if (!acting_[k]) continue;
       const bool side_b = incident_[e] & 1;
       const double* tk = side_b ? &torque_b_[3 * k] : &torque_a_[3 * k];
       for (int q = 0; q < 3; ++q) {
@@ -334,7 +337,7 @@ void ParticleContact::scatter(Model& model) {
   const int dim = model.dim();
   wall_force_.assign(settings_.walls.size() * dim, 0.0);
   for (std::size_t k = 0; k < first_.size(); ++k)
-    if (second_[k] < 0)
+    if (second_[k] < 0 && acting_[k])
       for (int q = 0; q < dim; ++q) wall_force_[dim * static_cast<std::size_t>(-1 - second_[k]) + q] -= force_[3 * k + q];
 }
 

@@ -92,6 +92,7 @@ class ParticleContact final : public TopologyListener {
   // b, the torques on a and b, the stored and dissipated energy.
   std::vector<std::int32_t> first_, second_;
   std::vector<double> force_, torque_a_, torque_b_, stored_, dissipated_;
+  std::vector<std::uint8_t> acting_;  ///< per interaction: 1 if it carries a force or books work
   // Per flat particle, its interactions in list order (CSR), with the side it is on.
   std::vector<std::int32_t> incident_begin_, incident_;
   std::vector<double> wall_force_;

@@ -12,14 +12,20 @@ const ParticleSet* ParticlePart::find_set(const std::string& set_name) const {
   return nullptr;
 }
 
-std::int32_t ParticlePart::add_particle(const double* position, double particle_radius, int particle_material) {
-  // A particle born from nothing: one remap, so that every declared field (the model's too)
-  // grows with it; then its own values.
+std::int32_t ParticlePart::add_particles(std::size_t n) {
+  // Particles born from nothing: one remap, so that every declared field (the model's too) grows
+  // with them at once.
   EntityRemap grow = EntityRemap::identity(count());
-  const std::int32_t i = grow.add_born(-1);
+  const auto first = static_cast<std::int32_t>(count());
+  for (std::size_t k = 0; k < n; ++k) grow.add_born(-1);
   std::int64_t next = 0;
   for (const auto existing : id) next = std::max(next, existing + 1);
   apply_particle_remap(*this, &grow, nullptr, &next);
+  return first;
+}
+
+std::int32_t ParticlePart::add_particle(const double* position, double particle_radius, int particle_material) {
+  const std::int32_t i = add_particles(1);
   for (int a = 0; a < dim; ++a) x[static_cast<std::size_t>(dim) * i + a] = position[a];
   radius[i] = particle_radius;
   material[i] = particle_material;

@@ -124,6 +124,8 @@ struct ParticlePart {
   const ParticleSet* find_set(const std::string& set_name) const;
   /// Appends a particle at rest (mass and inertia are the model's to set); returns its index.
   std::int32_t add_particle(const double* position, double particle_radius, int particle_material);
+  /// Appends n particles at rest at the origin in one remap; returns the index of the first.
+  std::int32_t add_particles(std::size_t n);
 
   /// The generic per-particle fields.
   template <class F>

@@ -31,12 +31,24 @@ class DemRun {
   /// thickness in 2D); returns its index.
   int add(std::vector<double> x, std::vector<double> v, double r, double rho) {
     ParticlePart& p = part();
-    const int i = p.add_particle(x.data(), r, 0);
+    if (reserved_ > 0) {
+      --reserved_;
+    } else {
+      p.add_particles(1);
+    }
+    const int i = static_cast<int>(p.count()) - 1 - reserved_;
+    for (int a = 0; a < p.dim; ++a) p.x[p.dim * i + a] = x[a];
+    p.radius[i] = r;
     const double m = p.dim == 3 ? rho * 4.0 / 3.0 * std::numbers::pi * r * r * r : rho * std::numbers::pi * r * r;
     p.mass[i] = m;
     p.inertia[i] = p.dim == 3 ? 0.4 * m * r * r : 0.5 * m * r * r;
     for (int a = 0; a < p.dim; ++a) p.v[p.dim * i + a] = v[a], p.x0[p.dim * i + a] = x[a];
     return i;
+  }
+  /// Room for n particles at once (the next n calls of add() fill it), for large samples.
+  void reserve(std::size_t n) {
+    part().add_particles(n);
+    reserved_ = static_cast<int>(n);
   }
   void add_wall(std::array<double, 3> point, std::array<double, 3> normal) {
     RigidWall w;
@@ -81,6 +93,7 @@ class DemRun {
   std::vector<std::unique_ptr<Material>> materials_;
   std::unique_ptr<ParticleContact> contact_;
   std::unique_ptr<ExplicitSolver> solver_;
+  int reserved_ = 0;
 };
 
 }  // namespace shard::testing
