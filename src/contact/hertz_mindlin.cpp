@@ -32,17 +32,6 @@ double damping_beta(double e) {
   return l / std::sqrt(l * l + std::numbers::pi * std::numbers::pi);
 }
 
-/// The tangential spring carried into the current tangent plane (its length kept), then advanced.
-void advance_tangential_spring(const ContactKinematics& c, double* xi) {
-  const double before = dot3(xi, xi);
-  const double xn = dot3(xi, c.normal);
-  for (int a = 0; a < 3; ++a) xi[a] -= xn * c.normal[a];
-  const double after = dot3(xi, xi);
-  if (after > 0)
-    for (int a = 0; a < 3; ++a) xi[a] *= std::sqrt(before / after);
-  for (int a = 0; a < 3; ++a) xi[a] += c.tangential_velocity[a] * c.dt;
-}
-
 ContactResponse hertz_mindlin(std::span<const double> p, const ContactKinematics& c, std::span<double> history) {
   ContactResponse out;
   double* xi = history.data();

@@ -27,18 +27,6 @@ double damping_fraction(std::span<const double> p) {
 
 double dot3(const double* a, const double* b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
-/// The tangential spring ξ carried into the current tangent plane (its length kept: the pair
-/// turned, the spring did not stretch), then advanced by the tangential motion of the step.
-void advance_tangential_spring(const ContactKinematics& c, double* xi) {
-  const double before = dot3(xi, xi);
-  const double xn = dot3(xi, c.normal);
-  for (int a = 0; a < 3; ++a) xi[a] -= xn * c.normal[a];
-  const double after = dot3(xi, xi);
-  if (after > 0)
-    for (int a = 0; a < 3; ++a) xi[a] *= std::sqrt(before / after);
-  for (int a = 0; a < 3; ++a) xi[a] += c.tangential_velocity[a] * c.dt;
-}
-
 ContactResponse linear_spring(std::span<const double> p, const ContactKinematics& c, std::span<double> history) {
   ContactResponse out;
   double* xi = history.data();

@@ -6,6 +6,17 @@
 
 namespace shard {
 
+void advance_tangential_spring(const ContactKinematics& c, double* xi) {
+  auto dot3 = [](const double* a, const double* b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; };
+  const double before = dot3(xi, xi);
+  const double xn = dot3(xi, c.normal);
+  for (int a = 0; a < 3; ++a) xi[a] -= xn * c.normal[a];
+  const double after = dot3(xi, xi);
+  if (after > 0)
+    for (int a = 0; a < 3; ++a) xi[a] *= std::sqrt(before / after);
+  for (int a = 0; a < 3; ++a) xi[a] += c.tangential_velocity[a] * c.dt;
+}
+
 namespace {
 
 std::map<std::string, PairLaw>& registry() {

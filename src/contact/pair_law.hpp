@@ -60,6 +60,11 @@ struct PairLaw {
   std::function<double(std::span<const double> params, const ContactKinematics&)> stiffness;
 };
 
+/// The tangential spring ξ of a sticking contact (3 values of history) carried into the current
+/// tangent plane with its length kept (the pair turned, the spring did not stretch), then
+/// advanced by the tangential motion of the step, ξ += v_t Δt. Shared by the laws with one.
+void advance_tangential_spring(const ContactKinematics& c, double* xi);
+
 /// Registers a law; false if the name is taken (each law's file registers itself once).
 bool register_pair_law(PairLaw law);
 const PairLaw* find_pair_law(const std::string& name);
