@@ -34,8 +34,9 @@ bool takes_part(const ParticleContactSettings& s, std::size_t part) {
   return s.parts.empty() || (part < s.parts.size() && s.parts[part]);
 }
 
-/// Values the contact keeps after the law's own history: the force on b and the stored energy.
-constexpr int kHistoryTail = 4;
+/// Values the contact keeps after the law's own history: the force on b, the stored energy, and
+/// the overlap it was born with (carried without force, given up as the bodies part).
+constexpr int kHistoryTail = 5;
 
 }  // namespace
 
@@ -116,12 +117,14 @@ void ParticleContact::rebuild_list(Model& model) {
   w_.resize(3 * n);
   radius_.resize(n);
   mass_.resize(n);
+  newborn_.resize(n);
   std::vector<std::int64_t> ids(n);
   double r_min = std::numeric_limits<double>::infinity(), r_max = 0;
   for (std::size_t i = 0; i < n; ++i) {
     const ParticlePart& part = model.particle_parts[part_of_[i]];
     radius_[i] = part.radius[index_in_part_[i]];
     mass_[i] = part.mass[index_in_part_[i]];
+    newborn_[i] = part.newborn[index_in_part_[i]];
     ids[i] = part.id[index_in_part_[i]];
     r_min = std::min(r_min, radius_[i]);
     r_max = std::max(r_max, radius_[i]);
@@ -252,14 +255,22 @@ void ParticleContact::evaluate_contacts(Model& model, double time, double dt) {
     ev.c.dim = dim;
     ev.c.dt = dt;
     geometry(k, wall_origin, ev.c);
-    const double* tail = history.data() + law_slots;
-    if (!(ev.c.overlap > 0) && tail[0] == 0 && tail[1] == 0 && tail[2] == 0 && tail[3] == 0) {
+    double* tail = history.data() + law_slots;
+    const bool fresh = tail[0] == 0 && tail[1] == 0 && tail[2] == 0 && tail[3] == 0 && tail[4] == 0;
+    if (ev.c.overlap > 0) ++active;
+    if (fresh && ev.c.overlap > 0 && (newborn_[a] || (b >= 0 && newborn_[b]))) tail[4] = ev.c.overlap;
+    if (tail[4] > 0) {
+      // A particle made overlapping its neighbours (a converted element's points) starts
+      // force-free: the overlap it was born with is carried, and given up as they part.
+      tail[4] = std::min(tail[4], std::max(ev.c.overlap, 0.0));
+      ev.c.overlap -= tail[4];
+    }
+    if (!(ev.c.overlap > 0) && fresh) {
       // Apart now and at the last step: nothing acts, nothing to book.
       acting_[k] = 0;
       stored_[k] = dissipated_[k] = 0;
       continue;
     }
-    if (ev.c.overlap > 0) ++active;
     acting_[k] = 1;
     double f[3];
     if (b >= 0) {
@@ -346,6 +357,12 @@ ParticleContactWork ParticleContact::add_forces(Model& model, double time, doubl
   if (list_is_stale(model)) rebuild_list(model);
   evaluate_contacts(model, time, dt);
   scatter(model);
+  // Particles are newborn for their first evaluation only.
+  if (std::find(newborn_.begin(), newborn_.end(), 1) != newborn_.end()) {
+    std::fill(newborn_.begin(), newborn_.end(), 0);
+    for (std::size_t p = 0; p < model.particle_parts.size(); ++p)
+      if (takes_part(settings_, p)) std::fill(model.particle_parts[p].newborn.begin(), model.particle_parts[p].newborn.end(), 0);
+  }
   return {deterministic_sum(stored_), deterministic_sum(dissipated_)};
 }
 

@@ -67,7 +67,7 @@ class ParticleContact final : public TopologyListener {
   /// it is computed once), times the safety factor.
   double stable_time_step(const Model& model);
   const ParticleContactSettings& settings() const { return settings_; }
-  /// Contacts (overlapping pairs and wall contacts) at the last call.
+  /// Contacts (pairs and wall contacts that overlap, whether or not they carry force) at the last call.
   std::size_t active_contacts() const { return active_; }
 
   void topology_changed(const Model&, const Remap&) override { stale_ = true; stable_dt_ = 0; }
@@ -86,6 +86,7 @@ class ParticleContact final : public TopologyListener {
   // Flat copies of the taking particles, 3 slots per vector whatever the dimension.
   std::vector<std::int32_t> part_of_, index_in_part_;
   std::vector<double> x_, v_, w_, radius_, mass_;
+  std::vector<std::uint8_t> newborn_;
   std::vector<double> x_at_build_, wall_offset_at_build_;
   std::vector<std::int32_t> flat_of_id_;  ///< particle id → flat index (−1: not taking part)
   // Per listed interaction: flat indices (b = −1 − wall for a wall), and per step the force on

@@ -157,10 +157,14 @@ void element_kinematics(const StepContext& ctx, Part& part, const NodeArrays& no
 /// (state_names() builds strings: not something to call per batch).
 struct MaterialLayout {
   std::size_t state_size;
-  int failure_index;
+  int failure_index;        ///< the state variable a point fails on (−1: never)
+  double failure_threshold;  ///< the value at which it has failed
   ElasticModuli moduli;
-  explicit MaterialLayout(const Material& m)
-      : state_size(m.state_size()), failure_index(m.failure_state_index()), moduli(m.elastic()) {}
+  MaterialLayout(const Material& m, const ErosionRule& rule)
+      : state_size(m.state_size()),
+        failure_index(rule.state_index >= 0 ? rule.state_index : m.failure_state_index()),
+        failure_threshold(rule.state_index >= 0 ? rule.threshold : 1.0),
+        moduli(m.elastic()) {}
 };
 
 template <class Kernel>
@@ -207,12 +211,13 @@ void update_points(const StepContext& ctx, Part& part, const Material& material,
   const int failure = layout.failure_index;
   if (failure < 0) return;
   const ElasticModuli& m = layout.moduli;
+  const int required = part.erosion.points_required(npts);
   for (std::size_t e = begin; e < end; ++e) {
     if (part.eroded[e]) continue;
-    bool failed = false;
+    int failed = 0;
     for (int q = 0; q < npts; ++q)
-      failed = failed || part.state[state_size * (npts * e + q) + static_cast<std::size_t>(failure)] >= 1.0;
-    if (!failed) continue;
+      failed += part.state[state_size * (npts * e + q) + static_cast<std::size_t>(failure)] >= layout.failure_threshold;
+    if (failed < required) continue;
     // Erosion: the element leaves the force computation; the elastic energy it stored,
     // p²/2K + s:s/4G per unit volume, leaves the body with it and is booked as eroded.
     part.eroded[e] = 1;
@@ -282,7 +287,7 @@ template <class Kernel>
 ForceSums run_part(Part& part, const Material& material, NodeArrays& nodes,
                    const StepContext& ctx) {
   constexpr int npts = Kernel::points;
-  const MaterialLayout layout(material);
+  const MaterialLayout layout(material, part.erosion);
   const double rho = material.density();
   const double c = material.wave_speed();
   const double hourglass_scale = 0.25 * part.hourglass_coefficient * rho * c;
@@ -336,7 +341,7 @@ template <class Kernel>
 ForceSums run_part_nodal_pressure(Part& part, const Material& material, NodeArrays& nodes,
                                   const StepContext& ctx) {
   constexpr int npe = Kernel::nodes;
-  const MaterialLayout layout(material);
+  const MaterialLayout layout(material, part.erosion);
   const double rho = material.density();
   const double c = material.wave_speed();
   const std::size_t ne = part.element_count(), nn = nodes.count();

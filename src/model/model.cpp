@@ -1,11 +1,19 @@
 #include "model/model.hpp"
 
+#include <cmath>
+
 #include <algorithm>
 #include <unordered_map>
 
 #include "core/error.hpp"
 
 namespace shard {
+
+int ErosionRule::points_required(int npts) const {
+  // A fraction of a fraction of a point rounds up: 25 % of 8 points is 2, of 1 point is 1.
+  const int n = static_cast<int>(std::ceil(point_fraction * npts - 1e-9));
+  return std::clamp(n, 1, npts);
+}
 
 const char* name_of(Formulation f) {
   switch (f) {

@@ -61,6 +61,21 @@ struct NodeArrays {
   }
 };
 
+/// When an element of a part fails, and what becomes of it (docs/theory/element_conversion.md).
+struct ErosionRule {
+  /// The history variable a point fails on (its index in the material's state) and the value at
+  /// which it has; −1: the material's own failure variable (Material::failure_state_index), at 1.
+  int state_index = -1;
+  double threshold = 1.0;
+  /// The fraction of the element's points that must have failed (0: one point is enough).
+  double point_fraction = 0;
+  /// A failed element becomes particles (one per integration point) that keep its mass and
+  /// momentum; false: it is deleted and its nodes keep their mass.
+  bool to_particles = false;
+  /// The points of an element with npts points that must have failed.
+  int points_required(int npts) const;
+};
+
 /// A part: elements of one kind and one material. Elements are stored grouped by colour (no two
 /// elements of one colour share a node) so that the force scatter can run in parallel with a
 /// fixed summation order: the same result for any thread count.
@@ -71,6 +86,7 @@ struct Part {
   double hourglass_coefficient = 0.1;
   VolumetricTreatment volumetric = VolumetricTreatment::standard;
   int state_size = 0;  ///< material history variables per point (Material::state_size())
+  ErosionRule erosion;
 
   std::vector<std::int64_t> id;            ///< stable element id, never reused
   std::vector<std::int32_t> connectivity;  ///< type->nodes per element

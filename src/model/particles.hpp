@@ -105,6 +105,11 @@ struct ParticlePart {
   std::vector<double> theta, dtheta, omega, torque;
   std::vector<double> inertia;
   std::vector<std::int32_t> material;  ///< index into the model's materials
+  /// The stable id of the element a particle was converted from (−1: not from an element).
+  std::vector<std::int64_t> origin_element;
+  /// 1 until the particle's first contact evaluation: its contacts at birth start force-free
+  /// (src/contact/particle_contact.hpp).
+  std::vector<std::uint8_t> newborn;
   /// dim + rot_dim per particle: prescribed translation and rotation components (an index into
   /// the run's prescribed velocities, src/solver/loads.hpp), −1 where free.
   std::vector<std::int32_t> prescribed;
@@ -145,6 +150,8 @@ struct ParticlePart {
     f(field("torque", Location::particle, r, Follow::share), torque);
     f(field("inertia", Location::particle, 1, Follow::share), inertia);
     f(field("material", Location::particle, 1), material);
+    f(field("origin_element", Location::particle, 1, Follow::copy, -1), origin_element);
+    f(field("newborn", Location::particle, 1), newborn);
     f(field("prescribed", Location::particle, d + r, Follow::copy, -1), prescribed);
   }
   /// The generic fields and the model's, each as (info, array) to a generic visitor.

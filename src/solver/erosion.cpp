@@ -2,19 +2,26 @@
 
 namespace shard {
 
+std::vector<EnergyTerm> ErosionCompaction::conversion_energy_terms() {
+  using G = EnergyGroup;
+  namespace r = energy_rank;
+  return {{"conversion_elastic", "elastic energy of elements converted to particles (they start stress-free)",
+           r::eroded + 1, {{G::dissipated, +1}}, ""},
+          {"conversion_kinetic", "kinetic energy of converted elements that their particles cannot carry",
+           r::eroded + 2, {{G::dissipated, +1}}, ""}};
+}
+
 void ErosionCompaction::run(Model& model, EventContext& context) {
   if (context.eroded_elements == compacted_) return;  // nothing eroded since the last compaction
   compacted_ = context.eroded_elements;
   Remap remap;
-  for (std::size_t p = 0; p < model.parts.size(); ++p) {
-    const Part& part = model.parts[p];
-    std::vector<std::uint8_t> keep(part.element_count(), 1);
-    bool any = false;
-    for (std::size_t e = 0; e < keep.size(); ++e)
-      if (part.eroded[e]) keep[e] = 0, any = true;
-    if (any) remap.elements.emplace(static_cast<int>(p), EntityRemap::keeping(keep));
-  }
+  const ConversionResult converted = conversion_.prepare(model, materials_, remap);
   context.topology.apply(model, remap);
+  conversion_.finish(model);
+  if (converted.elements == 0) return;
+  context.energy.at("conversion_kinetic") += converted.kinetic_taken - converted.kinetic_given;
+  converted_elements_ += converted.elements;
+  particles_made_ += converted.particles;
 }
 
 }  // namespace shard

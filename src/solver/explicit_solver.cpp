@@ -74,11 +74,15 @@ ExplicitSolver::ExplicitSolver(Model& model,
             E.find("stress_work"), E.find("viscosity"), E.find("hourglass"), E.find("plastic"),
             E.find("heat"),     E.find("fracture"),  E.find("eroded"),       E.find("particle_elastic"),
             E.find("particle_friction")};
+  if (std::any_of(model_.parts.begin(), model_.parts.end(), [](const Part& p) { return p.erosion.to_particles; })) {
+    for (auto& t : ErosionCompaction::conversion_energy_terms()) E.add(std::move(t));
+    terms_.conversion_elastic = E.find("conversion_elastic");
+  }
   topology_.add(*this);
   topology_changed(model_, Remap{});
   // The solver's own event: every run compacts eroded elements; the events a scenario asks for
   // (crack growth, the automata's contact search) are added after it.
-  if (settings_.compact_eroded_elements) own_events_.push_back(std::make_unique<ErosionCompaction>());
+  if (settings_.compact_eroded_elements) own_events_.push_back(std::make_unique<ErosionCompaction>(materials_));
   for (auto& e : own_events_) add_event(*e);
 }
 
@@ -175,7 +179,12 @@ void ExplicitSolver::add_element_forces(ForceSums& total) {
   part_caches_.resize(model_.parts.size());
   for (std::size_t p = 0; p < model_.parts.size(); ++p) {
     Part& part = model_.parts[p];
-    const ForceSums sums = add_internal_forces(part, *materials_[part.material], model_.nodes, ctx, part_caches_[p]);
+    ForceSums sums = add_internal_forces(part, *materials_[part.material], model_.nodes, ctx, part_caches_[p]);
+    if (part.erosion.to_particles) {
+      // Elements that become particles: their elastic energy is a conversion term, not erosion.
+      state_.energy[terms_.conversion_elastic] += sums.eroded_energy;
+      sums.eroded_energy = 0;
+    }
     if (sums.inverted_element >= 0) inverted_element(model_, part, sums.inverted_element, state_.time, state_.step);
     total.add(sums);
   }

@@ -135,7 +135,8 @@ class ExplicitSolver : private TopologyListener {
   struct Terms {
     int kinetic, initial, external_work, damping, stress_work, viscosity, hourglass, plastic, heat, fracture,
         eroded, particle_elastic, particle_friction, wall_work = -1, contact_work = -1, friction = -1,
-        particle_contact_elastic = -1, particle_contact_dissipation = -1, particle_wall_work = -1;
+        particle_contact_elastic = -1, particle_contact_dissipation = -1, particle_wall_work = -1,
+        conversion_elastic = -1;
   } terms_;
 };
 
