@@ -144,7 +144,13 @@ std::string check_scenario(const std::filesystem::path& file) {
         << ", material '" << sim.materials[part.material]->name() << "' ("
         << sim.materials[part.material]->model() << ")\n";
   for (const auto& pp : sim.model.particle_parts) {
-    const auto& ps = mca_state(pp);
+    const MCAState* automata = find_mca_state(pp);
+    if (!automata) {
+      out << "  particle part '" << pp.name << "': " << pp.count() << " particles (discrete elements"
+          << (pp.name.ends_with("_particles") ? ", debris of failed elements" : "") << ")\n";
+      continue;
+    }
+    const auto& ps = *automata;
     out << "  particle part '" << pp.name << "': " << pp.count() << " automata, " << ps.pairs.count()
         << " bonded pairs, materials:";
     for (const auto& m : ps.materials) out << " " << m.name;
@@ -223,7 +229,14 @@ class RunDriver {
       for (int k = 0; k < dim_; ++k) columns.push_back("reaction_" + g.name + "_" + axes[k]);
       for (int k = 0; k < dim_; ++k) columns.push_back("displacement_" + g.name + "_" + axes[k]);
     }
-    for (const auto& pp : sim_.model.particle_parts) columns.push_back("linked_bonds_" + pp.name);
+    for (const auto& pp : sim_.model.particle_parts) {
+      if (find_mca_state(pp)) {
+        columns.push_back("linked_bonds_" + pp.name);
+      } else {
+        columns.push_back("particles_" + pp.name);
+        columns.push_back("particle_mass_" + pp.name);
+      }
+    }
     if (cracks_) columns.push_back("fragments");
     // Contact forces per part pair and per wall: what load cells and crush tests measure.
     if (contact_) {
@@ -344,7 +357,16 @@ class RunDriver {
     for (const auto& pp : sim_.model.particle_parts) {
       // Pairs still fully linked (k_link = 1); the bonds broken so far are the drop from row 1.
       std::int64_t linked = 0;
-      const PairList& pairs = mca_state(pp).pairs;
+      const MCAState* automata = find_mca_state(pp);
+      if (!automata) {
+        // Plain particles: how many there are, and their mass.
+        double mass = 0;
+        for (double m : pp.mass) mass += m;
+        history_ << ',' << pp.count();
+        write_number(mass);
+        continue;
+      }
+      const PairList& pairs = automata->pairs;
       for (std::size_t p = 0; p < pairs.count(); ++p) linked += pairs.state_of(p) == PairState::linked;
       history_ << ',' << linked;
     }

@@ -9,6 +9,7 @@
 #include "model/assembly.hpp"
 #include "particle/mca_contact_update.hpp"
 #include "particle/packing.hpp"
+#include "solver/element_conversion.hpp"
 #include "solver/setup.hpp"
 
 namespace shard {
@@ -39,6 +40,7 @@ CrackGrowth* Simulation::crack_growth() {
 std::unique_ptr<ExplicitSolver> make_solver(Simulation& sim) {
   auto solver = std::make_unique<ExplicitSolver>(sim.model, sim.materials, sim.loads, sim.settings);
   solver->attach_contact(sim.contact_system ? &*sim.contact_system : nullptr);
+  solver->attach_particle_contact(sim.particle_contact.get());
   for (auto& e : sim.events) solver->add_event(*e);
   return solver;
 }
@@ -478,6 +480,67 @@ void build_contact(const Scenario& sc, Simulation& sim, const std::vector<int>& 
   sim.contact = cs;
 }
 
+/// Each part takes its material's erosion rule; a part whose elements become particles gets its
+/// (empty) debris particle part now, so that the model has the same parts from the start and a
+/// restart finds them.
+void erosion_rules(const Scenario& sc, Simulation& sim, const std::string& file) {
+  for (Part& part : sim.model.parts) {
+    const MaterialInput& mi = sc.materials[part.material];
+    if (!mi.erosion) continue;
+    const ErosionInput& in = *mi.erosion;
+    const std::string path = "materials." + mi.name + ".erosion";
+    const Material& material = *sim.materials[part.material];
+    const std::vector<std::string> names = material.state_names();
+    std::string listed;
+    for (const auto& n : names) listed += (listed.empty() ? "" : ", ") + n;
+    ErosionRule rule;
+    if (in.variable) {
+      const auto it = std::find(names.begin(), names.end(), *in.variable);
+      if (it == names.end())
+        throw InputError(file, in.line, path + ".variable",
+                         "model " + mi.model + " has no history variable '" + *in.variable + "' (its variables: " +
+                             (listed.empty() ? std::string("none") : listed) + ")");
+      rule.state_index = static_cast<int>(it - names.begin());
+      rule.threshold = in.value;
+    } else if (material.failure_state_index() < 0) {
+      throw InputError(file, in.line, path,
+                       "model " + mi.model + " has no failure variable of its own: name one with 'variable' (" +
+                           (listed.empty() ? std::string("it has no history variables") : "one of " + listed) + ")");
+    }
+    rule.point_fraction = in.fraction;
+    rule.to_particles = in.to_particles;
+    if (rule.to_particles) {
+      if (!sc.particle_contact)
+        throw InputError(file, in.line, path + ".on_failure",
+                         "on_failure: particles needs a particle_contact section (the law the particles collide with)");
+      if (sc.formulation == Formulation::axisymmetric)
+        throw InputError(file, in.line, path + ".on_failure", "conversion to particles is not available in axisymmetry yet");
+      (void)conversion_point_weights(*part.type);  // throws for a type it does not know
+      ParticlePart debris;
+      debris.name = part.name + "_particles";
+      debris.dim = sim.model.dim();
+      sim.model.particle_parts.push_back(std::move(debris));
+    }
+    part.erosion = rule;
+  }
+}
+
+void build_particle_contact(const Scenario& sc, Simulation& sim) {
+  if (!sc.particle_contact) return;
+  const ParticleContactInput& in = *sc.particle_contact;
+  ParticleContactSettings s;
+  s.law = find_pair_law(in.law);
+  s.params = pair_law_parameters(*s.law, in.parameters);
+  s.skin = in.skin;
+  s.time_step_safety = in.time_step_safety;
+  if (sim.contact) {
+    s.walls = sim.contact->walls;
+  } else {
+    for (const auto& wi : sc.walls) s.walls.push_back(rigid_wall(wi, sim.model));
+  }
+  sim.particle_contact = std::make_unique<ParticleContact>(std::move(s));
+}
+
 void solver_settings(const Scenario& sc, SolverSettings& s) {
   s.gravity = sc.gravity;
   s.end_time = sc.end_time;
@@ -507,6 +570,8 @@ Simulation build_simulation(Scenario& sc, const MeshData& mesh) {
   apply_pressures(sc, mesh, sim, sets, renumber);
   build_contact(sc, sim, cracking_parts(sc, sim));
   build_particle_parts(sc, sim);
+  erosion_rules(sc, sim, file);
+  build_particle_contact(sc, sim);
   solver_settings(sc, sim.settings);
 
   model.assign_ids();

@@ -24,6 +24,8 @@ struct Simulation {
   std::optional<ContactSettings> contact;  ///< contact between parts and/or rigid walls
   std::optional<ContactSystem> contact_system;  ///< built from `contact`; attach it to the solver
   std::optional<CrackGrowthSettings> cracking;  ///< discrete crack insertion
+  /// Contact of particles with each other and the walls (from `particle_contact`).
+  std::unique_ptr<ParticleContact> particle_contact;
   /// The step events the scenario asks for beyond the solver's own (crack growth).
   std::vector<std::unique_ptr<StepEvent>> events;
 

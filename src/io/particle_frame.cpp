@@ -6,7 +6,49 @@
 
 namespace shard {
 
+namespace {
+
+/// Particles without automata (discrete elements, debris of converted elements): points with
+/// their id, radius, motion, material and the element they come from.
+VtuGrid plain_particle_frame(const ParticlePart& ps, double time) {
+  const std::size_t n = ps.count();
+  const int D = ps.dim, R = ps.rot_dim();
+  VtuGrid g;
+  g.points.assign(3 * n, 0.0);
+  for (std::size_t i = 0; i < n; ++i) {
+    for (int k = 0; k < D; ++k) g.points[3 * i + k] = ps.x[D * i + k];
+    g.connectivity.push_back(static_cast<std::int64_t>(i));
+    g.offsets.push_back(static_cast<std::int64_t>(i + 1));
+    g.types.push_back(VtkCellType::vertex);
+  }
+  auto vector_field = [&](const char* name, const std::vector<double>& a, const std::vector<double>* base) {
+    VtuField f{name, 3, std::vector<double>(3 * n, 0.0)};
+    for (std::size_t i = 0; i < n; ++i)
+      for (int k = 0; k < D; ++k) f.values[3 * i + k] = a[D * i + k] - (base ? (*base)[D * i + k] : 0.0);
+    g.point_fields.push_back(std::move(f));
+  };
+  vector_field("displacement", ps.x, &ps.x0);
+  vector_field("velocity", ps.v, nullptr);
+  VtuField spin{"angular_velocity", R == 1 ? 1 : 3, std::vector<double>(ps.omega.begin(), ps.omega.end())};
+  g.point_fields.push_back(std::move(spin));
+  auto scalar = [&](const char* name, auto value) {
+    VtuField f{name, 1, std::vector<double>(n, 0.0)};
+    for (std::size_t i = 0; i < n; ++i) f.values[i] = value(i);
+    g.point_fields.push_back(std::move(f));
+  };
+  scalar("id", [&](std::size_t i) { return static_cast<double>(ps.id[i]); });
+  scalar("diameter", [&](std::size_t i) { return 2 * ps.radius[i]; });
+  scalar("mass", [&](std::size_t i) { return ps.mass[i]; });
+  scalar("material", [&](std::size_t i) { return static_cast<double>(ps.material[i]); });
+  scalar("origin_element", [&](std::size_t i) { return static_cast<double>(ps.origin_element[i]); });
+  g.field_data.push_back({"TimeValue", 1, {time}});
+  return g;
+}
+
+}  // namespace
+
 VtuGrid make_particle_frame(const ParticlePart& part, double time) {
+  if (!find_mca_state(part)) return plain_particle_frame(part, time);
   const ParticlePart& ps = part;
   const MCAState& mca = mca_state(part);
   const std::size_t n = ps.count(), np = mca.pairs.count();

@@ -9,6 +9,7 @@
 #include <sstream>
 #include <utility>
 
+#include "contact/pair_law.hpp"
 #include "core/error.hpp"
 #include "core/units.hpp"
 #include "io/scenario_particles.hpp"
@@ -56,6 +57,8 @@ KeyList top_keys() {
   k.add("contact", ValueKind::section,
         "penalty contact with Coulomb friction between parts (theory: docs/theory/contact.md)");
   k.add("walls", ValueKind::list, "rigid planes, fixed or moving, with friction").defaults_to("[]");
+  k.add("particle_contact", ValueKind::section,
+        "the contact law particles touch each other and the walls with (docs/theory/particle_contact.md)");
   k.add("cracking", ValueKind::section,
         "discrete crack insertion in tri3 parts of a cracking material (docs/theory/crack_insertion.md)");
   k.add("output", ValueKind::section, "frames, history, checkpoints").defaults_to("{}");
@@ -152,6 +155,45 @@ KeyList material_friction_keys() {
   k.add("materials", ValueKind::list, "two material names").must_be_given();
   k.quantity("static", dim::none, "static coefficient μ_s").at_least(0).must_be_given();
   k.quantity("dynamic", dim::none, "dynamic coefficient μ_d").at_least(0).defaults_to("static");
+  return k;
+}
+
+KeyList erosion_keys() {
+  KeyList k;
+  k.add("variable", ValueKind::text,
+        "the history variable a point fails on (a name from the model's state); default: the "
+        "model's own failure variable (Johnson–Cook: damage)");
+  k.quantity("value", dim::none, "the value at which a point has failed").defaults_to("1");
+  k.quantity("fraction", dim::none, "the fraction of the element's integration points that must have failed")
+      .above(0)
+      .at_most(1)
+      .defaults_to("0.25");
+  k.choice("on_failure", {"delete", "particles"},
+           "delete: the element leaves, its nodes keep the mass; particles: it becomes one particle "
+           "per integration point that keeps its mass and momentum")
+      .defaults_to("delete");
+  return k;
+}
+
+/// The dimension of a pair-law parameter from its declared unit.
+Dimension law_parameter_dimension(const std::string& unit) {
+  if (unit == "Pa") return dim::pressure;
+  if (unit == "N/m") return dim::force / dim::length;
+  return dim::none;
+}
+
+KeyList particle_contact_keys() {
+  KeyList k;
+  k.choice("law", pair_law_names(), "the contact law of particles (docs/theory/contact_laws.md)").must_be_given();
+  k.quantity("skin", dim::length, "neighbour-list skin (0: a tenth of the smallest radius)").at_least(0).defaults_to("0");
+  k.quantity("time_step_safety", dim::none, "fraction of the stiffest contact's stable step 2/ω")
+      .above(0)
+      .at_most(1)
+      .defaults_to("0.08");
+  // Every law's parameters (each checked against the chosen law once it is known).
+  for (const auto& name : pair_law_names())
+    for (const auto& p : find_pair_law(name)->parameters)
+      if (!k.find(p.name)) k.quantity(p.name, law_parameter_dimension(p.unit), p.description);
   return k;
 }
 
@@ -328,6 +370,7 @@ class ScenarioReader {
     loads();
     contact();
     walls();
+    particle_contact();
     cracking();
     scenario_detail::read_particle_sections(top, sc);
     output();
@@ -453,8 +496,9 @@ class ScenarioReader {
     const KeyList keys = material_keys(*info);
     Section s(body, file, path, keys, sc.resolved["materials"][mat.name], mat.line);
     s.choice("model");
+    if (s.has("erosion")) mat.erosion = erosion(s, mat.name);
     for (const auto& spec : keys.keys()) {
-      if (spec.name == "model") continue;
+      if (spec.name == "model" || spec.name == "erosion") continue;
       if (spec.kind == ValueKind::number) {
         if (s.has(spec.name) || spec.default_text) mat.values.numbers[spec.name] = s.number(spec.name);
       } else if (s.has(spec.name)) {
@@ -635,6 +679,49 @@ class ScenarioReader {
   }
   sc.resolved["loads"] = load_out;
 
+  }
+
+  ErosionInput erosion(const Section& material, const std::string& name) {
+    const KeyList keys = erosion_keys();
+    Section e(material.value("erosion"), file, "materials." + name + ".erosion", keys,
+              sc.resolved["materials"][name]["erosion"], material.line("erosion"));
+    ErosionInput in;
+    in.line = e.line();
+    if (e.has("variable")) in.variable = e.text("variable");
+    in.value = e.number("value");
+    in.fraction = e.number("fraction");
+    in.to_particles = e.choice("on_failure").value_or("delete") == "particles";
+    return in;
+  }
+
+  void particle_contact() {
+    if (!top.has("particle_contact")) return;
+    const KeyList keys = particle_contact_keys();
+    Section c(top.value("particle_contact"), file, "particle_contact", keys, sc.resolved["particle_contact"],
+              top.line("particle_contact"));
+    ParticleContactInput in;
+    in.line = c.line();
+    in.law = *c.choice("law");
+    in.skin = c.number("skin");
+    in.time_step_safety = c.number("time_step_safety");
+    const PairLaw& law = *find_pair_law(in.law);
+    for (const auto& spec : keys.keys()) {
+      if (spec.name == "law" || spec.name == "skin" || spec.name == "time_step_safety" || !c.has(spec.name)) continue;
+      const bool own = std::any_of(law.parameters.begin(), law.parameters.end(),
+                                   [&](const PairLawParameter& p) { return p.name == spec.name; });
+      if (!own) {
+        std::string names;
+        for (const auto& p : law.parameters) names += (names.empty() ? "" : ", ") + p.name;
+        c.fail(spec.name, "'" + spec.name + "' is not a parameter of the law " + in.law + " (its parameters: " + names + ")");
+      }
+      in.parameters.emplace_back(spec.name, c.number(spec.name));
+    }
+    try {
+      (void)pair_law_parameters(law, in.parameters);
+    } catch (const std::invalid_argument& e) {
+      throw InputError(file, in.line, "particle_contact", e.what());
+    }
+    sc.particle_contact = in;
   }
 
   void contact() {

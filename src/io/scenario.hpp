@@ -19,10 +19,30 @@
 
 namespace shard {
 
+/// materials.<name>.erosion: when an element of the material fails, and what becomes of it.
+struct ErosionInput {
+  std::optional<std::string> variable;  ///< a history variable of the model; absent: its own failure variable
+  double value = 1.0;
+  double fraction = 0.25;               ///< of the element's integration points
+  bool to_particles = false;            ///< on_failure: particles (else delete)
+  int line = 0;
+};
+
 struct MaterialInput {
   std::string name;
   std::string model;
   ParameterValues values;
+  std::optional<ErosionInput> erosion;
+  int line = 0;
+};
+
+/// particle_contact: the law particles (debris of converted elements, discrete elements) touch
+/// each other and the rigid walls with.
+struct ParticleContactInput {
+  std::string law;
+  std::vector<std::pair<std::string, double>> parameters;  ///< the law's, as given (SI)
+  double skin = 0;
+  double time_step_safety = 0.08;
   int line = 0;
 };
 
@@ -182,6 +202,7 @@ struct Scenario {
   std::optional<ContactInput> contact;
   std::optional<CrackingInput> cracking;
   std::vector<WallInput> walls;
+  std::optional<ParticleContactInput> particle_contact;
   OutputSettings output;
 
   YAML::Node resolved;  ///< the scenario as resolved (SI, defaults filled in)

@@ -39,6 +39,9 @@ KeyList material_keys(const MaterialModelInfo& info) {
   KeyList keys;
   keys.choice("model", MaterialRegistry::names(), "constitutive model").must_be_given();
   keys.quantity("density", dim::density, "mass density ρ").above(0).must_be_given();
+  keys.add("erosion", ValueKind::section,
+           "when an element fails and what becomes of it: {variable, value, fraction, on_failure: "
+           "delete | particles} (docs/theory/element_conversion.md)");
   const KeyList own = info.parameters();
   for (const auto& k : own.keys()) keys.append(k);
   return keys;

@@ -143,6 +143,8 @@ double MCAState::stored_energy(const ParticlePart& part) const { return mca_elas
 
 double MCAState::stable_time_step(const ParticlePart& part) const { return mca_stable_time_step(part); }
 
+const MCAState* find_mca_state(const ParticlePart& part) { return dynamic_cast<const MCAState*>(part.model.get()); }
+
 MCAState& mca_state(ParticlePart& part) {
   auto* s = dynamic_cast<MCAState*>(part.model.get());
   if (!s) throw std::logic_error("particle part '" + part.name + "' holds no movable cellular automata");

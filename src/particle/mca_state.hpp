@@ -167,6 +167,8 @@ class MCAState final : public ParticleModel {
 
 /// The MCA state of a part (throws std::logic_error if the part's model is another).
 MCAState& mca_state(ParticlePart& part);
+/// The part's automata state, or null for particles of another kind (discrete elements, debris).
+const MCAState* find_mca_state(const ParticlePart& part);
 const MCAState& mca_state(const ParticlePart& part);
 
 /// A new particle part of automata of the given dimension and materials, with n automata at rest
