@@ -401,6 +401,9 @@ class RunDriver {
     const auto& s = solver_.state();
     const double steps = static_cast<double>(s.step - first_step_);
     const double elements = static_cast<double>(sim_.model.element_count());
+    // Particles now (conversion adds them as the run goes), as the elements are counted now.
+    particles_ = 0;
+    for (const auto& pp : sim_.model.particle_parts) particles_ += pp.count();
     std::ostringstream j;
     j.precision(10);
     j << "{\n  \"status\": " << json_string(status_) << ",\n  \"message\": " << json_string(message_)
