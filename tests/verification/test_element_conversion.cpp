@@ -2,12 +2,15 @@
 // carried over exactly, the kinetic energy the particles keep against its closed form, the
 // ledger closing, the fraction of failed points that converts, and no energy at creation.
 #include <gtest/gtest.h>
+#include <omp.h>
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <numbers>
 
 #include "contact/particle_contact.hpp"
+#include "io/checkpoint.hpp"
 #include "material/johnson_cook.hpp"
 #include "material/linear_elastic.hpp"
 #include "model/structured_mesh.hpp"
@@ -15,6 +18,7 @@
 #include "solver/element_conversion.hpp"
 #include "solver/explicit_solver.hpp"
 #include "solver/setup.hpp"
+#include "support/model_runner.hpp"
 
 namespace shard {
 namespace {
@@ -224,6 +228,157 @@ TEST(ElementConversion, ParticlesStartForceFreeWhereTheyOverlap) {
   EXPECT_GT(overlapping, 0u);  // they do overlap
   EXPECT_LT(worst, 1e-6);
   EXPECT_LT(std::abs(solver.state().energy.relative_error()), 1e-10);
+}
+
+struct Pulled {
+  double worst_mass = 0, worst_balance = 0, eroded = 0, conversion = 0, kinetic_jump = 0;
+  std::size_t particles = 0;
+  std::int64_t failed = 0;
+};
+
+// A distorted Johnson–Cook copper strip pulled apart at 25 m/s (the erosion test's), its failed
+// elements deleted or turned into particles in contact with each other.
+struct Strip {
+  testing::ElasticRun run;
+  ParticleContact contact;
+  std::unique_ptr<ExplicitSolver> solver;
+
+  static testing::ElasticRun make_run() {
+    BoxMesh box;
+    box.element = "tri3";
+    box.cells = {16, 6, 1};
+    box.size = {16e-3, 6e-3, 0};
+    box.distortion = 0.3;
+    JohnsonCookParameters p;
+    p.moduli = {140e9, 46e9};
+    p.A = 90e6, p.B = 292e6, p.n = 0.31;
+    p.damage = true;
+    p.D1 = 0.05, p.D2 = 0.0, p.D3 = 0.0;
+    return testing::ElasticRun(make_box_model(Formulation::plane_strain, box), std::make_unique<JohnsonCook>("cu", 8960, p));
+  }
+  static ParticleContactSettings law() {
+    ParticleContactSettings cs;
+    cs.law = find_pair_law("hertz_mindlin");
+    cs.params = pair_law_parameters(*cs.law, {{"young", 120e9}, {"poisson", 0.34}, {"restitution", 0.5}});
+    return cs;
+  }
+  explicit Strip(bool to_particles) : run(make_run()), contact(law()) {
+    run.model.thickness = 1e-3;
+    run.model.parts[0].erosion.to_particles = to_particles;
+    if (to_particles) {  // the debris part exists from the start, as a scenario makes it
+      ParticlePart debris;
+      debris.name = run.model.parts[0].name + "_particles";
+      debris.dim = 2;
+      run.model.particle_parts.push_back(std::move(debris));
+    }
+    run.prescribe("xmin", 0, 0.0);
+    run.prescribe("ymin", 1, 0.0);
+    run.loads.tables.push_back({{0.0, 0.2 * duration, duration}, {0.0, 25.0, 25.0}});
+    for (auto n : run.model.find_node_set("xmax")->nodes)
+      prescribe_node(run.model, run.loads, n, 0, static_cast<int>(run.loads.tables.size()) - 1);
+    run.settings.end_time = duration;
+    run.model.assign_ids();
+    solver = std::make_unique<ExplicitSolver>(run.model, run.materials, run.loads, run.settings);
+    if (to_particles) solver->attach_particle_contact(&contact);
+  }
+  double mass() const {
+    double m = 0;
+    for (double v : run.model.nodes.mass) m += v;
+    for (const auto& pp : run.model.particle_parts)
+      for (double v : pp.mass) m += v;
+    return m;
+  }
+  /// Node and particle positions and the ledger's columns, for bitwise comparisons.
+  std::vector<double> state() const {
+    std::vector<double> out = run.model.nodes.x;
+    for (const auto& pp : run.model.particle_parts) out.insert(out.end(), pp.x.begin(), pp.x.end());
+    const auto values = solver->state().energy.column_values();
+    out.insert(out.end(), values.begin(), values.end());
+    return out;
+  }
+  static constexpr double duration = 60e-6;
+};
+
+Pulled pulled_apart(bool to_particles) {
+  Strip strip(to_particles);
+  ExplicitSolver& solver = *strip.solver;
+  solver.initialise();
+  const double m0 = strip.mass();
+  Pulled out;
+  while (!solver.finished()) {
+    solver.compute_forces();
+    solver.advance();
+    out.worst_mass = std::max(out.worst_mass, std::abs(strip.mass() - m0) / m0);
+    if (solver.state().time > 0.1 * Strip::duration)
+      out.worst_balance = std::max(out.worst_balance, std::abs(solver.state().energy.relative_error()));
+  }
+  const EnergyLedger& E = solver.state().energy;
+  out.eroded = E.value("eroded");
+  out.conversion = E.value("conversion_elastic") + E.value("conversion_kinetic");
+  out.particles = strip.run.model.particle_parts.empty() ? 0 : strip.run.model.particle_parts[0].count();
+  out.failed = solver.state().eroded_elements;
+  return out;
+}
+
+/// The strip converting, on `threads` threads; with a restart from a checkpoint as soon as
+/// `restart_after` particles have been made, when it is positive (more are made after it).
+std::vector<double> strip_state(int threads, std::size_t restart_after, std::size_t* at_restart = nullptr) {
+  omp_set_num_threads(threads);
+  Strip strip(true);
+  strip.solver->initialise();
+  while (!strip.solver->finished()) {
+    strip.solver->compute_forces();
+    strip.solver->advance();
+    const std::size_t made = strip.run.model.particle_parts[0].count();
+    if (restart_after > 0 && made >= restart_after) {
+      if (at_restart) *at_restart = made;
+      const auto path = std::filesystem::temp_directory_path() / "shard_conversion_restart.ckpt";
+      OutputCursor cursor;
+      write_checkpoint(path, strip.run.model, strip.solver->state(), cursor, "strip");
+      Strip again(true);
+      read_checkpoint(path, again.run.model, again.solver->state(), cursor, "strip");
+      again.solver->restored();
+      std::filesystem::remove(path);
+      while (!again.solver->finished()) {
+        again.solver->compute_forces();
+        again.solver->advance();
+      }
+      return again.state();
+    }
+  }
+  return strip.state();
+}
+
+TEST(ElementConversion, SameBitsForAnyThreadCountAndAcrossARestartWhileConverting) {
+  std::size_t made_before = 0;
+  const std::vector<double> one = strip_state(1, 0), two = strip_state(2, 0), restarted = strip_state(2, 5, &made_before);
+  omp_set_num_threads(1);
+  ASSERT_EQ(one.size(), two.size());
+  ASSERT_EQ(one.size(), restarted.size());
+  std::size_t threads = 0, restart = 0;
+  for (std::size_t i = 0; i < one.size(); ++i) threads += one[i] != two[i], restart += one[i] != restarted[i];
+  std::printf("%zu values: %zu differ between 1 and 2 threads, %zu after a restart with %zu particles made\n",
+              one.size(), threads, restart, made_before);
+  EXPECT_GE(made_before, 5u);
+  EXPECT_EQ(threads, 0u);
+  EXPECT_EQ(restart, 0u);
+}
+
+TEST(ElementConversion, ErodingStripKeepsItsMassAndEnergyBalance) {
+  const Pulled particles = pulled_apart(true), deleted = pulled_apart(false);
+  std::printf("to particles: %lld failed, %zu particles, mass drift %.1e, worst balance %.2e, conversion %.3e J; "
+              "deleted: %lld failed, mass drift %.1e (nodes keep it), eroded %.3e J, worst balance %.2e\n",
+              static_cast<long long>(particles.failed), particles.particles, particles.worst_mass,
+              particles.worst_balance, particles.conversion, static_cast<long long>(deleted.failed), deleted.worst_mass,
+              deleted.eroded, deleted.worst_balance);
+  EXPECT_GT(particles.failed, 2);
+  EXPECT_EQ(particles.particles, static_cast<std::size_t>(particles.failed));  // tri3: one point each
+  EXPECT_LT(particles.worst_mass, 1e-12);
+  EXPECT_LT(particles.worst_balance, 0.02);
+  EXPECT_EQ(particles.eroded, 0.0);
+  EXPECT_GT(particles.conversion, 0.0);
+  EXPECT_GT(deleted.eroded, 0.0);  // plain erosion books its jump as eroded energy
+  EXPECT_EQ(deleted.particles, 0u);
 }
 
 }  // namespace
