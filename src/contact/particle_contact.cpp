@@ -97,11 +97,19 @@ bool ParticleContact::list_is_stale(const Model& model) const {
   return 2 * moved > skin_ || moved + std::sqrt(wall_moved2) > skin_;
 }
 
+bool ParticleContact::walls_only(std::int32_t part) const {
+  const auto p = static_cast<std::size_t>(part);
+  return p < settings_.walls_only.size() && settings_.walls_only[p];
+}
+
 void ParticleContact::rebuild_list(Model& model) {
   // The taking particles, flat, in part order.
   part_of_.clear();
   index_in_part_.clear();
-  flat_of_id_.assign(static_cast<std::size_t>(model.next_particle_id), -1);
+  std::int64_t id_end = model.next_particle_id;
+  for (const ParticlePart& part : model.particle_parts)
+    for (const std::int64_t id : part.id) id_end = std::max(id_end, id + 1);
+  flat_of_id_.assign(static_cast<std::size_t>(id_end), -1);
   for (std::size_t p = 0; p < model.particle_parts.size(); ++p) {
     if (!takes_part(settings_, p)) continue;
     const ParticlePart& part = model.particle_parts[p];
@@ -138,6 +146,7 @@ void ParticleContact::rebuild_list(Model& model) {
     for (std::size_t i = 0; i < n; ++i)
       grid_.for_near(&x_[3 * i], [&](std::int32_t j) {
         if (ids[j] <= ids[i]) return;
+        if (part_of_[i] == part_of_[j] && walls_only(part_of_[i])) return;
         double d2 = 0;
         for (int a = 0; a < 3; ++a) d2 += (x_[3 * j + a] - x_[3 * i + a]) * (x_[3 * j + a] - x_[3 * i + a]);
         const double reach = radius_[i] + radius_[j] + skin_;

@@ -32,6 +32,9 @@ struct ParticleContactSettings {
   double skin = 0;
   /// Per particle part: 1 if its particles take part. Empty: every part.
   std::vector<char> parts;
+  /// Per particle part: 1 if its particles touch walls and other parts' particles but not each
+  /// other (bonded automata: their model holds their interactions). Empty: none.
+  std::vector<char> walls_only;
   /// Rigid planes (the same list, in the same order, as the finite-element contact's, whose
   /// displacements Model::contact.wall_offset holds).
   std::vector<RigidWall> walls;
@@ -76,6 +79,7 @@ class ParticleContact final : public TopologyListener {
   /// Where the listed particles are in the flat arrays (index over the taking parts).
   void gather(Model& model);
   bool list_is_stale(const Model& model) const;
+  bool walls_only(std::int32_t part) const;
   void rebuild_list(Model& model);
   void evaluate_contacts(Model& model, double time, double dt);
   /// Overlap and normal of listed interaction k at the gathered positions.

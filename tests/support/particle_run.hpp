@@ -130,10 +130,14 @@ class ParticleRun {
 
   Model& model() { return model_; }
 
+  /// Contact of the automata with rigid walls (and other parts), attached when the solver starts.
+  void set_particle_contact(ParticleContact* contact) { particle_contact_ = contact; }
+
   /// Builds and initialises the solver (done by the first step otherwise); after the conditions.
   void start() {
     if (solver_) return;
     solver_ = std::make_unique<ExplicitSolver>(model_, materials_, loads_, settings_);
+    if (particle_contact_) solver_->attach_particle_contact(particle_contact_);
     if (contact_update_) solver_->add_event(update_);
     solver_->initialise();
   }
@@ -146,6 +150,7 @@ class ParticleRun {
   std::vector<VelocityBC> bcs_;
   std::vector<double> group_force_;
   bool contact_update_ = false;
+  ParticleContact* particle_contact_ = nullptr;
   MCAContactUpdate update_;
 };
 
