@@ -957,6 +957,12 @@ std::vector<SchemaSection> scenario_schema() {
           {"contact", "contact between parts", contact_keys()},
           {"contact.material_friction[]", "friction of a pair of materials", material_friction_keys()},
           {"walls[]", "a rigid plane", wall_keys()},
+          {"particle_contact", "the law particles touch each other and the walls with; the law's own parameters "
+                               "(linear_spring: modulus, tangential_ratio, friction, damping_ratio or restitution, "
+                               "limit_damping; hertz_mindlin: young, poisson, restitution, friction, limit_damping)",
+           particle_contact_keys()},
+          {"materials.<name>.erosion", "when an element fails and what becomes of it (any material model)",
+           erosion_keys()},
           {"cracking", "discrete crack insertion", cracking_keys()},
           {"output", "what is written to the output folder", output_keys()}};
   for (auto& section : scenario_detail::particle_schema()) schema.push_back(std::move(section));
