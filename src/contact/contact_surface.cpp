@@ -16,6 +16,7 @@ struct Face {
   std::array<std::int32_t, 4> nodes;  // oriented
   int count;                           // 2, 3 or 4 nodes
   std::int32_t part;
+  std::int64_t id;                     // owning element's stable id × 16 + local face × 2
 };
 
 struct Key {
@@ -49,9 +50,11 @@ ContactSurface extract_contact_surface(const Model& model) {
     for (std::size_t e = 0; e < part.element_count(); ++e) {
       if (!part.eroded.empty() && part.eroded[e]) continue;  // its faces left with it
       const std::int32_t* cn = &part.connectivity[npe * e];
-      for (const auto& local : part.type->faces) {
+      for (std::size_t lf = 0; lf < part.type->faces.size(); ++lf) {
+        const auto& local = part.type->faces[lf];
         const int count = static_cast<int>(local.size());
-        Face f{{-1, -1, -1, -1}, count, static_cast<std::int32_t>(p)};
+        const std::int64_t owner = part.id.empty() ? static_cast<std::int64_t>(e) : part.id[e];
+        Face f{{-1, -1, -1, -1}, count, static_cast<std::int32_t>(p), owner * 16 + static_cast<std::int64_t>(lf) * 2};
         for (int i = 0; i < count; ++i) f.nodes[i] = cn[local[i]];
         Key k{f.nodes};
         // All four slots: the unused ones (−1) sort first alike for every face of that size.
@@ -73,11 +76,12 @@ ContactSurface extract_contact_surface(const Model& model) {
   for (std::size_t f = 0; f < faces.size(); ++f) {
     if (!boundary[f]) continue;
     const Face& face = faces[f];
-    auto emit = [&](std::int32_t a, std::int32_t b, std::int32_t c) {
+    auto emit = [&](std::int32_t a, std::int32_t b, std::int32_t c, int half = 0) {
       s.facets.push_back(a);
       s.facets.push_back(b);
       if (dim == 3) s.facets.push_back(c);
       s.facet_part.push_back(face.part);
+      s.facet_id.push_back(face.id + half);
     };
     if (face.count == 2) {
       emit(face.nodes[0], face.nodes[1], -1);
@@ -91,7 +95,7 @@ ContactSurface extract_contact_surface(const Model& model) {
       for (int i = 0; i < 2; ++i) area[face.nodes[i]] += 0.5 * length;
     } else {
       emit(face.nodes[0], face.nodes[1], face.nodes[2]);
-      if (face.count == 4) emit(face.nodes[0], face.nodes[2], face.nodes[3]);
+      if (face.count == 4) emit(face.nodes[0], face.nodes[2], face.nodes[3], 1);
       const std::int32_t* n = face.nodes.data();
       const double* a = &X[3 * n[0]];
       const double* c = &X[3 * n[2]];

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <unordered_map>
 
 #include "core/deterministic_sum.hpp"
 
@@ -28,6 +29,38 @@ inline double dot3(const double* a, const double* b) { return a[0] * b[0] + a[1]
   for (int k = 0; k < 3; ++k) rel[k] = vb[k] + spin_b[k] - va[k] - spin_a[k];
   c.normal_velocity = dot3(rel, c.normal);
   for (int k = 0; k < 3; ++k) c.tangential_velocity[k] = rel[k] - c.normal_velocity * c.normal[k];
+}
+
+/// Barycentric weights of the point of triangle (a, b, c) closest to p (Ericson 2005, §5.1.5).
+void closest_on_triangle(const double* a, const double* b, const double* c, const double* p, double* w) {
+  const double ab[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, ac[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+  const double ap[3] = {p[0] - a[0], p[1] - a[1], p[2] - a[2]};
+  const double d1 = dot3(ab, ap), d2 = dot3(ac, ap);
+  auto set = [w](double u, double v, double t) { w[0] = u, w[1] = v, w[2] = t; };
+  if (d1 <= 0 && d2 <= 0) return set(1, 0, 0);
+  const double bp[3] = {p[0] - b[0], p[1] - b[1], p[2] - b[2]};
+  const double d3 = dot3(ab, bp), d4 = dot3(ac, bp);
+  if (d3 >= 0 && d4 <= d3) return set(0, 1, 0);
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) {
+    const double t = d1 / (d1 - d3);
+    return set(1 - t, t, 0);
+  }
+  const double cp[3] = {p[0] - c[0], p[1] - c[1], p[2] - c[2]};
+  const double d5 = dot3(ab, cp), d6 = dot3(ac, cp);
+  if (d6 >= 0 && d5 <= d6) return set(0, 0, 1);
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) {
+    const double t = d2 / (d2 - d6);
+    return set(1 - t, 0, t);
+  }
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {
+    const double t = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+    return set(0, 1 - t, t);
+  }
+  const double denom = 1 / (va + vb + vc), v = vb * denom, u = vc * denom;
+  set(1 - v - u, v, u);
 }
 
 bool takes_part(const ParticleContactSettings& s, std::size_t part) {
@@ -94,7 +127,84 @@ bool ParticleContact::list_is_stale(const Model& model) const {
   // Two particles close by at most twice the largest move, a particle and a wall by the sum of
   // theirs: either within the skin keeps every contact in the list.
   const double moved = std::sqrt(moved2);
-  return 2 * moved > skin_ || moved + std::sqrt(wall_moved2) > skin_;
+  return 2 * moved > skin_ || moved + std::sqrt(wall_moved2) > skin_ || facets_moved(model);
+}
+
+bool ParticleContact::facets_moved(const Model& model) const {
+  // A particle and a facet close by at most the particle's move plus the facet's: half the skin
+  // each (the particles' half is checked by the caller).
+  const int dim = model.dim();
+  double moved2 = 0;
+  const std::size_t n = surface_.nodes.size();
+  if (facet_x_at_build_.size() != n * dim) return false;
+  for (std::size_t s = 0; s < n; ++s) {
+    double d2 = 0;
+    for (int a = 0; a < dim; ++a) {
+      const double d = model.nodes.x[dim * surface_.nodes[s] + a] - facet_x_at_build_[dim * s + a];
+      d2 += d * d;
+    }
+    moved2 = std::max(moved2, d2);
+  }
+  return 2 * std::sqrt(moved2) > skin_;
+}
+
+void ParticleContact::closest_on_facet(const Model& model, std::size_t f, const double* x, double* q,
+                                       double* weights) const {
+  const int dim = model.dim();
+  const std::int32_t* nodes = &surface_.facets[dim * f];
+  double p[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
+  for (int i = 0; i < dim; ++i)
+    for (int a = 0; a < dim; ++a) p[i][a] = model.nodes.x[dim * nodes[i] + a];
+  if (dim == 2) {
+    const double e[3] = {p[1][0] - p[0][0], p[1][1] - p[0][1], 0};
+    const double len2 = e[0] * e[0] + e[1] * e[1];
+    double t = len2 > 0 ? ((x[0] - p[0][0]) * e[0] + (x[1] - p[0][1]) * e[1]) / len2 : 0.0;
+    t = std::clamp(t, 0.0, 1.0);
+    weights[0] = 1 - t, weights[1] = t, weights[2] = 0;
+  } else {
+    closest_on_triangle(p[0], p[1], p[2], x, weights);
+  }
+  for (int a = 0; a < 3; ++a) q[a] = weights[0] * p[0][a] + weights[1] * p[1][a] + weights[2] * p[2][a];
+}
+
+void ParticleContact::facet_candidates(const Model& model, const std::vector<std::int64_t>& ids, double r_max,
+                                       std::vector<InteractionKey>& out) {
+  if (!settings_.mesh || model.parts.empty()) return;
+  if (surface_stale_) {
+    surface_ = extract_contact_surface(model);
+    surface_stale_ = false;
+  }
+  const int dim = model.dim();
+  const std::size_t nf = surface_.facet_count(), n = ids.size();
+  facet_x_at_build_.resize(surface_.nodes.size() * dim);
+  for (std::size_t s = 0; s < surface_.nodes.size(); ++s)
+    for (int a = 0; a < dim; ++a) facet_x_at_build_[dim * s + a] = model.nodes.x[dim * surface_.nodes[s] + a];
+  if (nf == 0 || n == 0) return;
+  // Facet boxes grown by the reach of the largest particle, in cells of that size at least.
+  const double reach = r_max + skin_;
+  std::vector<double> boxes(6 * nf, 0.0);
+  double largest = 0;
+  for (std::size_t f = 0; f < nf; ++f) {
+    double* lo = &boxes[6 * f];
+    double* hi = lo + 3;
+    for (int a = 0; a < dim; ++a) lo[a] = std::numeric_limits<double>::infinity(), hi[a] = -lo[a];
+    for (int i = 0; i < dim; ++i)
+      for (int a = 0; a < dim; ++a) {
+        const double c = model.nodes.x[dim * surface_.facets[dim * f + i] + a];
+        lo[a] = std::min(lo[a], c - reach), hi[a] = std::max(hi[a], c + reach);
+      }
+    for (int a = 0; a < dim; ++a) largest = std::max(largest, hi[a] - lo[a]);
+  }
+  facet_grid_.build_boxes(boxes, dim, std::max(largest, 2 * reach));
+  for (std::size_t i = 0; i < n; ++i)
+    facet_grid_.for_cell(&x_[3 * i], [&](std::int32_t f) {
+      double q[3], w[3];
+      closest_on_facet(model, static_cast<std::size_t>(f), &x_[3 * i], q, w);
+      double d2 = 0;
+      for (int a = 0; a < dim; ++a) d2 += (x_[3 * i + a] - q[a]) * (x_[3 * i + a] - q[a]);
+      const double r = radius_[i] + skin_;
+      if (d2 < r * r) out.push_back({InteractionKind::particle_facet, ids[i], surface_.facet_id[f]});
+    });
 }
 
 bool ParticleContact::walls_only(std::int32_t part) const {
@@ -165,9 +275,21 @@ void ParticleContact::rebuild_list(Model& model) {
         candidates.push_back({InteractionKind::particle_wall, ids[i], static_cast<std::int64_t>(w)});
     }
   }
+  facet_candidates(model, ids, r_max, candidates);
   model.particle_contacts.update(std::move(candidates));
+  resolve_list(model);
+  x_at_build_ = x_;
+  wall_offset_at_build_ = model.contact.wall_offset;
+  stale_ = false;
+}
 
-  // The listed interactions by flat index, and each particle's in list order.
+void ParticleContact::resolve_list(const Model& model) {
+  // The listed interactions by flat index (a wall w as −1 − w, a facet f as −1 − walls − f), and
+  // each particle's in list order.
+  std::unordered_map<std::int64_t, std::int32_t> facet_of_id;
+  for (std::size_t f = 0; f < surface_.facet_id.size(); ++f) facet_of_id.emplace(surface_.facet_id[f], static_cast<std::int32_t>(f));
+  const auto walls = static_cast<std::int32_t>(settings_.walls.size());
+  const std::size_t n = part_of_.size();
   const InteractionList& list = model.particle_contacts;
   const std::size_t m = list.size();
   first_.resize(m);
@@ -176,8 +298,11 @@ void ParticleContact::rebuild_list(Model& model) {
   for (std::size_t k = 0; k < m; ++k) {
     const InteractionKey& key = list.key(k);
     first_[k] = flat_of_id_.at(static_cast<std::size_t>(key.first));
-    second_[k] = key.kind == InteractionKind::particle_wall ? -1 - static_cast<std::int32_t>(key.second)
-                                                            : flat_of_id_.at(static_cast<std::size_t>(key.second));
+    switch (key.kind) {
+      case InteractionKind::particle_particle: second_[k] = flat_of_id_.at(static_cast<std::size_t>(key.second)); break;
+      case InteractionKind::particle_wall: second_[k] = -1 - static_cast<std::int32_t>(key.second); break;
+      case InteractionKind::particle_facet: second_[k] = -1 - walls - facet_of_id.at(key.second); break;
+    }
     ++count[first_[k] + 1];
     if (second_[k] >= 0) ++count[second_[k] + 1];
   }
@@ -194,9 +319,8 @@ void ParticleContact::rebuild_list(Model& model) {
   stored_.resize(m);
   dissipated_.resize(m);
   acting_.resize(m);
-  x_at_build_ = x_;
-  wall_offset_at_build_ = model.contact.wall_offset;
-  stale_ = false;
+  facet_weights_.assign(3 * m, 0.0);
+  (void)model;
 }
 
 namespace {
@@ -244,6 +368,7 @@ void ParticleContact::evaluate_contacts(Model& model, double time, double dt) {
   InteractionList& list = model.particle_contacts;
   const std::size_t m = first_.size();
   const int dim = model.dim();
+  const auto walls = static_cast<std::int32_t>(settings_.walls.size());
   const std::size_t law_slots = settings_.law->history_size;
   // The walls where they are at t_n, moving at their velocity of the increment.
   std::vector<double> wall_velocity(3 * settings_.walls.size(), 0.0), wall_origin(3 * settings_.walls.size(), 0.0);
@@ -260,10 +385,11 @@ void ParticleContact::evaluate_contacts(Model& model, double time, double dt) {
     double* ta = &torque_a_[3 * k];
     double* tb = &torque_b_[3 * k];
     std::span<double> history = list.history(k);
-    ContactEvaluation ev{settings_.law, b < 0 ? &settings_.wall_params : &settings_.params, {}};
+    const bool wall = b < 0 && b >= -walls;
+    ContactEvaluation ev{settings_.law, wall ? &settings_.wall_params : &settings_.params, {}};
     ev.c.dim = dim;
     ev.c.dt = dt;
-    geometry(k, wall_origin, ev.c);
+    geometry(model, k, wall_origin, ev.c);
     double* tail = history.data() + law_slots;
     const bool fresh = tail[0] == 0 && tail[1] == 0 && tail[2] == 0 && tail[3] == 0 && tail[4] == 0;
     if (ev.c.overlap > 0) ++active;
@@ -293,6 +419,23 @@ void ParticleContact::evaluate_contacts(Model& model, double time, double dt) {
       cross(ev.arm_a, f, ma);
       cross(ev.arm_b, f, mb);
       for (int q = 0; q < 3; ++q) fa[q] = -f[q], ta[q] = -ma[q] - (tb[q] - mb[q]);
+    } else if (!wall) {
+      // A facet point is body 1 (moving with its nodes), the particle body 2 (stored in the a
+      // slots); the nodes take −f through the weights. The body behind the facet is taken as far
+      // heavier than the particle (m* = m): a node's own mass would understate it and halve the
+      // dashpot of a particle as heavy as a node.
+      const double* w = &facet_weights_[3 * k];
+      const std::int32_t* nodes = &surface_.facets[dim * static_cast<std::size_t>(-1 - walls - b)];
+      double vq[3] = {0, 0, 0};
+      for (int i = 0; i < dim; ++i)
+        for (int q = 0; q < dim; ++q) vq[q] += w[i] * model.nodes.v[dim * nodes[i] + q];
+      const double still[3] = {0, 0, 0};
+      for (int q = 0; q < 3; ++q) ev.arm_b[q] = -radius_[a] * ev.c.normal[q];
+      relative_motion(vq, still, ev.arm_a, &v_[3 * a], &w_[3 * a], ev.arm_b, ev.c, ev.rel);
+      ev.c.effective_radius = radius_[a];
+      ev.c.effective_mass = mass_[a];
+      dissipated_[k] = ev.run(history, f, ta, stored_[k]);
+      for (int q = 0; q < 3; ++q) fa[q] = f[q], tb[q] = 0;
     } else {
       // The wall is body 1, the particle body 2 (stored in the a slots).
       const std::size_t w = static_cast<std::size_t>(-1 - b);
@@ -309,8 +452,24 @@ void ParticleContact::evaluate_contacts(Model& model, double time, double dt) {
   active_ = active;
 }
 
-inline void ParticleContact::geometry(std::size_t k, const std::vector<double>& wall_origin, ContactKinematics& c) const {
+inline void ParticleContact::geometry(const Model& model, std::size_t k, const std::vector<double>& wall_origin,
+                                      ContactKinematics& c) {
   const std::int32_t a = first_[k], b = second_[k];
+  const auto walls = static_cast<std::int32_t>(settings_.walls.size());
+  if (b < -walls) {
+    // A facet is body 1, the particle body 2: the normal from the facet's closest point.
+    const auto f = static_cast<std::size_t>(-1 - walls - b);
+    double q[3], d[3], dist2 = 0;
+    closest_on_facet(model, f, &x_[3 * a], q, &facet_weights_[3 * k]);
+    for (int i = 0; i < 3; ++i) d[i] = x_[3 * a + i] - q[i], dist2 += d[i] * d[i];
+    const double dist = std::sqrt(dist2);
+    c.overlap = radius_[a] - dist;
+    if (dist > 0)
+      for (int i = 0; i < 3; ++i) c.normal[i] = d[i] / dist;
+    // A centre behind the facet (inside the body) is not pushed out through it.
+    if (dot3(d, facet_outward(model, f).data()) < 0) c.overlap = -1;
+    return;
+  }
   if (b >= 0) {
     double d[3], dist2 = 0;
     for (int q = 0; q < 3; ++q) d[q] = x_[3 * b + q] - x_[3 * a + q], dist2 += d[q] * d[q];
@@ -326,6 +485,30 @@ inline void ParticleContact::geometry(std::size_t k, const std::vector<double>& 
   for (int q = 0; q < c.dim; ++q) dist += (x_[3 * a + q] - wall_origin[3 * w + q]) * rw.normal[q];
   c.overlap = radius_[a] - dist;
   for (int q = 0; q < 3; ++q) c.normal[q] = rw.normal[q];
+}
+
+std::array<double, 3> ParticleContact::facet_outward(const Model& model, std::size_t f) const {
+  const int dim = model.dim();
+  const std::int32_t* n = &surface_.facets[dim * f];
+  const double* X = model.nodes.x.data();
+  if (dim == 2) return {X[2 * n[1] + 1] - X[2 * n[0] + 1], -(X[2 * n[1]] - X[2 * n[0]]), 0.0};
+  const double u[3] = {X[3 * n[1]] - X[3 * n[0]], X[3 * n[1] + 1] - X[3 * n[0] + 1], X[3 * n[1] + 2] - X[3 * n[0] + 2]};
+  const double v[3] = {X[3 * n[2]] - X[3 * n[0]], X[3 * n[2] + 1] - X[3 * n[0] + 1], X[3 * n[2] + 2] - X[3 * n[0] + 2]};
+  std::array<double, 3> out;
+  cross(u, v, out.data());
+  return out;
+}
+
+void ParticleContact::add_facet_reactions(Model& model) const {
+  // In list order, one contact after another: the nodal sums are the same for any thread count.
+  const int dim = model.dim();
+  const auto walls = static_cast<std::int32_t>(settings_.walls.size());
+  for (std::size_t k = 0; k < first_.size(); ++k) {
+    if (second_[k] >= -walls || !acting_[k]) continue;
+    const std::int32_t* nodes = &surface_.facets[dim * static_cast<std::size_t>(-1 - walls - second_[k])];
+    for (int i = 0; i < dim; ++i)
+      for (int q = 0; q < dim; ++q) model.nodes.force[dim * nodes[i] + q] -= facet_weights_[3 * k + i] * force_[3 * k + q];
+  }
 }
 
 void ParticleContact::scatter(Model& model) {
@@ -356,8 +539,9 @@ void ParticleContact::scatter(Model& model) {
   // The walls' share, in list order.
   const int dim = model.dim();
   wall_force_.assign(settings_.walls.size() * dim, 0.0);
+  const auto walls = static_cast<std::int32_t>(settings_.walls.size());
   for (std::size_t k = 0; k < first_.size(); ++k)
-    if (second_[k] < 0 && acting_[k])
+    if (second_[k] < 0 && second_[k] >= -walls && acting_[k])
       for (int q = 0; q < dim; ++q) wall_force_[dim * static_cast<std::size_t>(-1 - second_[k]) + q] -= force_[3 * k + q];
 }
 
@@ -366,6 +550,7 @@ ParticleContactWork ParticleContact::add_forces(Model& model, double time, doubl
   if (list_is_stale(model)) rebuild_list(model);
   evaluate_contacts(model, time, dt);
   scatter(model);
+  add_facet_reactions(model);
   // Particles are newborn for their first evaluation only.
   if (std::find(newborn_.begin(), newborn_.end(), 1) != newborn_.end()) {
     std::fill(newborn_.begin(), newborn_.end(), 0);
@@ -386,8 +571,13 @@ double ParticleContact::stable_time_step(const Model& model) {
       m_max = std::max(m_max, model.particle_parts[p].mass[j]);
     }
   }
-  // The stiffest contact a particle can make: with its like, with the largest particle, or with
-  // a wall; ω² = k/m* with the law's largest stiffness there.
+  // The lightest node a particle can meet on a facet.
+  double node_mass = 0;
+  if (settings_.mesh && !model.parts.empty())
+    for (const double mn : model.nodes.mass)
+      if (mn > 0) node_mass = node_mass > 0 ? std::min(node_mass, mn) : mn;
+  // The stiffest contact a particle can make: with its like, with the largest particle, with a
+  // wall or with the lightest facet node; ω² = k/m* with the law's largest stiffness there.
   double omega2 = 0;
   auto consider = [&](double r_star, double m_star, bool rigid, const std::vector<double>& params) {
     if (!(m_star > 0) || !(r_star > 0)) return;
@@ -405,6 +595,7 @@ double ParticleContact::stable_time_step(const Model& model) {
       consider(0.5 * r, 0.5 * m, false, settings_.params);
       consider(r * r_max / (r + r_max), m * m_max / (m + m_max), false, settings_.params);
       if (!settings_.walls.empty()) consider(r, m, true, settings_.wall_params);
+      if (node_mass > 0) consider(r, m * node_mass / (m + node_mass), false, settings_.params);
     }
   }
   stable_dt_ = omega2 > 0 ? settings_.time_step_safety * 2 / std::sqrt(omega2) : std::numeric_limits<double>::infinity();

@@ -12,10 +12,12 @@
 // list was built).
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <vector>
 
 #include "contact/contact.hpp"
+#include "contact/contact_surface.hpp"
 #include "contact/pair_law.hpp"
 #include "core/cell_grid.hpp"
 #include "core/energy_ledger.hpp"
@@ -38,6 +40,9 @@ struct ParticleContactSettings {
   /// Rigid planes (the same list, in the same order, as the finite-element contact's, whose
   /// displacements Model::contact.wall_offset holds).
   std::vector<RigidWall> walls;
+  /// Particles touch the boundary facets of the finite-element parts (the facet's nodes take the
+  /// reaction through the facet's shape functions).
+  bool mesh = true;
   /// Multiplies the contact stable step 2/ω, ω² = k/m* of the stiffest possible contact.
   double time_step_safety = 0.08;
 };
@@ -73,17 +78,31 @@ class ParticleContact final : public TopologyListener {
   /// Contacts (pairs and wall contacts that overlap, whether or not they carry force) at the last call.
   std::size_t active_contacts() const { return active_; }
 
-  void topology_changed(const Model&, const Remap&) override { stale_ = true; stable_dt_ = 0; }
+  void topology_changed(const Model&, const Remap&) override {
+    stale_ = true;
+    surface_stale_ = true;
+    stable_dt_ = 0;
+  }
 
  private:
   /// Where the listed particles are in the flat arrays (index over the taking parts).
   void gather(Model& model);
   bool list_is_stale(const Model& model) const;
   bool walls_only(std::int32_t part) const;
+  /// Particle–facet candidates within the skin, and the facets' node positions at the search.
+  void facet_candidates(const Model& model, const std::vector<std::int64_t>& ids, double r_max,
+                        std::vector<InteractionKey>& out);
+  bool facets_moved(const Model& model) const;
+  /// The closest point of facet f to x: its weights on the facet's nodes (dim of them).
+  void closest_on_facet(const Model& model, std::size_t f, const double* x, double* q, double* weights) const;
+  void add_facet_reactions(Model& model) const;
   void rebuild_list(Model& model);
+  void resolve_list(const Model& model);
   void evaluate_contacts(Model& model, double time, double dt);
   /// Overlap and normal of listed interaction k at the gathered positions.
-  void geometry(std::size_t k, const std::vector<double>& wall_origin, ContactKinematics& c) const;
+  void geometry(const Model& model, std::size_t k, const std::vector<double>& wall_origin, ContactKinematics& c);
+  /// The outward normal of facet f (not normalised).
+  std::array<double, 3> facet_outward(const Model& model, std::size_t f) const;
   void scatter(Model& model);
 
   ParticleContactSettings settings_;
@@ -102,6 +121,14 @@ class ParticleContact final : public TopologyListener {
   std::vector<std::int32_t> incident_begin_, incident_;
   std::vector<double> wall_force_;
   CellGrid grid_;
+  // The finite-element boundary (rebuilt after a topology change), its facets by stable id, a
+  // grid of their boxes, the facet node positions at the last search, and per facet contact its
+  // node weights.
+  ContactSurface surface_;
+  bool surface_stale_ = true;
+  CellGrid facet_grid_;
+  std::vector<double> facet_x_at_build_;
+  std::vector<double> facet_weights_;
   double skin_ = 0;
   double stable_dt_ = 0;
   bool stale_ = true;
