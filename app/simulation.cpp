@@ -533,6 +533,9 @@ void build_particle_contact(const Scenario& sc, Simulation& sim) {
   s.params = pair_law_parameters(*s.law, in.parameters);
   s.skin = in.skin;
   s.time_step_safety = in.time_step_safety;
+  // Bonded automata meet walls, the mesh and other parts through it; their own pairs are their
+  // model's.
+  for (const ParticlePart& pp : sim.model.particle_parts) s.walls_only.push_back(pp.model ? 1 : 0);
   if (sim.contact) {
     s.walls = sim.contact->walls;
   } else {

@@ -592,8 +592,10 @@ double ParticleContact::stable_time_step(const Model& model) {
     const ParticlePart& part = model.particle_parts[p];
     for (std::size_t j = 0; j < part.count(); ++j) {
       const double r = part.radius[j], m = part.mass[j];
-      consider(0.5 * r, 0.5 * m, false, settings_.params);
-      consider(r * r_max / (r + r_max), m * m_max / (m + m_max), false, settings_.params);
+      if (!walls_only(static_cast<std::int32_t>(p))) {  // a walls-only part's own pairs are its model's
+        consider(0.5 * r, 0.5 * m, false, settings_.params);
+        consider(r * r_max / (r + r_max), m * m_max / (m + m_max), false, settings_.params);
+      }
       if (!settings_.walls.empty()) consider(r, m, true, settings_.wall_params);
       if (node_mass > 0) consider(r, m * node_mass / (m + node_mass), false, settings_.params);
     }
