@@ -18,7 +18,7 @@
 #include "solver/element_conversion.hpp"
 #include "solver/explicit_solver.hpp"
 #include "solver/setup.hpp"
-#include "support/model_runner.hpp"
+#include "support/copper_strip.hpp"
 
 namespace shard {
 namespace {
@@ -243,19 +243,7 @@ struct Strip {
   ParticleContact contact;
   std::unique_ptr<ExplicitSolver> solver;
 
-  static testing::ElasticRun make_run() {
-    BoxMesh box;
-    box.element = "tri3";
-    box.cells = {16, 6, 1};
-    box.size = {16e-3, 6e-3, 0};
-    box.distortion = 0.3;
-    JohnsonCookParameters p;
-    p.moduli = {140e9, 46e9};
-    p.A = 90e6, p.B = 292e6, p.n = 0.31;
-    p.damage = true;
-    p.D1 = 0.05, p.D2 = 0.0, p.D3 = 0.0;
-    return testing::ElasticRun(make_box_model(Formulation::plane_strain, box), std::make_unique<JohnsonCook>("cu", 8960, p));
-  }
+  static testing::ElasticRun make_run() { return testing::copper_strip_run(); }
   static ParticleContactSettings law() {
     ParticleContactSettings cs;
     cs.law = find_pair_law("hertz_mindlin");

@@ -14,7 +14,7 @@
 #include <cstdio>
 
 #include "material/johnson_cook.hpp"
-#include "support/model_runner.hpp"
+#include "support/copper_strip.hpp"
 
 namespace shard {
 namespace {
@@ -28,17 +28,7 @@ struct Eroded {
 };
 
 Eroded pull(bool compact) {
-  BoxMesh box;
-  box.element = "tri3";
-  box.cells = {16, 6, 1};
-  box.size = {16e-3, 6e-3, 0};
-  box.distortion = 0.3;
-  JohnsonCookParameters p;
-  p.moduli = {140e9, 46e9};
-  p.A = 90e6, p.B = 292e6, p.n = 0.31;
-  p.damage = true;
-  p.D1 = 0.05, p.D2 = 0.0, p.D3 = 0.0;
-  testing::ElasticRun run(make_box_model(Formulation::plane_strain, box), std::make_unique<JohnsonCook>("cu", 8960, p));
+  testing::ElasticRun run = testing::copper_strip_run();
   run.settings.compact_eroded_elements = compact;
   run.prescribe("xmin", 0, 0.0);
   run.prescribe("ymin", 1, 0.0);
