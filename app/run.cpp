@@ -247,6 +247,10 @@ class RunDriver {
       for (const auto& w : contact_->settings().walls)
         for (int k = 0; k < dim_; ++k) columns.push_back("wall_" + w.name + "_force_" + axes[k]);
     }
+    // The particles' push on each wall, apart from the elements' (a load cell reads the sum).
+    if (sim_.particle_contact)
+      for (const auto& w : sim_.particle_contact->settings().walls)
+        for (int k = 0; k < dim_; ++k) columns.push_back("wall_" + w.name + "_particle_force_" + axes[k]);
     return columns;
   }
 
@@ -374,6 +378,11 @@ class RunDriver {
     if (contact_)
       for (const auto* values : {&contact_->pair_forces(), &contact_->wall_forces()})
         for (double v : *values) write_number(v);
+    if (sim_.particle_contact) {
+      const auto& f = sim_.particle_contact->wall_forces();
+      for (std::size_t i = 0; i < sim_.particle_contact->settings().walls.size() * dim_; ++i)
+        write_number(i < f.size() ? f[i] : 0.0);
+    }
     history_ << '\n';
   }
 

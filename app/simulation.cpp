@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <map>
+#include <numbers>
 #include <tuple>
 #include <sstream>
 
@@ -188,6 +189,18 @@ Part part_of(Scenario& sc, const MeshData& mesh, const PartInput& pin) {
 
 namespace {
 
+/// A packed sample turned into loose grains: spheres (discs of the model's thickness in 2D) of
+/// the automaton size and the material's density, without bonds or automaton forces.
+void make_grains(ParticlePart& part, const std::vector<MCAMaterial>& materials, double thickness) {
+  part.model = ParticleModelHolder{};
+  for (std::size_t i = 0; i < part.count(); ++i) {
+    const double r = part.radius[i], rho = materials[part.material[i]].density;
+    const double m = part.dim == 3 ? rho * 4.0 / 3.0 * std::numbers::pi * r * r * r : rho * std::numbers::pi * r * r * thickness;
+    part.mass[i] = m;
+    part.inertia[i] = (part.dim == 3 ? 0.4 : 0.5) * m * r * r;
+  }
+}
+
 /// Particle parts from their packing specifications: materials by region, inclusions,
 /// interphases, pores, then bonding; and the constraints of particle_boundary_conditions.
 void build_particle_parts(const Scenario& sc, Simulation& sim) {
@@ -237,6 +250,7 @@ void build_particle_parts(const Scenario& sc, Simulation& sim) {
     }
     if (in.pores) add_pores(part, *in.pores);
     finish_sample(part, spec.bond_tolerance);
+    if (in.grains) make_grains(part, materials, sc.thickness);
     for (std::size_t i = 0; i < part.count(); ++i)
       for (int k = 0; k < dim; ++k) part.v[dim * i + k] = in.velocity[k];
     part.x0 = part.x;
@@ -526,6 +540,10 @@ void erosion_rules(const Scenario& sc, Simulation& sim, const std::string& file)
 }
 
 void build_particle_contact(const Scenario& sc, Simulation& sim) {
+  for (const auto& in : sc.particle_parts)
+    if (in.grains && !sc.particle_contact)
+      throw InputError(shown_path(sc.file), in.grains_line, "particles." + in.name + ".grains",
+                       "loose grains need a particle_contact section (the law they collide with)");
   if (!sc.particle_contact) return;
   const ParticleContactInput& in = *sc.particle_contact;
   ParticleContactSettings s;

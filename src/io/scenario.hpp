@@ -147,6 +147,8 @@ struct ParticlePartInput {
   int contact_update_interval = 0;
   double contact_skin = 0;
   std::array<double, 3> velocity{0, 0, 0};
+  bool grains = false;  ///< loose grains in particle contact, not bonded automata
+  int grains_line = 0;
 };
 
 /// Conditions on a region of automata: fixed or prescribed velocity components (`rotation`

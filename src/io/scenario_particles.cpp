@@ -84,6 +84,11 @@ KeyList particle_part_keys() {
       .defaults_to("0.1 automaton sizes");
   KeySpec& v = k.add("velocity", ValueKind::vector, "initial velocity of every automaton");
   v.dimension = dim::velocity;
+  k.add("grains", ValueKind::boolean,
+        "true: loose grains (spheres, discs in 2D, of the automaton size and the material's density), "
+        "no bonds and no automaton forces; they meet each other, the walls and the mesh through "
+        "particle_contact (docs/theory/particle_contact.md)")
+      .defaults_to("false");
   return k;
 }
 
@@ -425,6 +430,13 @@ void read_particle_part(Section& s, const std::string& path, const Scenario& sc,
   if (p.contact_update_interval < 0) s.fail("contact_update_interval", "must be 0 or more");
   p.contact_skin = s.number("contact_skin", 0.1 * p.packing.size);
   if (s.has("velocity")) copy3(s.vector("velocity", dim), p.velocity);
+  if (s.has("grains")) {
+    const std::string g = s.value("grains").Scalar();
+    if (g != "true" && g != "false") s.fail("grains", "expected true or false, got '" + g + "'");
+    p.grains = g == "true";
+    p.grains_line = s.line("grains");
+  }
+  s.resolved()["grains"] = p.grains;
 }
 
 void read_particle_parts(Section& top, Scenario& sc, const AutomatonMaterials& materials) {

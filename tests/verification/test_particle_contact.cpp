@@ -8,12 +8,15 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <numbers>
 
 #include "io/checkpoint.hpp"
 #include "material/linear_elastic.hpp"
 #include "model/structured_mesh.hpp"
 #include "solver/setup.hpp"
+#include "support/cli.hpp"
 #include "support/dem_run.hpp"
 
 namespace shard {
@@ -300,6 +303,47 @@ TEST(ParticleContact, SphereOnAFiniteElementPlate) {
   EXPECT_LT(free_plate.momentum_error, 1e-12);
   EXPECT_NEAR(on_wall.restitution, 0.8, 0.02 * 0.8);
   EXPECT_NEAR(backed.restitution / on_wall.restitution, 1.0, 0.05);
+}
+
+TEST(ParticleContact, RowOfGrainsFromAScenarioRestsOnTheFloor) {
+  // Loose grains from a scenario (a packed sample with `grains: true`): a row of 39 discs of glass
+  // settles on a floor wall under gravity; at rest the floor carries their weight.
+  const auto dir = std::filesystem::temp_directory_path() / "shard_grain_row";
+  std::filesystem::create_directories(dir);
+  {
+    std::ofstream yaml(dir / "row.yaml");
+    yaml << "title: a row of grains at rest on a floor\n"
+            "analysis: {formulation: plane_strain, end_time: 5 ms, thickness: 1 mm, gravity: [0, -9.81 m/s^2]}\n"
+            "materials:\n  glass: {model: automaton, density: 2500 kg/m^3, young: 70 GPa, poisson: 0.22}\n"
+            "particles:\n  row: {lattice: hexagonal, automaton_size: 1 mm, min: [0.5 mm, 0.5 mm], "
+            "max: [19.5 mm, 1.6 mm], material: glass, grains: true}\n"
+            "walls:\n  - {name: floor, point: [0, 0], normal: [0, 1]}\n"
+            "particle_contact: {law: linear_spring, modulus: 100 MPa, restitution: 0.3, friction: 0.5}\n"
+            "output: {frame_interval: 5 ms, history_interval: 1 ms}\n";
+  }
+  const auto r = testing::run_shard("run " + (dir / "row.yaml").string() + " -o " + (dir / "out").string() +
+                                    " --quiet --threads 1");
+  ASSERT_EQ(r.status, 0) << r.output;
+  std::ifstream history(dir / "out" / "history.csv");
+  std::string header, line, last;
+  std::getline(history, header);
+  while (std::getline(history, line)) last = line;
+  auto column = [&](const std::string& name) {
+    std::stringstream h(header), v(last);
+    std::string key, value;
+    while (std::getline(h, key, ',') && std::getline(v, value, ','))
+      if (key == name) return std::stod(value);
+    ADD_FAILURE() << "no column " << name;
+    return 0.0;
+  };
+  const double weight = column("particle_mass_row") * 9.81, floor = -column("wall_floor_particle_force_y");
+  std::printf("%g grains of %g kg: the floor carries %.7g N of their %.7g N weight (%+.2e), kinetic %.1e J, "
+              "balance %.1e\n",
+              column("particles_row"), column("particle_mass_row"), floor, weight, floor / weight - 1,
+              column("kinetic"), column("energy_error"));
+  EXPECT_NEAR(floor / weight, 1.0, 0.01);
+  EXPECT_LT(std::abs(column("energy_error")), 0.01);
+  std::filesystem::remove_all(dir);
 }
 
 }  // namespace
