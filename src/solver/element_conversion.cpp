@@ -108,7 +108,6 @@ ConversionResult ElementConversion::prepare(Model& model, const std::vector<std:
   }
   if (orphans) remap.nodes = EntityRemap::keeping(keep_node);
 
-  first_new_.assign(model.particle_parts.size(), 0);
   for (const Converting& c : converting) {
     const Part& part = model.parts[c.part];
     const int n = part.type->nodes, npts = part.type->points;
