@@ -282,11 +282,28 @@ class RunDriver {
     }
   }
 
+  /// Once, when particle contacts first hold the step below half of what the elements allow:
+  /// says so, and what sets it (the particles may appear mid-run, by conversion).
+  void note_particle_step() {
+    if (particle_step_noted_ || !sim_.particle_contact || sim_.model.parts.empty()) return;
+    const double particles = sim_.particle_contact->stable_time_step(sim_.model);
+    const double elements = sim_.settings.time_step_safety * solver_.state().stable_dt;
+    if (!std::isfinite(particles) || !(elements > 0) || particles > 0.5 * elements) return;
+    particle_step_noted_ = true;
+    particle_step_note_ = "from t = " + format_time(solver_.state().time) + " particle contacts hold the time step at " +
+                          format_time(particles) + ", " + std::to_string(std::lround(elements / particles)) +
+                          " times below the elements' " + format_time(elements) +
+                          ": the particle_contact stiffness sets it (modulus or young); a softer contact keeps "
+                          "the step as long as overlaps stay small against the radii";
+    if (!options_.quiet) std::cerr << "note: " << particle_step_note_ << "\n";
+  }
+
   void loop() {
     const auto& out = sc_.output;
     const double end = sc_.end_time;
     while (true) {
       solver_.compute_forces();
+      note_particle_step();
       const SolverState& s = solver_.state();
       const double t = s.time;
       const bool final = t >= end * (1 - 1e-12);
@@ -424,6 +441,7 @@ class RunDriver {
       << ",\n  \"particle_steps_per_second\": "
       << (wall > 0 ? steps * static_cast<double>(particles_) / wall : 0.0)
       << ",\n  \"eroded_elements\": " << s.eroded_elements
+      << ",\n  \"notes\": [" << (particle_step_note_.empty() ? "" : json_string(particle_step_note_)) << "]"
       << ",\n  \"energy_balance_error\": " << s.energy.relative_error() << ",\n  \"energy\": {";
     const auto names = s.energy.column_names();
     const auto values = s.energy.column_values();
@@ -471,6 +489,8 @@ class RunDriver {
   std::vector<PvdCollection> particle_pvd_;
   std::ofstream history_;
   Progress progress_;
+  bool particle_step_noted_ = false;
+  std::string particle_step_note_;  ///< also in summary.json
   Clock::time_point start_ = Clock::now();
   std::int64_t first_step_ = 0;
   std::size_t particles_ = 0;

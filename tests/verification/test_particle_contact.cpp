@@ -346,5 +346,38 @@ TEST(ParticleContact, RowOfGrainsFromAScenarioRestsOnTheFloor) {
   std::filesystem::remove_all(dir);
 }
 
+TEST(ParticleContact, RunSaysWhenParticleContactsHoldTheStepFarBelowTheElements) {
+  // The perforation example with a contact 1e5 times too stiff: as soon as debris exists, the run
+  // says that the particle contacts hold the step, by how much, and what sets it.
+  const std::string source = SHARD_SOURCE_DIR;
+  std::ifstream in(source + "/examples/plate_perforation/plate_perforation.yaml");
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string yaml = text.str();
+  auto replace = [&](const std::string& from, const std::string& to) {
+    const auto at = yaml.find(from);
+    ASSERT_NE(at, std::string::npos) << from;
+    yaml.replace(at, from.size(), to);
+  };
+  replace("file: plate_perforation.geo", "file: " + source + "/examples/plate_perforation/plate_perforation.geo");
+  replace("end_time: 12 us", "end_time: 0.9 us");
+  replace("law: hertz_mindlin, young: 200 GPa, poisson: 0.29", "law: linear_spring, modulus: 1e16 Pa");
+  const auto dir = std::filesystem::temp_directory_path() / "shard_particle_step_note";
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir / "stiff.yaml") << yaml;
+  const auto r = testing::run_shard("run " + (dir / "stiff.yaml").string() + " -o " + (dir / "out").string() +
+                                    " --threads 1");
+  ASSERT_EQ(r.status, 0) << r.output;
+  const auto note = r.output.find("note: from t = ");
+  ASSERT_NE(note, std::string::npos) << r.output;
+  std::printf("%s\n", r.output.substr(note, r.output.find('\n', note) - note).c_str());
+  EXPECT_NE(r.output.find("times below the elements'", note), std::string::npos);
+  std::ifstream summary(dir / "out" / "summary.json");
+  std::stringstream json;
+  json << summary.rdbuf();
+  EXPECT_NE(json.str().find("particle contacts hold the time step"), std::string::npos);
+  std::filesystem::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace shard
