@@ -1,6 +1,10 @@
 // Mesh import through the Gmsh C++ API (tested with Gmsh 4.8).
 #include "io/gmsh_import.hpp"
 
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
 #include <gmsh.h>
 
 #include <algorithm>
@@ -78,6 +82,11 @@ class GmshSession {
     // Gmsh 4.8 calls setlocale(LC_ALL, "") (keeping LC_NUMERIC "C"); put the process's locale
     // back afterwards so importing a mesh changes nothing outside this call.
     if (const char* locale = std::setlocale(LC_ALL, nullptr)) saved_locale_ = locale;
+    // Gmsh also sets the process's OpenMP thread count to its General.NumThreads (1 by default):
+    // the run's count is put back afterwards, or every run with a mesh would go on one thread.
+#ifdef _OPENMP
+    saved_threads_ = omp_get_max_threads();
+#endif
     // Gmsh parses argv like its command line; only the program name, and no gmshrc or
     // gmsh-options files, so a user's Gmsh configuration cannot change what shard reads.
     static char program[] = "shard";
@@ -100,12 +109,16 @@ class GmshSession {
       // is already throwing.
     }
     if (!saved_locale_.empty()) std::setlocale(LC_ALL, saved_locale_.c_str());
+#ifdef _OPENMP
+    omp_set_num_threads(saved_threads_);
+#endif
   }
   GmshSession(const GmshSession&) = delete;
   GmshSession& operator=(const GmshSession&) = delete;
 
  private:
   std::string saved_locale_;
+  int saved_threads_ = 1;
 };
 
 // Error lines Gmsh logged since the session started, without their "Error: " prefix.
