@@ -54,7 +54,7 @@ ContactSurface extract_contact_surface(const Model& model) {
         const auto& local = part.type->faces[lf];
         const int count = static_cast<int>(local.size());
         const std::int64_t owner = part.id.empty() ? static_cast<std::int64_t>(e) : part.id[e];
-        Face f{{-1, -1, -1, -1}, count, static_cast<std::int32_t>(p), owner * 16 + static_cast<std::int64_t>(lf) * 2};
+        Face f{{-1, -1, -1, -1}, count, static_cast<std::int32_t>(p), facet_key(owner, static_cast<int>(lf))};
         for (int i = 0; i < count; ++i) f.nodes[i] = cn[local[i]];
         Key k{f.nodes};
         // All four slots: the unused ones (−1) sort first alike for every face of that size.

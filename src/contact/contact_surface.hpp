@@ -15,8 +15,8 @@ struct ContactSurface {
   /// are split in two), numbered so that the right-hand normal points out of the body.
   std::vector<std::int32_t> facets;
   std::vector<std::int32_t> facet_part;
-  /// Per facet, a stable identity: the owning element's stable id × 16 + its local face × 2 + the
-  /// half of a split quadrilateral (particle contacts are keyed by it).
+  /// Per facet, a stable identity: facet_key(owning element's stable id, local face, half of a
+  /// split quadrilateral) (src/model/interaction_list.hpp); particle contacts are keyed by it.
   std::vector<std::int64_t> facet_id;
   std::vector<std::int32_t> nodes;      ///< surface nodes, sorted
   std::vector<std::int32_t> node_part;  ///< the part of each surface node

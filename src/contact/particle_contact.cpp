@@ -108,6 +108,7 @@ void ParticleContact::gather(Model& model) {
 
 bool ParticleContact::list_is_stale(const Model& model) const {
   if (stale_ || x_at_build_.size() != x_.size()) return true;
+  if (part_of_.empty()) return false;  // particles come only with a topology change
   double moved2 = 0;
   for (std::size_t k = 0; k < x_.size(); k += 3) {
     double d2 = 0;
@@ -276,7 +277,16 @@ void ParticleContact::rebuild_list(Model& model) {
     }
   }
   facet_candidates(model, ids, r_max, candidates);
-  model.particle_contacts.update(std::move(candidates));
+  // A contact still carrying force whose partner is gone (a facet of an element that eroded or
+  // converted, a particle removed) leaves with its stored energy: booked as dissipated.
+  InteractionList& list = model.particle_contacts;
+  const std::size_t tail = settings_.law->history_size;
+  std::vector<std::pair<InteractionKey, double>> loaded;
+  for (std::size_t k = 0; k < list.size(); ++k)
+    if (list.history(k)[tail + 3] != 0) loaded.emplace_back(list.key(k), list.history(k)[tail + 3]);
+  list.update(std::move(candidates));
+  for (const auto& [key, stored] : loaded)
+    if (list.find(key) < 0) released_ += stored;
   resolve_list(model);
   x_at_build_ = x_;
   wall_offset_at_build_ = model.contact.wall_offset;
@@ -377,6 +387,7 @@ void ParticleContact::evaluate_contacts(Model& model, double time, double dt) {
       wall_velocity[3 * w + a] = settings_.walls[w].velocity[a].at(time - 0.5 * dt);
       wall_origin[3 * w + a] = settings_.walls[w].point[a] + model.contact.wall_offset[dim * w + a];
     }
+  facet_features(model);
   std::size_t active = 0;
 #pragma omp parallel for schedule(static) reduction(+ : active)
   for (std::size_t k = 0; k < m; ++k) {
@@ -457,10 +468,15 @@ inline void ParticleContact::geometry(const Model& model, std::size_t k, const s
   const std::int32_t a = first_[k], b = second_[k];
   const auto walls = static_cast<std::int32_t>(settings_.walls.size());
   if (b < -walls) {
-    // A facet is body 1, the particle body 2: the normal from the facet's closest point.
+    // A facet is body 1, the particle body 2: the normal from the facet's closest point (found,
+    // and duplicates set aside, by facet_features).
     const auto f = static_cast<std::size_t>(-1 - walls - b);
-    double q[3], d[3], dist2 = 0;
-    closest_on_facet(model, f, &x_[3 * a], q, &facet_weights_[3 * k]);
+    if (facet_suppressed_[k]) {
+      c.overlap = -1;
+      return;
+    }
+    const double* q = &facet_q_[3 * k];
+    double d[3], dist2 = 0;
     for (int i = 0; i < 3; ++i) d[i] = x_[3 * a + i] - q[i], dist2 += d[i] * d[i];
     const double dist = std::sqrt(dist2);
     c.overlap = radius_[a] - dist;
@@ -485,6 +501,62 @@ inline void ParticleContact::geometry(const Model& model, std::size_t k, const s
   for (int q = 0; q < c.dim; ++q) dist += (x_[3 * a + q] - wall_origin[3 * w + q]) * rw.normal[q];
   c.overlap = radius_[a] - dist;
   for (int q = 0; q < 3; ++q) c.normal[q] = rw.normal[q];
+}
+
+void ParticleContact::facet_features(const Model& model) {
+  // Every facet contact's closest point; then, per particle (its facet contacts are contiguous
+  // in the list, which is sorted by kind, particle, facet), one contact per touching feature. On
+  // a smooth stretch of surface a particle's closest point lies inside one facet, or on an edge
+  // or vertex that several facets share; the facets around it also find points within reach, on
+  // their edges, and would each push. A hit on a facet's edge or vertex is set aside when another
+  // contact of the particle nearby (its point within a radius) is closer, or as close and inside
+  // its facet or earlier in the list: what is left is the closest feature, once, and the
+  // separate faces of a concave corner.
+  const auto walls = static_cast<std::int32_t>(settings_.walls.size());
+  const std::size_t m = first_.size();
+  constexpr double kEdge = 1e-9;  // a weight this small puts the point on the facet's edge
+  facet_q_.resize(3 * m);
+  facet_suppressed_.assign(m, 0);
+  std::vector<double> distance;
+  std::size_t k = 0;
+  while (k < m && second_[k] >= -walls) ++k;
+  while (k < m && second_[k] < -walls) {
+    const std::int32_t a = first_[k];
+    std::size_t end = k;
+    distance.clear();
+    for (; end < m && second_[end] < -walls && first_[end] == a; ++end) {
+      const auto f = static_cast<std::size_t>(-1 - walls - second_[end]);
+      closest_on_facet(model, f, &x_[3 * a], &facet_q_[3 * end], &facet_weights_[3 * end]);
+      double d2 = 0;
+      for (int i = 0; i < 3; ++i) d2 += (x_[3 * a + i] - facet_q_[3 * end + i]) * (x_[3 * a + i] - facet_q_[3 * end + i]);
+      distance.push_back(std::sqrt(d2));
+    }
+    auto on_edge = [&](std::size_t e) {
+      const double* w = &facet_weights_[3 * e];
+      return !(w[0] > kEdge && w[1] > kEdge && (model.dim() == 2 || w[2] > kEdge));
+    };
+    // Nearly equal distances (the same vertex or edge seen from several facets, up to round-off
+    // and the particle's drift) count as equal; among equals the first in the list stays.
+    const double r = radius_[a], tolerance = 1e-6 * r;
+    // Points closer together than 1e-3 R are one feature whatever the facets' weights say (a node
+    // pressed down by the particle dents the surface: each facet around it then finds its own
+    // point inside, a fraction of a nanometre from the others).
+    const double same_point = 1e-3 * r;
+    for (std::size_t j = k; j < end; ++j) {
+      for (std::size_t i = k; i < end && !facet_suppressed_[j]; ++i) {
+        if (i == j) continue;
+        double d2 = 0;
+        for (int c = 0; c < 3; ++c) d2 += (facet_q_[3 * i + c] - facet_q_[3 * j + c]) * (facet_q_[3 * i + c] - facet_q_[3 * j + c]);
+        const bool one_feature = d2 < same_point * same_point;
+        if (!one_feature && (!on_edge(j) || d2 >= r * r)) continue;
+        const double di = distance[i - k], dj = distance[j - k];
+        const bool closer = di < dj - tolerance;
+        const bool as_close = di <= dj + tolerance && (i < j || (!one_feature && !on_edge(i)));
+        if (closer || as_close) facet_suppressed_[j] = 1;
+      }
+    }
+    k = end;
+  }
 }
 
 std::array<double, 3> ParticleContact::facet_outward(const Model& model, std::size_t f) const {
@@ -557,7 +629,9 @@ ParticleContactWork ParticleContact::add_forces(Model& model, double time, doubl
     for (std::size_t p = 0; p < model.particle_parts.size(); ++p)
       if (takes_part(settings_, p)) std::fill(model.particle_parts[p].newborn.begin(), model.particle_parts[p].newborn.end(), 0);
   }
-  return {deterministic_sum(stored_), deterministic_sum(dissipated_)};
+  const ParticleContactWork work{deterministic_sum(stored_), deterministic_sum(dissipated_) + released_};
+  released_ = 0;
+  return work;
 }
 
 double ParticleContact::stable_time_step(const Model& model) {

@@ -96,6 +96,9 @@ class ParticleContact final : public TopologyListener {
   /// The closest point of facet f to x: its weights on the facet's nodes (dim of them).
   void closest_on_facet(const Model& model, std::size_t f, const double* x, double* q, double* weights) const;
   void add_facet_reactions(Model& model) const;
+  /// The closest point of every listed facet contact, and which of them repeat another's
+  /// feature (an edge, a vertex, a split diagonal) and are set aside.
+  void facet_features(const Model& model);
   void rebuild_list(Model& model);
   void resolve_list(const Model& model);
   void evaluate_contacts(Model& model, double time, double dt);
@@ -128,8 +131,10 @@ class ParticleContact final : public TopologyListener {
   bool surface_stale_ = true;
   CellGrid facet_grid_;
   std::vector<double> facet_x_at_build_;
-  std::vector<double> facet_weights_;
+  std::vector<double> facet_weights_, facet_q_;
+  std::vector<std::uint8_t> facet_suppressed_;
   double skin_ = 0;
+  double released_ = 0;  ///< stored energy of contacts whose partner left the model (J)
   double stable_dt_ = 0;
   bool stale_ = true;
   std::size_t active_ = 0;

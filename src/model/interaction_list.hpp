@@ -26,8 +26,11 @@ struct InteractionKey {
   auto operator<=>(const InteractionKey&) const = default;
 };
 
-/// A boundary facet by the stable id of the element that owns it and its local face number.
-inline std::int64_t facet_key(std::int64_t element_id, int local_face) { return element_id * 8 + local_face; }
+/// A boundary facet by the stable id of the element that owns it, its local face number and, for
+/// a quadrilateral face split in two triangles, the half (0 or 1).
+inline std::int64_t facet_key(std::int64_t element_id, int local_face, int half = 0) {
+  return element_id * 16 + local_face * 2 + half;
+}
 
 class InteractionList {
  public:

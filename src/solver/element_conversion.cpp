@@ -125,6 +125,12 @@ ConversionResult ElementConversion::prepare(Model& model, const std::vector<std:
       for (int k = 0; k < dim; ++k) v2 += model.nodes.v[dim * node + k] * model.nodes.v[dim * node + k];
       out.kinetic_taken += 0.5 * m_a[a] * v2;
     }
+    if (!(mass > 0)) {
+      // Its nodes have nothing left to give (every share already taken by split siblings): the
+      // element leaves without particles, as a deleted one would.
+      ++out.elements;
+      continue;
+    }
     // Current density (the radius of eq. (13) of the CFRP paper: a sphere, or a disc of the
     // model's thickness, of the point's mass at that density).
     const double volume = kernel_of(*part.type).measure(part, model.nodes, c.element, model.formulation, model.thickness);
