@@ -233,13 +233,14 @@ void ExplicitSolver::compute_forces() {
   std::fill(nodes.force.begin(), nodes.force.end(), 0.0);
   ForceSums total;
   add_element_forces(total);
-  const double particle_dt = add_particle_forces();
   if (total.eroded_elements > 0) {
     state_.eroded_elements += total.eroded_elements;
-    // The eroded elements' faces leave the contact surface and the faces they covered join it
-    // now; the elements themselves leave the part at the end of the step (ErosionEvent).
+    // The eroded elements' faces leave the contact surfaces (of the elements and of the
+    // particles) and the faces they covered join them now; the elements themselves leave the
+    // part at the end of the step (ErosionEvent).
     topology_.changed(model_, Remap{});
   }
+  const double particle_dt = add_particle_forces();
   applied_.clear();
   add_pressure_forces(model_, loads_, state_.time, applied_);
   const auto& g = settings_.gravity;
