@@ -430,32 +430,26 @@ void ParticleContact::evaluate_contacts(Model& model, double time, double dt) {
       cross(ev.arm_a, f, ma);
       cross(ev.arm_b, f, mb);
       for (int q = 0; q < 3; ++q) fa[q] = -f[q], ta[q] = -ma[q] - (tb[q] - mb[q]);
-    } else if (!wall) {
-      // A facet point is body 1 (moving with its nodes), the particle body 2 (stored in the a
-      // slots); the nodes take −f through the weights. The body behind the facet is taken as far
-      // heavier than the particle (m* = m): a node's own mass would understate it and halve the
-      // dashpot of a particle as heavy as a node.
-      const double* w = &facet_weights_[3 * k];
-      const std::int32_t* nodes = &surface_.facets[dim * static_cast<std::size_t>(-1 - walls - b)];
-      double vq[3] = {0, 0, 0};
-      for (int i = 0; i < dim; ++i)
-        for (int q = 0; q < dim; ++q) vq[q] += w[i] * model.nodes.v[dim * nodes[i] + q];
-      const double still[3] = {0, 0, 0};
-      for (int q = 0; q < 3; ++q) ev.arm_b[q] = -radius_[a] * ev.c.normal[q];
-      relative_motion(vq, still, ev.arm_a, &v_[3 * a], &w_[3 * a], ev.arm_b, ev.c, ev.rel);
-      ev.c.effective_radius = radius_[a];
-      ev.c.effective_mass = mass_[a];
-      dissipated_[k] = ev.run(history, f, ta, stored_[k]);
-      for (int q = 0; q < 3; ++q) fa[q] = f[q], tb[q] = 0;
     } else {
-      // The wall is body 1, the particle body 2 (stored in the a slots).
-      const std::size_t w = static_cast<std::size_t>(-1 - b);
+      // A wall, or a facet point moving with its nodes, is body 1; the particle body 2 (stored in
+      // the a slots); a facet's nodes take −f through its weights. Behind a facet the body is
+      // taken as far heavier than the particle (m* = m, as for a wall): a node's own mass would
+      // understate it and halve the dashpot of a particle as heavy as a node.
+      double partner_velocity[3] = {0, 0, 0};
+      if (wall) {
+        std::copy_n(&wall_velocity[3 * static_cast<std::size_t>(-1 - b)], 3, partner_velocity);
+      } else {
+        const double* w = &facet_weights_[3 * k];
+        const std::int32_t* nodes = &surface_.facets[dim * static_cast<std::size_t>(-1 - walls - b)];
+        for (int i = 0; i < dim; ++i)
+          for (int q = 0; q < dim; ++q) partner_velocity[q] += w[i] * model.nodes.v[dim * nodes[i] + q];
+      }
       const double still[3] = {0, 0, 0};
       for (int q = 0; q < 3; ++q) ev.arm_b[q] = -radius_[a] * ev.c.normal[q];
-      relative_motion(&wall_velocity[3 * w], still, ev.arm_a, &v_[3 * a], &w_[3 * a], ev.arm_b, ev.c, ev.rel);
+      relative_motion(partner_velocity, still, ev.arm_a, &v_[3 * a], &w_[3 * a], ev.arm_b, ev.c, ev.rel);
       ev.c.effective_radius = radius_[a];
       ev.c.effective_mass = mass_[a];
-      ev.c.rigid_partner = true;
+      ev.c.rigid_partner = wall;
       dissipated_[k] = ev.run(history, f, ta, stored_[k]);
       for (int q = 0; q < 3; ++q) fa[q] = f[q], tb[q] = 0;
     }
