@@ -35,7 +35,9 @@ std::vector<EnergyTerm> element_energy_terms() {
           {"heat", "the part of the plastic work that became heat (β W_p), not a separate sink", r::heat, {}, ""},
           {"fracture", "fracture energy (softening, crack insertion, broken bonds)", r::fracture,
            {{G::internal, -1}, {G::dissipated, +1}}, ""},
-          {"eroded", "elastic energy carried away by eroded elements", r::eroded, {{G::dissipated, +1}}, ""}};
+          // What an eroded element stored leaves the stored energy (internal) for good.
+          {"eroded", "elastic energy carried away by eroded elements", r::eroded,
+           {{G::internal, -1}, {G::dissipated, +1}}, ""}};
 }
 
 namespace {

@@ -6,7 +6,7 @@ std::vector<EnergyTerm> ErosionCompaction::conversion_energy_terms() {
   using G = EnergyGroup;
   namespace r = energy_rank;
   return {{"conversion_elastic", "elastic energy of elements converted to particles (they start stress-free)",
-           r::eroded + 1, {{G::dissipated, +1}}, ""},
+           r::eroded + 1, {{G::internal, -1}, {G::dissipated, +1}}, ""},
           {"conversion_kinetic", "kinetic energy of converted elements that their particles cannot carry",
            r::eroded + 2, {{G::dissipated, +1}}, ""}};
 }
