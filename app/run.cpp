@@ -205,7 +205,7 @@ class RunDriver {
     progress_.finish();
     history_.flush();
     write_summary();
-    if (cracks_) write_fragments_csv(dir_ / "fragments.csv", find_fragments(sim_.model).list, dim_);
+    write_fragment_report();
     RunSummary summary;
     summary.steps = solver_.state().step;
     summary.end_time = solver_.state().time - solver_.state().dt_half;
@@ -420,6 +420,18 @@ class RunDriver {
     message_ = "stopped at t = " + format_time(s.time) + " (--until); continue with --restart " +
                (dir_ / "checkpoint.bin").string();
     return true;
+  }
+
+  /// fragments.csv at the end of a run that cracks or makes debris: the pieces of the mesh, then
+  /// each debris particle as a fragment of its own (the fine end of the mass distribution).
+  void write_fragment_report() {
+    const bool debris = std::any_of(sim_.model.parts.begin(), sim_.model.parts.end(),
+                                    [](const Part& p) { return p.erosion.to_particles; });
+    if (!cracks_ && !debris) return;
+    std::vector<Fragment> list = find_fragments(sim_.model).list;
+    const std::vector<Fragment> particles = debris_fragments(sim_.model, static_cast<std::int32_t>(list.size()));
+    list.insert(list.end(), particles.begin(), particles.end());
+    write_fragments_csv(dir_ / "fragments.csv", list, dim_);
   }
 
   void write_summary() {

@@ -551,9 +551,13 @@ def read_fragments(folder):
 def plot_fragments(args):
     """Mass distribution of the fragments at the end of a run, and their count over time."""
     path, columns = read_fragments(args.folder)
-    mass = np.sort(np.asarray(columns["mass"], dtype=float))
+    mass = np.asarray(columns["mass"], dtype=float)
     if mass.size == 0 or not mass.sum() > 0:
         raise PlotError(f"{path} lists no fragment with mass")
+    # debris particles (comminuted or eroded elements) are fragments of one particle each
+    particle = np.asarray(columns.get("particles", np.zeros_like(mass)), dtype=float) > 0
+    debris_count, debris_mass = int(particle.sum()), mass[particle].sum()
+    mass = np.sort(mass)
     total = mass.sum()
     # cumulative mass fraction of the fragments no heavier than m (the sieve curve)
     passing = np.cumsum(mass) / total
@@ -561,7 +565,8 @@ def plot_fragments(args):
     largest = mass[-1]
     print(f"{path}: {mass.size} fragments, total mass {total:.6g} kg; largest {largest:.6g} kg "
           f"({largest / total:.1%}); median by mass {mass[np.searchsorted(passing, 0.5)]:.4g} kg; "
-          f"kinetic energy {kinetic.sum():.4g} J")
+          f"kinetic energy {kinetic.sum():.4g} J; debris: {debris_count} particles, "
+          f"{debris_mass:.4g} kg ({debris_mass / total:.1%})")
     history = None
     if os.path.isdir(args.folder) and os.path.isfile(os.path.join(args.folder, "history.csv")):
         history = read_history(os.path.join(args.folder, "history.csv"))
@@ -576,7 +581,10 @@ def plot_fragments(args):
     axes.set_ylabel("mass fraction in fragments ≤ m")
     axes.set_ylim(0, 1.02)
     axes.grid(True, which="both", alpha=0.3)
-    axes.set_title(f"{mass.size} fragments, largest {largest / total:.0%} of the mass")
+    title = f"{mass.size - debris_count} fragments, largest {largest / total:.0%} of the mass"
+    if debris_count:
+        title += f"\n+ {debris_count} debris particles, {debris_mass / total:.1%} of the mass"
+    axes.set_title(title)
     if history:
         axes = panels[0][1]
         axes.step(np.asarray(history["time"]) * 1e6, history["fragments"], where="post",

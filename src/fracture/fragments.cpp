@@ -93,6 +93,28 @@ Fragments find_fragments(const Model& model) {
   return out;
 }
 
+std::vector<Fragment> debris_fragments(const Model& model, std::int32_t first_id) {
+  std::vector<Fragment> out;
+  for (const ParticlePart& p : model.particle_parts) {
+    const int D = p.dim, R = p.rot_dim();
+    for (std::size_t i = 0; i < p.count(); ++i) {
+      if (p.origin_element[i] < 0) continue;
+      Fragment f;
+      f.id = first_id + static_cast<std::int32_t>(out.size());
+      f.particles = 1;
+      f.mass = p.mass[i];
+      for (int k = 0; k < D; ++k) {
+        f.centroid[k] = p.x[D * i + k];
+        f.velocity[k] = p.v[D * i + k];
+        f.kinetic_energy += 0.5 * p.mass[i] * p.v[D * i + k] * p.v[D * i + k];
+      }
+      for (int k = 0; k < R; ++k) f.kinetic_energy += 0.5 * p.inertia[i] * p.omega[R * i + k] * p.omega[R * i + k];
+      out.push_back(f);
+    }
+  }
+  return out;
+}
+
 void write_fragments_csv(const std::filesystem::path& path, const std::vector<Fragment>& fragments, int dim) {
   std::ofstream out(path, std::ios::trunc);
   if (!out) throw std::runtime_error("cannot write " + path.string());
@@ -100,13 +122,13 @@ void write_fragments_csv(const std::filesystem::path& path, const std::vector<Fr
   out << "id,elements,mass";
   for (int k = 0; k < dim; ++k) out << ",centroid_" << axis[k];
   for (int k = 0; k < dim; ++k) out << ",velocity_" << axis[k];
-  out << ",kinetic_energy\n";
+  out << ",kinetic_energy,particles\n";
   out.precision(std::numeric_limits<double>::max_digits10);
   for (const Fragment& f : fragments) {
     out << f.id << ',' << f.elements << ',' << f.mass;
     for (int k = 0; k < dim; ++k) out << ',' << f.centroid[k];
     for (int k = 0; k < dim; ++k) out << ',' << f.velocity[k];
-    out << ',' << f.kinetic_energy << '\n';
+    out << ',' << f.kinetic_energy << ',' << f.particles << '\n';
   }
   if (!out) throw std::runtime_error("error writing " + path.string());
 }

@@ -18,6 +18,7 @@ struct Fragment {
   std::array<double, 3> centroid{};     ///< centre of mass Σ m x / Σ m (current positions)
   std::array<double, 3> velocity{};     ///< Σ m v / Σ m
   double kinetic_energy = 0;            ///< Σ ½ m v² over its nodes (translation and the rest)
+  std::int64_t particles = 0;           ///< 1 for a debris particle (a comminuted or eroded element's), else 0
 };
 
 struct Fragments {
@@ -34,8 +35,13 @@ struct Fragments {
 /// (parts in order, elements in storage order), so they are the same in every run.
 Fragments find_fragments(const Model& model);
 
+/// The debris: each particle converted from an element (origin_element ≥ 0) as a fragment of
+/// its own (elements 0, particles 1, its kinetic energy with its spin), ids from `first_id` on,
+/// in particle part and storage order.
+std::vector<Fragment> debris_fragments(const Model& model, std::int32_t first_id);
+
 /// Writes `fragments.csv`: id,elements,mass,centroid_x,centroid_y[,centroid_z],
-/// velocity_x,velocity_y[,velocity_z],kinetic_energy (SI units, full precision).
+/// velocity_x,velocity_y[,velocity_z],kinetic_energy,particles (SI units, full precision).
 void write_fragments_csv(const std::filesystem::path& path, const std::vector<Fragment>& fragments, int dim);
 
 }  // namespace shard

@@ -150,12 +150,12 @@ TEST(Fragments, CsvHeaderAndRoundTrip) {
   std::ifstream in2(dir / "f2.csv"), in3(dir / "f3.csv");
   std::string header, row;
   std::getline(in2, header);
-  EXPECT_EQ(header, "id,elements,mass,centroid_x,centroid_y,velocity_x,velocity_y,kinetic_energy");
+  EXPECT_EQ(header, "id,elements,mass,centroid_x,centroid_y,velocity_x,velocity_y,kinetic_energy,particles");
   std::getline(in2, row);
   std::vector<double> values;
   std::stringstream fields(row);
   for (std::string v; std::getline(fields, v, ',');) values.push_back(std::stod(v));
-  ASSERT_EQ(values.size(), 8u);
+  ASSERT_EQ(values.size(), 9u);
   EXPECT_EQ(values[0], 0);
   EXPECT_EQ(values[1], 12);
   EXPECT_EQ(values[2], a.mass);  // full precision: the same double back
@@ -164,13 +164,51 @@ TEST(Fragments, CsvHeaderAndRoundTrip) {
   EXPECT_EQ(values[5], a.velocity[0]);
   EXPECT_EQ(values[6], a.velocity[1]);
   EXPECT_EQ(values[7], a.kinetic_energy);
+  EXPECT_EQ(values[8], 0);
   std::getline(in2, row);
   EXPECT_EQ(row.substr(0, 4), "1,4,");
   EXPECT_FALSE(std::getline(in2, row));
   std::getline(in3, header);
   EXPECT_EQ(header,
-            "id,elements,mass,centroid_x,centroid_y,centroid_z,velocity_x,velocity_y,velocity_z,kinetic_energy");
+            "id,elements,mass,centroid_x,centroid_y,centroid_z,velocity_x,velocity_y,velocity_z,kinetic_energy,"
+            "particles");
   std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace shard
+
+namespace shard {
+namespace {
+
+TEST(Fragments, DebrisParticlesAreFragmentsOfTheirOwn) {
+  // Two debris particles from elements and one grain that never was an element (not debris).
+  Model model;
+  model.formulation = Formulation::plane_strain;
+  model.nodes.dim = 2;
+  ParticlePart p;
+  p.dim = 2;
+  p.add_particles(3);
+  const double mass[3] = {2e-6, 3e-6, 5e-6}, v[3][2] = {{1, 2}, {-4, 0}, {7, 7}}, omega[3] = {0, 100, 0};
+  for (int i = 0; i < 3; ++i) {
+    p.mass[i] = mass[i];
+    p.inertia[i] = 1e-12;
+    p.omega[i] = omega[i];
+    p.x[2 * i] = 0.1 * i;
+    for (int k = 0; k < 2; ++k) p.v[2 * i + k] = v[i][k];
+  }
+  p.origin_element = {7, 9, -1};
+  model.particle_parts.push_back(p);
+  const std::vector<Fragment> debris = debris_fragments(model, 4);
+  ASSERT_EQ(debris.size(), 2u);
+  EXPECT_EQ(debris[0].id, 4);
+  EXPECT_EQ(debris[1].id, 5);
+  EXPECT_EQ(debris[0].particles, 1);
+  EXPECT_EQ(debris[0].elements, 0);
+  EXPECT_EQ(debris[1].mass, 3e-6);
+  EXPECT_EQ(debris[1].centroid[0], 0.1);
+  EXPECT_DOUBLE_EQ(debris[0].kinetic_energy, 0.5 * 2e-6 * 5);
+  EXPECT_DOUBLE_EQ(debris[1].kinetic_energy, 0.5 * 3e-6 * 16 + 0.5 * 1e-12 * 1e4);
 }
 
 }  // namespace
