@@ -508,7 +508,12 @@ void erosion_rules(const Scenario& sc, Simulation& sim, const std::string& file)
     std::string listed;
     for (const auto& n : names) listed += (listed.empty() ? "" : ", ") + n;
     ErosionRule rule;
-    if (in.variable) {
+    if (in.variable == "none") {
+      rule.state_index = ErosionRule::kNoVariable;
+      if (!in.inverted && !(in.distortion > 0) && !in.to_particles)
+        throw InputError(file, in.line, path + ".variable",
+                         "variable: none leaves the element no way to fail: give inverted: true or a distortion");
+    } else if (in.variable) {
       const auto it = std::find(names.begin(), names.end(), *in.variable);
       if (it == names.end())
         throw InputError(file, in.line, path + ".variable",
@@ -523,12 +528,12 @@ void erosion_rules(const Scenario& sc, Simulation& sim, const std::string& file)
     }
     rule.point_fraction = in.fraction;
     rule.to_particles = in.to_particles;
+    rule.on_inversion = in.inverted;
+    rule.min_length_ratio = in.distortion;
     if (rule.to_particles) {
       if (!sc.particle_contact)
         throw InputError(file, in.line, path + ".on_failure",
                          "on_failure: particles needs a particle_contact section (the law the particles collide with)");
-      if (sc.formulation == Formulation::axisymmetric)
-        throw InputError(file, in.line, path + ".on_failure", "conversion to particles is not available in axisymmetry yet");
       (void)conversion_point_weights(*part.type);  // throws for a type it does not know
       ParticlePart debris;
       debris.name = part.name + "_particles";
@@ -537,6 +542,21 @@ void erosion_rules(const Scenario& sc, Simulation& sim, const std::string& file)
     }
     part.erosion = rule;
   }
+}
+
+/// cracking.small_pieces: particles: the cracking parts must be able to make particles.
+void comminution(const Scenario& sc, Simulation& sim, const std::string& file) {
+  if (!sim.cracking || !sc.cracking->small_pieces_to_particles) return;
+  for (const int p : sim.cracking->parts) {
+    const Part& part = sim.model.parts[p];
+    if (!part.erosion.to_particles)
+      throw InputError(file, sc.cracking->small_pieces_line, "cracking.small_pieces",
+                       "small pieces of part '" + part.name + "' cannot become particles: give its material '" +
+                           sc.materials[part.material].name +
+                           "' an erosion rule with on_failure: particles (variable: none if nothing else should "
+                           "make its elements fail)");
+  }
+  sim.cracking->comminution = true;
 }
 
 void build_particle_contact(const Scenario& sc, Simulation& sim) {
@@ -551,6 +571,7 @@ void build_particle_contact(const Scenario& sc, Simulation& sim) {
   s.params = pair_law_parameters(*s.law, in.parameters);
   s.skin = in.skin;
   s.time_step_safety = in.time_step_safety;
+  s.axis = sc.formulation == Formulation::axisymmetric;
   // Bonded automata meet walls, the mesh and other parts through it; their own pairs are their
   // model's.
   for (const ParticlePart& pp : sim.model.particle_parts) s.walls_only.push_back(pp.model ? 1 : 0);
@@ -592,6 +613,7 @@ Simulation build_simulation(Scenario& sc, const MeshData& mesh) {
   build_contact(sc, sim, cracking_parts(sc, sim));
   build_particle_parts(sc, sim);
   erosion_rules(sc, sim, file);
+  comminution(sc, sim, file);
   build_particle_contact(sc, sim);
   solver_settings(sc, sim.settings);
 

@@ -63,9 +63,18 @@ void closest_on_triangle(const double* a, const double* b, const double* c, cons
   set(1 - v - u, v, u);
 }
 
+/// A ring (axisymmetric) touches as a row of spheres of its cross-section along its
+/// circumference: L / 2ρ of them; 0 for a particle that is not a ring.
+double ring_scale(const ParticlePart& part, std::size_t i) {
+  return part.ring_length[i] > 0 ? part.ring_length[i] / (2 * part.radius[i]) : 0.0;
+}
+
 bool takes_part(const ParticleContactSettings& s, std::size_t part) {
   return s.parts.empty() || (part < s.parts.size() && s.parts[part]);
 }
+
+/// The axis of an axisymmetric model as a plane: r = 0, facing the material.
+constexpr double kAxisNormal[3] = {1, 0, 0};
 
 /// Values the contact keeps after the law's own history: the force on b, the stored energy, and
 /// the overlap it was born with (carried without force, given up as the bodies part).
@@ -89,6 +98,11 @@ ParticleContact::ParticleContact(ParticleContactSettings settings) : settings_(s
   if (settings_.params.size() != settings_.law->parameters.size())
     throw std::invalid_argument("particle contact: the law's parameters are not complete");
   if (settings_.wall_params.empty()) settings_.wall_params = settings_.params;
+  // The axis is a plane of symmetry: a ring's other side moves as its mirror image, so nothing
+  // slides there.
+  axis_params_ = settings_.wall_params;
+  for (std::size_t i = 0; i < settings_.law->parameters.size(); ++i)
+    if (settings_.law->parameters[i].name == "friction") axis_params_[i] = 0;
 }
 
 void ParticleContact::gather(Model& model) {
@@ -236,6 +250,7 @@ void ParticleContact::rebuild_list(Model& model) {
   w_.resize(3 * n);
   radius_.resize(n);
   mass_.resize(n);
+  ring_scale_.resize(n);
   newborn_.resize(n);
   std::vector<std::int64_t> ids(n);
   double r_min = std::numeric_limits<double>::infinity(), r_max = 0;
@@ -243,6 +258,7 @@ void ParticleContact::rebuild_list(Model& model) {
     const ParticlePart& part = model.particle_parts[part_of_[i]];
     radius_[i] = part.radius[index_in_part_[i]];
     mass_[i] = part.mass[index_in_part_[i]];
+    ring_scale_[i] = ring_scale(part, index_in_part_[i]);
     newborn_[i] = part.newborn[index_in_part_[i]];
     ids[i] = part.id[index_in_part_[i]];
     r_min = std::min(r_min, radius_[i]);
@@ -267,15 +283,14 @@ void ParticleContact::rebuild_list(Model& model) {
   const int dim = model.dim();
   if (model.contact.wall_offset.size() != settings_.walls.size() * dim)
     model.contact.wall_offset.assign(settings_.walls.size() * dim, 0.0);
-  for (std::size_t w = 0; w < settings_.walls.size(); ++w) {
-    const RigidWall& wall = settings_.walls[w];
+  const std::vector<double> origin = wall_origins(model), normal = wall_normals();
+  for (std::size_t w = 0; w < wall_count(); ++w)
     for (std::size_t i = 0; i < n; ++i) {
       double d = 0;
-      for (int a = 0; a < dim; ++a) d += (x_[3 * i + a] - wall.point[a] - model.contact.wall_offset[dim * w + a]) * wall.normal[a];
+      for (int a = 0; a < dim; ++a) d += (x_[3 * i + a] - origin[3 * w + a]) * normal[3 * w + a];
       if (d - radius_[i] < skin_)
         candidates.push_back({InteractionKind::particle_wall, ids[i], static_cast<std::int64_t>(w)});
     }
-  }
   facet_candidates(model, ids, r_max, candidates);
   // A contact still carrying force whose partner is gone (a facet of an element that eroded or
   // converted, a particle removed) leaves with its stored energy: booked as dissipated.
@@ -288,6 +303,7 @@ void ParticleContact::rebuild_list(Model& model) {
   for (const auto& [key, stored] : loaded)
     if (list.find(key) < 0) released_ += stored;
   resolve_list(model);
+  stable_dt_ = 0;  // the step is bounded over the listed contacts
   x_at_build_ = x_;
   wall_offset_at_build_ = model.contact.wall_offset;
   stale_ = false;
@@ -298,7 +314,7 @@ void ParticleContact::resolve_list(const Model& model) {
   // each particle's in list order.
   std::unordered_map<std::int64_t, std::int32_t> facet_of_id;
   for (std::size_t f = 0; f < surface_.facet_id.size(); ++f) facet_of_id.emplace(surface_.facet_id[f], static_cast<std::int32_t>(f));
-  const auto walls = static_cast<std::int32_t>(settings_.walls.size());
+  const auto walls = static_cast<std::int32_t>(wall_count());
   const std::size_t n = part_of_.size();
   const InteractionList& list = model.particle_contacts;
   const std::size_t m = list.size();
@@ -341,6 +357,8 @@ namespace {
 struct ContactEvaluation {
   const PairLaw* law;
   const std::vector<double>* params;
+  /// The law acts this many times (rings: ParticleContact::contact_scale).
+  double scale;
   ContactKinematics c;
   double arm_a[3] = {0, 0, 0}, arm_b[3] = {0, 0, 0};
   double rel[3] = {0, 0, 0};  ///< velocity of b's contact point relative to a's (m/s)
@@ -354,6 +372,11 @@ struct ContactEvaluation {
     ContactResponse r;
     if (c.overlap > 0) {
       r = law->evaluate(*params, c, history.first(h));
+      if (scale != 1) {
+        r.normal_force *= scale;
+        r.stored_energy *= scale;
+        for (int q = 0; q < 3; ++q) r.tangential_force[q] *= scale, r.rolling_torque[q] *= scale;
+      }
     } else {
       std::fill_n(history.data(), h, 0.0);
     }
@@ -378,15 +401,14 @@ void ParticleContact::evaluate_contacts(Model& model, double time, double dt) {
   InteractionList& list = model.particle_contacts;
   const std::size_t m = first_.size();
   const int dim = model.dim();
-  const auto walls = static_cast<std::int32_t>(settings_.walls.size());
+  const auto walls = static_cast<std::int32_t>(wall_count());
+  const auto listed_walls = static_cast<std::int32_t>(settings_.walls.size());
   const std::size_t law_slots = settings_.law->history_size;
-  // The walls where they are at t_n, moving at their velocity of the increment.
-  std::vector<double> wall_velocity(3 * settings_.walls.size(), 0.0), wall_origin(3 * settings_.walls.size(), 0.0);
+  // The walls where they are at t_n, moving at their velocity of the increment (the axis stays).
+  const std::vector<double> wall_origin = wall_origins(model);
+  std::vector<double> wall_velocity(3 * wall_count(), 0.0);
   for (std::size_t w = 0; w < settings_.walls.size(); ++w)
-    for (int a = 0; a < dim; ++a) {
-      wall_velocity[3 * w + a] = settings_.walls[w].velocity[a].at(time - 0.5 * dt);
-      wall_origin[3 * w + a] = settings_.walls[w].point[a] + model.contact.wall_offset[dim * w + a];
-    }
+    for (int a = 0; a < dim; ++a) wall_velocity[3 * w + a] = settings_.walls[w].velocity[a].at(time - 0.5 * dt);
   facet_features(model);
   std::size_t active = 0;
 #pragma omp parallel for schedule(static) reduction(+ : active)
@@ -397,7 +419,8 @@ void ParticleContact::evaluate_contacts(Model& model, double time, double dt) {
     double* tb = &torque_b_[3 * k];
     std::span<double> history = list.history(k);
     const bool wall = b < 0 && b >= -walls;
-    ContactEvaluation ev{settings_.law, wall ? &settings_.wall_params : &settings_.params, {}};
+    const std::vector<double>* params = !wall ? &settings_.params : b < -listed_walls ? &axis_params_ : &settings_.wall_params;
+    ContactEvaluation ev{settings_.law, params, contact_scale(a, b), {}};
     ev.c.dim = dim;
     ev.c.dt = dt;
     geometry(model, k, wall_origin, ev.c);
@@ -423,7 +446,7 @@ void ParticleContact::evaluate_contacts(Model& model, double time, double dt) {
       for (int q = 0; q < 3; ++q) ev.arm_a[q] = radius_[a] * ev.c.normal[q], ev.arm_b[q] = -radius_[b] * ev.c.normal[q];
       relative_motion(&v_[3 * a], &w_[3 * a], ev.arm_a, &v_[3 * b], &w_[3 * b], ev.arm_b, ev.c, ev.rel);
       ev.c.effective_radius = radius_[a] * radius_[b] / (radius_[a] + radius_[b]);
-      ev.c.effective_mass = mass_[a] * mass_[b] / (mass_[a] + mass_[b]);
+      ev.c.effective_mass = mass_[a] * mass_[b] / (mass_[a] + mass_[b]) / ev.scale;  // per sphere of a ring's row
       dissipated_[k] = ev.run(history, f, tb, stored_[k]);
       // On a: −f at arm_a, and the opposite of the law's own torque (tb less the moment of f).
       double ma[3], mb[3];
@@ -448,7 +471,7 @@ void ParticleContact::evaluate_contacts(Model& model, double time, double dt) {
       for (int q = 0; q < 3; ++q) ev.arm_b[q] = -radius_[a] * ev.c.normal[q];
       relative_motion(partner_velocity, still, ev.arm_a, &v_[3 * a], &w_[3 * a], ev.arm_b, ev.c, ev.rel);
       ev.c.effective_radius = radius_[a];
-      ev.c.effective_mass = mass_[a];
+      ev.c.effective_mass = mass_[a] / ev.scale;
       ev.c.rigid_partner = wall;
       dissipated_[k] = ev.run(history, f, ta, stored_[k]);
       for (int q = 0; q < 3; ++q) fa[q] = f[q], tb[q] = 0;
@@ -460,7 +483,7 @@ void ParticleContact::evaluate_contacts(Model& model, double time, double dt) {
 inline void ParticleContact::geometry(const Model& model, std::size_t k, const std::vector<double>& wall_origin,
                                       ContactKinematics& c) {
   const std::int32_t a = first_[k], b = second_[k];
-  const auto walls = static_cast<std::int32_t>(settings_.walls.size());
+  const auto walls = static_cast<std::int32_t>(wall_count());
   if (b < -walls) {
     // A facet is body 1, the particle body 2: the normal from the facet's closest point (found,
     // and duplicates set aside, by facet_features).
@@ -490,11 +513,26 @@ inline void ParticleContact::geometry(const Model& model, std::size_t k, const s
     return;
   }
   const std::size_t w = static_cast<std::size_t>(-1 - b);
-  const RigidWall& rw = settings_.walls[w];
+  const double* normal = w < settings_.walls.size() ? settings_.walls[w].normal.data() : kAxisNormal;
   double dist = 0;
-  for (int q = 0; q < c.dim; ++q) dist += (x_[3 * a + q] - wall_origin[3 * w + q]) * rw.normal[q];
+  for (int q = 0; q < c.dim; ++q) dist += (x_[3 * a + q] - wall_origin[3 * w + q]) * normal[q];
   c.overlap = radius_[a] - dist;
-  for (int q = 0; q < 3; ++q) c.normal[q] = rw.normal[q];
+  for (int q = 0; q < 3; ++q) c.normal[q] = normal[q];
+}
+
+std::vector<double> ParticleContact::wall_origins(const Model& model) const {
+  const int dim = model.dim();
+  std::vector<double> origin(3 * wall_count(), 0.0);  // the axis passes through 0
+  for (std::size_t w = 0; w < settings_.walls.size(); ++w)
+    for (int a = 0; a < dim; ++a) origin[3 * w + a] = settings_.walls[w].point[a] + model.contact.wall_offset[dim * w + a];
+  return origin;
+}
+
+std::vector<double> ParticleContact::wall_normals() const {
+  std::vector<double> normal(3 * wall_count(), 0.0);
+  for (std::size_t w = 0; w < wall_count(); ++w)
+    std::copy_n(w < settings_.walls.size() ? settings_.walls[w].normal.data() : kAxisNormal, 3, &normal[3 * w]);
+  return normal;
 }
 
 void ParticleContact::facet_features(const Model& model) {
@@ -506,7 +544,7 @@ void ParticleContact::facet_features(const Model& model) {
   // contact of the particle nearby (its point within a radius) is closer, or as close and inside
   // its facet or earlier in the list: what is left is the closest feature, once, and the
   // separate faces of a concave corner.
-  const auto walls = static_cast<std::int32_t>(settings_.walls.size());
+  const auto walls = static_cast<std::int32_t>(wall_count());
   const std::size_t m = first_.size();
   constexpr double kEdge = 1e-9;  // a weight this small puts the point on the facet's edge
   facet_q_.resize(3 * m);
@@ -568,7 +606,7 @@ std::array<double, 3> ParticleContact::facet_outward(const Model& model, std::si
 void ParticleContact::add_facet_reactions(Model& model) const {
   // In list order, one contact after another: the nodal sums are the same for any thread count.
   const int dim = model.dim();
-  const auto walls = static_cast<std::int32_t>(settings_.walls.size());
+  const auto walls = static_cast<std::int32_t>(wall_count());
   for (std::size_t k = 0; k < first_.size(); ++k) {
     if (second_[k] >= -walls || !acting_[k]) continue;
     const std::int32_t* nodes = &surface_.facets[dim * static_cast<std::size_t>(-1 - walls - second_[k])];
@@ -602,7 +640,7 @@ void ParticleContact::scatter(Model& model) {
       p.torque[j] += t[2];
     }
   }
-  // The walls' share, in list order.
+  // The listed walls' share, in list order (the axis reports none).
   const int dim = model.dim();
   wall_force_.assign(settings_.walls.size() * dim, 0.0);
   const auto walls = static_cast<std::int32_t>(settings_.walls.size());
@@ -630,42 +668,55 @@ ParticleContactWork ParticleContact::add_forces(Model& model, double time, doubl
 
 double ParticleContact::stable_time_step(const Model& model) {
   if (stable_dt_ > 0) return stable_dt_;
+  // Over the listed interactions: every pair that can touch before the list is built again (a
+  // new list, after a move of half the skin or a topology change, computes it again). Per
+  // contact ω² = s k / m* with the law's largest stiffness k there, s the ring count, and m*
+  // of the two bodies: a wall is rigid; behind a facet stands its lightest node, which takes the
+  // reaction (a light node split off by a crack, or near the axis, sets the step, not the
+  // lightest node of the mesh).
   const PairLaw& law = *settings_.law;
-  double r_max = 0, m_max = 0;
-  for (std::size_t p = 0; p < model.particle_parts.size(); ++p) {
-    if (!takes_part(settings_, p)) continue;
-    for (std::size_t j = 0; j < model.particle_parts[p].count(); ++j) {
-      r_max = std::max(r_max, model.particle_parts[p].radius[j]);
-      m_max = std::max(m_max, model.particle_parts[p].mass[j]);
-    }
-  }
-  // The lightest node a particle can meet on a facet.
-  double node_mass = 0;
-  if (settings_.mesh && !model.parts.empty())
-    for (const double mn : model.nodes.mass)
-      if (mn > 0) node_mass = node_mass > 0 ? std::min(node_mass, mn) : mn;
-  // The stiffest contact a particle can make: with its like, with the largest particle, with a
-  // wall or with the lightest facet node; ω² = k/m* with the law's largest stiffness there.
+  const auto walls = static_cast<std::int32_t>(wall_count());
+  const int dim = model.dim();
   double omega2 = 0;
-  auto consider = [&](double r_star, double m_star, bool rigid, const std::vector<double>& params) {
-    if (!(m_star > 0) || !(r_star > 0)) return;
+  for (std::size_t k = 0; k < first_.size(); ++k) {
+    const std::int32_t a = first_[k], b = second_[k];
     ContactKinematics c;
-    c.effective_radius = r_star;
-    c.effective_mass = m_star;
-    c.rigid_partner = rigid;
-    omega2 = std::max(omega2, law.stiffness(params, c) / m_star);
-  };
-  for (std::size_t p = 0; p < model.particle_parts.size(); ++p) {
-    if (!takes_part(settings_, p)) continue;
-    const ParticlePart& part = model.particle_parts[p];
-    for (std::size_t j = 0; j < part.count(); ++j) {
-      const double r = part.radius[j], m = part.mass[j];
-      if (!walls_only(static_cast<std::int32_t>(p))) {  // a walls-only part's own pairs are its model's
-        consider(0.5 * r, 0.5 * m, false, settings_.params);
-        consider(r * r_max / (r + r_max), m * m_max / (m + m_max), false, settings_.params);
+    double inverse_mass = 1 / mass_[a];
+    c.effective_radius = radius_[a];
+    const std::vector<double>* params = &settings_.params;
+    if (b >= 0) {
+      c.effective_radius = radius_[a] * radius_[b] / (radius_[a] + radius_[b]);
+      inverse_mass += 1 / mass_[b];
+    } else if (b >= -walls) {
+      c.rigid_partner = true;
+      params = &settings_.wall_params;
+    } else {
+      const std::int32_t* nodes = &surface_.facets[dim * static_cast<std::size_t>(-1 - walls - b)];
+      double lightest = 0;
+      for (int i = 0; i < dim; ++i) {
+        const double mn = model.nodes.mass[nodes[i]];
+        if (mn > 0) lightest = lightest > 0 ? std::min(lightest, mn) : mn;
       }
-      if (!settings_.walls.empty()) consider(r, m, true, settings_.wall_params);
-      if (node_mass > 0) consider(r, m * node_mass / (m + node_mass), false, settings_.params);
+      if (lightest > 0) inverse_mass += 1 / lightest;
+    }
+    c.effective_mass = 1 / inverse_mass;
+    omega2 = std::max(omega2, std::max(contact_scale(a, b), 1.0) * law.stiffness(*params, c) * inverse_mass);
+  }
+  // And whatever the list holds now, each particle against its like and a wall: the step of
+  // free flight, so that no particle crosses a neighbour in one step before the list sees it.
+  for (std::size_t i = 0; i < part_of_.size(); ++i) {
+    ContactKinematics c;
+    const double scale = std::max(ring_scale_[i], 1.0);
+    if (!walls_only(part_of_[i])) {
+      c.effective_radius = 0.5 * radius_[i];
+      c.effective_mass = 0.5 * mass_[i];
+      omega2 = std::max(omega2, scale * law.stiffness(settings_.params, c) / c.effective_mass);
+    }
+    if (walls > 0) {
+      c.effective_radius = radius_[i];
+      c.effective_mass = mass_[i];
+      c.rigid_partner = true;
+      omega2 = std::max(omega2, scale * law.stiffness(settings_.wall_params, c) / c.effective_mass);
     }
   }
   stable_dt_ = omega2 > 0 ? settings_.time_step_safety * 2 / std::sqrt(omega2) : std::numeric_limits<double>::infinity();

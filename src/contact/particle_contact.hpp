@@ -45,6 +45,9 @@ struct ParticleContactSettings {
   bool mesh = true;
   /// Multiplies the contact stable step 2/ω, ω² = k/m* of the stiffest possible contact.
   double time_step_safety = 0.08;
+  /// Axisymmetric: the particles are rings, and touch the axis r = 0 as a frictionless plane of
+  /// symmetry (a ring pressed onto the axis meets its own other side).
+  bool axis = false;
 };
 
 /// What the contacts did in one evaluation.
@@ -71,8 +74,9 @@ class ParticleContact final : public TopologyListener {
   ParticleContactWork add_forces(Model& model, double time, double dt);
   /// Force of the particles on each wall at the last call (dim per wall).
   const std::vector<double>& wall_forces() const { return wall_force_; }
-  /// The stable step of the stiffest contact the particles can make (before any topology change
-  /// it is computed once), times the safety factor.
+  /// The stable step of the stiffest contact in the neighbour list (every pair that can touch
+  /// before the list is built again; computed once per list), times the safety factor. Call
+  /// after add_forces.
   double stable_time_step(const Model& model);
   const ParticleContactSettings& settings() const { return settings_; }
   /// Contacts (pairs and wall contacts that overlap, whether or not they carry force) at the last call.
@@ -89,6 +93,19 @@ class ParticleContact final : public TopologyListener {
   void gather(Model& model);
   bool list_is_stale(const Model& model) const;
   bool walls_only(std::int32_t part) const;
+  /// Where each wall passes at t_n (3 per wall, the axis last) and its unit normal.
+  std::vector<double> wall_origins(const Model& model) const;
+  std::vector<double> wall_normals() const;
+  /// The rigid planes particles touch: the settings' walls, then the axis (axisymmetric).
+  std::size_t wall_count() const { return settings_.walls.size() + (settings_.axis ? 1 : 0); }
+  /// How many times the law acts at a contact: 1 for discs and spheres; for rings (a row of
+  /// L / 2ρ spheres of its cross-section along its circumference L) the fewer of the two rings'
+  /// counts (a ring's own on a wall or facet).
+  double contact_scale(std::int32_t a, std::int32_t b) const {
+    const double sa = ring_scale_[a];
+    if (sa == 0) return 1.0;
+    return b >= 0 ? std::min(sa, ring_scale_[b]) : sa;
+  }
   /// Particle–facet candidates within the skin, and the facets' node positions at the search.
   void facet_candidates(const Model& model, const std::vector<std::int64_t>& ids, double r_max,
                         std::vector<InteractionKey>& out);
@@ -112,6 +129,8 @@ class ParticleContact final : public TopologyListener {
   // Flat copies of the taking particles, 3 slots per vector whatever the dimension.
   std::vector<std::int32_t> part_of_, index_in_part_;
   std::vector<double> x_, v_, w_, radius_, mass_;
+  std::vector<double> ring_scale_;  ///< per flat particle: L / 2ρ of a ring (0: not a ring)
+  std::vector<double> axis_params_;  ///< the wall parameters without friction, for the axis
   std::vector<std::uint8_t> newborn_;
   std::vector<double> x_at_build_, wall_offset_at_build_;
   std::vector<std::int32_t> flat_of_id_;  ///< particle id → flat index (−1: not taking part)

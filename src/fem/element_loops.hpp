@@ -133,6 +133,21 @@ void skip_element(Part& part, std::size_t e, Workspace& ws, std::size_t i) {
   clear_kernel_state(part, e);
 }
 
+/// part.eroded value of an element eroded by its shape in this step's kinematics, whose stored
+/// energy the material pass has still to book.
+constexpr std::uint8_t kShapeEroded = 2;
+
+/// The erosion rule's shape criteria: turned inside out (when the rule allows it), or a
+/// characteristic length below min_length_ratio of the element's first one.
+inline bool fails_by_shape(Part& part, std::size_t e, bool positive_volume, double length) {
+  const ErosionRule& rule = part.erosion;
+  if (!positive_volume) return rule.on_inversion;
+  if (!(rule.min_length_ratio > 0)) return false;
+  double& first = part.reference_length[e];
+  if (first == 0) first = length;
+  return length < rule.min_length_ratio * first;
+}
+
 /// Kinematics of the elements [begin, end) into workspace slots first_slot + (e − begin).
 template <class Kernel>
 void element_kinematics(const StepContext& ctx, Part& part, const NodeArrays& nodes, std::size_t begin,
@@ -146,6 +161,14 @@ void element_kinematics(const StepContext& ctx, Part& part, const NodeArrays& no
     }
     const bool ok = Kernel::kinematics(ctx, part, nodes, e, ws, i, hourglass_scale);
     if constexpr (Kernel::has_hourglass_control) out.hourglass_work += ws.hourglass_work[i];
+    if (part.erosion.by_shape() && fails_by_shape(part, e, ok, ws.length[i])) {
+      // Eroded by its shape: it leaves the force computation now; update_points books the
+      // energy it held (kShapeEroded marks it for that).
+      part.eroded[e] = kShapeEroded;
+      ++out.eroded_elements;
+      skip_element<Kernel>(part, e, ws, i);
+      continue;
+    }
     if (!ok && out.inverted_element < 0) out.inverted_element = static_cast<std::int64_t>(e);
   }
 }
@@ -159,12 +182,24 @@ struct MaterialLayout {
   std::size_t state_size;
   int failure_index;        ///< the state variable a point fails on (−1: never)
   double failure_threshold;  ///< the value at which it has failed
+  /// The state variable holding the recoverable energy per unit volume Ψ (−1: none; the stress's
+  /// elastic energy p²/2K + s:s/4G is taken instead).
+  int energy_density_index;
   ElasticModuli moduli;
   MaterialLayout(const Material& m, const ErosionRule& rule)
       : state_size(m.state_size()),
-        failure_index(rule.state_index >= 0 ? rule.state_index : m.failure_state_index()),
+        failure_index(rule.state_index >= 0                           ? rule.state_index
+                      : rule.state_index == ErosionRule::kNoVariable ? -1
+                                                                      : m.failure_state_index()),
         failure_threshold(rule.state_index >= 0 ? rule.threshold : 1.0),
+        energy_density_index(m.failure_map_slots() ? m.failure_map_slots()->energy_density : -1),
         moduli(m.elastic()) {}
+
+  /// The elastic energy per unit volume a point holds: Ψ where the material keeps it (for a
+  /// softening material the balance counts Ψ as stored), else p²/2K + s:s/4G of its stress.
+  double stored_energy_density(const double* s, const double* point_state) const {
+    return energy_density_index >= 0 ? point_state[energy_density_index] : moduli.energy_density(s);
+  }
 };
 
 template <class Kernel>
@@ -204,13 +239,24 @@ void update_points(const StepContext& ctx, Part& part, const Material& material,
   }
 
   // Eroded elements stay stress-free (a total-form equation of state would otherwise restore a
-  // pressure from their frozen volumetric strain).
-  for (std::size_t e = begin; e < end; ++e)
-    if (part.eroded[e]) std::fill_n(&part.stress[kTensorSize * npts * e], kTensorSize * npts, 0.0);
+  // pressure from their frozen volumetric strain). One eroded by its shape in this step's
+  // kinematics leaves with the energy it held at the start of the step, on its last volume.
+  for (std::size_t e = begin; e < end; ++e) {
+    if (!part.eroded[e]) continue;
+    if (part.eroded[e] == kShapeEroded) {
+      for (int q = 0; q < npts; ++q) {
+        const std::size_t slot = npts * (first_slot + e - begin) + q;
+        out.eroded_energy += layout.stored_energy_density(&ws.stress_old[kTensorSize * slot],
+                                                          &part.state[state_size * (npts * e + q)]) *
+                             part.volume[e] / npts;
+      }
+      part.eroded[e] = 1;
+    }
+    std::fill_n(&part.stress[kTensorSize * npts * e], kTensorSize * npts, 0.0);
+  }
 
   const int failure = layout.failure_index;
   if (failure < 0) return;
-  const ElasticModuli& m = layout.moduli;
   const int required = part.erosion.points_required(npts);
   for (std::size_t e = begin; e < end; ++e) {
     if (part.eroded[e]) continue;
@@ -224,10 +270,7 @@ void update_points(const StepContext& ctx, Part& part, const Material& material,
     ++out.eroded_elements;
     for (int q = 0; q < npts; ++q) {
       double* s = &part.stress[kTensorSize * (npts * e + q)];
-      const double p = -(s[xx] + s[yy] + s[zz]) / 3.0;
-      const double dev_sq = (s[xx] + p) * (s[xx] + p) + (s[yy] + p) * (s[yy] + p) +
-                            (s[zz] + p) * (s[zz] + p) + 2.0 * (s[xy] * s[xy] + s[yz] * s[yz] + s[zx] * s[zx]);
-      out.eroded_energy += (p * p / (2.0 * m.bulk) + dev_sq / (4.0 * m.shear)) *
+      out.eroded_energy += layout.stored_energy_density(s, &part.state[state_size * (npts * e + q)]) *
                            ws.point_volume[npts * (first_slot + e - begin) + q];
       std::fill_n(s, kTensorSize, 0.0);
     }

@@ -146,15 +146,17 @@ class PieceSizer {
   }
 
   /// True if opening edge a–b (with the edges in `cut`) leaves at least `min_elements` live
-  /// triangles edge-connected to each of its two sides (or the two sides still connected).
+  /// triangles edge-connected to each of its two sides (or the two sides still connected). The
+  /// triangles of a side that would be cut off smaller are appended to `small` (global numbers).
   bool leaves_large_pieces(std::int32_t a, std::int32_t b, const std::unordered_set<std::uint64_t>& cut,
-                           int min_elements) const {
+                           int min_elements, std::vector<std::int64_t>& small) const {
     const auto it = edges_.find(edge_key(a, b));
     if (it == edges_.end() || it->second[1] < 0) return true;
     const std::uint64_t candidate = edge_key(a, b);
+    bool large = true;
     for (int side = 0; side < 2; ++side)
-      if (!reaches(it->second[side], it->second[1 - side], candidate, cut, min_elements)) return false;
-    return true;
+      large = reaches(it->second[side], it->second[1 - side], candidate, cut, min_elements, small) && large;
+    return large;
   }
 
  private:
@@ -164,9 +166,10 @@ class PieceSizer {
     return &model_->parts[p].connectivity[3 * static_cast<std::size_t>(global - pb[p])];
   }
 
-  /// Walks from `start`: true once `min_elements` triangles are found or `other` is reached.
+  /// Walks from `start`: true once `min_elements` triangles are found or `other` is reached;
+  /// otherwise the piece it walked is appended to `small`.
   bool reaches(std::int64_t start, std::int64_t other, std::uint64_t candidate,
-               const std::unordered_set<std::uint64_t>& cut, int min_elements) const {
+               const std::unordered_set<std::uint64_t>& cut, int min_elements, std::vector<std::int64_t>& small) const {
     std::vector<std::int64_t> found{start};
     for (std::size_t k = 0; k < found.size(); ++k) {
       if (static_cast<int>(found.size()) >= min_elements) return true;
@@ -182,7 +185,9 @@ class PieceSizer {
         if (std::find(found.begin(), found.end(), next) == found.end()) found.push_back(next);
       }
     }
-    return static_cast<int>(found.size()) >= min_elements;
+    if (static_cast<int>(found.size()) >= min_elements) return true;
+    small.insert(small.end(), found.begin(), found.end());
+    return false;
   }
 
   const Model* model_;
@@ -364,18 +369,25 @@ class CrackPlanner {
   void refuse(std::int32_t p) {
     out_.skipped_nodes.push_back(p);
     ++out_.small_fragment_refusals;
+    // Comminution: the piece the crack would have cut off becomes particles instead.
+    for (const std::int64_t g : small_) {
+      const auto& pb = fans_->part_begin;
+      const std::size_t part = std::upper_bound(pb.begin(), pb.end(), g) - pb.begin() - 1;
+      if (parts_[part].comminutes) out_.comminuted.emplace_back(static_cast<int>(part), static_cast<std::size_t>(g - pb[part]));
+    }
   }
 
   // The minimum-fragment rule: every edge in `ends` may open together (with those of `cut`).
   // (The candidates join `cut` for the check and leave it again: the walk never crosses the
   // candidate it sizes anyway, and copying `cut` would cost its size per failed node.)
   bool leaves_large_pieces(std::initializer_list<std::int32_t> ends, std::int32_t p) {
+    small_.clear();
     if (!sizer_) return true;
     std::vector<std::uint64_t> added;
     for (const std::int32_t r : ends)
       if (cut_.insert(edge_key(p, r)).second) added.push_back(edge_key(p, r));
     bool ok = true;
-    for (const std::int32_t r : ends) ok = ok && sizer_->leaves_large_pieces(p, r, cut_, min_fragment_);
+    for (const std::int32_t r : ends) ok = sizer_->leaves_large_pieces(p, r, cut_, min_fragment_, small_) && ok;
     for (const std::uint64_t key : added) cut_.erase(key);
     return ok;
   }
@@ -404,6 +416,7 @@ class CrackPlanner {
   std::optional<PieceSizer> sizer_;
   std::optional<Fans> fans_;
   std::unordered_set<std::uint64_t> cut_;
+  std::vector<std::int64_t> small_;  ///< pieces the last minimum-fragment check found too small
 };
 
 void CrackPlanner::plan_interior(std::int32_t p, const std::vector<FanEntry>& fan, const Wedges& w,
@@ -492,15 +505,11 @@ double reinitialise_element(Part& part, std::size_t e, const CrackingPart& cp, d
   double released = 0;
   for (int q = 0; q < npts; ++q) {
     double* s = &part.stress[kTensorSize * (npts * e + q)];
-    const double pressure = -(s[xx] + s[yy] + s[zz]) / 3.0;
-    const double dev_sq = (s[xx] + pressure) * (s[xx] + pressure) + (s[yy] + pressure) * (s[yy] + pressure) +
-                          (s[zz] + pressure) * (s[zz] + pressure) +
-                          2.0 * (s[xy] * s[xy] + s[yz] * s[yz] + s[zx] * s[zx]);
     double* state = &part.state[state_size * (npts * e + q)];
     if (cp.energy_density_index >= 0)
       released += state[cp.energy_density_index] * volume;
     else if (cp.moduli.bulk > 0 && cp.moduli.shear > 0)
-      released += (pressure * pressure / (2.0 * cp.moduli.bulk) + dev_sq / (4.0 * cp.moduli.shear)) * volume;
+      released += cp.moduli.energy_density(s) * volume;
     std::fill_n(s, kTensorSize, 0.0);
     state[cp.factor_index] = 0.0;
     if (cp.energy_density_index >= 0) state[cp.energy_density_index] = 0.0;
@@ -576,6 +585,8 @@ CrackInsertion insert_cracks(Model& model, std::span<const CrackingPart> parts,
   out.remap = split_on_fans(model, planner.fans(), density, out.opened_edges, out.parent);
   apply_remap(model, out.remap);
   reinitialise_failed_elements(model, parts, planner.fans(), threshold, out);
+  std::sort(out.comminuted.begin(), out.comminuted.end());
+  out.comminuted.erase(std::unique(out.comminuted.begin(), out.comminuted.end()), out.comminuted.end());
   return out;
 }
 

@@ -35,6 +35,9 @@ struct CrackingPart {
   /// softening material Ψ is what the balance counts as stored, so it is the exact amount freed.
   /// It is set to 0 with the stress.
   int energy_density_index = -1;
+  /// Comminution: a piece a crack would cut off below min_fragment_elements is handed back (in
+  /// CrackInsertion::comminuted) to become particles, instead of the crack being refused.
+  bool comminutes = false;
 };
 
 struct CrackInsertionSettings {
@@ -57,6 +60,10 @@ struct CrackInsertion {
   /// Failed nodes skipped because their edge would have cut off a fragment below
   /// min_fragment_elements (also counted in skipped_nodes).
   std::size_t small_fragment_refusals = 0;
+  /// The elements (part, element) of the pieces below min_fragment_elements that refused cracks
+  /// would have cut off, in parts that comminute: the caller turns them into particles. Sorted,
+  /// unique; element numbers are unchanged by the update (it adds nodes, not elements).
+  std::vector<std::pair<int, std::size_t>> comminuted;
   std::size_t reinitialised_elements = 0;
   /// Recoverable energy of the re-initialised points, whose stress was set to 0 (Ψ·V, or
   /// p²/2K + s:s/4G · V): the damage "coalesced into the crack"; book it as fracture energy.

@@ -147,6 +147,11 @@ KeyList cracking_keys() {
              "Coulomb coefficient between crack faces (they close and slide in contact)")
       .at_least(0)
       .defaults_to("0.25");
+  k.choice("small_pieces", {"smeared", "particles"},
+           "what becomes of a piece a crack would cut off below min_fragment_elements: smeared (the "
+           "crack is refused, the material stays a smeared crack) or particles (comminution: the "
+           "piece's elements become particles; the material needs erosion with on_failure: particles)")
+      .defaults_to("smeared");
   return k;
 }
 
@@ -161,13 +166,23 @@ KeyList material_friction_keys() {
 KeyList erosion_keys() {
   KeyList k;
   k.add("variable", ValueKind::text,
-        "the history variable a point fails on (a name from the model's state); default: the "
-        "model's own failure variable (Johnson–Cook: damage)");
+        "the history variable a point fails on (a name from the model's state, or none: the "
+        "element fails only by its shape or by comminution); default: the model's own failure "
+        "variable (Johnson–Cook: damage)");
   k.quantity("value", dim::none, "the value at which a point has failed").defaults_to("1");
   k.quantity("fraction", dim::none, "the fraction of the element's integration points that must have failed")
       .above(0)
       .at_most(1)
       .defaults_to("0.25");
+  k.add("inverted", ValueKind::boolean,
+        "an element that turns inside out fails (false: the run stops there with an error)")
+      .defaults_to("false");
+  k.quantity("distortion", dim::none,
+             "an element fails when its characteristic length (smallest altitude) falls below this "
+             "fraction of its length at its first step (0: never)")
+      .at_least(0)
+      .below(1)
+      .defaults_to("0");
   k.choice("on_failure", {"delete", "particles"},
            "delete: the element leaves, its nodes keep the mass; particles: it becomes one particle "
            "per integration point that keeps its mass and momentum")
@@ -691,6 +706,8 @@ class ScenarioReader {
     in.value = e.number("value");
     in.fraction = e.number("fraction");
     in.to_particles = e.choice("on_failure").value_or("delete") == "particles";
+    in.inverted = e.boolean("inverted");
+    in.distortion = e.number("distortion");
     return in;
   }
 
@@ -752,12 +769,7 @@ class ScenarioReader {
     } else {
       c.fail("pairs", "expected 'all' or a list of part pairs [[a, b], ...]");
     }
-    if (c.has("self_contact")) {
-      const std::string v = c.value("self_contact").Scalar();
-      if (v != "true" && v != "false") c.fail("self_contact", "expected true or false, got '" + v + "'");
-      ci.self_contact = v == "true";
-    }
-    sc.resolved["contact"]["self_contact"] = ci.self_contact;
+    ci.self_contact = c.boolean("self_contact");
     ci.friction = c.number("friction");
     ci.dynamic_friction = c.number("dynamic_friction", ci.friction);
     ci.penalty_scale = c.number("penalty_scale");
@@ -873,6 +885,8 @@ class ScenarioReader {
     ci.failure_threshold = k.number("failure_threshold");
     ci.min_fragment_elements = static_cast<int>(k.integer("min_fragment_elements"));
     ci.friction = k.number("friction");
+    ci.small_pieces_to_particles = k.choice("small_pieces").value_or("smeared") == "particles";
+    ci.small_pieces_line = k.has("small_pieces") ? k.line("small_pieces") : ci.line;
     sc.cracking = ci;
   }
 

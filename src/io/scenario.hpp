@@ -21,10 +21,13 @@ namespace shard {
 
 /// materials.<name>.erosion: when an element of the material fails, and what becomes of it.
 struct ErosionInput {
-  std::optional<std::string> variable;  ///< a history variable of the model; absent: its own failure variable
+  /// A history variable of the model; absent: its own failure variable; "none": no variable.
+  std::optional<std::string> variable;
   double value = 1.0;
   double fraction = 0.25;               ///< of the element's integration points
   bool to_particles = false;            ///< on_failure: particles (else delete)
+  bool inverted = false;                ///< an element turned inside out fails
+  double distortion = 0;                ///< fails below this fraction of its first length (0: never)
   int line = 0;
 };
 
@@ -167,6 +170,10 @@ struct CrackingInput {
   double failure_threshold = 1.0;
   int min_fragment_elements = 3;   ///< no crack cuts off a piece of fewer elements
   double friction = 0.25;          ///< Coulomb coefficient between crack faces
+  /// small_pieces: particles — a piece a crack would cut off below min_fragment_elements becomes
+  /// particles (comminution) instead of the crack being refused.
+  bool small_pieces_to_particles = false;
+  int small_pieces_line = 0;
   int line = 0;
 };
 

@@ -430,13 +430,8 @@ void read_particle_part(Section& s, const std::string& path, const Scenario& sc,
   if (p.contact_update_interval < 0) s.fail("contact_update_interval", "must be 0 or more");
   p.contact_skin = s.number("contact_skin", 0.1 * p.packing.size);
   if (s.has("velocity")) copy3(s.vector("velocity", dim), p.velocity);
-  if (s.has("grains")) {
-    const std::string g = s.value("grains").Scalar();
-    if (g != "true" && g != "false") s.fail("grains", "expected true or false, got '" + g + "'");
-    p.grains = g == "true";
-    p.grains_line = s.line("grains");
-  }
-  s.resolved()["grains"] = p.grains;
+  p.grains = s.boolean("grains");
+  if (s.has("grains")) p.grains_line = s.line("grains");
 }
 
 void read_particle_parts(Section& top, Scenario& sc, const AutomatonMaterials& materials) {

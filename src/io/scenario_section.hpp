@@ -163,6 +163,19 @@ class Section {
     return v;
   }
 
+  /// A true/false key; absent: its declared default (false when none).
+  bool boolean(const std::string& key) {
+    const KeySpec& s = spec(key);
+    std::string v = s.default_text.value_or("false");
+    if (has(key)) {
+      if (!value(key).IsScalar()) fail(key, "expected true or false, got " + shape(value(key)));
+      v = value(key).Scalar();
+      if (v != "true" && v != "false") fail(key, "expected true or false, got '" + v + "'");
+    }
+    resolved_[key] = v == "true";
+    return v == "true";
+  }
+
   std::optional<std::string> choice(const std::string& key) {
     const KeySpec& s = spec(key);
     if (!has(key)) return std::nullopt;

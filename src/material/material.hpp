@@ -44,6 +44,13 @@ struct ElasticModuli {
   double shear = 0;  ///< G
   double lame() const { return bulk - 2.0 * shear / 3.0; }
   double constrained() const { return bulk + 4.0 * shear / 3.0; }  ///< λ + 2G (P-wave modulus)
+  /// The elastic energy per unit volume of a stress (Voigt, tensor shears): p²/2K + s:s/4G.
+  double energy_density(const double* s) const {
+    const double p = -(s[xx] + s[yy] + s[zz]) / 3.0;
+    const double dev_sq = (s[xx] + p) * (s[xx] + p) + (s[yy] + p) * (s[yy] + p) + (s[zz] + p) * (s[zz] + p) +
+                          2.0 * (s[xy] * s[xy] + s[yz] * s[yz] + s[zx] * s[zx]);
+    return p * p / (2.0 * bulk) + dev_sq / (4.0 * shear);
+  }
 };
 
 class Material {

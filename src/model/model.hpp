@@ -64,7 +64,9 @@ struct NodeArrays {
 /// When an element of a part fails, and what becomes of it (docs/theory/element_conversion.md).
 struct ErosionRule {
   /// The history variable a point fails on (its index in the material's state) and the value at
-  /// which it has; −1: the material's own failure variable (Material::failure_state_index), at 1.
+  /// which it has; −1: the material's own failure variable (Material::failure_state_index), at 1;
+  /// kNoVariable: no variable (the element fails only by its shape, below, or by comminution).
+  static constexpr int kNoVariable = -2;
   int state_index = -1;
   double threshold = 1.0;
   /// The fraction of the element's points that must have failed (0: one point is enough).
@@ -72,6 +74,13 @@ struct ErosionRule {
   /// A failed element becomes particles (one per integration point) that keep its mass and
   /// momentum; false: it is deleted and its nodes keep their mass.
   bool to_particles = false;
+  /// An element that turns inside out fails (instead of stopping the run as an error).
+  bool on_inversion = false;
+  /// An element fails when its characteristic length (the one its stable step uses) falls below
+  /// this fraction of the length it had at its first step (0: never).
+  double min_length_ratio = 0;
+  /// True if an element can fail by its shape (inversion or distortion).
+  bool by_shape() const { return on_inversion || min_length_ratio > 0; }
   /// The points of an element with npts points that must have failed.
   int points_required(int npts) const;
 };
@@ -109,6 +118,9 @@ struct Part {
   /// adds no force, and leaves the part at the end of the step (the erosion event compacts it
   /// away); its nodes keep their mass.
   std::vector<std::uint8_t> eroded;
+  /// The characteristic length of each element at its first step (0: not yet measured), for the
+  /// distortion criterion of the erosion rule.
+  std::vector<double> reference_length;
 
   std::size_t element_count() const { return connectivity.size() / static_cast<std::size_t>(type->nodes); }
   std::size_t point_count() const { return element_count() * static_cast<std::size_t>(type->points); }
@@ -129,6 +141,7 @@ struct Part {
     f(field("bulk_viscosity", Location::element, 1), bulk_viscosity);
     f(field("kernel_state", Location::element, type->kernel_state), kernel_state);
     f(field("eroded", Location::element, 1), eroded);
+    f(field("reference_length", Location::element, 1), reference_length);
   }
 };
 

@@ -107,6 +107,9 @@ struct ParticlePart {
   std::vector<std::int32_t> material;  ///< index into the model's materials
   /// The stable id of the element a particle was converted from (−1: not from an element).
   std::vector<std::int64_t> origin_element;
+  /// Axisymmetric: the circumference at birth (2π r) of the ring the particle stands for, the
+  /// length its contacts act along (m); 0 for a disc or a sphere.
+  std::vector<double> ring_length;
   /// 1 until the particle's first contact evaluation: its contacts at birth start force-free
   /// (src/contact/particle_contact.hpp).
   std::vector<std::uint8_t> newborn;
@@ -151,6 +154,7 @@ struct ParticlePart {
     f(field("inertia", Location::particle, 1, Follow::share), inertia);
     f(field("material", Location::particle, 1), material);
     f(field("origin_element", Location::particle, 1, Follow::copy, -1), origin_element);
+    f(field("ring_length", Location::particle, 1), ring_length);
     f(field("newborn", Location::particle, 1), newborn);
     f(field("prescribed", Location::particle, d + r, Follow::copy, -1), prescribed);
   }

@@ -17,7 +17,9 @@ namespace shard {
 struct EventContext {
   std::int64_t step = 0;  ///< the step number at this phase (after_advance: already incremented)
   double time = 0;        ///< t_n (after_forces) or t_n+1 (after_advance)
-  std::int64_t eroded_elements = 0;  ///< elements eroded since the start of the run
+  /// Elements eroded since the start of the run; an event that erodes elements adds them, and
+  /// the solver's erosion event (which runs after the others) takes them out of their parts.
+  std::int64_t& eroded_elements;
   EnergyLedger& energy;  ///< to book what the event releases or removes
   Topology& topology;     ///< the only way to change the topology
 };

@@ -1,8 +1,10 @@
 #include "solver/crack_growth.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 #include "core/error.hpp"
+#include "fem/internal_forces.hpp"
 
 namespace shard {
 
@@ -26,12 +28,13 @@ CrackGrowth::CrackGrowth(const Model& model, const std::vector<std::unique_ptr<M
     cp.factor_index = slots->factor;
     cp.reset_indices = slots->reset;
     cp.energy_density_index = slots->energy_density;
+    cp.comminutes = settings_.comminution && part.erosion.to_particles;
     fields_.push_back({static_cast<std::size_t>(p), PointFailureField{}});
     normals_.push_back(slots->normal);
   }
 }
 
-std::size_t CrackGrowth::insert(Model& model, EnergyLedger& energy, Topology& topology) {
+std::size_t CrackGrowth::insert(Model& model, EnergyLedger& energy, Topology& topology, std::int64_t* eroded) {
   if (settings_.parts.empty()) return 0;
   // No node can reach the threshold while no point has (the nodal factor is a weighted mean).
   bool any = false;
@@ -48,10 +51,35 @@ std::size_t CrackGrowth::insert(Model& model, EnergyLedger& energy, Topology& to
   s.min_fragment_elements = settings_.min_fragment_elements;
   const CrackInsertion ins = insert_cracks(model, parts_, map_.factor, map_.direction, s);
   energy.at("fracture") += ins.released_energy;
-  if (ins.new_node_count() == 0) return 0;
+  const std::int64_t comminuted = comminute(model, ins, energy);
+  if (eroded) *eroded += comminuted;
+  if (ins.new_node_count() == 0 && comminuted == 0) return 0;
   topology.changed(model, ins.remap);
   inserted_ += static_cast<std::int64_t>(ins.new_node_count());
   return ins.new_node_count();
+}
+
+std::int64_t CrackGrowth::comminute(Model& model, const CrackInsertion& ins, EnergyLedger& energy) {
+  std::int64_t count = 0;
+  for (const auto& [p, e] : ins.comminuted) {
+    Part& part = model.parts[p];
+    if (part.eroded[e]) continue;
+    const CrackingPart& cp = parts_[p];
+    const int npts = part.type->points;
+    const std::size_t state_size = static_cast<std::size_t>(part.state_size);
+    const double volume = std::abs(element_measure(part, model.nodes, e, model.formulation, model.thickness)) / npts;
+    for (int q = 0; q < npts; ++q) {
+      const std::size_t point = static_cast<std::size_t>(npts) * e + q;
+      const double psi = cp.energy_density_index >= 0 ? part.state[state_size * point + cp.energy_density_index]
+                                                      : cp.moduli.energy_density(&part.stress[kTensorSize * point]);
+      energy.at("conversion_elastic") += psi * volume;
+      std::fill_n(&part.stress[kTensorSize * point], kTensorSize, 0.0);
+    }
+    part.eroded[e] = 1;
+    ++count;
+  }
+  comminuted_ += count;
+  return count;
 }
 
 }  // namespace shard

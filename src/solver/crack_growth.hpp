@@ -23,6 +23,8 @@ struct CrackGrowthSettings {
   std::vector<int> parts;          ///< indices of the cracking parts (tri3, a failure-map material)
   double failure_threshold = 1.0;  ///< nodal failure factor at which a node splits
   int min_fragment_elements = 1;   ///< no crack cuts off a piece of fewer elements (1: no limit)
+  /// Pieces below min_fragment_elements become particles (parts whose erosion makes particles).
+  bool comminution = false;
 };
 
 class CrackGrowth final : public StepEvent {
@@ -32,14 +34,19 @@ class CrackGrowth final : public StepEvent {
 
   const char* name() const override { return "crack growth"; }
   Phase phase() const override { return Phase::after_advance; }
-  void run(Model& model, EventContext& context) override { insert(model, context.energy, context.topology); }
+  void run(Model& model, EventContext& context) override {
+    insert(model, context.energy, context.topology, &context.eroded_elements);
+  }
 
   /// Inserts the cracks of the nodes that failed in the last step, in one topological update
-  /// announced through `topology`; books the released energy as fracture. Returns the number of
-  /// nodes added.
-  std::size_t insert(Model& model, EnergyLedger& energy, Topology& topology);
+  /// announced through `topology`; books the released energy as fracture. Pieces too small to
+  /// cut off, in parts that comminute, are eroded (the erosion event makes them particles) and
+  /// counted in *eroded. Returns the number of nodes added.
+  std::size_t insert(Model& model, EnergyLedger& energy, Topology& topology, std::int64_t* eroded = nullptr);
 
   std::int64_t inserted_nodes() const { return inserted_; }
+  /// Elements that became particles instead of a crack cutting them off, since the start.
+  std::int64_t comminuted_elements() const { return comminuted_; }
 
  private:
   CrackGrowthSettings settings_;
@@ -48,6 +55,11 @@ class CrackGrowth final : public StepEvent {
   std::vector<int> normals_;  ///< state index of the crack normal, per entry of fields_
   NodalFailureMap map_;
   std::int64_t inserted_ = 0;
+  std::int64_t comminuted_ = 0;
+
+  /// Erodes the comminuted elements of an insertion, booking the elastic energy they held as a
+  /// conversion term; returns how many.
+  std::int64_t comminute(Model& model, const CrackInsertion& ins, EnergyLedger& energy);
 };
 
 }  // namespace shard

@@ -54,6 +54,18 @@ int debris_part(Model& model, const Part& part) {
   return static_cast<int>(model.particle_parts.size()) - 1;
 }
 
+/// The radius of eq. (13) of the CFRP paper: a sphere (3D), a disc of the model's thickness (2D),
+/// or in axisymmetry the circular cross-section of a ring about the axis through x_r, of mass m
+/// at density ρ: ρ_c = √(m / (2π² ρ x_r)). A ring's circumference goes to `ring_length`.
+double point_radius(const Model& model, double m, double density, double x_r, double& ring_length) {
+  if (model.dim() == 3) return std::cbrt(3 * m / (4 * std::numbers::pi * density));
+  if (model.formulation != Formulation::axisymmetric)
+    return std::sqrt(m / (std::numbers::pi * density * model.thickness));
+  // (A point on the axis, of an element flattened onto it, is a ring of its own sphere's radius.)
+  ring_length = 2 * std::numbers::pi * (x_r > 0 ? x_r : std::cbrt(3 * m / (4 * std::numbers::pi * density)));
+  return std::sqrt(m / (std::numbers::pi * density * ring_length));
+}
+
 struct Converting {
   int part;
   std::size_t element;
@@ -140,7 +152,7 @@ ConversionResult ElementConversion::prepare(Model& model, const std::vector<std:
     double interpolated[3] = {0, 0, 0};
     for (int q = 0; q < npts; ++q) {
       Born& b = points[q];
-      b = Born{target, {0, 0, 0}, {0, 0, 0}, mq, 0, 0, part.id[c.element], part.material};
+      b = Born{target, {0, 0, 0}, {0, 0, 0}, mq, 0, 0, 0, part.id[c.element], part.material};
       for (int a = 0; a < n; ++a) {
         const std::int32_t node = part.connectivity[static_cast<std::size_t>(n) * c.element + a];
         for (int k = 0; k < dim; ++k) {
@@ -149,8 +161,7 @@ ConversionResult ElementConversion::prepare(Model& model, const std::vector<std:
         }
       }
       for (int k = 0; k < dim; ++k) interpolated[k] += mq * b.v[k];
-      b.radius = dim == 3 ? std::cbrt(3 * mq / (4 * std::numbers::pi * density))
-                          : std::sqrt(mq / (std::numbers::pi * density * model.thickness));
+      b.radius = point_radius(model, mq, density, b.x[0], b.ring_length);
       b.inertia = (dim == 3 ? 0.4 : 0.5) * mq * b.radius * b.radius;
     }
     // The interpolated velocities carry the element's momentum only where the lumped shares
@@ -192,6 +203,7 @@ void ElementConversion::finish(Model& model) {
     }
     pp.mass[i] = b.mass;
     pp.radius[i] = b.radius;
+    pp.ring_length[i] = b.ring_length;
     pp.inertia[i] = b.inertia;
     pp.material[i] = b.material;
     pp.origin_element[i] = b.element_id;

@@ -43,6 +43,7 @@ class ElementConversion {
   struct Born {
     int particle_part;
     double x[3], v[3], mass, radius, inertia;
+    double ring_length;  ///< axisymmetric: 2π r of the ring (0 otherwise)
     std::int64_t element_id;
     int material;
   };

@@ -80,10 +80,10 @@ ExplicitSolver::ExplicitSolver(Model& model,
   }
   topology_.add(*this);
   topology_changed(model_, Remap{});
-  // The solver's own event: every run compacts eroded elements; the events a scenario asks for
-  // (crack growth, the automata's contact search) are added after it.
+  // The solver's own event: every run compacts eroded elements, after the events a scenario asks
+  // for (crack growth, the automata's contact search), so that what they erode leaves in the
+  // same step.
   if (settings_.compact_eroded_elements) own_events_.push_back(std::make_unique<ErosionCompaction>(materials_));
-  for (auto& e : own_events_) add_event(*e);
 }
 
 ExplicitSolver::~ExplicitSolver() = default;
@@ -437,11 +437,13 @@ void ExplicitSolver::remove_event(const StepEvent& event) {
 }
 
 void ExplicitSolver::run_events(StepEvent::Phase phase) {
-  for (StepEvent* event : events_) {
-    if (event->phase() != phase) continue;
+  auto run = [&](StepEvent& event) {
+    if (event.phase() != phase) return;
     EventContext context{state_.step, state_.time, state_.eroded_elements, state_.energy, topology_};
-    event->run(model_, context);
-  }
+    event.run(model_, context);
+  };
+  for (StepEvent* event : events_) run(*event);
+  for (auto& event : own_events_) run(*event);
 }
 
 }  // namespace shard

@@ -512,6 +512,34 @@ TEST(CrackInsertion, NoCrackCutsOffAFragmentBelowTheMinimumSize) {
   }
 }
 
+TEST(CrackInsertion, ComminutionHandsBackThePieceARefusedCrackWouldCutOff) {
+  // The column of failed nodes at x = h with a minimum of 2·ny + 1: the crack is refused one
+  // edge short, and with comminution the first column of cells (2·ny triangles, the piece it
+  // would have cut off) is handed back to become particles; without it, nothing is.
+  const int nx = 6, ny = 5;
+  const double L = 0.03, h = L / nx;
+  for (const bool comminutes : {false, true}) {
+    auto run = plate(nx, ny, L, 0.02);
+    Model& model = run.model;
+    std::vector<std::int32_t> line;
+    for (int j = 0; j <= ny; ++j) line.push_back(node_id(nx, 1, j));
+    FailedNodes failed(model, line, 1.0, 0.0);
+    CrackInsertionSettings settings;
+    settings.min_fragment_elements = 2 * ny + 1;
+    std::vector<CrackingPart> parts = cracking(run);
+    parts[0].comminutes = comminutes;
+    const auto ins = insert_cracks(model, parts, failed.factor, failed.normal, settings);
+    std::size_t in_first_column = 0;
+    for (const auto& [p, e] : ins.comminuted)
+      in_first_column += testing::element_centroid(model, model.parts[p], e, 0) < h;
+    std::printf("comminution %s: %zu refusals, %zu elements handed back, %zu of them in the first column\n",
+                comminutes ? "on" : "off", ins.small_fragment_refusals, ins.comminuted.size(), in_first_column);
+    EXPECT_EQ(ins.small_fragment_refusals, 2u);
+    EXPECT_EQ(ins.comminuted.size(), comminutes ? static_cast<std::size_t>(2 * ny) : 0u);
+    EXPECT_EQ(in_first_column, ins.comminuted.size());
+  }
+}
+
 // ---------------------------------------------------------------------------------------------
 // The crack is free: the halves separate with no force between them
 
