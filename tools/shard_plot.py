@@ -1037,6 +1037,115 @@ def virtual_test(args):
     print(f"wrote {json_path}")
 
 
+# ---- debris: particles made from failed elements, over the mesh ----------------------------------
+
+def debris_frames(folder, index):
+    """The mesh frame and every particle part's frame at the same output index (parts with no
+    particle yet left out: meshio cannot read an empty frame)."""
+    import meshio
+
+    mesh_frames = read_pvd(os.path.join(folder, "frames.pvd"))
+    if not -len(mesh_frames) <= index < len(mesh_frames):
+        raise PlotError(f"--frame {index}: {folder} has frames 0 to {len(mesh_frames) - 1}")
+    time, vtu = mesh_frames[index]
+    particles = []
+    for pvd in sorted(f for f in os.listdir(folder) if f.startswith("particles_") and f.endswith(".pvd")):
+        frames = read_pvd(os.path.join(folder, pvd))
+        if not -len(frames) <= index < len(frames):
+            continue
+        try:
+            p = meshio.read(frames[index][1])
+        except Exception:  # an empty frame
+            continue
+        if len(p.points):
+            particles.append((pvd[len("particles_"):-len(".pvd")], p))
+    return time, read_mesh(vtu), particles
+
+
+def node_parts(mesh):
+    """The part of each node (the last element holding it decides; −1: none)."""
+    part = np.full(len(mesh.points), -1)
+    for block, values in zip(mesh.cells, mesh.cell_data.get("part", [])):
+        for cell, value in zip(block.data, np.asarray(values).ravel()):
+            part[cell] = int(value)
+    return part
+
+
+def plot_debris(args):
+    """The mesh and the debris particles of a run at a frame: 2D (and axisymmetric) as the
+    section, the first part coloured by its failure factor where the frame has it; 3D as a side
+    view (x, z) of the nodes in a slice |y| < --slice and every particle. Prints the debris count
+    and mass and each part's mean velocity (a projectile's residual velocity)."""
+    folder = args.input
+    if not os.path.isdir(folder):
+        raise PlotError(f"expected a run folder, not {folder}")
+    time, mesh, particles = debris_frames(folder, -1 if args.frame in (None, "last") else int(args.frame))
+    three_d = mesh.points.shape[1] == 3 and np.ptp(mesh.points[:, 2]) > 0
+    axisymmetric = False
+    try:
+        import yaml
+        with open(os.path.join(folder, "resolved.yaml")) as stream:
+            resolved = yaml.safe_load(stream) or {}
+        axisymmetric = (resolved.get("analysis") or {}).get("formulation") == "axisymmetric"
+        part_names = list((resolved.get("parts") or {}).keys())
+    except (ImportError, OSError, Exception):  # names are a nicety
+        part_names = []
+    part = node_parts(mesh)
+    velocity = np.asarray(mesh.point_data["velocity"])
+    for p in sorted(set(part) - {-1}):
+        name = part_names[p] if p < len(part_names) else f"part {p}"
+        print(f"{name}: mean velocity " + ", ".join(f"{c:.2f}" for c in velocity[part == p].mean(axis=0)) + " m/s")
+    figure, axes = plt.subplots(figsize=(args.width, args.width * 0.62))
+    x = mesh.points * 1e3
+    columns = [0, 2] if three_d else [0, 1]
+    if three_d:
+        near = np.abs(x[:, 1]) < args.slice
+        for p in sorted(set(part) - {-1}):
+            chosen = near & (part == p)
+            axes.scatter(x[chosen, 0], x[chosen, 2], s=1, color=plt.cm.tab10(p % 10),
+                         label=(part_names[p] if p < len(part_names) else f"part {p}") + " (slice)")
+        axes.legend(loc="upper right", markerscale=6)
+    else:
+        for block, parts, failure in zip(mesh.cells, mesh.cell_data["part"],
+                                         mesh.cell_data.get("failure_factor", [None] * len(mesh.cells))):
+            cells = x[block.data][:, :, :2]
+            parts = np.asarray(parts).ravel()
+            first = parts == 0
+            if failure is not None:
+                coloured = PolyCollection(cells[first], array=np.clip(np.asarray(failure).ravel()[first], 0, 1),
+                                          cmap="Blues", edgecolors="none")
+                coloured.set_clim(0, 1)
+                axes.add_collection(coloured)
+                figure.colorbar(coloured, ax=axes, label="failure factor", shrink=0.7)
+            else:
+                axes.add_collection(PolyCollection(cells[first], facecolors="#4c72b0", edgecolors="none"))
+            axes.add_collection(PolyCollection(cells[~first], facecolors="#9a9a9a", edgecolors="none"))
+    count, mass = 0, 0.0
+    for name, p in particles:
+        count += len(p.points)
+        mass += float(np.asarray(p.point_data["mass"]).sum())
+        speed = np.linalg.norm(np.asarray(p.point_data["velocity"]), axis=1)
+        d = np.asarray(p.point_data["diameter"]).ravel() * 1e3
+        discs = EllipseCollection(d, d, np.zeros_like(d), units="xy", offsets=p.points[:, columns] * 1e3,
+                                  transOffset=axes.transData, array=speed, cmap="inferno", edgecolors="none")
+        axes.add_collection(discs)
+        figure.colorbar(discs, ax=axes, label=f"{name}: speed (m/s)", shrink=0.7)
+    axes.autoscale_view()
+    if args.window:
+        axes.set_xlim(args.window[0], args.window[1])
+        axes.set_ylim(args.window[2], args.window[3])
+    axes.set_aspect("equal")
+    labels = ("r", "z") if axisymmetric else ("x", "z") if three_d else ("x", "y")
+    axes.set_xlabel(f"{labels[0]} (mm)")
+    axes.set_ylabel(f"{labels[1]} (mm)")
+    kind = "rings" if axisymmetric else "particles"
+    axes.set_title(args.title or f"{run_name(folder)}: t = {time * 1e6:.2f} µs, {count} debris {kind}, "
+                   f"{mass * 1e3:.3g} g")
+    print(f"{count} debris {kind}, {mass:.4g} kg")
+    output = args.output or os.path.join(folder, "debris.png")
+    save(figure, output, args.dpi)
+
+
 # ---- automata and their broken bonds (MCA frames) ------------------------------------------------
 
 BOND_LINKED, BOND_BREAKING, BOND_UNLINKED = 0, 1, 2
@@ -1429,6 +1538,25 @@ Lengths and areas are expressions of numbers with units: 60um*1um, '24 um', 6e-1
     test.add_argument("--title", help="plot title (default: the run folder's name)")
     test.add_argument("--dpi", type=int, default=120, help="resolution (default: %(default)s)")
     test.set_defaults(run=virtual_test)
+
+    debris = commands.add_parser(
+        "debris", help="the mesh and the debris particles of failed elements at a frame",
+        description="""Draw a run's mesh and its debris particles (made from failed elements) at a
+frame: in 2D and axisymmetry the section, the first part coloured by its failure factor where the
+frame has it, the others grey (crack faces show as gaps); in 3D a side view (x, z) of the nodes
+in a slice |y| < --slice and every particle. Particles are discs of their size coloured by speed.
+Prints each part's mean velocity (a projectile's residual velocity) and the debris count and
+mass.""")
+    debris.add_argument("input", metavar="RUN", help="run folder")
+    debris.add_argument("--frame", metavar="N|last", help="output frame (default last)")
+    debris.add_argument("--window", nargs=4, type=float, metavar=("XMIN", "XMAX", "YMIN", "YMAX"),
+                        help="the view (mm)")
+    debris.add_argument("--slice", type=float, default=0.3, help="3D: half-thickness of the slice (mm)")
+    debris.add_argument("-o", "--output", help="image file (default: RUN/debris.png)")
+    debris.add_argument("--title", help="title")
+    debris.add_argument("--width", type=float, default=10.0, help="inches (default: %(default)s)")
+    debris.add_argument("--dpi", type=int, default=130, help="(default: %(default)s)")
+    debris.set_defaults(run=plot_debris)
 
     particles = commands.add_parser(
         "particles", formatter_class=argparse.RawDescriptionHelpFormatter,

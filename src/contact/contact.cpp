@@ -405,7 +405,7 @@ double ContactSystem::loaded_depth(Model& model, std::int32_t s, const Hit& hit,
   } else {
     offset = std::min(0.0, std::max(offset, hit.gap));
   }
-  if (hit.crack_faces && -(hit.gap - offset) > -loaded + 1.5 * approach)
+  if ((hit.crack_faces || eroded_surfaces_) && -(hit.gap - offset) > -loaded + 1.5 * approach)
     offset = std::min(0.0, hit.gap - loaded + approach);
   loaded = hit.gap - offset;
   return hit.gap - offset;

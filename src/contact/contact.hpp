@@ -63,6 +63,12 @@ class ContactSystem final : public TopologyListener {
   /// `stable_dt` of the first call (kept in model.contact.penalty_time_step). Deterministic: pairs are found in parallel per node, applied in order.
   void add_forces(Model& model, double time, double dt, double stable_dt);
 
+  /// Elements have eroded in this run: faces they covered are now contact faces, and a node
+  /// that touched an eroded face may find itself behind the one exposed under it. From then on
+  /// the depth a contact acts on may grow by about the step's approach only, everywhere (as on
+  /// crack faces; docs/theory/contact.md, "Split nodes").
+  void set_eroded_surfaces(bool eroded) { eroded_surfaces_ = eroded; }
+
   double friction_increment() const { return friction_work_; }  ///< dissipated in this call (J)
   std::size_t active_contacts() const { return active_; }
   /// Bound on the largest ω² the contact springs of the last call add (1/s²): Gershgorin's
@@ -123,6 +129,7 @@ class ContactSystem final : public TopologyListener {
   double bin_size_ = 0;
   double friction_work_ = 0;
   std::size_t active_ = 0;
+  bool eroded_surfaces_ = false;
   double max_penetration_ = 0;
   double max_frequency2_ = 0;
   std::vector<double> row_stiffness_;     // per node: Σ of the springs' row stiffness, this call

@@ -470,6 +470,14 @@ void ParticleContact::evaluate_contacts(Model& model, double time, double dt) {
       const double still[3] = {0, 0, 0};
       for (int q = 0; q < 3; ++q) ev.arm_b[q] = -radius_[a] * ev.c.normal[q];
       relative_motion(partner_velocity, still, ev.arm_a, &v_[3 * a], &w_[3 * a], ev.arm_b, ev.c, ev.rel);
+      if (fresh && tail[4] == 0 && !wall) {
+        // A facet contact found deeper than this step's approach (and half as much again for
+        // the facet's turn): the particle was behind the surface, or under a face an eroded
+        // element exposed. The excess is carried without force, as at birth: the law on the
+        // whole depth would return energy the contact never stored.
+        const double excess = ev.c.overlap - 1.5 * std::max(0.0, -ev.c.normal_velocity) * dt;
+        if (excess > 0) tail[4] = excess, ev.c.overlap -= excess;
+      }
       ev.c.effective_radius = radius_[a];
       ev.c.effective_mass = mass_[a] / ev.scale;
       ev.c.rigid_partner = wall;

@@ -38,6 +38,7 @@ struct Workspace {
   std::vector<double> length;            // per element: characteristic length
   std::vector<double> volume;            // per element
   std::vector<double> hourglass_work;    // per element
+  std::vector<double> hourglass_new_half;  // per element: the share of the force at t_n in it
   std::vector<double> saved_stress, saved_state, saved_temperature;  // plane-stress iteration
 
   void size_for(std::size_t elements, std::size_t points, std::size_t geometry_per_element) {
@@ -53,6 +54,7 @@ struct Workspace {
     grow(length, elements);
     grow(volume, elements);
     grow(hourglass_work, elements);
+    grow(hourglass_new_half, elements);
   }
 };
 thread_local Workspace workspace;
@@ -163,7 +165,9 @@ void element_kinematics(const StepContext& ctx, Part& part, const NodeArrays& no
     if constexpr (Kernel::has_hourglass_control) out.hourglass_work += ws.hourglass_work[i];
     if (part.erosion.by_shape() && fails_by_shape(part, e, ok, ws.length[i])) {
       // Eroded by its shape: it leaves the force computation now; update_points books the
-      // energy it held (kShapeEroded marks it for that).
+      // energy it held (kShapeEroded marks it for that). Its hourglass force at t_n is never
+      // applied: only the half of the trapezoid from t_n−1 was work.
+      if constexpr (Kernel::has_hourglass_control) out.hourglass_work -= ws.hourglass_new_half[i];
       part.eroded[e] = kShapeEroded;
       ++out.eroded_elements;
       skip_element<Kernel>(part, e, ws, i);
@@ -268,6 +272,9 @@ void update_points(const StepContext& ctx, Part& part, const Material& material,
     // p²/2K + s:s/4G per unit volume, leaves the body with it and is booked as eroded.
     part.eroded[e] = 1;
     ++out.eroded_elements;
+    // Its forces at t_n are never applied (element_forces skips it): the hourglass force's half
+    // of the trapezoid is not work.
+    if constexpr (Kernel::has_hourglass_control) out.hourglass_work -= ws.hourglass_new_half[first_slot + e - begin];
     for (int q = 0; q < npts; ++q) {
       double* s = &part.stress[kTensorSize * (npts * e + q)];
       out.eroded_energy += layout.stored_energy_density(s, &part.state[state_size * (npts * e + q)]) *
@@ -299,6 +306,7 @@ void element_forces(const StepContext& ctx, Part& part, NodeArrays& nodes, doubl
     // Work of the viscous forces over [t_n−1, t_n], where the velocities were v_n−1/2: the
     // trapezoid of the forces at both ends (the same split as every nodal force).
     double& q_prev = part.bulk_viscosity[e];
+    if (part.eroded[e]) q = 0.0;  // an eroded element applies no force at t_n
     out.viscous_work += -0.5 * (q_prev + q) * rate * ws.volume[i] * ctx.dt;
     part.volume[e] = ws.volume[i];
     if (part.eroded[e]) {

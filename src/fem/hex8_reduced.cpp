@@ -56,7 +56,7 @@ struct Hex8Reduced {
     // formed: q_α = Γ_α·v − L (Γ_α·x) with the gradient L on x_n, and
     // f_a = −c (Σ_α Γ_αa q_α − M B̄_a) with M = Σ_α q_α ⊗ (Γ_α·x). Γ entries are ±1 constants.
     double* fh = g + 25;
-    ws.hourglass_work[i] = 0.0;
+    ws.hourglass_work[i] = ws.hourglass_new_half[i] = 0.0;
     if (hourglass_scale > 0.0) {
       const double c = hourglass_scale * std::cbrt(volume * volume);
       double q[4][3], M[3][3] = {}, work = 0.0, work_prev = 0.0;
@@ -86,6 +86,7 @@ struct Hex8Reduced {
       // Dissipation over [t_n−1, t_n] (velocities v_n−1/2): trapezoid of the forces at both ends,
       // the earlier one from the stored c·q_α (γ taken as unchanged over one step).
       ws.hourglass_work[i] = 0.5 * (c * work + work_prev) * ctx.dt;
+      ws.hourglass_new_half[i] = 0.5 * c * work * ctx.dt;
     } else {
       std::fill(fh, fh + 24, 0.0);
       clear_kernel_state(part, e);

@@ -252,6 +252,7 @@ void ExplicitSolver::compute_forces() {
       for (int k = 0; k < dim; ++k) nodes.force[dim * i + k] += nodes.mass[i] * g[k];
   }
   if (contact_) {
+    contact_->set_eroded_surfaces(state_.eroded_elements > 0);
     contact_->add_forces(model_, state_.time, state_.dt_half, total.stable_dt);
     state_.energy[terms_.friction] += contact_->friction_increment();
     const auto& wf = contact_->wall_forces();

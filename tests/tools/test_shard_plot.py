@@ -13,6 +13,8 @@ what the plotting tool reads from them:
 - fragments on a cracking run (tests/data/fracture/notched_plate_coarse.yaml): the fragment
   masses add up to rho * area * thickness of the notched plate (1e-12), the plate is in at least
   two pieces, and the count equals the history's last 'fragments' value;
+- debris on the plate perforation example to 6 µs: the particles drawn, their mass, and the debris
+  rows of fragments.csv against the history's particle count and mass;
 - a misspelt group name stops with exit status 2 (bad input, as argparse) and names the groups there are.
 
 Usage: test_shard_plot.py SHARD_EXECUTABLE SOURCE_DIR WORK_DIR
@@ -119,6 +121,35 @@ def main():
         fail("the plate is not in pieces, or the history disagrees with fragments.csv")
     if not os.path.getsize(os.path.join(plate, "fragments.png")) > 0:
         fail("no fragments.png")
+
+    # Debris: the plate perforation example to 6 µs (failed elements become particles); the tool's
+    # count and mass against the history, and the debris rows of fragments.csv against both.
+    perforation = os.path.join(source, "examples", "plate_perforation")
+    with open(os.path.join(perforation, "plate_perforation.yaml")) as stream:
+        text = stream.read().replace("end_time: 12 us", "end_time: 6 us").replace(
+            "file: plate_perforation.geo", "file: " + os.path.join(perforation, "plate_perforation.geo"))
+    scenario = os.path.join(work, "perforation.yaml")
+    with open(scenario, "w") as stream:
+        stream.write(text)
+    debris = os.path.join(work, "perforation")
+    if run([shard, "run", scenario, "-o", debris, "--threads", "1", "--quiet"]).returncode != 0:
+        fail("the perforation run failed")
+    result = run(plot + ["debris", debris])
+    if result.returncode != 0:
+        fail("debris on the perforation run failed")
+    line = [l for l in result.stdout.splitlines() if "debris particles" in l][-1].split()
+    count, mass = int(line[0]), float(line[3])
+    history_count = history_column(debris, "particles_plate_particles")[-1]
+    history_mass = history_column(debris, "particle_mass_plate_particles")[-1]
+    print(f"debris: {count} particles of {mass:.4g} kg drawn, {history_count:g} of {history_mass:.4g} kg in the history")
+    if count <= 0 or count != history_count:
+        fail("the debris count disagrees with the history")
+    check_close("debris mass against the history", mass, history_mass, 1e-3)
+    with open(os.path.join(debris, "fragments.csv")) as stream:
+        rows = [row for row in csv.DictReader(stream) if row["particles"] == "1"]
+    check_close("debris mass in fragments.csv", sum(float(row["mass"]) for row in rows), history_mass, 1e-12)
+    if len(rows) != count or not os.path.getsize(os.path.join(debris, "debris.png")) > 0:
+        fail("fragments.csv does not list every debris particle, or no debris.png")
 
     # A misspelt group: a clear error, not a traceback.
     result = run(plot + ["virtual-test", tension, "--load", "rigth", "--support", "left",

@@ -170,6 +170,34 @@ TEST(CrackScenario, CrackingRunIsIdenticalAcrossThreadsAndRestart) {
   std::filesystem::remove_all(dir);
 }
 
+/// A sphere_on_alumina example with its text edited (each `from` must be there), its mesh found
+/// from a scratch folder, run to its end with `threads`. Returns the history and the worst
+/// |energy_error| over its rows.
+std::pair<testing::History, double> run_alumina_example(const std::string& file,
+                                                        const std::vector<std::pair<std::string, std::string>>& edits,
+                                                        const std::string& appended, int threads) {
+  const std::string example = std::string(SHARD_SOURCE_DIR) + "/examples/sphere_on_alumina/";
+  std::string text = testing::read_file(example + file);
+  for (const auto& [from, to] : edits) {
+    const auto at = text.find(from);
+    EXPECT_NE(at, std::string::npos) << from;
+    if (at != std::string::npos) text.replace(at, from.size(), to);
+  }
+  const auto at = text.find("file: sphere_on_alumina.geo");
+  if (at != std::string::npos) text.replace(at, 27, "file: " + example + "sphere_on_alumina.geo");
+  text += appended;
+  const auto dir = testing::fresh_dir("alumina_" + file);
+  std::ofstream(dir / "sphere.yaml") << text;
+  const auto r = testing::run_shard("run " + (dir / "sphere.yaml").string() + " --quiet --threads " +
+                                    std::to_string(threads) + " -o " + (dir / "out").string());
+  EXPECT_EQ(r.status, 0) << r.output;
+  auto h = testing::read_history(dir / "out" / "history.csv");
+  double worst = 0;
+  for (std::size_t i = 1; i < h.rows.size(); ++i) worst = std::max(worst, std::abs(h.at(i, "energy_error")));
+  std::filesystem::remove_all(dir);
+  return {std::move(h), worst};
+}
+
 TEST(CrackScenario, SphereOnAluminaWithCracksRunsPastTheFragmentPileUnderTheContact) {
   // The sphere on alumina at 300 m/s with discrete cracks (examples/sphere_on_alumina/). Up to
   // 2.67 µs the plate under the sphere breaks into some 250 fragments. A three-triangle fragment
@@ -179,32 +207,16 @@ TEST(CrackScenario, SphereOnAluminaWithCracksRunsPastTheFragmentPileUnderTheCont
   // (measured: 324 fragments) with the balance error (history's energy_error, a fraction of the
   // largest energy in play) within 1 % at every row (measured 0.2 %). Without the bound it fails
   // at 2.67 µs.
-  const std::string example = std::string(SHARD_SOURCE_DIR) + "/examples/sphere_on_alumina/";
-  std::string text = testing::read_file(example + "sphere_on_alumina_300.yaml");
-  auto replace = [&](const std::string& from, const std::string& to) {
-    const auto at = text.find(from);
-    ASSERT_NE(at, std::string::npos) << from;
-    text.replace(at, from.size(), to);
-  };
-  replace("end_time: 8 us", "end_time: 3 us");
-  replace("file: sphere_on_alumina.geo", "file: " + example + "sphere_on_alumina.geo");
-  replace("frame_interval: 0.5 us", "frame_interval: 3 us");
-  text += "cracking:\n  parts: [plate]\n";
-  const auto dir = testing::fresh_dir("sphere_cracks");
-  std::ofstream(dir / "sphere.yaml") << text;
-  const auto r = testing::run_shard("run " + (dir / "sphere.yaml").string() + " --quiet --threads 1 -o " +
-                                    (dir / "out").string());
-  ASSERT_EQ(r.status, 0) << r.output;
-  const auto h = testing::read_history(dir / "out" / "history.csv");
+  const auto [h, worst] = run_alumina_example(
+      "sphere_on_alumina_300.yaml", {{"end_time: 8 us", "end_time: 3 us"}, {"frame_interval: 0.5 us", "frame_interval: 3 us"}},
+      "cracking:\n  parts: [plate]\n", 1);
+  ASSERT_FALSE(h.rows.empty());
   const std::size_t last = h.rows.size() - 1;
-  double worst = 0;
-  for (std::size_t i = 1; i < h.rows.size(); ++i) worst = std::max(worst, std::abs(h.at(i, "energy_error")));
   std::printf("sphere with cracks: t = %.3g us, %g fragments, worst balance error %.3g %%\n", h.at(last, "time") * 1e6,
               h.at(last, "fragments"), 100 * worst);
   EXPECT_NEAR(h.at(last, "time"), 3e-6, 1e-12);
   EXPECT_GT(h.at(last, "fragments"), 100.0);
   EXPECT_LT(worst, 0.01);
-  std::filesystem::remove_all(dir);
 }
 
 TEST(CrackScenario, SphereOnAluminaAt500WithDebrisRunsPastTheInvertedSliver) {
@@ -213,25 +225,11 @@ TEST(CrackScenario, SphereOnAluminaAt500WithDebrisRunsPastTheInvertedSliver) {
   // sphere_on_alumina_500_debris.yaml) crushed elements become rings of debris: the run must
   // reach 2.4 µs with the balance within 1 % at every row and debris made (mass conservation of
   // the conversion is test_element_conversion.cpp's).
-  const std::string example = std::string(SHARD_SOURCE_DIR) + "/examples/sphere_on_alumina/";
-  std::string text = testing::read_file(example + "sphere_on_alumina_500_debris.yaml");
-  auto replace = [&](const std::string& from, const std::string& to) {
-    const auto at = text.find(from);
-    ASSERT_NE(at, std::string::npos) << from;
-    text.replace(at, from.size(), to);
-  };
-  replace("end_time: 8 us", "end_time: 2.4 us");
-  replace("file: sphere_on_alumina.geo", "file: " + example + "sphere_on_alumina.geo");
-  replace("frame_interval: 1 us", "frame_interval: 2.4 us");
-  const auto dir = testing::fresh_dir("sphere_debris");
-  std::ofstream(dir / "sphere.yaml") << text;
-  const auto r = testing::run_shard("run " + (dir / "sphere.yaml").string() + " --quiet --threads 2 -o " +
-                                    (dir / "out").string());
-  ASSERT_EQ(r.status, 0) << r.output;
-  const auto h = testing::read_history(dir / "out" / "history.csv");
+  const auto [h, worst] = run_alumina_example(
+      "sphere_on_alumina_500_debris.yaml",
+      {{"end_time: 8 us", "end_time: 2.4 us"}, {"frame_interval: 1 us", "frame_interval: 2.4 us"}}, "", 2);
+  ASSERT_FALSE(h.rows.empty());
   const std::size_t last = h.rows.size() - 1;
-  double worst = 0;
-  for (std::size_t i = 1; i < h.rows.size(); ++i) worst = std::max(worst, std::abs(h.at(i, "energy_error")));
   const double debris = h.at(last, "particles_plate_particles") + h.at(last, "particles_sphere_particles");
   std::printf("sphere at 500 m/s with debris: t = %.3g us, %g fragments, %g debris particles (%.4g mg), worst "
               "balance error %.3g %%\n",
@@ -241,7 +239,6 @@ TEST(CrackScenario, SphereOnAluminaAt500WithDebrisRunsPastTheInvertedSliver) {
   EXPECT_NEAR(h.at(last, "time"), 2.4e-6, 1e-12);
   EXPECT_GT(debris, 100.0);
   EXPECT_LT(worst, 0.01);
-  std::filesystem::remove_all(dir);
 }
 
 }  // namespace
