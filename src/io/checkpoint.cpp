@@ -11,7 +11,9 @@ namespace shard {
 
 namespace {
 
-constexpr char kMagic[8] = {'S', 'H', 'A', 'R', 'D', 'C', 'K', '3'};
+// The last byte is the format version: 4 added the elements' reference length (distortion
+// criterion) and the particles' ring length.
+constexpr char kMagic[8] = {'S', 'H', 'A', 'R', 'D', 'C', 'K', '4'};
 
 /// Scalars of SolverState and OutputCursor in one fixed order, for both directions.
 template <class F>
@@ -148,7 +150,10 @@ void read_checkpoint(const std::filesystem::path& path, Model& model, SolverStat
   Reader r(in, path.string());
   char magic[8];
   in.read(magic, sizeof(magic));
-  if (!in || std::memcmp(magic, kMagic, sizeof(kMagic)) != 0) r.fail("not a shard checkpoint");
+  if (!in || std::memcmp(magic, kMagic, sizeof(kMagic) - 1) != 0) r.fail("not a shard checkpoint");
+  if (magic[7] != kMagic[7])
+    r.fail(std::string("it was written by another version of shard (checkpoint format ") + magic[7] +
+           ", this one reads " + kMagic[7] + "): run the scenario again from the start");
   if (r.text() != fingerprint)
     r.fail("it was written by a different scenario (restart with the scenario that wrote it)");
   visit_scalars(state, cursor, [&](auto& v) { v = r.raw<std::decay_t<decltype(v)>>(); });

@@ -4,6 +4,7 @@
 
 #include <csignal>
 #include <filesystem>
+#include <fstream>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -63,6 +64,19 @@ TEST(Checkpoint, RoundTripRestoresEverything) {
   EXPECT_EQ(c2.next_frame, 7);
   EXPECT_EQ(c2.history_bytes, 4096u);
   EXPECT_THROW(read_checkpoint(path, read, s2, c2, "scenario-B"), InputError);
+  {
+    // A checkpoint of another format version is refused with that reason, not as garbage.
+    std::fstream f(path, std::ios::in | std::ios::out | std::ios::binary);
+    f.seekp(7);
+    f.put('3');
+  }
+  try {
+    read_checkpoint(path, read, s2, c2, "scenario-A");
+    ADD_FAILURE() << "a checkpoint of format 3 was read";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("another version of shard (checkpoint format 3"), std::string::npos) << e.what();
+  }
+  write_checkpoint(path, written, state, cursor, "scenario-A");
   std::filesystem::resize_file(path, std::filesystem::file_size(path) / 2);
   EXPECT_THROW(read_checkpoint(path, read, s2, c2, "scenario-A"), InputError);
   std::filesystem::remove(path);
