@@ -410,6 +410,14 @@ void ParticleContact::evaluate_contacts(Model& model, double time, double dt) {
   for (std::size_t w = 0; w < settings_.walls.size(); ++w)
     for (int a = 0; a < dim; ++a) wall_velocity[3 * w + a] = settings_.walls[w].velocity[a].at(time - 0.5 * dt);
   facet_features(model);
+  // Particles that carried a force against the mesh at the last step: a fresh facet contact of
+  // theirs is the same touch passing on to the next facet, not a contact found at depth.
+  on_mesh_.assign(part_of_.size(), 0);
+  for (std::size_t k = 0; k < m; ++k) {
+    if (second_[k] >= -walls) continue;
+    const double* tail = list.history(k).data() + law_slots;
+    if (tail[0] != 0 || tail[1] != 0 || tail[2] != 0 || tail[3] != 0) on_mesh_[first_[k]] = 1;
+  }
   std::size_t active = 0;
 #pragma omp parallel for schedule(static) reduction(+ : active)
   for (std::size_t k = 0; k < m; ++k) {
@@ -470,7 +478,7 @@ void ParticleContact::evaluate_contacts(Model& model, double time, double dt) {
       const double still[3] = {0, 0, 0};
       for (int q = 0; q < 3; ++q) ev.arm_b[q] = -radius_[a] * ev.c.normal[q];
       relative_motion(partner_velocity, still, ev.arm_a, &v_[3 * a], &w_[3 * a], ev.arm_b, ev.c, ev.rel);
-      if (fresh && tail[4] == 0 && !wall) {
+      if (fresh && tail[4] == 0 && !wall && !on_mesh_[a]) {
         // A facet contact found deeper than this step's approach (and half as much again for
         // the facet's turn): the particle was behind the surface, or under a face an eroded
         // element exposed. The excess is carried without force, as at birth: the law on the

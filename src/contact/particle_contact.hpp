@@ -102,9 +102,9 @@ class ParticleContact final : public TopologyListener {
   /// L / 2ρ spheres of its cross-section along its circumference L) the fewer of the two rings'
   /// counts (a ring's own on a wall or facet).
   double contact_scale(std::int32_t a, std::int32_t b) const {
-    const double sa = ring_scale_[a];
-    if (sa == 0) return 1.0;
-    return b >= 0 ? std::min(sa, ring_scale_[b]) : sa;
+    const double sa = ring_scale_[a], sb = b >= 0 ? ring_scale_[b] : 0.0;
+    if (sa == 0 || sb == 0) return sa + sb > 0 ? sa + sb : 1.0;  // at most one of them a ring
+    return std::min(sa, sb);
   }
   /// Particle–facet candidates within the skin, and the facets' node positions at the search.
   void facet_candidates(const Model& model, const std::vector<std::int64_t>& ids, double r_max,
@@ -132,6 +132,7 @@ class ParticleContact final : public TopologyListener {
   std::vector<double> ring_scale_;  ///< per flat particle: L / 2ρ of a ring (0: not a ring)
   std::vector<double> axis_params_;  ///< the wall parameters without friction, for the axis
   std::vector<std::uint8_t> newborn_;
+  std::vector<std::uint8_t> on_mesh_;  ///< per flat particle: a facet contact carried force at the last step
   std::vector<double> x_at_build_, wall_offset_at_build_;
   std::vector<std::int32_t> flat_of_id_;  ///< particle id → flat index (−1: not taking part)
   // Per listed interaction: flat indices (b = −1 − wall for a wall), and per step the force on

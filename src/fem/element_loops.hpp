@@ -74,6 +74,7 @@ inline void degenerate_element(Workspace& ws, std::size_t i) {
   ws.volume_rate[i] = 0;
   ws.length[i] = 1;
   ws.volume[i] = 0;
+  ws.hourglass_work[i] = ws.hourglass_new_half[i] = 0;  // not left from the slot's last element
 }
 
 /// The values the kernel keeps for element e between steps, cleared (an eroded element).
@@ -150,6 +151,21 @@ inline bool fails_by_shape(Part& part, std::size_t e, bool positive_volume, doub
   return length < rule.min_length_ratio * first;
 }
 
+/// An element leaving in this step's kinematics applies no force at t_n, but its stress and bulk
+/// viscosity of t_n−1 acted over the increment: their half of the trapezoid is work (stress work
+/// ½ σ_n−1 : Δε V, viscous −½ q_n−1 tr D V Δt), as for every element.
+template <class Kernel>
+void book_work_from_last_forces(const StepContext& ctx, Part& part, std::size_t e, const Workspace& ws,
+                                std::size_t i, ForceSums& out) {
+  for (int q = 0; q < Kernel::points; ++q) {
+    const std::size_t point = Kernel::points * i + q;
+    out.stress_work += 0.5 * double_contraction(&ws.stress_old[kTensorSize * point],
+                                                &ws.strain_increment[kTensorSize * point]) *
+                       ws.point_volume[point];
+  }
+  out.viscous_work += -0.5 * part.bulk_viscosity[e] * ws.volume_rate[i] * ws.volume[i] * ctx.dt;
+}
+
 /// Kinematics of the elements [begin, end) into workspace slots first_slot + (e − begin).
 template <class Kernel>
 void element_kinematics(const StepContext& ctx, Part& part, const NodeArrays& nodes, std::size_t begin,
@@ -168,6 +184,7 @@ void element_kinematics(const StepContext& ctx, Part& part, const NodeArrays& no
       // energy it held (kShapeEroded marks it for that). Its hourglass force at t_n is never
       // applied: only the half of the trapezoid from t_n−1 was work.
       if constexpr (Kernel::has_hourglass_control) out.hourglass_work -= ws.hourglass_new_half[i];
+      if (ok) book_work_from_last_forces<Kernel>(ctx, part, e, ws, i, out);
       part.eroded[e] = kShapeEroded;
       ++out.eroded_elements;
       skip_element<Kernel>(part, e, ws, i);
