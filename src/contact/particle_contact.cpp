@@ -410,13 +410,14 @@ void ParticleContact::evaluate_contacts(Model& model, double time, double dt) {
   for (std::size_t w = 0; w < settings_.walls.size(); ++w)
     for (int a = 0; a < dim; ++a) wall_velocity[3 * w + a] = settings_.walls[w].velocity[a].at(time - 0.5 * dt);
   facet_features(model);
-  // Particles that carried a force against the mesh at the last step: a fresh facet contact of
-  // theirs is the same touch passing on to the next facet, not a contact found at depth.
-  on_mesh_.assign(part_of_.size(), 0);
+  // Facet contacts that carried a force at the last step: a fresh contact of the same particle on
+  // a facet next to one of them (sharing a node) is the same touch passing on, not a contact
+  // found at depth.
+  was_acting_.assign(m, 0);
   for (std::size_t k = 0; k < m; ++k) {
     if (second_[k] >= -walls) continue;
     const double* tail = list.history(k).data() + law_slots;
-    if (tail[0] != 0 || tail[1] != 0 || tail[2] != 0 || tail[3] != 0) on_mesh_[first_[k]] = 1;
+    was_acting_[k] = tail[0] != 0 || tail[1] != 0 || tail[2] != 0 || tail[3] != 0;
   }
   std::size_t active = 0;
 #pragma omp parallel for schedule(static) reduction(+ : active)
@@ -478,7 +479,7 @@ void ParticleContact::evaluate_contacts(Model& model, double time, double dt) {
       const double still[3] = {0, 0, 0};
       for (int q = 0; q < 3; ++q) ev.arm_b[q] = -radius_[a] * ev.c.normal[q];
       relative_motion(partner_velocity, still, ev.arm_a, &v_[3 * a], &w_[3 * a], ev.arm_b, ev.c, ev.rel);
-      if (fresh && tail[4] == 0 && !wall && !on_mesh_[a]) {
+      if (fresh && tail[4] == 0 && !wall && !passes_on(model, k)) {
         // A facet contact found deeper than this step's approach (and half as much again for
         // the facet's turn): the particle was behind the surface, or under a face an eroded
         // element exposed. The excess is carried without force, as at birth: the law on the
@@ -494,6 +495,25 @@ void ParticleContact::evaluate_contacts(Model& model, double time, double dt) {
     }
   }
   active_ = active;
+}
+
+bool ParticleContact::passes_on(const Model& model, std::size_t k) const {
+  const int dim = model.dim();
+  const auto walls = static_cast<std::int32_t>(wall_count());
+  const std::int32_t a = first_[k];
+  const std::int32_t* fk = &surface_.facets[dim * static_cast<std::size_t>(-1 - walls - second_[k])];
+  // The particle's facet contacts are contiguous in the list (sorted by kind, particle, facet).
+  std::size_t lo = k, hi = k + 1;
+  while (lo > 0 && first_[lo - 1] == a && second_[lo - 1] < -walls) --lo;
+  while (hi < first_.size() && first_[hi] == a && second_[hi] < -walls) ++hi;
+  for (std::size_t j = lo; j < hi; ++j) {
+    if (j == k || !was_acting_[j]) continue;
+    const std::int32_t* fj = &surface_.facets[dim * static_cast<std::size_t>(-1 - walls - second_[j])];
+    for (int p = 0; p < dim; ++p)
+      for (int q = 0; q < dim; ++q)
+        if (fk[p] == fj[q]) return true;
+  }
+  return false;
 }
 
 inline void ParticleContact::geometry(const Model& model, std::size_t k, const std::vector<double>& wall_origin,
