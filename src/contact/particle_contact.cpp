@@ -479,12 +479,14 @@ void ParticleContact::evaluate_contacts(Model& model, double time, double dt) {
       const double still[3] = {0, 0, 0};
       for (int q = 0; q < 3; ++q) ev.arm_b[q] = -radius_[a] * ev.c.normal[q];
       relative_motion(partner_velocity, still, ev.arm_a, &v_[3 * a], &w_[3 * a], ev.arm_b, ev.c, ev.rel);
-      if (fresh && tail[4] == 0 && !wall && !passes_on(model, k)) {
+      if (fresh && tail[4] == 0 && !wall) {
         // A facet contact found deeper than this step's approach (and half as much again for
         // the facet's turn): the particle was behind the surface, or under a face an eroded
         // element exposed. The excess is carried without force, as at birth: the law on the
-        // whole depth would return energy the contact never stored.
-        const double excess = ev.c.overlap - 1.5 * std::max(0.0, -ev.c.normal_velocity) * dt;
+        // whole depth would return energy the contact never stored. A touch passing on from a
+        // neighbouring facet the particle pushed on may start as deep as that one is now.
+        const double passed_on = std::max(0.0, neighbour_overlap(model, k));
+        const double excess = ev.c.overlap - passed_on - 1.5 * std::max(0.0, -ev.c.normal_velocity) * dt;
         if (excess > 0) tail[4] = excess, ev.c.overlap -= excess;
       }
       ev.c.effective_radius = radius_[a];
@@ -497,7 +499,7 @@ void ParticleContact::evaluate_contacts(Model& model, double time, double dt) {
   active_ = active;
 }
 
-bool ParticleContact::passes_on(const Model& model, std::size_t k) const {
+double ParticleContact::neighbour_overlap(const Model& model, std::size_t k) const {
   const int dim = model.dim();
   const auto walls = static_cast<std::int32_t>(wall_count());
   const std::int32_t a = first_[k];
@@ -506,14 +508,19 @@ bool ParticleContact::passes_on(const Model& model, std::size_t k) const {
   std::size_t lo = k, hi = k + 1;
   while (lo > 0 && first_[lo - 1] == a && second_[lo - 1] < -walls) --lo;
   while (hi < first_.size() && first_[hi] == a && second_[hi] < -walls) ++hi;
+  double deepest = -1;
   for (std::size_t j = lo; j < hi; ++j) {
     if (j == k || !was_acting_[j]) continue;
     const std::int32_t* fj = &surface_.facets[dim * static_cast<std::size_t>(-1 - walls - second_[j])];
+    bool shares = false;
     for (int p = 0; p < dim; ++p)
-      for (int q = 0; q < dim; ++q)
-        if (fk[p] == fj[q]) return true;
+      for (int q = 0; q < dim; ++q) shares = shares || fk[p] == fj[q];
+    if (!shares) continue;
+    double d2 = 0;
+    for (int c = 0; c < 3; ++c) d2 += (x_[3 * a + c] - facet_q_[3 * j + c]) * (x_[3 * a + c] - facet_q_[3 * j + c]);
+    deepest = std::max(deepest, radius_[a] - std::sqrt(d2));
   }
-  return false;
+  return deepest;
 }
 
 inline void ParticleContact::geometry(const Model& model, std::size_t k, const std::vector<double>& wall_origin,

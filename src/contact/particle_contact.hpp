@@ -93,9 +93,9 @@ class ParticleContact final : public TopologyListener {
   void gather(Model& model);
   bool list_is_stale(const Model& model) const;
   bool walls_only(std::int32_t part) const;
-  /// A fresh facet contact k whose facet shares a node with a facet the same particle pushed on
-  /// at the last step: the touch passing on to the next facet.
-  bool passes_on(const Model& model, std::size_t k) const;
+  /// For a fresh facet contact k: the deepest current overlap of the same particle on a facet that
+  /// shares a node with k's and pushed on it at the last step (the touch passing on); −1: none.
+  double neighbour_overlap(const Model& model, std::size_t k) const;
   /// Where each wall passes at t_n (3 per wall, the axis last) and its unit normal.
   std::vector<double> wall_origins(const Model& model) const;
   std::vector<double> wall_normals() const;
