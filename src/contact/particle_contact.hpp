@@ -93,9 +93,6 @@ class ParticleContact final : public TopologyListener {
   void gather(Model& model);
   bool list_is_stale(const Model& model) const;
   bool walls_only(std::int32_t part) const;
-  /// For a fresh facet contact k: the deepest current overlap of the same particle on a facet that
-  /// shares a node with k's and pushed on it at the last step (the touch passing on); −1: none.
-  double neighbour_overlap(const Model& model, std::size_t k) const;
   /// Where each wall passes at t_n (3 per wall, the axis last) and its unit normal.
   std::vector<double> wall_origins(const Model& model) const;
   std::vector<double> wall_normals() const;
@@ -135,7 +132,6 @@ class ParticleContact final : public TopologyListener {
   std::vector<double> ring_scale_;  ///< per flat particle: L / 2ρ of a ring (0: not a ring)
   std::vector<double> axis_params_;  ///< the wall parameters without friction, for the axis
   std::vector<std::uint8_t> newborn_;
-  std::vector<std::uint8_t> was_acting_;  ///< per listed interaction: a facet contact that carried force at the last step
   std::vector<double> x_at_build_, wall_offset_at_build_;
   std::vector<std::int32_t> flat_of_id_;  ///< particle id → flat index (−1: not taking part)
   // Per listed interaction: flat indices (b = −1 − wall for a wall), and per step the force on

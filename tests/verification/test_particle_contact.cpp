@@ -294,66 +294,6 @@ PlateImpact sphere_on_plate(bool backed, bool wall, double x0 = 0.0053, double y
   return out;
 }
 
-// A steel sphere sliding without friction at 1.5 m/s over a held hex8 plate (1 mm cells, each
-// face split in two triangles) under 1000 g: it passes from facet to facet some 20 times. Each
-// new facet contact must take the load at once (the sphere stays at the static overlap mg/k), not
-// carry it without force as a contact found at depth would (the sphere would sink by the overlap
-// at every crossing). Returns the mean overlap over the last 0.5 ms over mg/k.
-double sliding_overlap_ratio() {
-  BoxMesh box;
-  box.element = "hex8";
-  box.cells = {10, 4, 2};
-  box.size = {0.01, 0.004, 0.002};
-  Model model = make_box_model(Formulation::three_d, box);
-  std::vector<std::unique_ptr<Material>> materials;
-  materials.push_back(std::make_unique<LinearElastic>("steel", 7800, ElasticModuli{166.7e9, 76.9e9}));
-  prepare_part(model, 0, *materials[0], 293.15);
-  Loads loads;
-  for (std::size_t n = 0; n < model.nodes.count(); ++n)
-    for (int k = 0; k < 3; ++k) prescribe_node(model, loads, static_cast<std::int32_t>(n), k, loads.constant_table(0.0));
-  ParticlePart grains;
-  grains.name = "sphere";
-  grains.dim = 3;
-  const double R = 0.5e-3, m = 7800 * 4.0 / 3.0 * std::numbers::pi * R * R * R, g = 9810, k0 = 1e8;
-  grains.add_particles(1);
-  const double x[3] = {1.3e-3, 2.1e-3, 0.002 + R + 1e-6};
-  for (int k = 0; k < 3; ++k) grains.x[k] = grains.x0[k] = x[k];
-  grains.v[0] = 1.5;
-  grains.mass[0] = m;
-  grains.radius[0] = R;
-  grains.inertia[0] = 0.4 * m * R * R;
-  model.particle_parts.push_back(std::move(grains));
-  model.assign_ids();
-  ParticleContactSettings cs;
-  cs.law = find_pair_law("linear_spring");
-  cs.params = pair_law_parameters(*cs.law, {{"modulus", k0}, {"restitution", 0.1}, {"friction", 0.0}});
-  ParticleContact contact(cs);
-  SolverSettings settings;
-  settings.end_time = 5e-3;
-  settings.gravity = {0, 0, -g};
-  ExplicitSolver solver(model, materials, loads, settings);
-  solver.attach_particle_contact(&contact);
-  solver.initialise();
-  double sum = 0;
-  int samples = 0;
-  while (!solver.finished()) {
-    solver.compute_forces();
-    solver.advance();
-    if (solver.state().time > 4.5e-3) {
-      sum += R - (model.particle_parts[0].x[2] - 0.002);
-      ++samples;
-    }
-  }
-  const double static_overlap = m * g / (k0 * R);
-  std::printf("sliding sphere: travelled %.2f mm, mean overlap %.4e m against mg/k = %.4e m\n",
-              (model.particle_parts[0].x[0] - x[0]) * 1e3, sum / samples, static_overlap);
-  return sum / samples / static_overlap;
-}
-
-TEST(ParticleContact, SphereSlidingAcrossFacetsKeepsItsSupport) {
-  EXPECT_NEAR(sliding_overlap_ratio(), 1.0, 0.05);
-}
-
 TEST(ParticleContact, SphereOnAFiniteElementPlate) {
   const PlateImpact free_plate = sphere_on_plate(false, false);
   const PlateImpact backed = sphere_on_plate(true, false);
