@@ -16,7 +16,7 @@
 
 #include "fem/internal_forces.hpp"
 #include "fem/nonlocal_average.hpp"
-#include "fem/tensor_ops.hpp"
+#include "core/tensor_ops.hpp"
 
 namespace shard {
 
@@ -31,6 +31,7 @@ constexpr std::size_t kBatch = 64;
 struct Workspace {
   std::vector<double> strain_increment;  // per point, kTensorSize
   std::vector<double> stress_old;        // per point, rotated σ_n
+  std::vector<double> spin;              // per point, 3: W_xy, W_yz, W_zx on the mid-step geometry
   std::vector<double> point_volume;      // per point
   std::vector<double> band_width;        // per point: MaterialPointBatch::characteristic_length
   std::vector<double> geometry;          // per element, kernel-specific
@@ -47,6 +48,7 @@ struct Workspace {
     };
     grow(strain_increment, points * kTensorSize);
     grow(stress_old, points * kTensorSize);
+    grow(spin, points * 3);
     grow(point_volume, points);
     grow(band_width, points);
     grow(geometry, elements * geometry_per_element);
@@ -67,6 +69,7 @@ struct Batch {
 /// stress σ_n kept; the caller reports it.
 inline void degenerate_point(Workspace& ws, std::size_t point, const double* sig) {
   std::fill_n(&ws.strain_increment[kTensorSize * point], kTensorSize, 0.0);
+  std::fill_n(&ws.spin[3 * point], 3, 0.0);
   ws.point_volume[point] = 0;
   std::copy_n(sig, kTensorSize, &ws.stress_old[kTensorSize * point]);
 }
@@ -126,6 +129,7 @@ void skip_element(Part& part, std::size_t e, Workspace& ws, std::size_t i) {
   for (int p = 0; p < npts; ++p) {
     const std::size_t point = npts * i + p;
     std::fill_n(&ws.strain_increment[kTensorSize * point], kTensorSize, 0.0);
+    std::fill_n(&ws.spin[3 * point], 3, 0.0);
     std::copy_n(&part.stress[kTensorSize * (npts * e + p)], kTensorSize, &ws.stress_old[kTensorSize * point]);
     ws.point_volume[point] = 0.0;
   }
@@ -213,7 +217,7 @@ struct MaterialLayout {
                       : rule.state_index == ErosionRule::kNoVariable ? -1
                                                                       : m.failure_state_index()),
         failure_threshold(rule.state_index >= 0 ? rule.threshold : 1.0),
-        energy_density_index(m.failure_map_slots() ? m.failure_map_slots()->energy_density : -1),
+        energy_density_index(m.stored_energy_index()),
         moduli(m.elastic()) {}
 
   /// The elastic energy per unit volume a point holds: Ψ where the material keeps it (for a
@@ -236,6 +240,7 @@ void update_points(const StepContext& ctx, Part& part, const Material& material,
   mp.count = (end - begin) * npts;
   mp.dt = ctx.dt;
   mp.strain_increment = ws.strain_increment.data() + kTensorSize * s0;
+  mp.spin = ws.spin.data() + 3 * s0;
   mp.stress = part.stress.data() + kTensorSize * p0;
   mp.state = part.state.data() + state_size * p0;
   mp.temperature = part.temperature.data() + p0;

@@ -60,7 +60,7 @@ struct Hex8Full {
         for (int r = 0; r < 3; ++r)
           for (int c = 0; c < 3; ++c) L[r][c] += v[a][r] * b[c];
       }
-      update_point_3d(L, ctx.dt, de, sig, &part.strain[kTensorSize * (points * e + p)]);
+      update_point_3d(L, ctx.dt, de, sig, &part.strain[kTensorSize * (points * e + p)], &ws.spin[3 * point]);
       std::copy_n(sig, kTensorSize, &ws.stress_old[kTensorSize * point]);
       g[24] = det;  // Gauss weights are 1
       ws.point_volume[point] = det;

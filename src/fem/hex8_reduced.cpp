@@ -91,7 +91,7 @@ struct Hex8Reduced {
       std::fill(fh, fh + 24, 0.0);
       clear_kernel_state(part, e);
     }
-    update_point_3d(L, ctx.dt, de, sig, &part.strain[kTensorSize * e]);
+    update_point_3d(L, ctx.dt, de, sig, &part.strain[kTensorSize * e], &ws.spin[3 * i]);
     std::copy_n(sig, kTensorSize, &ws.stress_old[kTensorSize * i]);
     g[24] = volume;
     ws.point_volume[i] = ws.volume[i] = volume;

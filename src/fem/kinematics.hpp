@@ -6,7 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "fem/tensor_ops.hpp"
+#include "core/tensor_ops.hpp"
 
 namespace shard {
 
@@ -54,8 +54,9 @@ inline void midstep_gradient(double L[3][3], double dt) {
 }
 
 /// Velocity gradient on x_n → (mid-step gradient, in place) → Δε, spin → rotation of σ and ε of
-/// one 3D point.
-inline void update_point_3d(double L[3][3], double dt, double* de, double* sig, double* eps) {
+/// one 3D point. The spin W_xy, W_yz, W_zx goes to `spin` (MaterialPointBatch::spin: a model
+/// with material axes turns them by the same rotation).
+inline void update_point_3d(double L[3][3], double dt, double* de, double* sig, double* eps, double* spin) {
   midstep_gradient(L, dt);
   de[xx] = L[0][0] * dt;
   de[yy] = L[1][1] * dt;
@@ -63,9 +64,11 @@ inline void update_point_3d(double L[3][3], double dt, double* de, double* sig, 
   de[xy] = 0.5 * (L[0][1] + L[1][0]) * dt;
   de[yz] = 0.5 * (L[1][2] + L[2][1]) * dt;
   de[zx] = 0.5 * (L[2][0] + L[0][2]) * dt;
+  spin[0] = 0.5 * (L[0][1] - L[1][0]);
+  spin[1] = 0.5 * (L[1][2] - L[2][1]);
+  spin[2] = 0.5 * (L[2][0] - L[0][2]);
   double R[3][3];
-  hughes_winget_rotation(0.5 * (L[0][1] - L[1][0]), 0.5 * (L[1][2] - L[2][1]),
-                         0.5 * (L[2][0] - L[0][2]), 0.5 * dt, R);
+  hughes_winget_rotation(spin[0], spin[1], spin[2], 0.5 * dt, R);
   rotate_symmetric(R, sig);
   rotate_symmetric(R, eps);
 }

@@ -52,7 +52,8 @@ struct Tet4 {
     for (int a = 0; a < 4; ++a)
       for (int r = 0; r < 3; ++r)
         for (int c = 0; c < 3; ++c) L[r][c] += v[a][r] * B[a][c];
-    update_point_3d(L, ctx.dt, &ws.strain_increment[kTensorSize * i], sig, &part.strain[kTensorSize * e]);
+    update_point_3d(L, ctx.dt, &ws.strain_increment[kTensorSize * i], sig, &part.strain[kTensorSize * e],
+                    &ws.spin[3 * i]);
     std::copy_n(sig, kTensorSize, &ws.stress_old[kTensorSize * i]);
     const double volume = det / 6.0;
     for (int a = 0; a < 4; ++a)

@@ -74,6 +74,8 @@ struct Tri3 {
     de[yz] = 0.0;
     de[zx] = 0.0;
     double* sig = &part.stress[kTensorSize * e];
+    ws.spin[3 * i] = 0.5 * (lxy - lyx);
+    ws.spin[3 * i + 1] = ws.spin[3 * i + 2] = 0.0;
     rotate_symmetric_2d(0.5 * (lxy - lyx), 0.5 * dt, sig);
     double* eps = &part.strain[kTensorSize * e];
     rotate_symmetric_2d(0.5 * (lxy - lyx), 0.5 * dt, eps);

@@ -24,6 +24,10 @@ struct MaterialPointBatch {
   std::size_t count = 0;
   double dt = 0;                           ///< time step of the increment
   const double* strain_increment = nullptr;  ///< kTensorSize per point: D·dt (tensor shear)
+  /// 3 per point: the spin W_xy, W_yz, W_zx of the increment (2D: W_xy only); the stress was
+  /// rotated by the Hughes–Winget matrix of ½Δt·W, and a model with material axes turns them by
+  /// the same matrix. May be null (a material-point driver without rotation).
+  const double* spin = nullptr;
   double* stress = nullptr;                ///< kTensorSize per point: in σ_n (rotated), out σ_n+1
   double* state = nullptr;                 ///< state_size() per point, updated in place
   double* temperature = nullptr;           ///< one per point, updated in place (adiabatic heating)
@@ -80,6 +84,16 @@ class Material {
   };
   /// Empty for a model that does not crack discretely.
   virtual std::optional<FailureMapSlots> failure_map_slots() const { return std::nullopt; }
+  /// The history variable holding the recoverable energy per unit volume Ψ, for a model whose
+  /// stored energy is not the isotropic p²/2K + s:s/4G of its stress (−1: that one is right).
+  virtual int stored_energy_index() const {
+    const auto slots = failure_map_slots();
+    return slots ? slots->energy_density : -1;
+  }
+  /// The first of six history variables holding the material axes a1 (3) and a2 (3) in the
+  /// current configuration (a3 = a1 × a2), which set-up fills from the part's orientation or
+  /// laminate (−1: an isotropic model without axes).
+  virtual int material_axes_index() const { return -1; }
   /// σ_n+1 from σ_n and the strain increment, for every point of the batch.
   virtual void update(MaterialPointBatch& batch) const = 0;
 

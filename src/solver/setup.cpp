@@ -24,4 +24,15 @@ void prepare_part(Model& model, std::size_t p, const Material& material, double 
   colour_elements(model, p);
 }
 
+void set_material_axes(Part& part, const Material& material, const MaterialAxesOf& axes) {
+  const int first = material.material_axes_index();
+  if (first < 0) return;
+  const std::size_t points = static_cast<std::size_t>(part.type->points), size = material.state_size();
+  for (std::size_t e = 0; e < part.element_count(); ++e) {
+    const std::array<double, 6> a = axes(e);
+    for (std::size_t q = 0; q < points; ++q)
+      std::copy(a.begin(), a.end(), &part.state[size * (points * e + q) + static_cast<std::size_t>(first)]);
+  }
+}
+
 }  // namespace shard

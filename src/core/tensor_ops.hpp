@@ -1,4 +1,4 @@
-// Small tensor operations used by the element kernels. Symmetric tensors are 6 components in the
+// Small tensor operations used by the element kernels and the material models. Symmetric tensors are 6 components in the
 // order of model.hpp's Voigt enum (tensor shear components).
 #pragma once
 
