@@ -1,6 +1,8 @@
 #include "app/simulation.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <map>
 #include <numbers>
 #include <tuple>
@@ -11,6 +13,7 @@
 #include "particle/mca_contact_update.hpp"
 #include "particle/packing.hpp"
 #include "solver/element_conversion.hpp"
+#include "material/laminate.hpp"
 #include "solver/setup.hpp"
 
 namespace shard {
@@ -324,6 +327,61 @@ struct GroupNodeSets {
   }
 };
 
+/// The ply of each element of a laminate part: its centroid's place along the stacking normal.
+std::vector<int> plies_of_elements(const Scenario& sc, const Model& model, std::size_t p) {
+  const Part& part = model.parts[p];
+  const PlyOrientationInput& o = *sc.parts[p].orientation;
+  const std::size_t ne = part.element_count(), npe = static_cast<std::size_t>(part.type->nodes);
+  const int dim = model.dim();
+  const double nn = std::sqrt(o.normal[0] * o.normal[0] + o.normal[1] * o.normal[1] + o.normal[2] * o.normal[2]);
+  auto along = [&](std::int32_t node) {
+    double s = 0;
+    for (int k = 0; k < dim; ++k) s += model.nodes.x0[dim * node + k] * o.normal[k] / nn;
+    return s;
+  };
+  double lowest = std::numeric_limits<double>::infinity(), highest = -lowest;
+  for (auto n : part.connectivity) {
+    lowest = std::min(lowest, along(n));
+    highest = std::max(highest, along(n));
+  }
+  const double start = o.start.value_or(lowest);
+  const int count = static_cast<int>(o.angles.size());
+  if (o.ply_thickness == 0) return std::vector<int>(ne, 0);
+  std::vector<int> ply(ne);
+  for (std::size_t e = 0; e < ne; ++e) {
+    double c = 0;
+    for (std::size_t a = 0; a < npe; ++a) c += along(part.connectivity[npe * e + a]) / static_cast<double>(npe);
+    const int k = static_cast<int>(std::floor((c - start) / o.ply_thickness));
+    if (k < 0 || k >= count) {
+      std::ostringstream out;
+      out << "an element of part '" << part.name << "' lies " << (c - start) * 1e3 << " mm along the normal from "
+          << "where ply 1 begins, outside the " << count << " plies of " << o.ply_thickness * 1e3
+          << " mm (" << count * o.ply_thickness * 1e3 << " mm); the part spans " << (highest - lowest) * 1e3
+          << " mm: check ply_thickness, start and normal";
+      throw InputError(shown_path(sc.file), o.line, "parts." + part.name + ".laminate", out.str());
+    }
+    ply[e] = k;
+  }
+  return ply;
+}
+
+/// Material axes of a part from its orientation or laminate.
+void orient_part(const Scenario& sc, Simulation& sim, std::size_t p) {
+  Part& part = sim.model.parts[p];
+  const Material& material = *sim.materials[part.material];
+  const PlyOrientationInput& o = *sc.parts[p].orientation;
+  if (material.material_axes_index() < 0)
+    throw InputError(shown_path(sc.file), o.line, "parts." + part.name + (o.layup.empty() ? ".orientation" : ".laminate"),
+                     "material '" + material.name() + "' (" + std::string(material.model()) +
+                         ") is isotropic and has no material axes; orientation and laminate are for "
+                         "orthotropic_elastic and composite_damage");
+  const std::vector<int> ply = plies_of_elements(sc, sim.model, p);
+  std::vector<std::array<double, 6>> axes;
+  for (double angle : o.angles) axes.push_back(ply_axes(o.reference, o.normal, angle));
+  set_material_axes(part, material, [&](std::size_t e) { return axes[static_cast<std::size_t>(ply[e])]; });
+  sim.plies[part.name] = ply;
+}
+
 // Parts: elements from the physical groups, in mesh node numbering until assembled. Returns the
 // mesh-to-model node numbering.
 std::vector<std::int32_t> build_parts(Scenario& sc, const MeshData& mesh, Simulation& sim) {
@@ -340,8 +398,10 @@ std::vector<std::int32_t> build_parts(Scenario& sc, const MeshData& mesh, Simula
         throw InputError(shown_path(sc.file), sc.mesh_line, "mesh.file", out.str());
       }
   }
-  for (std::size_t p = 0; p < model.parts.size(); ++p)
+  for (std::size_t p = 0; p < model.parts.size(); ++p) {
     prepare_part(model, p, *sim.materials[model.parts[p].material], sc.initial_temperature);
+    if (sc.parts[p].orientation) orient_part(sc, sim, p);
+  }
   return renumber;
 }
 

@@ -1,6 +1,8 @@
 // From a validated scenario and its mesh to a ready Model, materials and loads.
 #pragma once
 
+#include <map>
+
 #include <memory>
 #include <optional>
 #include <vector>
@@ -28,6 +30,8 @@ struct Simulation {
   std::unique_ptr<ParticleContact> particle_contact;
   /// The step events the scenario asks for beyond the solver's own (crack growth).
   std::vector<std::unique_ptr<StepEvent>> events;
+  /// The ply of every element of each laminate part (by part name; element order of set-up).
+  std::map<std::string, std::vector<int>> plies;
 
   std::vector<int> part_materials() const;
   /// The crack growth event, if the scenario has one.

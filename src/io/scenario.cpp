@@ -14,6 +14,7 @@
 #include "core/units.hpp"
 #include "io/scenario_particles.hpp"
 #include "io/scenario_section.hpp"
+#include "material/laminate.hpp"
 #include "material/material.hpp"
 
 namespace shard {
@@ -255,6 +256,36 @@ KeyList part_keys() {
            "treatment of the dilatation against volumetric locking in plastic flow: "
            "average_nodal_pressure for tri3/tet4, mean_dilatation (B-bar) for hex8")
       .defaults_to("standard");
+  k.add("orientation", ValueKind::section,
+        "material axes of an orthotropic material, the same for every element: {reference, normal, "
+        "angle} (docs/theory/composite_damage.md)");
+  k.add("laminate", ValueKind::section,
+        "material axes ply by ply from a stacking sequence through the part: {layup, ply_thickness, "
+        "normal, reference, start} (docs/theory/composite_damage.md)");
+  return k;
+}
+
+KeyList orientation_keys(bool laminate) {
+  KeyList k;
+  KeySpec& r = k.add("reference", ValueKind::vector,
+                     "the 0° fibre direction, three components even in 2D (projected into the ply's plane)");
+  r.defaults_to("[1, 0, 0]");
+  KeySpec& n = k.add("normal", ValueKind::vector,
+                     laminate ? "the ply normal, three components: plies stack along it, ply 1 first"
+                              : "the ply normal (axis 3), three components");
+  n.defaults_to("[0, 0, 1]");
+  if (!laminate) {
+    k.quantity("angle", dim::none, "the fibre angle in degrees, about the normal from the reference")
+        .at_least(-180)
+        .at_most(180)
+        .defaults_to("0");
+    return k;
+  }
+  k.add("layup", ValueKind::text, "the stacking sequence, e.g. \"[(0/45/90/-45/0)2]s\" (angles in degrees)")
+      .must_be_given();
+  k.quantity("ply_thickness", dim::length, "the thickness of one ply").above(0).must_be_given();
+  k.quantity("start", dim::length,
+             "where ply 1 begins, as a coordinate along the normal (default: the part's lowest node)");
   return k;
 }
 
@@ -584,6 +615,10 @@ class ScenarioReader {
         s.fail("volumetric", "average_nodal_pressure is for plane strain, axisymmetric and 3D "
                              "models; plane stress has no volumetric constraint to relieve");
     }
+    if (s.has("orientation") && s.has("laminate"))
+      s.fail("laminate", "give either 'orientation' (one set of axes) or 'laminate' (plies), not both");
+    for (const char* key : {"orientation", "laminate"})
+      if (s.has(key)) part.orientation = ply_orientation(s, part.name, key);
     sc.parts.push_back(std::move(part));
   }
   for (const auto& p : sc.parts) part_names.push_back(p.name);
@@ -694,6 +729,38 @@ class ScenarioReader {
   }
   sc.resolved["loads"] = load_out;
 
+  }
+
+  PlyOrientationInput ply_orientation(const Section& part, const std::string& name, const std::string& key) {
+    const bool laminate = key == "laminate";
+    const KeyList keys = orientation_keys(laminate);
+    Section o(part.value(key), file, "parts." + name + "." + key, keys, sc.resolved["parts"][name][key],
+              part.line(key));
+    PlyOrientationInput in;
+    in.line = o.line();
+    for (auto [field, target] : {std::pair{"reference", &in.reference}, std::pair{"normal", &in.normal}}) {
+      if (!o.has(field)) continue;
+      const auto v = o.vector(field, 3);
+      std::copy(v.begin(), v.end(), target->begin());
+    }
+    try {
+      ply_axes(in.reference, in.normal, 0);
+    } catch (const std::invalid_argument& e) {
+      o.fail(o.has("reference") ? "reference" : "normal", std::string(e.what()) + ": give two directions that differ");
+    }
+    if (!laminate) {
+      in.angles = {o.number("angle")};
+      return in;
+    }
+    in.layup = o.text("layup");
+    try {
+      in.angles = parse_layup(in.layup);
+    } catch (const LayupError& e) {
+      o.fail("layup", e.what());
+    }
+    in.ply_thickness = o.number("ply_thickness");
+    if (o.has("start")) in.start = o.number("start");
+    return in;
   }
 
   ErosionInput erosion(const Section& material, const std::string& name) {
@@ -977,6 +1044,8 @@ std::vector<SchemaSection> scenario_schema() {
            particle_contact_keys()},
           {"materials.<name>.erosion", "when an element fails and what becomes of it (any material model)",
            erosion_keys()},
+          {"parts.<name>.orientation", "material axes of the whole part", orientation_keys(false)},
+          {"parts.<name>.laminate", "material axes ply by ply through the part", orientation_keys(true)},
           {"cracking", "discrete crack insertion", cracking_keys()},
           {"output", "what is written to the output folder", output_keys()}};
   for (auto& section : scenario_detail::particle_schema()) schema.push_back(std::move(section));

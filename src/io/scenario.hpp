@@ -49,6 +49,17 @@ struct ParticleContactInput {
   int line = 0;
 };
 
+/// parts.<name>.orientation or .laminate: the material axes of a part's elements.
+struct PlyOrientationInput {
+  std::array<double, 3> reference{1, 0, 0};  ///< the 0° direction (projected into the ply plane)
+  std::array<double, 3> normal{0, 0, 1};     ///< the ply normal; a laminate stacks along it
+  std::vector<double> angles;                ///< degrees: one (orientation) or one per ply (laminate)
+  std::string layup;                         ///< the stacking code of a laminate
+  double ply_thickness = 0;                  ///< 0: one orientation for the whole part
+  std::optional<double> start;               ///< where ply 1 begins along the normal (default: the part's edge)
+  int line = 0;
+};
+
 struct PartInput {
   std::string name;
   std::string group;
@@ -56,6 +67,7 @@ struct PartInput {
   std::optional<std::string> element;  ///< a registered element type; absent: chosen from the cells
   double hourglass_coefficient = 0.1;
   VolumetricTreatment volumetric = VolumetricTreatment::standard;
+  std::optional<PlyOrientationInput> orientation;
   int line = 0;
 };
 
