@@ -13,6 +13,7 @@
 #include "particle/mca_contact_update.hpp"
 #include "particle/packing.hpp"
 #include "solver/element_conversion.hpp"
+#include "fracture/interface_split.hpp"
 #include "material/laminate.hpp"
 #include "solver/setup.hpp"
 
@@ -45,6 +46,7 @@ std::unique_ptr<ExplicitSolver> make_solver(Simulation& sim) {
   auto solver = std::make_unique<ExplicitSolver>(sim.model, sim.materials, sim.loads, sim.settings);
   solver->attach_contact(sim.contact_system ? &*sim.contact_system : nullptr);
   solver->attach_particle_contact(sim.particle_contact.get());
+  solver->attach_cohesive(sim.cohesive.get());
   for (auto& e : sim.events) solver->add_event(*e);
   return solver;
 }
@@ -542,14 +544,88 @@ RigidWall rigid_wall(const WallInput& wi, const Model& model) {
   return w;
 }
 
+/// Once an interface fails its two sides touch as ordinary contact, with the interface's
+/// friction unless `contact:` gives one for their materials.
+void contact_across_interfaces(const Scenario& sc, const Model& model, ContactSettings& cs) {
+  const std::size_t np = model.parts.size(), nm = sc.materials.size();
+  for (const InterfaceInput& in : sc.interfaces) {
+    const std::vector<std::string> names = in.between.empty() ? std::vector<std::string>{in.plies_of, in.plies_of} : in.between;
+    const int a = part_index(model, names[0]), b = part_index(model, names[1]);
+    cs.part_pairs[a * np + b] = cs.part_pairs[b * np + a] = 1;
+    const std::size_t ma = static_cast<std::size_t>(model.parts[a].material), mb = static_cast<std::size_t>(model.parts[b].material);
+    bool given = false;
+    if (sc.contact)
+      for (const auto& f : sc.contact->material_friction)
+        given = given || (f.material_a == sc.materials[ma].name && f.material_b == sc.materials[mb].name) ||
+                (f.material_b == sc.materials[ma].name && f.material_a == sc.materials[mb].name);
+    if (!given) cs.friction[ma * nm + mb] = cs.friction[mb * nm + ma] = {in.friction, in.friction};
+  }
+}
+
+/// Splits the nodes of the surfaces the scenario's interfaces tie and makes their elements.
+void build_interfaces(const Scenario& sc, Simulation& sim) {
+  if (sc.interfaces.empty()) return;
+  Model& model = sim.model;
+  InterfaceLayout layout;
+  std::vector<int> first(model.parts.size());
+  int groups = 0;
+  for (std::size_t p = 0; p < model.parts.size(); ++p) {
+    first[p] = groups;
+    const auto ply = sim.plies.find(model.parts[p].name);
+    std::vector<int> g(model.parts[p].element_count(), groups);
+    int count = 1;
+    if (ply != sim.plies.end()) {
+      for (std::size_t e = 0; e < g.size(); ++e) g[e] = groups + ply->second[e];
+      count = static_cast<int>(sc.parts[p].orientation->angles.size());
+    }
+    layout.group.push_back(std::move(g));
+    groups += count;
+  }
+  auto plies = [&](int p) {
+    const auto it = sim.plies.find(model.parts[p].name);
+    return it == sim.plies.end() ? 1 : static_cast<int>(sc.parts[p].orientation->angles.size());
+  };
+  std::vector<CohesiveLaw> laws;
+  for (const InterfaceInput& in : sc.interfaces) {
+    const int law = static_cast<int>(laws.size());
+    laws.push_back(in.law);
+    if (in.between.empty()) {
+      const int p = part_index(model, in.plies_of);
+      for (int i = 0; i < plies(p); ++i)
+        for (int j = i + 1; j < plies(p); ++j) layout.law_of[{first[p] + i, first[p] + j}] = law;
+      continue;
+    }
+    const int a = part_index(model, in.between[0]), b = part_index(model, in.between[1]);
+    for (int i = 0; i < plies(a); ++i)
+      for (int j = 0; j < plies(b); ++j)
+        layout.law_of[{std::min(first[a] + i, first[b] + j), std::max(first[a] + i, first[b] + j)}] = law;
+  }
+  const InterfaceSplit made = insert_cohesive_interfaces(model, layout);
+  for (const InterfaceInput& in : sc.interfaces) {
+    std::size_t count = 0;
+    const int law = static_cast<int>(&in - sc.interfaces.data());
+    for (const auto& [pair, l] : layout.law_of)
+      if (l == law) count += made.elements_of.count(pair) ? made.elements_of.at(pair) : 0;
+    if (count == 0)
+      throw InputError(shown_path(sc.file), in.line, "interfaces",
+                       in.between.empty() ? "the plies of part '" + in.plies_of + "' share no face (a ply thinner "
+                                                "than one element, or elements that cross plies?)"
+                                          : "parts '" + in.between[0] + "' and '" + in.between[1] +
+                                                "' share no face: an interface needs a conforming mesh "
+                                                "(Gmsh: fragment the volumes so that they share the surface)");
+  }
+  sim.cohesive = std::make_unique<CohesiveInterfaces>(std::move(laws));
+}
+
 void build_contact(const Scenario& sc, Simulation& sim, const std::vector<int>& cracking) {
-  if (!sc.contact && sc.walls.empty() && cracking.empty()) return;
+  if (!sc.contact && sc.walls.empty() && cracking.empty() && sc.interfaces.empty()) return;
   const std::size_t np = sim.model.parts.size(), nm = sim.materials.size();
   ContactSettings cs;
   cs.part_pairs.assign(np * np, 0);
   cs.friction.assign(nm * nm, FrictionLaw{});
   if (sc.contact) contact_pairs_and_friction(sc, sim.model, cs);
   self_contact_of_cracking_parts(sc, sim.model, cracking, cs);
+  contact_across_interfaces(sc, sim.model, cs);
   for (const auto& wi : sc.walls) cs.walls.push_back(rigid_wall(wi, sim.model));
   sim.contact = cs;
 }
@@ -678,6 +754,7 @@ Simulation build_simulation(Scenario& sc, const MeshData& mesh) {
   solver_settings(sc, sim.settings);
 
   model.assign_ids();
+  build_interfaces(sc, sim);
   if (sim.contact)
     sim.contact_system.emplace(sim.model, *sim.contact, sim.part_materials(),
                                static_cast<int>(sim.materials.size()));

@@ -28,6 +28,8 @@ struct Simulation {
   std::optional<CrackGrowthSettings> cracking;  ///< discrete crack insertion
   /// Contact of particles with each other and the walls (from `particle_contact`).
   std::unique_ptr<ParticleContact> particle_contact;
+  /// Cohesive interfaces (from `interfaces`); null without.
+  std::unique_ptr<CohesiveInterfaces> cohesive;
   /// The step events the scenario asks for beyond the solver's own (crack growth).
   std::vector<std::unique_ptr<StepEvent>> events;
   /// The ply of every element of each laminate part (by part name; element order of set-up).

@@ -339,7 +339,11 @@ void ContactSystem::find_facet_hits(const Model& model) {
   sum_node_normals(model);
   const std::size_t ns = surface_.nodes.size();
 #pragma omp parallel for schedule(static)
-  for (std::size_t i = 0; i < ns; ++i) hits_[i] = nearest_facet_hit(model, i);
+  for (std::size_t i = 0; i < ns; ++i) {
+    const std::int32_t node = surface_.nodes[i];
+    const bool tied = tied_ && static_cast<std::size_t>(node) < tied_->size() && (*tied_)[node];
+    hits_[i] = tied ? Hit{} : nearest_facet_hit(model, i);
+  }
 }
 
 void ContactSystem::reset_step(Model& model) {

@@ -68,6 +68,9 @@ class ContactSystem final : public TopologyListener {
   /// the depth a contact acts on may grow by about the step's approach only, everywhere (as on
   /// crack faces; docs/theory/contact.md, "Split nodes").
   void set_eroded_surfaces(bool eroded) { eroded_surfaces_ = eroded; }
+  /// Per node, 1 where a cohesive interface still holds the node (may be null): such a node
+  /// touches no facet until its interface fails (walls still act on it).
+  void set_tied_nodes(const std::vector<char>* tied) { tied_ = tied; }
 
   double friction_increment() const { return friction_work_; }  ///< dissipated in this call (J)
   std::size_t active_contacts() const { return active_; }
@@ -118,6 +121,7 @@ class ContactSystem final : public TopologyListener {
   void add_row_stiffness(std::int32_t node, double stiffness);
 
   ContactSettings settings_;
+  const std::vector<char>* tied_ = nullptr;
   std::vector<int> part_material_;
   int material_count_;
   ContactSurface surface_;

@@ -13,7 +13,7 @@ namespace {
 
 // The last byte is the format version: 4 added the elements' reference length (distortion
 // criterion) and the particles' ring length.
-constexpr char kMagic[8] = {'S', 'H', 'A', 'R', 'D', 'C', 'K', '4'};
+constexpr char kMagic[8] = {'S', 'H', 'A', 'R', 'D', 'C', 'K', '5'};
 
 /// Scalars of SolverState and OutputCursor in one fixed order, for both directions.
 template <class F>

@@ -12,6 +12,7 @@
 #include "contact/pair_law.hpp"
 #include "core/error.hpp"
 #include "core/units.hpp"
+#include "io/scenario_interfaces.hpp"
 #include "io/scenario_particles.hpp"
 #include "io/scenario_section.hpp"
 #include "material/laminate.hpp"
@@ -58,6 +59,9 @@ KeyList top_keys() {
   k.add("contact", ValueKind::section,
         "penalty contact with Coulomb friction between parts (theory: docs/theory/contact.md)");
   k.add("walls", ValueKind::list, "rigid planes, fixed or moving, with friction").defaults_to("[]");
+  k.add("interfaces", ValueKind::list,
+        "cohesive interfaces between parts or plies, failing in mixed mode (docs/theory/cohesive_interfaces.md)")
+      .defaults_to("[]");
   k.add("particle_contact", ValueKind::section,
         "the contact law particles touch each other and the walls with (docs/theory/particle_contact.md)");
   k.add("cracking", ValueKind::section,
@@ -416,6 +420,7 @@ class ScenarioReader {
     loads();
     contact();
     walls();
+    scenario_detail::read_interfaces(top, sc);
     particle_contact();
     cracking();
     scenario_detail::read_particle_sections(top, sc);
@@ -1038,6 +1043,7 @@ std::vector<SchemaSection> scenario_schema() {
           {"contact", "contact between parts", contact_keys()},
           {"contact.material_friction[]", "friction of a pair of materials", material_friction_keys()},
           {"walls[]", "a rigid plane", wall_keys()},
+          {"interfaces[]", "a cohesive interface (docs/theory/cohesive_interfaces.md)", scenario_detail::interface_keys()},
           {"particle_contact", "the law particles touch each other and the walls with; the law's own parameters "
                                "(linear_spring: modulus, tangential_ratio, friction, damping_ratio or restitution, "
                                "limit_damping; hertz_mindlin: young, poisson, restitution, friction, limit_damping)",

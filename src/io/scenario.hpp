@@ -14,6 +14,7 @@
 
 #include "core/parameters.hpp"
 #include "core/time_table.hpp"
+#include "fracture/cohesive_law.hpp"
 #include "model/model.hpp"
 #include "particle/packing.hpp"
 
@@ -110,6 +111,15 @@ struct ContactInput {
   double friction = 0, dynamic_friction = 0;
   std::vector<FrictionInput> material_friction;
   double penalty_scale = 1, time_step_reduction = 0.1;
+  int line = 0;
+};
+
+/// interfaces[]: cohesive interfaces between two parts or between the plies of a laminate part.
+struct InterfaceInput {
+  std::vector<std::string> between;  ///< two parts that share a surface; or empty and:
+  std::string plies_of;              ///< a laminate part: every boundary between two plies
+  CohesiveLaw law;
+  double friction = 0;               ///< Coulomb coefficient once failed (contact between the sides)
   int line = 0;
 };
 
@@ -223,6 +233,7 @@ struct Scenario {
   std::optional<ContactInput> contact;
   std::optional<CrackingInput> cracking;
   std::vector<WallInput> walls;
+  std::vector<InterfaceInput> interfaces;
   std::optional<ParticleContactInput> particle_contact;
   OutputSettings output;
 

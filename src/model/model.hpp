@@ -203,6 +203,42 @@ struct ContactState {
   }
 };
 
+/// Zero-thickness interface elements that tie two faces of the mesh with a traction–separation
+/// law (src/fracture/cohesive_interface.hpp). Each element joins a face of side A to the
+/// coincident face of side B, corner by corner, and is integrated at its corners (one point per
+/// node pair). Everything that names a node or an element does so by stable id, so the elements
+/// follow every topology change untouched; an element whose owner leaves the model goes with it.
+struct CohesiveElements {
+  int nodes_per_face = 0;  ///< 2 (2D segments), 3 or 4; 0: none
+  std::vector<std::int64_t> node_a, node_b;        ///< nodes_per_face per element, stable node ids
+  std::vector<std::int64_t> owner_a, owner_b;      ///< per element: stable ids of the elements they bound
+  std::vector<std::int32_t> law;                   ///< per element: the run's interface law
+  std::vector<double> size;                        ///< per element: its size δ (m), for the size factor ζ
+  std::vector<double> weight;                      ///< per point: the area it stands for (m²)
+  std::vector<double> max_separation;              ///< per point: the largest equivalent opening (history)
+  std::vector<double> damage;                      ///< per point: 0 … 1 (1: failed, contact takes over)
+  std::vector<double> separation;                  ///< 3 per point: x_b − x_a at the last step
+  std::vector<double> traction;                    ///< 3 per point: the traction on side B at the last step
+
+  std::size_t element_count() const { return law.size(); }
+  std::size_t point_count() const { return weight.size(); }
+
+  template <class F>
+  void visit_fields(F&& f) {
+    f("node_a", field("node_a", Location::model, 0), node_a);
+    f("node_b", field("node_b", Location::model, 0), node_b);
+    f("owner_a", field("owner_a", Location::model, 0), owner_a);
+    f("owner_b", field("owner_b", Location::model, 0), owner_b);
+    f("law", field("law", Location::model, 0), law);
+    f("size", field("size", Location::model, 0), size);
+    f("weight", field("weight", Location::model, 0), weight);
+    f("max_separation", field("max_separation", Location::model, 0), max_separation);
+    f("damage", field("damage", Location::model, 0), damage);
+    f("separation", field("separation", Location::model, 0), separation);
+    f("traction", field("traction", Location::model, 0), traction);
+  }
+};
+
 struct Model {
   Formulation formulation = Formulation::plane_strain;
   double thickness = 1.0;  ///< out-of-plane thickness for plane strain / plane stress
@@ -215,6 +251,7 @@ struct Model {
   /// Contacts of particles with particles and walls, keyed by stable ids, with their laws'
   /// history (src/contact/particle_contact.hpp sizes it for its law).
   InteractionList particle_contacts;
+  CohesiveElements cohesive;
   /// The next stable id of a node, an element and a particle (ids are never reused).
   std::int64_t next_node_id = 0, next_element_id = 0, next_particle_id = 0;
 
@@ -261,6 +298,7 @@ struct Model {
       f(prefix + "owner_corner", field("owner_corner", Location::model, 0), s.owner_corner);
     }
     particle_contacts.visit_fields(as("particle_contacts."));
+    cohesive.visit_fields([&f](const std::string& name, const FieldInfo& info, auto& a) { f("cohesive." + name, info, a); });
     for (auto& p : parts) p.visit_fields(as("part." + p.name + "."));
     for (auto& pp : particle_parts) {
       pp.visit_all_fields(as("particles." + pp.name + "."));

@@ -121,6 +121,16 @@ void ExplicitSolver::attach_particle_contact(ParticleContact* contact) {
   terms_.particle_wall_work = state_.energy.find("particle_wall_work");
 }
 
+void ExplicitSolver::attach_cohesive(CohesiveInterfaces* cohesive) {
+  if (cohesive_) topology_.remove(*cohesive_);
+  cohesive_ = cohesive;
+  if (!cohesive_) return;
+  topology_.add(*cohesive_);
+  for (auto& t : CohesiveInterfaces::energy_terms()) state_.energy.add(std::move(t));
+  terms_.cohesive_work = state_.energy.find("cohesive_work");
+  terms_.cohesive_released = state_.energy.find("cohesive_released");
+}
+
 void ExplicitSolver::topology_changed(const Model& model, const Remap&) {
   // Non-local neighbourhoods are checked against the points' reference positions every step
   // (split nodes keep them): kept unless parts come or go.
@@ -241,6 +251,12 @@ void ExplicitSolver::compute_forces() {
     topology_.changed(model_, Remap{});
   }
   const double particle_dt = add_particle_forces();
+  if (cohesive_) {
+    // Interfaces before contact: contact leaves the nodes they still hold to them.
+    const CohesiveInterfaces::Work w = cohesive_->add_forces(model_);
+    state_.energy[terms_.cohesive_work] += w.work;
+    state_.energy[terms_.cohesive_released] += w.released;
+  }
   applied_.clear();
   add_pressure_forces(model_, loads_, state_.time, applied_);
   const auto& g = settings_.gravity;
@@ -253,6 +269,7 @@ void ExplicitSolver::compute_forces() {
   }
   if (contact_) {
     contact_->set_eroded_surfaces(state_.eroded_elements > 0);
+    contact_->set_tied_nodes(cohesive_ ? &cohesive_->tied_nodes() : nullptr);
     contact_->add_forces(model_, state_.time, state_.dt_half, total.stable_dt);
     state_.energy[terms_.friction] += contact_->friction_increment();
     const auto& wf = contact_->wall_forces();
@@ -279,6 +296,14 @@ double ExplicitSolver::choose_time_step(double element_stable_dt, double particl
     const double omega_c2 = contact_->max_frequency_squared();
     const double contact_dt = element_dt / std::sqrt(1.0 + 0.25 * omega_c2 * element_dt * element_dt);
     state_.stable_dt = std::min(state_.stable_dt, contact_dt);
+  }
+  // The cohesive springs likewise (Gershgorin's bound on their M⁻¹K); the run says so when they
+  // limit the step (app/run.cpp).
+  element_dt_ = cohesive_dt_ = state_.stable_dt;
+  if (cohesive_ && std::isfinite(element_dt) && cohesive_->max_frequency_squared() > 0) {
+    const double omega2 = cohesive_->max_frequency_squared();
+    cohesive_dt_ = state_.stable_dt / std::sqrt(1.0 + 0.25 * omega2 * state_.stable_dt * state_.stable_dt);
+    state_.stable_dt = cohesive_dt_;
   }
   double dt = settings_.time_step_safety * state_.stable_dt;
   dt = std::min(dt, particle_dt);

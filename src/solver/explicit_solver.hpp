@@ -15,6 +15,7 @@
 #include "contact/contact.hpp"
 #include "contact/particle_contact.hpp"
 #include "fem/internal_forces.hpp"
+#include "fracture/cohesive_interface.hpp"
 #include "material/material.hpp"
 #include "model/model.hpp"
 #include "core/energy_ledger.hpp"
@@ -85,6 +86,13 @@ class ExplicitSolver : private TopologyListener {
   /// Contact of particles with particles and walls (optional; not owned). Attach before a
   /// checkpoint is restored: it sizes the Model's interaction list for its law.
   void attach_particle_contact(ParticleContact* contact);
+  /// Cohesive interfaces between faces of the mesh (optional; not owned).
+  void attach_cohesive(CohesiveInterfaces* cohesive);
+  const CohesiveInterfaces* cohesive() const { return cohesive_; }
+  /// The element stable step and the one the cohesive springs leave (before the safety factor)
+  /// of the last force phase; equal when the interfaces do not limit it.
+  double element_stable_time_step() const { return element_dt_; }
+  double cohesive_stable_time_step() const { return cohesive_dt_; }
   /// Adds an event to the registered list (not owned); events of one phase run in the order added.
   void add_event(StepEvent& event) { events_.push_back(&event); }
   void remove_event(const StepEvent& event);
@@ -126,6 +134,8 @@ class ExplicitSolver : private TopologyListener {
   std::vector<PartCache> part_caches_;  ///< per part (derived from the Model, checked as used)
   ContactSystem* contact_ = nullptr;
   ParticleContact* particle_contact_ = nullptr;
+  CohesiveInterfaces* cohesive_ = nullptr;
+  double element_dt_ = 0, cohesive_dt_ = 0;
   std::vector<double> particle_reactions_;
   /// The prescribed degrees of freedom of the nodes and of each particle part, from their
   /// `prescribed` fields; rebuilt after every topology change.
@@ -136,7 +146,7 @@ class ExplicitSolver : private TopologyListener {
     int kinetic, initial, external_work, damping, stress_work, viscosity, hourglass, plastic, heat, fracture,
         eroded, particle_elastic, particle_friction, wall_work = -1, contact_work = -1, friction = -1,
         particle_contact_elastic = -1, particle_contact_dissipation = -1, particle_wall_work = -1,
-        conversion_elastic = -1;
+        conversion_elastic = -1, cohesive_work = -1, cohesive_released = -1;
   } terms_;
 };
 

@@ -49,6 +49,7 @@ struct ElasticRun {
   void run(const std::function<void(const ExplicitSolver&)>& each_step = {},
            const std::function<void(const ExplicitSolver&)>& after_step = {}) {
     ExplicitSolver solver(model, materials, loads, settings);
+    if (cohesive) solver.attach_cohesive(cohesive);
     solver.initialise();
     while (true) {
       solver.compute_forces();
@@ -62,6 +63,7 @@ struct ElasticRun {
     }
   }
 
+  CohesiveInterfaces* cohesive = nullptr;  ///< attached to the solver when set
   EnergyLedger energy;
   std::int64_t steps = 0;
   double max_error = 0;

@@ -1,0 +1,117 @@
+#include "io/scenario_interfaces.hpp"
+
+#include <algorithm>
+
+namespace shard::scenario_detail {
+
+KeyList interface_keys() {
+  KeyList k;
+  k.add("between", ValueKind::list, "two parts that share a surface (a conforming mesh): [a, b]");
+  k.add("plies_of", ValueKind::text, "a part with a `laminate`: every surface between two of its plies");
+  k.quantity("normal_strength", dim::pressure, "σ_f: the normal traction at which damage starts in mode I")
+      .above(0)
+      .must_be_given();
+  k.quantity("shear_strength", dim::pressure, "τ_f: the shear traction at which damage starts in mode II")
+      .above(0)
+      .must_be_given();
+  k.quantity("mode_one_energy", dim::energy_per_area, "G_Ic: fracture energy in opening (e.g. 750 J/m^2)")
+      .above(0)
+      .must_be_given();
+  k.quantity("mode_two_energy", dim::energy_per_area, "G_IIc: fracture energy in shear").above(0).must_be_given();
+  k.quantity("stiffness", dim::stiffness_per_area,
+             "K: the penalty per unit area, normal and shear (e.g. 50 E3/t for plies of thickness t: "
+             "Turon et al. 2007); stiffer shortens the stable step, and the run says so")
+      .above(0)
+      .must_be_given();
+  k.quantity("reference_size", dim::length,
+             "Δ_ref of the size factor ζ = max(1, √(δ/Δ_ref)) on the tractions of eq. (14) of the CFRP-crushing "
+             "paper (δ: the element's size); 0: ζ = 1")
+      .at_least(0)
+      .defaults_to("0");
+  k.choice("mixed_mode", {"quadratic_ratio", "benzeggagh_kenane"},
+           "the fracture energy in mixed mode: √((σ0/σ_f G_I)² + (τ0/τ_f G_II)²) of the onset tractions "
+           "(eq. 16 of the CFRP-crushing paper), or G_I + (G_II − G_I)(G_II/G)^η (Benzeggagh & Kenane 1996)")
+      .defaults_to("quadratic_ratio");
+  k.quantity("bk_exponent", dim::none, "η of Benzeggagh–Kenane").above(0).defaults_to("2");
+  k.quantity("friction", dim::none,
+             "Coulomb coefficient of the contact between the two sides once failed (unless `contact` "
+             "gives one for their materials)")
+      .at_least(0)
+      .defaults_to("0");
+  return k;
+}
+
+namespace {
+
+InterfaceInput read_interface(Section& s, const Scenario& sc, YAML::Node out) {
+  InterfaceInput in;
+  in.line = s.line();
+  auto check = [&](const std::string& key, const std::string& name) {
+    for (const auto& p : sc.parts)
+      if (p.name == name) return p;
+    std::vector<std::string> names;
+    for (const auto& p : sc.parts) names.push_back(p.name);
+    std::string reason = "no part named '" + name + "'";
+    const std::string close = closest_match(name, names);
+    if (!close.empty()) reason += " (did you mean '" + close + "'?)";
+    s.fail(key, reason);
+  };
+  if (s.has("between") == s.has("plies_of"))
+    s.fail(s.has("between") ? "plies_of" : "between",
+           "give either 'between: [part_a, part_b]' or 'plies_of: <laminate part>'");
+  if (s.has("between")) {
+    const YAML::Node list = s.value("between");
+    if (!list.IsSequence() || list.size() != 2)
+      s.fail("between", "expected two part names, e.g. [upper, lower], got " + Section::shape(list));
+    for (const auto& n : list) {
+      check("between", n.Scalar());
+      in.between.push_back(n.Scalar());
+    }
+    if (in.between[0] == in.between[1]) s.fail("between", "an interface joins two different parts");
+    out["between"] = list;
+  } else {
+    in.plies_of = s.text("plies_of");
+    const PartInput& part = check("plies_of", in.plies_of);
+    if (!part.orientation || part.orientation->ply_thickness == 0)
+      s.fail("plies_of", "part '" + in.plies_of + "' has no `laminate` (its plies come from a stacking sequence)");
+  }
+  CohesiveLaw& law = in.law;
+  law.name = "interfaces[" + std::to_string(in.line) + "]";
+  law.normal_strength = s.number("normal_strength");
+  law.shear_strength = s.number("shear_strength");
+  law.mode_one_energy = s.number("mode_one_energy");
+  law.mode_two_energy = s.number("mode_two_energy");
+  law.stiffness = s.number("stiffness");
+  law.reference_size = s.number("reference_size");
+  law.mixed_mode = *s.choice("mixed_mode") == "benzeggagh_kenane" ? MixedModeEnergy::benzeggagh_kenane
+                                                                  : MixedModeEnergy::quadratic_ratio;
+  law.bk_exponent = s.number("bk_exponent");
+  in.friction = s.number("friction");
+  // Linear softening needs the failure opening 2G/σ beyond the onset σ/K: K > σ²/(2G).
+  const double need = std::max(law.normal_strength * law.normal_strength / (2 * law.mode_one_energy),
+                               law.shear_strength * law.shear_strength / (2 * law.mode_two_energy));
+  if (!(law.stiffness > need))
+    s.fail("stiffness", "the penalty must exceed σ_f²/(2 G_Ic) and τ_f²/(2 G_IIc) = " + format_si(need, dim::stiffness_per_area) +
+                            " for the softening to start after the onset; the interface would be more "
+                            "compliant than the plies anyway: take about 50 E3/t");
+  return in;
+}
+
+}  // namespace
+
+void read_interfaces(Section& top, Scenario& sc) {
+  static const KeyList keys = interface_keys();
+  const YAML::Node list = top.value_or_null("interfaces");
+  if (list.IsDefined() && !list.IsNull() && !list.IsSequence())
+    top.fail("interfaces", "expected a list (entries starting with '- ')");
+  YAML::Node list_out(YAML::NodeType::Sequence);
+  for (std::size_t i = 0; list.IsSequence() && i < list.size(); ++i) {
+    YAML::Node out(YAML::NodeType::Map);
+    Section s(list[i], top.file(), "interfaces[" + std::to_string(i + 1) + "]", keys, out, line_of(list[i]));
+    sc.interfaces.push_back(read_interface(s, sc, out));
+    list_out.push_back(out);
+  }
+  if (top.has("interfaces")) sc.resolved["interfaces"] = list_out;
+}
+
+}  // namespace shard::scenario_detail

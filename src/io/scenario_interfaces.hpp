@@ -1,0 +1,18 @@
+// Internal to the scenario reader: the `interfaces` section (cohesive interfaces between parts
+// and between the plies of laminates, docs/theory/cohesive_interfaces.md).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "io/scenario.hpp"
+#include "io/scenario_section.hpp"
+
+namespace shard::scenario_detail {
+
+KeyList interface_keys();
+
+/// Reads `interfaces` (parts already read).
+void read_interfaces(Section& top, Scenario& scenario);
+
+}  // namespace shard::scenario_detail

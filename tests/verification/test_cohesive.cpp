@@ -1,0 +1,165 @@
+// Cohesive interfaces (src/fracture/cohesive_law.hpp, cohesive_interface.hpp, interface_split.hpp).
+// Theory: docs/theory/cohesive_interfaces.md. Data: the CFRP-crushing paper's table 3
+// (σ_f = τ_f = 50 MPa, G_Ic = 750, G_IIc = 1200 J/m²).
+//
+// 1. The law at a point: the mixed-mode energy of eq. (16) at 45° (equal openings) is
+//    √((750² + 1200²)/2) = 1000.6 J/m² (1e-4), Benzeggagh–Kenane with G_Ic 1, G_IIc 2, η 2 at 45°
+//    is 1.25 (1e-12); the openings at onset and failure are σ/K and 2G/σ.
+// 2. One interface element between two hex8 blocks, the upper block pulled away rigidly (every
+//    node prescribed): in mode I and mode II the peak traction is the strength (0.5 %), the
+//    traction reaches zero at the failure opening 2G/σ = 0.030 and 0.048 mm (1 %), and the
+//    released energy is G × area (0.5 %); at 45° it is 1000.6 J/m² × area (1 %). The energy
+//    balance closes (1e-6 of the work).
+// 3. Set-up: the split gives each block its own copy of the shared nodes, and the interface
+//    element's corner weights add up to the face area (1e-12).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+
+#include "fracture/cohesive_interface.hpp"
+#include "fracture/interface_split.hpp"
+#include "support/model_runner.hpp"
+
+namespace shard {
+namespace {
+
+CohesiveLaw table3(double stiffness = 1e15) {
+  CohesiveLaw law;
+  law.normal_strength = law.shear_strength = 50e6;
+  law.mode_one_energy = 750;
+  law.mode_two_energy = 1200;
+  law.stiffness = stiffness;
+  return law;
+}
+
+TEST(CohesiveLaw, MixedModeEnergiesOfEquation16AndBenzeggaghKenane) {
+  const CohesiveLaw law = table3();
+  const MixedModeOpenings pure_one = mixed_mode_openings(law, 1.0, 1e-7, 0.0);
+  const MixedModeOpenings pure_two = mixed_mode_openings(law, 1.0, 0.0, 1e-7);
+  EXPECT_NEAR(pure_one.onset, 50e6 / 1e15, 1e-22);
+  EXPECT_NEAR(pure_one.failure, 2 * 750 / 50e6, 1e-15);
+  EXPECT_NEAR(pure_two.failure, 2 * 1200 / 50e6, 1e-15);
+  const MixedModeOpenings half = mixed_mode_openings(law, 1.0, 1e-7, 1e-7);
+  std::printf("[cohesive] eq. (16) at 45 deg: %.4f J/m2 (sqrt((750^2 + 1200^2)/2) = 1000.62)\n", half.energy);
+  EXPECT_NEAR(half.energy, std::sqrt((750.0 * 750 + 1200.0 * 1200) / 2), 1e-4);
+  CohesiveLaw bk;
+  bk.normal_strength = bk.shear_strength = 1;
+  bk.mode_one_energy = 1;
+  bk.mode_two_energy = 2;
+  bk.stiffness = 1e3;
+  bk.mixed_mode = MixedModeEnergy::benzeggagh_kenane;
+  bk.bk_exponent = 2;
+  EXPECT_NEAR(mixed_mode_openings(bk, 1.0, 1e-5, 1e-5).energy, 1.25, 1e-12);
+  // The size factor of eq. (15).
+  CohesiveLaw sized = table3();
+  sized.reference_size = 0.25e-3;
+  EXPECT_DOUBLE_EQ(sized.size_factor(0.2e-3), 1.0);
+  EXPECT_NEAR(sized.size_factor(1e-3), 2.0, 1e-15);
+}
+
+struct PullResult {
+  double peak_normal = 0, peak_shear = 0;  // tractions on the upper block (Pa)
+  double failure_opening = 0;              // |Δ| when the traction first vanished after the peak
+  double released = 0, work = 0, area = 0, balance = 0;
+  std::size_t nodes_added = 0;
+  double weight_sum = 0;
+};
+
+/// Two 1 mm hex8 cubes, one on the other, tied by one interface element; the upper one moved
+/// rigidly along (sin θ, 0, cos θ) at a constant speed, the lower one held.
+PullResult pull(double angle_degrees) {
+  BoxMesh box;
+  box.element = "hex8";
+  box.cells = {1, 1, 2};
+  box.size = {1e-3, 1e-3, 2e-3};
+  testing::ElasticRun run(make_box_model(Formulation::three_d, box), 1550, 7e9, 0.3);
+  Model& model = run.model;
+  model.assign_ids();
+  InterfaceLayout layout;
+  std::vector<int> group(2);
+  for (std::size_t e = 0; e < 2; ++e) group[e] = testing::element_centroid(model, model.parts[0], e, 2) > 1e-3 ? 1 : 0;
+  layout.group.push_back(group);
+  layout.law_of[{0, 1}] = 0;
+  const InterfaceSplit split = insert_cohesive_interfaces(model, layout);
+  PullResult out;
+  out.nodes_added = split.nodes_added;
+  for (double w : model.cohesive.weight) out.weight_sum += w;
+  CohesiveInterfaces interfaces({table3()});
+  run.cohesive = &interfaces;
+  const double theta = angle_degrees * std::numbers::pi / 180, speed = 0.5;  // m/s
+  const double dir[3] = {std::sin(theta), 0, std::cos(theta)};
+  const Part& part = model.parts[0];
+  for (std::size_t e = 0; e < 2; ++e)
+    for (int a = 0; a < 8; ++a)
+      for (int k = 0; k < 3; ++k) {
+        const std::int32_t n = part.connectivity[8 * e + a];
+        prescribe_node(model, run.loads, n, k, run.table(group[e] == 1 ? speed * dir[k] : 0.0));
+      }
+  run.settings.end_time = 1.3 * 2 * 1200 / 50e6 / speed;
+  run.settings.max_time_step = 2e-9;
+  bool past_peak = false;
+  double peak = 0;
+  run.run([&](const ExplicitSolver&) {
+    const CohesiveElements& c = model.cohesive;
+    if (c.element_count() == 0) return;
+    double tn = 0, ts = 0, opening = 0;
+    for (std::size_t p = 0; p < c.point_count(); ++p) {
+      tn += c.traction[3 * p + 2] * c.weight[p];
+      ts += c.traction[3 * p] * c.weight[p];
+    }
+    out.area = out.weight_sum;
+    tn /= out.area;
+    ts /= out.area;
+    opening = std::hypot(c.separation[0], c.separation[2]);
+    out.peak_normal = std::max(out.peak_normal, tn);
+    out.peak_shear = std::max(out.peak_shear, ts);
+    const double t = std::hypot(tn, ts);
+    peak = std::max(peak, t);
+    if (t < 0.5 * peak) past_peak = true;
+    if (past_peak && out.failure_opening == 0 && t == 0.0) out.failure_opening = opening;
+  });
+  out.released = run.energy.value("cohesive_released");
+  out.work = run.energy.value("cohesive_work");
+  out.balance = run.max_error;
+  return out;
+}
+
+TEST(CohesiveInterface, SetUpSplitsTheSharedNodesAndWeighsTheFace) {
+  const PullResult r = pull(0);
+  EXPECT_EQ(r.nodes_added, 4u);
+  EXPECT_NEAR(r.weight_sum, 1e-6, 1e-18);
+}
+
+TEST(CohesiveInterface, ModeOneAndModeTwoPeakAtTheStrengthAndReleaseTheFractureEnergy) {
+  struct Case {
+    const char* name;
+    double angle, energy;
+  } cases[] = {{"mode I", 0, 750}, {"mode II", 90, 1200}};
+  for (const Case& c : cases) {
+    const PullResult r = pull(c.angle);
+    const double peak = c.angle == 0 ? r.peak_normal : r.peak_shear;
+    const double opening = 2 * c.energy / 50e6;
+    std::printf("[cohesive] %-7s: peak %.4f MPa (50), failure opening %.5f mm (%.5f), released %.7f J "
+                "(G A = %.7f), balance %.1e\n",
+                c.name, peak / 1e6, r.failure_opening * 1e3, opening * 1e3, r.released, c.energy * r.area, r.balance);
+    EXPECT_NEAR(peak, 50e6, 5e-3 * 50e6) << c.name;
+    EXPECT_NEAR(r.failure_opening, opening, 1e-2 * opening) << c.name;
+    EXPECT_NEAR(r.released, c.energy * r.area, 5e-3 * c.energy * r.area) << c.name;
+    EXPECT_NEAR(r.work, r.released, 1e-9 * r.work) << c.name;  // nothing left stored once failed
+    EXPECT_LT(r.balance, 1e-6) << c.name;
+  }
+}
+
+TEST(CohesiveInterface, MixedModeReleasesTheEnergyOfEquation16) {
+  const PullResult r = pull(45);
+  const double expected = std::sqrt((750.0 * 750 + 1200.0 * 1200) / 2);
+  std::printf("[cohesive] 45 deg: released %.4f J/m2 (eq. 16: %.4f), balance %.1e\n", r.released / r.area, expected,
+              r.balance);
+  EXPECT_NEAR(r.released / r.area, expected, 1e-2 * expected);
+  EXPECT_LT(r.balance, 1e-6);
+}
+
+}  // namespace
+}  // namespace shard
