@@ -97,16 +97,31 @@ InterfaceSplit insert_cohesive_interfaces(Model& model, const InterfaceLayout& l
       if (tied.count(g)) groups.insert(g);
     }
     if (groups.size() < 2) continue;
-    // The lowest group keeps the node; each other tied group gets its own copy.
-    std::map<int, std::int32_t> node_of;
+    // Copies by greedy colouring: a group joins the first copy holding no group it has an
+    // interface with, so only tied groups are torn apart (two plies of one arm stay joined
+    // where an interface ends).
+    std::vector<std::vector<int>> copies;
+    std::map<int, std::size_t> copy_of;
     for (int g : groups) {
-      if (g == *groups.begin()) continue;
-      node_of[g] = remap.nodes->add_born(static_cast<std::int32_t>(i), 1.0 / static_cast<double>(groups.size()));
+      std::size_t chosen = copies.size();
+      for (std::size_t k = 0; k < copies.size() && chosen == copies.size(); ++k)
+        if (std::none_of(copies[k].begin(), copies[k].end(),
+                         [&](int h) { return layout.law_of.count({std::min(g, h), std::max(g, h)}) > 0; }))
+          chosen = k;
+      if (chosen == copies.size()) copies.emplace_back();
+      copies[chosen].push_back(g);
+      copy_of[g] = chosen;
+    }
+    if (copies.size() < 2) continue;
+    // The first copy keeps the node; each other copy gets a new one.
+    std::vector<std::int32_t> node_of_copy(copies.size(), static_cast<std::int32_t>(i));
+    for (std::size_t k = 1; k < copies.size(); ++k) {
+      node_of_copy[k] = remap.nodes->add_born(static_cast<std::int32_t>(i), 1.0 / static_cast<double>(copies.size()));
       parent.push_back(static_cast<std::int32_t>(i));
     }
     for (const Corner& c : corners[i]) {
-      const auto it = node_of.find(layout.group[c.part][c.element]);
-      if (it != node_of.end()) remap.corners.push_back({c.part, c.element, c.local, it->second});
+      const auto it = copy_of.find(layout.group[c.part][c.element]);
+      if (it != copy_of.end() && it->second > 0) remap.corners.push_back({c.part, c.element, c.local, node_of_copy[it->second]});
     }
   }
   out.nodes_added = parent.size();
