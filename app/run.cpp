@@ -1,5 +1,7 @@
 #include "app/run.hpp"
 
+#include "app/crash_report.hpp"
+
 #include <sys/resource.h>
 #include <unistd.h>
 
@@ -16,6 +18,7 @@
 #endif
 
 #include "core/error.hpp"
+#include "fem/element.hpp"
 #include "io/checkpoint.hpp"
 #include "io/frame_output.hpp"
 #include "app/simulation.hpp"
@@ -177,6 +180,7 @@ class RunDriver {
 #ifdef _OPENMP
     threads_ = omp_get_max_threads();
 #endif
+    if (sc_.crash) crash_mass_per_length_ = crushed_mass_per_length();  // on the mesh as set up
     if (options_.restart) {
       read_checkpoint(*options_.restart, sim_.model, solver_.state(), cursor_, fingerprint_);
       // Cracks and erosion changed the mesh since set-up: every cache of the topology (the contact
@@ -238,6 +242,14 @@ class RunDriver {
       }
     }
     if (cracks_) columns.push_back("fragments");
+    if (sim_.cohesive) {
+      columns.push_back("interface_points_intact");
+      columns.push_back("interface_points_failed");
+    }
+    if (sc_.crash) {
+      columns.push_back("crash_force");
+      columns.push_back("crash_stroke");
+    }
     // Contact forces per part pair and per wall: what load cells and crush tests measure.
     if (contact_) {
       for (const auto& [a, b] : contact_->reported_pairs())
@@ -298,12 +310,30 @@ class RunDriver {
     if (!options_.quiet) std::cerr << "note: " << particle_step_note_ << "\n";
   }
 
+  /// Once, when the cohesive springs shorten the step by more than 1 %: says by how much and
+  /// what sets it.
+  void note_cohesive_step() {
+    if (cohesive_step_noted_ || !sim_.cohesive) return;
+    const double elements = solver_.element_stable_time_step(), cohesive = solver_.cohesive_stable_time_step();
+    if (!(elements > 0) || !(cohesive < 0.99 * elements)) return;
+    cohesive_step_noted_ = true;
+    std::ostringstream out;
+    out.precision(3);
+    out << "the cohesive interfaces' springs shorten the stable time step from " << format_time(elements) << " to "
+        << format_time(cohesive) << " (" << 100 * (1 - cohesive / elements)
+        << " % shorter): their stiffness sets it; a softer penalty keeps the step, at the price of a more "
+           "compliant interface";
+    notes_.push_back(out.str());
+    if (!options_.quiet) std::cerr << "note: " << notes_.back() << "\n";
+  }
+
   void loop() {
     const auto& out = sc_.output;
     const double end = sc_.end_time;
     while (true) {
       solver_.compute_forces();
       note_particle_step();
+      note_cohesive_step();
       const SolverState& s = solver_.state();
       const double t = s.time;
       const bool final = t >= end * (1 - 1e-12);
@@ -392,6 +422,11 @@ class RunDriver {
       history_ << ',' << linked;
     }
     if (cracks_) history_ << ',' << find_fragments(sim_.model).list.size();
+    if (sim_.cohesive) history_ << ',' << sim_.cohesive->intact_points() << ',' << sim_.cohesive->failed_points();
+    if (sc_.crash) {
+      write_number(crash_force());
+      write_number(crash_stroke());
+    }
     if (contact_)
       for (const auto* values : {&contact_->pair_forces(), &contact_->wall_forces()})
         for (double v : *values) write_number(v);
@@ -434,6 +469,66 @@ class RunDriver {
     write_fragments_csv(dir_ / "fragments.csv", list, dim_);
   }
 
+  /// The crushing force: what the elements and particles push the crash wall with, along its
+  /// normal, times the scale.
+  double crash_force() const {
+    const std::string& name = sc_.crash->wall;
+    double f = 0;
+    auto add = [&](const std::vector<RigidWall>& walls, const std::vector<double>& forces) {
+      for (std::size_t w = 0; w < walls.size(); ++w)
+        if (walls[w].name == name && forces.size() >= dim_ * (w + 1))
+          for (int k = 0; k < dim_; ++k) f -= forces[dim_ * w + k] * walls[w].normal[k];
+    };
+    if (contact_) add(contact_->settings().walls, contact_->wall_forces());
+    if (sim_.particle_contact) add(sim_.particle_contact->settings().walls, sim_.particle_contact->wall_forces());
+    return sc_.crash->scale * f;
+  }
+
+  /// The stroke: the stroke part's mean displacement (over its nodes, by mass) towards the wall.
+  double crash_stroke() const {
+    const RigidWall* wall = nullptr;
+    const auto& walls = contact_ ? contact_->settings().walls : sim_.particle_contact->settings().walls;
+    for (const auto& w : walls)
+      if (w.name == sc_.crash->wall) wall = &w;
+    double sum = 0, mass = 0;
+    for (const Part& part : sim_.model.parts) {
+      if (part.name != sc_.crash->stroke_part) continue;
+      std::vector<char> seen(sim_.model.nodes.count(), 0);
+      for (auto n : part.connectivity) {
+        if (seen[n]) continue;
+        seen[n] = 1;
+        const double m = sim_.model.nodes.mass[n];
+        for (int k = 0; k < dim_; ++k)
+          sum -= m * (sim_.model.nodes.x[dim_ * n + k] - sim_.model.nodes.x0[dim_ * n + k]) * wall->normal[k];
+        mass += m;
+      }
+    }
+    return mass > 0 ? sum / mass : 0.0;
+  }
+
+  /// Mass per unit length of the crushed part along the crash wall's normal, at the start.
+  double crushed_mass_per_length() const {
+    const RigidWall* wall = nullptr;
+    const auto& walls = contact_ ? contact_->settings().walls : sim_.particle_contact->settings().walls;
+    for (const auto& w : walls)
+      if (w.name == sc_.crash->wall) wall = &w;
+    double lo = 1e300, hi = -1e300, mass = 0;
+    for (const Part& part : sim_.model.parts) {
+      if (part.name != sc_.crash->crushed_part) continue;
+      for (auto n : part.connectivity) {
+        double s = 0;
+        for (int k = 0; k < dim_; ++k) s += sim_.model.nodes.x0[dim_ * n + k] * wall->normal[k];
+        lo = std::min(lo, s);
+        hi = std::max(hi, s);
+      }
+      const double rho = sim_.materials[part.material]->density();
+      const ElementKernel& kernel = kernel_of(*part.type);
+      for (std::size_t e = 0; e < part.element_count(); ++e)
+        mass += rho * kernel.measure(part, sim_.model.nodes, e, sim_.model.formulation, sim_.model.thickness);
+    }
+    return hi > lo ? mass / (hi - lo) : 0.0;
+  }
+
   void write_summary() {
     const double wall = std::chrono::duration<double>(Clock::now() - start_).count();
     const auto& s = solver_.state();
@@ -453,7 +548,8 @@ class RunDriver {
       << ",\n  \"particle_steps_per_second\": "
       << (wall > 0 ? steps * static_cast<double>(particles_) / wall : 0.0)
       << ",\n  \"eroded_elements\": " << s.eroded_elements
-      << ",\n  \"notes\": [" << (particle_step_note_.empty() ? "" : json_string(particle_step_note_)) << "]"
+      << ",\n  \"notes\": [" << notes_json() << "]"
+      << crash_summary()
       << ",\n  \"energy_balance_error\": " << s.energy.relative_error() << ",\n  \"energy\": {";
     const auto names = s.energy.column_names();
     const auto values = s.energy.column_values();
@@ -501,7 +597,23 @@ class RunDriver {
   std::vector<PvdCollection> particle_pvd_;
   std::ofstream history_;
   Progress progress_;
-  bool particle_step_noted_ = false;
+  bool particle_step_noted_ = false, cohesive_step_noted_ = false;
+  std::vector<std::string> notes_;  ///< further notes for summary.json
+
+  /// crash.csv and the summary's crash figures (empty without a `crash` section).
+  std::string crash_summary() {
+    if (!sc_.crash) return "";
+    history_.flush();
+    const CrashReport r = write_crash_report(history_path_, dir_ / "crash.csv", *sc_.crash, crash_mass_per_length_);
+    return ",\n  \"crash\": " + crash_json(r, *sc_.crash);
+  }
+  double crash_mass_per_length_ = 0;
+
+  std::string notes_json() const {
+    std::string out = particle_step_note_.empty() ? "" : json_string(particle_step_note_);
+    for (const auto& n : notes_) out += (out.empty() ? "" : ", ") + json_string(n);
+    return out;
+  }
   std::string particle_step_note_;  ///< also in summary.json
   Clock::time_point start_ = Clock::now();
   std::int64_t first_step_ = 0;

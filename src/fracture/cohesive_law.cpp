@@ -40,8 +40,9 @@ MixedModeOpenings mixed_mode_openings(const CohesiveLaw& law, double zeta, doubl
 
 void cohesive_traction(const CohesiveLaw& law, double zeta, double dn, double ds, CohesiveHistory& h,
                        double& tn, double& ts) {
-  if (h.damage >= 1.0) {
-    tn = ts = 0.0;
+  if (h.damage >= 1.0) {  // failed: the closed faces still bear on each other (frictionless)
+    tn = std::min(dn, 0.0) * law.stiffness;
+    ts = 0.0;
     return;
   }
   const double K = law.stiffness;
@@ -57,7 +58,8 @@ void cohesive_traction(const CohesiveLaw& law, double zeta, double dn, double ds
   }
   h.damage = std::max(h.damage, d);  // a change of mixity never heals
   if (h.damage >= 1.0) {
-    tn = ts = 0.0;
+    tn = std::min(dn, 0.0) * K;
+    ts = 0.0;
     return;
   }
   tn = dn > 0.0 ? (1.0 - h.damage) * K * dn : K * dn;  // no damage in compression

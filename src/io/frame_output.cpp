@@ -51,6 +51,21 @@ VtuGrid make_frame(const Model& model, const std::vector<std::unique_ptr<Materia
     grid.point_fields.push_back({"crack_face", 1, std::vector<double>(on_face.begin(), on_face.end())});
   }
 
+  if (model.cohesive.element_count() > 0) {
+    // The largest damage of the interface points at each node (−1 off the interfaces): a
+    // threshold at 1 shows where the plies have come apart.
+    std::vector<std::int32_t> index(static_cast<std::size_t>(model.next_node_id), -1);
+    for (std::size_t i = 0; i < model.nodes.count(); ++i) index[static_cast<std::size_t>(model.nodes.id[i])] = static_cast<std::int32_t>(i);
+    std::vector<double> damage(model.nodes.count(), -1.0);
+    const CohesiveElements& c = model.cohesive;
+    for (std::size_t p = 0; p < c.point_count(); ++p)
+      for (const std::int64_t id : {c.node_a[p], c.node_b[p]}) {
+        const std::int32_t i = id >= 0 && id < model.next_node_id ? index[static_cast<std::size_t>(id)] : -1;
+        if (i >= 0) damage[i] = std::max(damage[i], c.damage[p]);
+      }
+    grid.point_fields.push_back({"interface_damage", 1, std::move(damage)});
+  }
+
   // Cell fields: the mean over each element's integration points.
   auto cell_field = [&](const char* name, int components, auto per_point) {
     VtuField f{name, components, {}};

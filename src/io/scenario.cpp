@@ -66,6 +66,9 @@ KeyList top_keys() {
         "the contact law particles touch each other and the walls with (docs/theory/particle_contact.md)");
   k.add("cracking", ValueKind::section,
         "discrete crack insertion in tri3 parts of a cracking material (docs/theory/crack_insertion.md)");
+  k.add("crash", ValueKind::section,
+        "crash outputs of a crush test: crushing force (SAE J211 filtered), stroke, absorbed energy, SEA, "
+        "crush-force efficiency (docs/outputs.md)");
   k.add("output", ValueKind::section, "frames, history, checkpoints").defaults_to("{}");
   return k;
 }
@@ -424,6 +427,7 @@ class ScenarioReader {
     particle_contact();
     cracking();
     scenario_detail::read_particle_sections(top, sc);
+    scenario_detail::read_crash(top, sc);
     output();
   }
 
@@ -1053,6 +1057,7 @@ std::vector<SchemaSection> scenario_schema() {
           {"parts.<name>.orientation", "material axes of the whole part", orientation_keys(false)},
           {"parts.<name>.laminate", "material axes ply by ply through the part", orientation_keys(true)},
           {"cracking", "discrete crack insertion", cracking_keys()},
+          {"crash", "crash outputs of a crush test", scenario_detail::crash_keys()},
           {"output", "what is written to the output folder", output_keys()}};
   for (auto& section : scenario_detail::particle_schema()) schema.push_back(std::move(section));
   return schema;

@@ -98,6 +98,17 @@ struct OutputSettings {
   std::vector<std::string> fields;
 };
 
+/// crash: what a crash engineer reads off a crush test (docs/outputs.md, "Crash outputs").
+struct CrashInput {
+  std::string wall;          ///< the rigid wall that measures the crushing force
+  std::string stroke_part;   ///< its mean displacement towards the wall is the stroke
+  std::string crushed_part;  ///< SEA: the energy over its mass per unit length × the stroke
+  double cfc = 600;          ///< SAE J211 channel class of the force filter
+  double sample_interval = 1e-6;
+  double scale = 1;          ///< multiplies forces and energies (a slice of a wider specimen)
+  int line = 0;
+};
+
 struct FrictionInput {
   std::string material_a, material_b;
   double static_coefficient = 0, dynamic_coefficient = 0;
@@ -236,6 +247,7 @@ struct Scenario {
   std::vector<InterfaceInput> interfaces;
   std::optional<ParticleContactInput> particle_contact;
   OutputSettings output;
+  std::optional<CrashInput> crash;
 
   YAML::Node resolved;  ///< the scenario as resolved (SI, defaults filled in)
 

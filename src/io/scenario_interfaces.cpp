@@ -114,4 +114,49 @@ void read_interfaces(Section& top, Scenario& sc) {
   if (top.has("interfaces")) sc.resolved["interfaces"] = list_out;
 }
 
+KeyList crash_keys() {
+  KeyList k;
+  k.add("wall", ValueKind::text, "the rigid wall (of `walls`) that measures the crushing force").must_be_given();
+  k.add("stroke_part", ValueKind::text, "the part whose mean displacement towards the wall is the stroke (the carriage)")
+      .must_be_given();
+  k.add("crushed_part", ValueKind::text,
+        "the part being crushed: SEA is the absorbed energy over its mass per unit length × the stroke")
+      .must_be_given();
+  k.quantity("cfc", dim::none, "SAE J211 channel frequency class of the force filter (60, 180, 600, 1000)")
+      .above(0)
+      .defaults_to("600");
+  k.quantity("sample_interval", dim::time, "the force is resampled at this period before filtering").above(0).defaults_to("1 us");
+  k.quantity("scale", dim::none, "multiplies forces and energies: the width of the specimen over the slice modelled")
+      .above(0)
+      .defaults_to("1");
+  return k;
+}
+
+void read_crash(Section& top, Scenario& sc) {
+  if (!top.has("crash")) return;
+  static const KeyList keys = crash_keys();
+  Section s(top.value("crash"), top.file(), "crash", keys, sc.resolved["crash"], top.line("crash"));
+  CrashInput in;
+  in.line = s.line();
+  in.wall = s.text("wall");
+  if (std::none_of(sc.walls.begin(), sc.walls.end(), [&](const WallInput& w) { return w.name == in.wall; })) {
+    std::vector<std::string> names;
+    for (const auto& w : sc.walls) names.push_back(w.name);
+    std::string reason = "no wall named '" + in.wall + "'";
+    const std::string close = closest_match(in.wall, names);
+    if (!close.empty()) reason += " (did you mean '" + close + "'?)";
+    s.fail("wall", reason + "; the crushing force is read on a rigid wall of `walls`");
+  }
+  for (const char* key : {"stroke_part", "crushed_part"}) {
+    const std::string name = s.text(key);
+    if (std::none_of(sc.parts.begin(), sc.parts.end(), [&](const PartInput& p) { return p.name == name; }))
+      s.fail(key, "no part named '" + name + "'");
+    (std::string(key) == "stroke_part" ? in.stroke_part : in.crushed_part) = name;
+  }
+  in.cfc = s.number("cfc");
+  in.sample_interval = s.number("sample_interval");
+  in.scale = s.number("scale");
+  sc.crash = in;
+}
+
 }  // namespace shard::scenario_detail

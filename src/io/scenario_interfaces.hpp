@@ -1,5 +1,6 @@
-// Internal to the scenario reader: the `interfaces` section (cohesive interfaces between parts
-// and between the plies of laminates, docs/theory/cohesive_interfaces.md).
+// Internal to the scenario reader: the sections of composite crush tests: `interfaces` (cohesive
+// interfaces between parts and between the plies of laminates, docs/theory/cohesive_interfaces.md)
+// and `crash` (the crash outputs, docs/outputs.md).
 #pragma once
 
 #include <string>
@@ -14,5 +15,9 @@ KeyList interface_keys();
 
 /// Reads `interfaces` (parts already read).
 void read_interfaces(Section& top, Scenario& scenario);
+
+KeyList crash_keys();
+/// Reads `crash` (parts and walls already read).
+void read_crash(Section& top, Scenario& scenario);
 
 }  // namespace shard::scenario_detail
