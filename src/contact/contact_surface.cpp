@@ -70,7 +70,9 @@ ContactSurface extract_contact_surface(const Model& model) {
   for (const auto& [key, index] : seen)
     if (index >= 0) boundary[index] = 1;
   const int dim = s.dim;
-  const double* X = model.nodes.x.data();
+  // Tributary areas on the undeformed surface: they must not depend on when the surface was last
+  // built (a restart rebuilds it), only on the topology.
+  const double* X = model.nodes.x0.data();
   std::vector<double> area(model.nodes.count(), 0.0);
   std::vector<std::int32_t> part_of(model.nodes.count(), -1);
   for (std::size_t f = 0; f < faces.size(); ++f) {
