@@ -548,6 +548,51 @@ def read_fragments(folder):
     return path, columns
 
 
+def plot_crash(args):
+    """Crushing force (raw and CFC-filtered) and absorbed energy against the stroke, from
+    RUN/crash.csv, with the figures of RUN/summary.json."""
+    path = os.path.join(args.folder, "crash.csv") if os.path.isdir(args.folder) else args.folder
+    if not os.path.isfile(path):
+        raise PlotError(f"{path} not found: crash.csv is written by runs whose scenario has a 'crash' section")
+    with open(path) as f:
+        header = f.readline().strip().split(",")
+    data = np.loadtxt(path, delimiter=",", skiprows=1, ndmin=2)
+    col = {name: data[:, i] for i, name in enumerate(header)}
+    filtered = next(name for name in header if name.startswith("force_cfc"))
+    folder = os.path.dirname(os.path.abspath(path))
+    figures = {}
+    summary = os.path.join(folder, "summary.json")
+    if os.path.isfile(summary):
+        with open(summary) as f:
+            figures = json.load(f).get("crash", {})
+    stroke = col["stroke"] * 1e3
+    figure, left = plt.subplots(figsize=(7, 4.2))
+    left.plot(stroke, col["force"] / 1e3, color="0.75", lw=0.6, label="force (raw)")
+    left.plot(stroke, col[filtered] / 1e3, color="tab:blue", lw=1.4, label=f"force, {filtered[6:].upper()}")
+    if figures.get("mean_force"):
+        left.axhline(figures["mean_force"] / 1e3, color="tab:green", ls="--", lw=1,
+                     label=f"mean {figures['mean_force'] / 1e3:.1f} kN")
+    left.set_xlabel("stroke [mm]")
+    left.set_ylabel("crushing force [kN]")
+    left.grid(True, alpha=0.3)
+    right = left.twinx()
+    right.plot(stroke, col["absorbed_energy"], color="tab:red", lw=1.2, label="absorbed energy")
+    right.set_ylabel("absorbed energy [J]", color="tab:red")
+    lines = left.get_legend_handles_labels()
+    extra = right.get_legend_handles_labels()
+    left.legend(lines[0] + extra[0], lines[1] + extra[1], loc="upper right", fontsize=8)
+    left.set_title(args.title or os.path.basename(folder))
+    out = args.output or os.path.join(folder, "crash.png")
+    figure.tight_layout()
+    figure.savefig(out, dpi=args.dpi)
+    if figures:
+        print(f"{path}: stroke {figures['stroke'] * 1e3:.3f} mm, absorbed {figures['absorbed_energy']:.4g} J, "
+              f"peak ({filtered[6:].upper()}) {figures['peak_force'] / 1e3:.3g} kN, mean {figures['mean_force'] / 1e3:.3g} kN, "
+              f"CFE {figures['crush_force_efficiency']:.3g}, trigger ratio {figures['trigger_ratio']:.3g}, "
+              f"SEA {figures['specific_energy_absorption'] / 1e3:.4g} kJ/kg")
+    print(f"wrote {out}")
+
+
 def plot_fragments(args):
     """Mass distribution of the fragments at the end of a run, and their count over time."""
     path, columns = read_fragments(args.folder)
@@ -1597,6 +1642,17 @@ particle part, or --part), with --frame (default last).""")
                       help="run folder (uses OUTDIR/frames.pvd), a .pvd, or one .vtu frame")
     info.add_argument("--frame", metavar="N|last", help="frame to describe (default last)")
     info.set_defaults(run=show_info)
+
+    crash = commands.add_parser(
+        "crash", help="crushing force and absorbed energy against the stroke (crash.csv)",
+        description="Raw and CFC-filtered crushing force and the absorbed energy against the stroke, "
+                    "from RUN/crash.csv (a scenario with a 'crash' section), with the mean force; "
+                    "prints the crash figures of RUN/summary.json (peak, mean, CFE, trigger ratio, SEA).")
+    crash.add_argument("folder", metavar="RUN", help="run folder, or a crash.csv")
+    crash.add_argument("-o", "--output", help="image file (default: RUN/crash.png)")
+    crash.add_argument("--title", help="title (default: the run folder's name)")
+    crash.add_argument("--dpi", type=int, default=150, help="resolution (default: %(default)s)")
+    crash.set_defaults(run=plot_crash)
 
     fragments = commands.add_parser(
         "fragments", help="mass distribution of the fragments (fragments.csv) and their count",

@@ -54,8 +54,9 @@ void mid_surface_normal(const Model& model, const std::int32_t* a, const std::in
 void CohesiveInterfaces::drop_elements(Model& model, const std::vector<std::uint8_t>& keep, Work& work) {
   CohesiveElements& c = model.cohesive;
   const int k = c.nodes_per_face;
+  const std::size_t ne = c.element_count();
   std::size_t out = 0;
-  for (std::size_t e = 0; e < c.element_count(); ++e) {
+  for (std::size_t e = 0; e < ne; ++e) {
     if (!keep[e]) {  // leaves with its neighbour: what it stored is released
       for (int q = 0; q < k; ++q) {
         const std::size_t p = k * e + q;
@@ -65,34 +66,13 @@ void CohesiveInterfaces::drop_elements(Model& model, const std::vector<std::uint
       }
       continue;
     }
-    auto move = [&](auto& v, std::size_t width) {
+    c.visit_fields([&](const std::string&, const FieldInfo&, auto& v) {
+      const std::size_t width = v.size() / ne;  // per element: 1, corners or 3 × corners
       std::copy_n(v.begin() + width * e, width, v.begin() + width * out);
-    };
-    move(c.node_a, k);
-    move(c.node_b, k);
-    move(c.owner_a, 1);
-    move(c.owner_b, 1);
-    move(c.law, 1);
-    move(c.size, 1);
-    move(c.weight, k);
-    move(c.max_separation, k);
-    move(c.damage, k);
-    move(c.separation, 3 * k);
-    move(c.traction, 3 * k);
+    });
     ++out;
   }
-  auto shrink = [&](auto& v, std::size_t width) { v.resize(width * out); };
-  shrink(c.node_a, k);
-  shrink(c.node_b, k);
-  shrink(c.owner_a, 1);
-  shrink(c.owner_b, 1);
-  shrink(c.law, 1);
-  shrink(c.size, 1);
-  shrink(c.weight, k);
-  shrink(c.max_separation, k);
-  shrink(c.damage, k);
-  shrink(c.separation, 3 * k);
-  shrink(c.traction, 3 * k);
+  c.visit_fields([&](const std::string&, const FieldInfo&, auto& v) { v.resize(v.size() / ne * out); });
 }
 
 void CohesiveInterfaces::rebuild(Model& model, Work& work) {

@@ -151,6 +151,25 @@ def main():
     if len(rows) != count or not os.path.getsize(os.path.join(debris, "debris.png")) > 0:
         fail("fragments.csv does not list every debris particle, or no debris.png")
 
+    # Crash outputs: the four-ply laminate crush; the tool's absorbed energy against ∫ F ds of
+    # crash.csv, and the mean force it prints against the summary.
+    crush = os.path.join(work, "crush")
+    if run([shard, "run", os.path.join(source, "tests", "data", "composite", "laminate_crush.yaml"),
+            "-o", crush, "--threads", "1", "--quiet"]).returncode != 0:
+        fail("the laminate crush run failed")
+    result = run(plot + ["crash", crush])
+    if result.returncode != 0 or not os.path.getsize(os.path.join(crush, "crash.png")) > 0:
+        fail("crash on the laminate crush run failed")
+    with open(os.path.join(crush, "summary.json")) as stream:
+        figures = json.load(stream)["crash"]
+    printed = float(result.stdout.split("mean ")[1].split(" kN")[0])
+    check_close("printed mean force against the summary", printed, figures["mean_force"] / 1e3, 2e-3)
+    with open(os.path.join(crush, "crash.csv")) as stream:
+        rows = list(csv.DictReader(stream))
+    energy = sum(0.5 * (float(a["force"]) + float(b["force"])) * (float(b["stroke"]) - float(a["stroke"]))
+                 for a, b in zip(rows, rows[1:]))
+    check_close("absorbed energy against the integral of crash.csv", figures["absorbed_energy"], energy, 1e-6)
+
     # A misspelt group: a clear error, not a traceback.
     result = run(plot + ["virtual-test", tension, "--load", "rigth", "--support", "left",
                          "--axis", "x", "--area", "20um*1um"])

@@ -132,6 +132,39 @@ TEST(CohesiveInterface, SetUpSplitsTheSharedNodesAndWeighsTheFace) {
   EXPECT_NEAR(r.weight_sum, 1e-6, 1e-18);
 }
 
+TEST(CohesiveInterface, AnElementLeavesWithItsErodedNeighbourAndReleasesWhatItStored) {
+  BoxMesh box;
+  box.element = "hex8";
+  box.cells = {1, 1, 2};
+  box.size = {1e-3, 1e-3, 2e-3};
+  testing::ElasticRun run(make_box_model(Formulation::three_d, box), 1550, 7e9, 0.3);
+  Model& model = run.model;
+  model.assign_ids();
+  InterfaceLayout layout;
+  std::vector<int> group(2);
+  for (std::size_t e = 0; e < 2; ++e) group[e] = testing::element_centroid(model, model.parts[0], e, 2) > 1e-3 ? 1 : 0;
+  layout.group.push_back(group);
+  layout.law_of[{0, 1}] = 0;
+  insert_cohesive_interfaces(model, layout);
+  model.nodes.mass.assign(model.nodes.count(), 1e-6);
+  // The upper block lifted by 30 nm, below the onset opening σ/K = 50 nm: elastic.
+  Part& part = model.parts[0];
+  for (std::size_t e = 0; e < 2; ++e)
+    if (group[e] == 1)
+      for (int a = 0; a < 8; ++a) model.nodes.x[3 * part.connectivity[8 * e + a] + 2] = model.nodes.x0[3 * part.connectivity[8 * e + a] + 2] + 30e-9;
+  CohesiveInterfaces interfaces({table3()});
+  const CohesiveInterfaces::Work first = interfaces.add_forces(model);
+  const double stored = 0.5 * 1e15 * 30e-9 * 30e-9 * 1e-6;
+  EXPECT_NEAR(first.work, stored, 1e-9 * stored);  // 30 nm on millimetre coordinates: 1e-11 round-off
+  EXPECT_EQ(first.released, 0.0);
+  part.eroded[group[0] == 1 ? 0 : 1] = 1;  // the upper element fails
+  const CohesiveInterfaces::Work second = interfaces.add_forces(model);
+  EXPECT_EQ(model.cohesive.element_count(), 0u);
+  EXPECT_EQ(model.cohesive.weight.size(), 0u);
+  EXPECT_NEAR(second.released, stored, 1e-9 * stored);
+  EXPECT_EQ(second.work, 0.0);
+}
+
 TEST(CohesiveInterface, ModeOneAndModeTwoPeakAtTheStrengthAndReleaseTheFractureEnergy) {
   struct Case {
     const char* name;
