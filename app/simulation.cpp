@@ -600,7 +600,18 @@ void build_interfaces(const Scenario& sc, Simulation& sim) {
       for (int j = 0; j < plies(b); ++j)
         layout.law_of[{std::min(first[a] + i, first[b] + j), std::max(first[a] + i, first[b] + j)}] = law;
   }
-  const InterfaceSplit made = insert_cohesive_interfaces(model, layout);
+  for (const InterfaceInput& in : sc.interfaces)
+    for (const std::string& name : in.between.empty() ? std::vector<std::string>{in.plies_of} : in.between)
+      if (sim.cracking && std::count(sim.cracking->parts.begin(), sim.cracking->parts.end(), part_index(model, name)))
+        throw InputError(shown_path(sc.file), in.line, "interfaces",
+                         "part '" + name + "' cracks (cracking:) and has a cohesive interface: crack insertion "
+                         "moves element corners onto new nodes that the interface does not follow");
+  InterfaceSplit made;
+  try {
+    made = insert_cohesive_interfaces(model, layout);
+  } catch (const std::invalid_argument& e) {
+    throw InputError(shown_path(sc.file), sc.interfaces.front().line, "interfaces", e.what());
+  }
   for (const InterfaceInput& in : sc.interfaces) {
     std::size_t count = 0;
     const int law = static_cast<int>(&in - sc.interfaces.data());

@@ -163,11 +163,14 @@ CohesiveInterfaces::Work CohesiveInterfaces::add_forces(Model& model) {
       double shear[3];
       for (int j = 0; j < 3; ++j) shear[j] = delta[j] - dn * n[j];
       const double ds = std::sqrt(shear[0] * shear[0] + shear[1] * shear[1] + shear[2] * shear[2]);
-      CohesiveHistory h{c.max_separation[p], c.damage[p]};
+      CohesiveHistory h{c.max_separation[p], std::min(c.damage[p], 1.0)};
       double tn = 0, ts = 0;
-      cohesive_traction(law, zeta, dn, ds, h, tn, ts);
+      // A failed pair whose faces have slid apart by half the element's size is let go for good
+      // (damage 2): the contact has its nodes from then on, and what it stored is released below.
+      const bool let_go = c.damage[p] > 1.0 || (c.damage[p] >= 1.0 && std::max(ds, std::abs(dn)) > 0.5 * c.size[e]);
+      if (!let_go) cohesive_traction(law, zeta, dn, ds, h, tn, ts);
       c.max_separation[p] = h.max_separation;
-      c.damage[p] = h.damage;
+      c.damage[p] = let_go ? 2.0 : h.damage;
       double T[3];
       for (int j = 0; j < 3; ++j) T[j] = tn * n[j] + (ds > 0 ? ts * shear[j] / ds : 0.0);
       // Work on the interface over the increment, trapezoid in the tractions (as the stress work);
@@ -191,12 +194,12 @@ CohesiveInterfaces::Work CohesiveInterfaces::add_forces(Model& model) {
         F[dim * b + j] -= T[j] * w;
         F[dim * a + j] += T[j] * w;
       }
-      if (h.damage >= 1.0) {
+      if (h.damage >= 1.0 || let_go) {
         ++failed_;
         // Failed but still face to face: the pair bears on itself (compression only) and keeps
         // its nodes from the contact, whose penalty meeting faces that coincide to round-off
-        // would start at depth. Apart by more than half the element's size, the contact takes over.
-        if (std::max(ds, std::abs(dn)) > 0.5 * c.size[e]) continue;
+        // would start at depth.
+        if (let_go) continue;
       } else {
         ++intact_;
       }

@@ -170,6 +170,10 @@ InterfaceSplit insert_cohesive_interfaces(Model& model, const InterfaceLayout& l
     const auto law = layout.law_of.find({ga, gb});
     if (law == layout.law_of.end()) continue;
     const int k = static_cast<int>(A->nodes.size());
+    if (c.nodes_per_face != 0 && c.nodes_per_face != k)
+      throw std::invalid_argument("interfaces join faces of one kind in a model (all quadrilaterals, all triangles or "
+                                  "all segments); these join faces of " + std::to_string(c.nodes_per_face) + " and of " +
+                                  std::to_string(k) + " nodes");
     c.nodes_per_face = k;
     // Side A's face order: its right-hand normal points out of A, into B.
     for (int q = 0; q < k; ++q) {

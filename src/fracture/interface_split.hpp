@@ -29,7 +29,8 @@ struct InterfaceSplit {
 
 /// Splits the nodes and fills model.cohesive (which must be empty). Call before the masses are
 /// lumped (the copies get theirs then). Faces are matched by the node they were split from, so
-/// the mesh must be conforming across the interface.
+/// the mesh must be conforming across the interface. Throws std::invalid_argument when the faces
+/// are not all of one kind (quadrilaterals, triangles or segments).
 InterfaceSplit insert_cohesive_interfaces(Model& model, const InterfaceLayout& layout);
 
 }  // namespace shard

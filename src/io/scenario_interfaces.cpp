@@ -154,7 +154,13 @@ void read_crash(Section& top, Scenario& sc) {
     (std::string(key) == "stroke_part" ? in.stroke_part : in.crushed_part) = name;
   }
   in.cfc = s.number("cfc");
+  if (in.cfc != 60 && in.cfc != 180 && in.cfc != 600 && in.cfc != 1000)
+    s.fail("cfc", "SAE J211 defines the channel classes 60, 180, 600 and 1000");
   in.sample_interval = s.number("sample_interval");
+  // The filter's design (ω_a = tan(ω_d T/2), ω_d = 2π·2.0775·CFC) needs T well below 1/(4.155 CFC).
+  if (in.sample_interval > 0.1 / in.cfc)
+    s.fail("sample_interval", "CFC " + std::to_string(static_cast<int>(in.cfc)) + " needs a sample interval of at most " +
+                                  format_si(0.1 / in.cfc, dim::time) + " (1/(10 CFC))");
   in.scale = s.number("scale");
   sc.crash = in;
 }

@@ -156,6 +156,10 @@ void CompositeDamage::load_ratios(const double* s, double f, double* ratio) cons
 void CompositeDamage::update(MaterialPointBatch& batch) const {
   const double m = p_.m;
   for (std::size_t q = 0; q < batch.count; ++q) {
+    // A point without volume belongs to an element that has left the force computation (eroded,
+    // by its shape or its state, or turned inside out): the kernel books what it held; nothing
+    // changes here.
+    if (batch.volume && !(batch.volume[q] > 0.0)) continue;
     double* hs = batch.state + q * slot_count;
     double* sig = batch.stress + kTensorSize * q;
     const double* de = batch.strain_increment + kTensorSize * q;

@@ -28,6 +28,7 @@ class LayupReader {
       if (i_ < s_.size() && std::isdigit(static_cast<unsigned char>(s_[i_]))) {  // "[0/90]s2"
         const std::vector<double> one = plies;
         const int n = count();
+        if (one.size() * static_cast<std::size_t>(n) > kMaxPlies) fail("more than " + std::to_string(kMaxPlies) + " plies");
         for (int k = 1; k < n; ++k) plies.insert(plies.end(), one.begin(), one.end());
       }
     }
@@ -84,7 +85,12 @@ class LayupReader {
     while (i_ < s_.size() && (std::isdigit(static_cast<unsigned char>(s_[i_])) || s_[i_] == '.')) ++i_;
     if (i_ == start || (i_ == start + 1 && !std::isdigit(static_cast<unsigned char>(s_[start]))))
       fail("expected a ply angle in degrees");
-    const double a = std::stod(s_.substr(start, i_ - start));
+    double a = 0;
+    try {
+      a = std::stod(s_.substr(start, i_ - start));
+    } catch (const std::exception&) {
+      fail("'" + s_.substr(start, i_ - start) + "' is not a ply angle");
+    }
     if (std::abs(a) > 180) fail("a ply angle lies within ±180°, got " + s_.substr(start, i_ - start));
     return a;
   }
@@ -99,9 +105,12 @@ class LayupReader {
       return;
     }
     const int n = count();
+    if (item.size() * static_cast<std::size_t>(n) > kMaxPlies) fail("more than " + std::to_string(kMaxPlies) + " plies");
     const std::vector<double> one = item;
     for (int k = 1; k < n; ++k) item.insert(item.end(), one.begin(), one.end());
   }
+
+  static constexpr std::size_t kMaxPlies = 10000;
 
   int count() {
     int n = 0;

@@ -24,7 +24,8 @@ TEST(Laminate, ReadsTheUsualStackingCodes) {
 }
 
 TEST(Laminate, SaysWhereACodeGoesWrong) {
-  for (const char* bad : {"0/90", "[0/90", "[0//90]", "[0/90]x", "[0/200]", "[(0/90]", "[0_/90]", "[]"}) {
+  for (const char* bad : {"0/90", "[0/90", "[0//90]", "[0/90]x", "[0/200]", "[(0/90]", "[0_/90]", "[]", "[0/-.]",
+                          "[(((0)1000)1000)1000]"}) {
     try {
       parse_layup(bad);
       ADD_FAILURE() << bad << " was accepted";
