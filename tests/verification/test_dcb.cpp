@@ -269,9 +269,19 @@ TEST(EndNotchedFlexureValidation, PeakLoadFollowsCorrectedBeamTheory) {
     curve.load.push_back(load * kWidth / slice);
   });
   const double theory = enf_load(a0);
-  std::printf("[enf] peak (mean over 1 mm of deflection) %.1f N, corrected beam theory %.1f N (%+.1f %%), balance %.2e\n",
-              curve.peak(), theory, 100 * (curve.peak() / theory - 1), std::abs(run.energy.relative_error()));
-  EXPECT_NEAR(curve.peak(), theory, 0.07 * theory);
+  // Before the peak the beam bends smoothly (no node lets go); at the peak the crack runs
+  // unstably (a/L = 0.7) and the load drops at once, so the peak is the largest raw load, not a
+  // mean across the drop.
+  const double peak = *std::max_element(curve.load.begin(), curve.load.end());
+  if (const char* dump = std::getenv("ENF_DUMP")) {
+    FILE* f = std::fopen(dump, "w");
+    for (std::size_t i = 0; i < curve.opening.size(); ++i) std::fprintf(f, "%.6e %.6e\n", curve.opening[i], curve.load[i]);
+    std::fclose(f);
+  }
+  std::printf("[enf] peak %.1f N (mean over 1 mm of deflection %.1f N), corrected beam theory %.1f N (%+.1f %%), "
+              "balance %.2e\n",
+              peak, curve.peak(), theory, 100 * (peak / theory - 1), std::abs(run.energy.relative_error()));
+  EXPECT_NEAR(peak, theory, 0.07 * theory);
   EXPECT_LT(std::abs(run.energy.relative_error()), 0.01);
 }
 
