@@ -67,24 +67,40 @@ struct PullResult {
   double weight_sum = 0;
 };
 
-/// Two 1 mm hex8 cubes, one on the other, tied by one interface element; the upper one moved
+/// Two 1 mm hex8 cubes, one on the other (group 0 below, 1 above), their shared face split and
+/// tied by one interface element with law 0.
+struct TiedCubes {
+  testing::ElasticRun run;
+  std::vector<int> group = std::vector<int>(2);
+  InterfaceSplit split;
+
+  TiedCubes() : run(make_box_model(Formulation::three_d, box()), 1550, 7e9, 0.3) {
+    Model& model = run.model;
+    model.assign_ids();
+    InterfaceLayout layout;
+    for (std::size_t e = 0; e < 2; ++e) group[e] = testing::element_centroid(model, model.parts[0], e, 2) > 1e-3 ? 1 : 0;
+    layout.group.push_back(group);
+    layout.law_of[{0, 1}] = 0;
+    split = insert_cohesive_interfaces(model, layout);
+  }
+  static BoxMesh box() {
+    BoxMesh b;
+    b.element = "hex8";
+    b.cells = {1, 1, 2};
+    b.size = {1e-3, 1e-3, 2e-3};
+    return b;
+  }
+};
+
+/// The two cubes, the upper one moved
 /// rigidly along (sin θ, 0, cos θ) at a constant speed, the lower one held.
 PullResult pull(double angle_degrees) {
-  BoxMesh box;
-  box.element = "hex8";
-  box.cells = {1, 1, 2};
-  box.size = {1e-3, 1e-3, 2e-3};
-  testing::ElasticRun run(make_box_model(Formulation::three_d, box), 1550, 7e9, 0.3);
+  TiedCubes cubes;
+  testing::ElasticRun& run = cubes.run;
   Model& model = run.model;
-  model.assign_ids();
-  InterfaceLayout layout;
-  std::vector<int> group(2);
-  for (std::size_t e = 0; e < 2; ++e) group[e] = testing::element_centroid(model, model.parts[0], e, 2) > 1e-3 ? 1 : 0;
-  layout.group.push_back(group);
-  layout.law_of[{0, 1}] = 0;
-  const InterfaceSplit split = insert_cohesive_interfaces(model, layout);
+  const std::vector<int>& group = cubes.group;
   PullResult out;
-  out.nodes_added = split.nodes_added;
+  out.nodes_added = cubes.split.nodes_added;
   for (double w : model.cohesive.weight) out.weight_sum += w;
   CohesiveInterfaces interfaces({table3()});
   run.cohesive = &interfaces;
@@ -133,19 +149,9 @@ TEST(CohesiveInterface, SetUpSplitsTheSharedNodesAndWeighsTheFace) {
 }
 
 TEST(CohesiveInterface, AnElementLeavesWithItsErodedNeighbourAndReleasesWhatItStored) {
-  BoxMesh box;
-  box.element = "hex8";
-  box.cells = {1, 1, 2};
-  box.size = {1e-3, 1e-3, 2e-3};
-  testing::ElasticRun run(make_box_model(Formulation::three_d, box), 1550, 7e9, 0.3);
-  Model& model = run.model;
-  model.assign_ids();
-  InterfaceLayout layout;
-  std::vector<int> group(2);
-  for (std::size_t e = 0; e < 2; ++e) group[e] = testing::element_centroid(model, model.parts[0], e, 2) > 1e-3 ? 1 : 0;
-  layout.group.push_back(group);
-  layout.law_of[{0, 1}] = 0;
-  insert_cohesive_interfaces(model, layout);
+  TiedCubes cubes;
+  Model& model = cubes.run.model;
+  const std::vector<int>& group = cubes.group;
   model.nodes.mass.assign(model.nodes.count(), 1e-6);
   // The upper block lifted by 30 nm, below the onset opening σ/K = 50 nm: elastic.
   Part& part = model.parts[0];
