@@ -198,8 +198,12 @@ TEST(DoubleCantileverBeamValidation, PeakAndPropagationFollowCorrectedBeamTheory
 // End-notched flexure (mode II): the same beam on supports 100 mm apart, pre-crack 35 mm from a
 // support, loaded at mid-span. Corrected beam theory (Wang & Williams 1992, Compos. Sci.
 // Technol. 43): G_II = 9 P² (a + 0.42χh)²/(16 b² E11 h³), so the load at which the crack grows is
-// P = 4b/(3(a + 0.42χh)) √(G_IIc E11 h³) = 779 N at G_IIc = 1.2 N/mm. The pre-crack's faces bear
-// on each other without friction (failed interface points keep their compression).
+// P = 4b/(3(a + 0.42χh)) √(G_IIc E11 h³) = 752 N at G_IIc = 1.2 N/mm. The pre-crack's faces bear
+// on each other without friction (failed interface points keep their compression). Measured:
+// 695.8 N, −7.5 %, so this test FAILS its 7 % bound (the issue's): the load leaves the beam line
+// well before the peak, as the mode II process zone (τ_f = 50 MPa against G_IIc = 1.2 N/mm: several
+// millimetres long on 1.5 mm arms) carries load that linear fracture mechanics puts at the tip;
+// 16 minutes on one core.
 double enf_load(double a) { return 4 * kWidth / (3 * (a + 0.42 * crack_correction() * kArm)) * std::sqrt(1200 * kE11 * std::pow(kArm, 3)); }
 
 TEST(EndNotchedFlexureValidation, PeakLoadFollowsCorrectedBeamTheory) {
