@@ -50,8 +50,8 @@ struct CohesiveHistory {
 
 /// Tractions (normal, along n; shear, along the shear opening) for the openings Δn (negative:
 /// closing) and Δs ≥ 0; updates the history. A failed point carries only the penalty of closed
-/// faces, K⟨−Δn⟩, without friction (a potential: it creates and dissipates nothing); the
-/// interface elements hand its nodes to the contact once they have slid apart.
+/// faces, K⟨−Δn⟩, without friction; its nodes stay with the interface (the contact does not
+/// take them: docs/theory/cohesive_interfaces.md).
 void cohesive_traction(const CohesiveLaw& law, double zeta, double normal_opening, double shear_opening,
                        CohesiveHistory& history, double& normal_traction, double& shear_traction);
 

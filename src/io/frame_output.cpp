@@ -61,7 +61,7 @@ VtuGrid make_frame(const Model& model, const std::vector<std::unique_ptr<Materia
     for (std::size_t p = 0; p < c.point_count(); ++p)
       for (const std::int64_t id : {c.node_a[p], c.node_b[p]}) {
         const std::int32_t i = id >= 0 && id < model.next_node_id ? index[static_cast<std::size_t>(id)] : -1;
-        if (i >= 0) damage[i] = std::max(damage[i], std::min(c.damage[p], 1.0));  // 2: let go
+        if (i >= 0) damage[i] = std::max(damage[i], c.damage[p]);
       }
     grid.point_fields.push_back({"interface_damage", 1, std::move(damage)});
   }

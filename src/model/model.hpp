@@ -216,7 +216,7 @@ struct CohesiveElements {
   std::vector<double> size;                        ///< per element: its size δ (m), for the size factor ζ
   std::vector<double> weight;                      ///< per point: the area it stands for (m²)
   std::vector<double> max_separation;              ///< per point: the largest equivalent opening (history)
-  std::vector<double> damage;                      ///< per point: 0 … 1 (1: failed, bears in compression only; 2: let go to the contact)
+  std::vector<double> damage;                      ///< per point: 0 … 1 (1: failed: bears in compression only)
   std::vector<double> separation;                  ///< 3 per point: x_b − x_a at the last step
   std::vector<double> traction;                    ///< 3 per point: the traction on side B at the last step
 
