@@ -132,15 +132,15 @@ CohesiveInterfaces::Work CohesiveInterfaces::add_forces(Model& model) {
   if (c.element_count() == 0) return work;
   if (stale_) rebuild(model, work);
   // An element whose neighbour eroded in this step leaves now (its owner stops carrying stress).
-  std::vector<std::uint8_t> keep(c.element_count(), 1);
+  auto owner_eroded = [&](std::size_t e) {
+    return model.parts[owner_part_a_[e]].eroded[owner_element_a_[e]] ||
+           model.parts[owner_part_b_[e]].eroded[owner_element_b_[e]];
+  };
   bool any_eroded = false;
-  for (std::size_t e = 0; e < c.element_count(); ++e) {
-    const bool gone = model.parts[owner_part_a_[e]].eroded[owner_element_a_[e]] ||
-                      model.parts[owner_part_b_[e]].eroded[owner_element_b_[e]];
-    keep[e] = !gone;
-    any_eroded = any_eroded || gone;
-  }
-  if (any_eroded) {
+  for (std::size_t e = 0; e < c.element_count() && !any_eroded; ++e) any_eroded = owner_eroded(e);
+  if (any_eroded) {  // rare: the list is built only then, not every step
+    std::vector<std::uint8_t> keep(c.element_count());
+    for (std::size_t e = 0; e < c.element_count(); ++e) keep[e] = !owner_eroded(e);
     drop_elements(model, keep, work);
     stale_ = true;
     rebuild(model, work);
