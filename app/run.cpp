@@ -245,6 +245,7 @@ class RunDriver {
     if (sim_.cohesive) {
       columns.push_back("interface_points_intact");
       columns.push_back("interface_points_failed");
+      columns.push_back("interface_elements_open");
     }
     if (sc_.crash) {
       columns.push_back("crash_force");
@@ -422,7 +423,9 @@ class RunDriver {
       history_ << ',' << linked;
     }
     if (cracks_) history_ << ',' << find_fragments(sim_.model).list.size();
-    if (sim_.cohesive) history_ << ',' << sim_.cohesive->intact_points() << ',' << sim_.cohesive->failed_points();
+    if (sim_.cohesive)
+      history_ << ',' << sim_.cohesive->intact_points() << ',' << sim_.cohesive->failed_points() << ','
+               << sim_.cohesive->open_elements();
     if (sc_.crash) {
       write_number(crash_force());
       write_number(crash_stroke());

@@ -121,6 +121,87 @@ void CohesiveInterfaces::rebuild(Model& model, Work& work) {
   }
 }
 
+// The forces of element e's pairs at the positions x_n, their work, and their springs in the
+// stable-step bound. An element all of whose pairs have failed is a crack: in the step it fails
+// what its closed pairs store is released, and from the next step it carries nothing and holds
+// no node, so that the penalty contact with friction takes its faces (the contact's depth rule
+// keeps faces that meet already pressed from springing apart: docs/theory/cohesive_interfaces.md).
+void CohesiveInterfaces::element_forces(Model& model, std::size_t e, Work& work) {
+  CohesiveElements& c = model.cohesive;
+  const int dim = model.dim(), k = c.nodes_per_face;
+  if (c.open[e]) {
+    failed_ += static_cast<std::size_t>(k);
+    ++open_;
+    return;
+  }
+  const double* X = model.nodes.x.data();
+  double* F = model.nodes.force.data();
+  const CohesiveLaw& law = laws_[static_cast<std::size_t>(c.law[e])];
+  const double zeta = law.size_factor(c.size[e]);
+  double n[3];
+  mid_surface_normal(model, &node_a_[k * e], &node_b_[k * e], k, n);
+  bool all_failed = true;
+  for (int q = 0; q < k; ++q) {
+    const std::size_t p = k * e + q;
+    const std::int32_t a = node_a_[p], b = node_b_[p];
+    double delta[3] = {0, 0, 0};
+    for (int j = 0; j < dim; ++j) delta[j] = X[dim * b + j] - X[dim * a + j];
+    const double dn = delta[0] * n[0] + delta[1] * n[1] + delta[2] * n[2];
+    double shear[3];
+    for (int j = 0; j < 3; ++j) shear[j] = delta[j] - dn * n[j];
+    const double ds = std::sqrt(shear[0] * shear[0] + shear[1] * shear[1] + shear[2] * shear[2]);
+    CohesiveHistory h{c.max_separation[p], c.damage[p]};
+    double tn = 0, ts = 0;
+    cohesive_traction(law, zeta, dn, ds, h, tn, ts);
+    c.max_separation[p] = h.max_separation;
+    c.damage[p] = h.damage;
+    double T[3];
+    for (int j = 0; j < 3; ++j) T[j] = tn * n[j] + (ds > 0 ? ts * shear[j] / ds : 0.0);
+    // Work on the interface over the increment, trapezoid in the tractions (as the stress work);
+    // what it stores is ½ T·Δ, the rest damage released.
+    const double w = c.weight[p];
+    double* T_old = &c.traction[3 * p];
+    double* d_old = &c.separation[3 * p];
+    double inc = 0, stored_old = 0, stored = 0;
+    for (int j = 0; j < 3; ++j) {
+      inc += 0.5 * (T_old[j] + T[j]) * (delta[j] - d_old[j]);
+      stored_old += 0.5 * T_old[j] * d_old[j];
+      stored += 0.5 * T[j] * delta[j];
+    }
+    work.work += inc * w;
+    work.released += (inc - (stored - stored_old)) * w;
+    for (int j = 0; j < 3; ++j) {
+      T_old[j] = T[j];
+      d_old[j] = delta[j];
+    }
+    for (int j = 0; j < dim; ++j) {
+      F[dim * b + j] -= T[j] * w;
+      F[dim * a + j] += T[j] * w;
+    }
+    all_failed = all_failed && h.damage >= 1.0;
+    tied_[a] = tied_[b] = 1;
+    const double spring = 2.0 * law.stiffness * w;  // Gershgorin: |K_aa| + |K_ab|
+    row_[a] += spring;
+    row_[b] += spring;
+  }
+  if (all_failed) release_element(c, e, work);
+  for (int q = 0; q < k; ++q) (c.damage[k * e + q] >= 1.0 ? failed_ : intact_) += 1;
+}
+
+// Element e has failed at every pair: what its closed pairs store (½ T·Δ) is released, and it
+// is marked open.
+void CohesiveInterfaces::release_element(CohesiveElements& c, std::size_t e, Work& work) {
+  const int k = c.nodes_per_face;
+  for (int q = 0; q < k; ++q) {
+    const std::size_t p = k * e + q;
+    double stored = 0;
+    for (int j = 0; j < 3; ++j) stored += 0.5 * c.traction[3 * p + j] * c.separation[3 * p + j];
+    work.released += stored * c.weight[p];
+    for (int j = 0; j < 3; ++j) c.traction[3 * p + j] = 0;
+  }
+  c.open[e] = 1;
+}
+
 CohesiveInterfaces::Work CohesiveInterfaces::add_forces(Model& model) {
   Work work;
   CohesiveElements& c = model.cohesive;
@@ -128,7 +209,7 @@ CohesiveInterfaces::Work CohesiveInterfaces::add_forces(Model& model) {
   tied_.assign(nn, 0);
   row_.assign(nn, 0.0);
   max_frequency2_ = 0;
-  failed_ = intact_ = 0;
+  failed_ = intact_ = open_ = 0;
   if (c.element_count() == 0) return work;
   if (stale_) rebuild(model, work);
   // An element whose neighbour eroded in this step leaves now (its owner stops carrying stress).
@@ -145,66 +226,8 @@ CohesiveInterfaces::Work CohesiveInterfaces::add_forces(Model& model) {
     stale_ = true;
     rebuild(model, work);
   }
-  const int dim = model.dim(), k = c.nodes_per_face;
-  const double* X = model.nodes.x.data();
-  double* F = model.nodes.force.data();
   // In element order, one thread: the same sums for any thread count.
-  for (std::size_t e = 0; e < c.element_count(); ++e) {
-    const CohesiveLaw& law = laws_[static_cast<std::size_t>(c.law[e])];
-    const double zeta = law.size_factor(c.size[e]);
-    double n[3];
-    mid_surface_normal(model, &node_a_[k * e], &node_b_[k * e], k, n);
-    for (int q = 0; q < k; ++q) {
-      const std::size_t p = k * e + q;
-      const std::int32_t a = node_a_[p], b = node_b_[p];
-      double delta[3] = {0, 0, 0};
-      for (int j = 0; j < dim; ++j) delta[j] = X[dim * b + j] - X[dim * a + j];
-      const double dn = delta[0] * n[0] + delta[1] * n[1] + delta[2] * n[2];
-      double shear[3];
-      for (int j = 0; j < 3; ++j) shear[j] = delta[j] - dn * n[j];
-      const double ds = std::sqrt(shear[0] * shear[0] + shear[1] * shear[1] + shear[2] * shear[2]);
-      CohesiveHistory h{c.max_separation[p], c.damage[p]};
-      double tn = 0, ts = 0;
-      cohesive_traction(law, zeta, dn, ds, h, tn, ts);
-      c.max_separation[p] = h.max_separation;
-      c.damage[p] = h.damage;
-      double T[3];
-      for (int j = 0; j < 3; ++j) T[j] = tn * n[j] + (ds > 0 ? ts * shear[j] / ds : 0.0);
-      // Work on the interface over the increment, trapezoid in the tractions (as the stress work);
-      // what it stores is ½ T·Δ, the rest damage released.
-      const double w = c.weight[p];
-      double* T_old = &c.traction[3 * p];
-      double* d_old = &c.separation[3 * p];
-      double inc = 0, stored_old = 0, stored = 0;
-      for (int j = 0; j < 3; ++j) {
-        inc += 0.5 * (T_old[j] + T[j]) * (delta[j] - d_old[j]);
-        stored_old += 0.5 * T_old[j] * d_old[j];
-        stored += 0.5 * T[j] * delta[j];
-      }
-      work.work += inc * w;
-      work.released += (inc - (stored - stored_old)) * w;
-      for (int j = 0; j < 3; ++j) {
-        T_old[j] = T[j];
-        d_old[j] = delta[j];
-      }
-      for (int j = 0; j < dim; ++j) {
-        F[dim * b + j] -= T[j] * w;
-        F[dim * a + j] += T[j] * w;
-      }
-      // A failed pair keeps bearing on itself (compression only) and keeps its nodes from the
-      // contact: handing faces that coincide to round-off to the penalty contact creates energy
-      // (5.6 % in the four-ply crush when handed at failure; 0.8 J in the wedge crush when handed
-      // once slid apart by half an element), and its spring stays in the stable step.
-      if (h.damage >= 1.0)
-        ++failed_;
-      else
-        ++intact_;
-      tied_[a] = tied_[b] = 1;
-      const double spring = 2.0 * law.stiffness * w;  // Gershgorin: |K_aa| + |K_ab|
-      row_[a] += spring;
-      row_[b] += spring;
-    }
-  }
+  for (std::size_t e = 0; e < c.element_count(); ++e) element_forces(model, e, work);
   for (std::size_t i = 0; i < nn; ++i)
     if (row_[i] > 0) max_frequency2_ = std::max(max_frequency2_, row_[i] / model.nodes.mass[i]);
   return work;

@@ -36,11 +36,13 @@ class CohesiveInterfaces final : public TopologyListener {
 
   /// Bound on the largest ω² the undamaged springs add (1/s²): the largest row sum of M⁻¹K.
   double max_frequency_squared() const { return max_frequency2_; }
-  /// Per node: 1 while an interface point that has not failed holds it (contact leaves such a
-  /// node to the interface), from the last call.
+  /// Per node: 1 while an element that is not yet open holds it (contact leaves such a node to
+  /// the interface), from the last call.
   const std::vector<char>& tied_nodes() const { return tied_; }
   std::size_t failed_points() const { return failed_; }
   std::size_t intact_points() const { return intact_; }
+  /// Elements failed at every point, whose faces the contact has taken (from the last call).
+  std::size_t open_elements() const { return open_; }
   const std::vector<CohesiveLaw>& laws() const { return laws_; }
 
   void topology_changed(const Model&, const Remap&) override { stale_ = true; }
@@ -48,6 +50,8 @@ class CohesiveInterfaces final : public TopologyListener {
  private:
   void rebuild(Model& model, Work& work);
   void drop_elements(Model& model, const std::vector<std::uint8_t>& keep, Work& work);
+  void element_forces(Model& model, std::size_t e, Work& work);
+  static void release_element(CohesiveElements& c, std::size_t e, Work& work);
 
   std::vector<CohesiveLaw> laws_;
   bool stale_ = true;
@@ -56,7 +60,7 @@ class CohesiveInterfaces final : public TopologyListener {
   std::vector<double> row_;
   std::vector<char> tied_;
   double max_frequency2_ = 0;
-  std::size_t failed_ = 0, intact_ = 0;
+  std::size_t failed_ = 0, intact_ = 0, open_ = 0;
 };
 
 }  // namespace shard

@@ -190,6 +190,7 @@ InterfaceSplit insert_cohesive_interfaces(Model& model, const InterfaceLayout& l
     double w[4], size = 0;
     face_weights(model, A->nodes, w, size);
     c.size.push_back(size);
+    c.open.push_back(0);
     for (int q = 0; q < k; ++q) c.weight.push_back(w[q]);
     ++out.elements;
     ++out.elements_of[{ga, gb}];

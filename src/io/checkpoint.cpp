@@ -12,8 +12,8 @@ namespace shard {
 namespace {
 
 // The last byte is the format version: 4 added the elements' reference length (distortion
-// criterion) and the particles' ring length.
-constexpr char kMagic[8] = {'S', 'H', 'A', 'R', 'D', 'C', 'K', '5'};
+// criterion) and the particles' ring length; 5 the cohesive elements; 6 their open flag.
+constexpr char kMagic[8] = {'S', 'H', 'A', 'R', 'D', 'C', 'K', '6'};
 
 /// Scalars of SolverState and OutputCursor in one fixed order, for both directions.
 template <class F>

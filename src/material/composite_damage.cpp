@@ -35,6 +35,22 @@ constexpr std::array<std::array<double, 5>, 6> kCouplingD5WithoutR5{{{1, 1, 1, 0
                                                                      {0, 0, 1, 1, 0},
                                                                      {1, 1, 1, 0, 1}}};
 
+/// The paper's model 3: the compression modes (φ2, φ3) do not damage G12 (d4).
+constexpr std::array<std::array<double, 5>, 6> kCouplingModel3{{{1, 1, 1, 0, 0},
+                                                                {0, 0, 1, 1, 0},
+                                                                {0, 0, 1, 0, 1},
+                                                                {1, 0, 0, 1, 1},
+                                                                {0, 0, 1, 1, 1},
+                                                                {1, 1, 1, 0, 1}}};
+/// The paper's model 4: as model 3, and no damage on the out-of-plane moduli (d3, d5, d6), which
+/// the cohesive interfaces carry.
+constexpr std::array<std::array<double, 5>, 6> kCouplingModel4{{{1, 1, 1, 0, 0},
+                                                                {0, 0, 1, 1, 0},
+                                                                {0, 0, 0, 0, 0},
+                                                                {1, 0, 0, 1, 1},
+                                                                {0, 0, 0, 0, 0},
+                                                                {0, 0, 0, 0, 0}}};
+
 /// Solves the 3×3 system A x = b by Cramer's rule (A well conditioned: see secant_stress).
 void solve3(const double A[3][3], const double* b, double* x) {
   const double det = A[0][0] * (A[1][1] * A[2][2] - A[1][2] * A[2][1]) -
@@ -288,8 +304,9 @@ KeyList CompositeDamage::parameters(bool damage) {
   keys.quantity("m", dim::none, "brittleness exponent of φ_j = 1 − exp((1 − r_jᵐ)/m) (eq. 11)").above(0).defaults_to("10");
   for (const char* name : kDamageMaxKeys)
     keys.quantity(name, dim::none, "the largest value its damage variable reaches").at_least(0).at_most(1).defaults_to("1");
-  keys.choice("coupling", {"eq12", "d5_without_r5"},
-              "the coupling matrix q_ij: the paper's eq. (12), or the earlier form without r5 in d5")
+  keys.choice("coupling", {"eq12", "d5_without_r5", "model_3", "model_4"},
+              "the coupling matrix q_ij: the paper's eq. (12); the earlier form without r5 in d5; its "
+              "model 3 (no compression damage on G12); its model 4 (also none on E33, G13, G23)")
       .defaults_to("eq12");
   keys.choice("erosion_criterion", {"none", "I", "II", "III"},
               "when a point has failed (state `failed`, read by the erosion rule): I d4 at d4_max "
@@ -360,8 +377,11 @@ CompositeDamageParameters CompositeDamage::from(const ParameterValues& v, bool d
   p.tan_friction = std::tan(v.number("friction_angle") * std::numbers::pi / 180.0);
   p.m = v.number("m");
   for (int i = 0; i < 6; ++i) p.d_max[i] = v.number(kDamageMaxKeys[i]);
-  p.coupling = v.texts.count("coupling") && v.texts.at("coupling") == "d5_without_r5" ? kCouplingD5WithoutR5
-                                                                                       : kCouplingEq12;
+  const std::string coupling = v.texts.count("coupling") ? v.texts.at("coupling") : "eq12";
+  p.coupling = coupling == "d5_without_r5" ? kCouplingD5WithoutR5
+               : coupling == "model_3"     ? kCouplingModel3
+               : coupling == "model_4"     ? kCouplingModel4
+                                           : kCouplingEq12;
   const std::string criterion = v.texts.count("erosion_criterion") ? v.texts.at("erosion_criterion") : "none";
   p.erosion = criterion == "I"     ? CompositeErosion::shear_modulus
               : criterion == "II"  ? CompositeErosion::moduli

@@ -214,6 +214,7 @@ struct CohesiveElements {
   std::vector<std::int64_t> owner_a, owner_b;      ///< per element: stable ids of the elements they bound
   std::vector<std::int32_t> law;                   ///< per element: the run's interface law
   std::vector<double> size;                        ///< per element: its size δ (m), for the size factor ζ
+  std::vector<std::uint8_t> open;                  ///< per element: 1 once every point failed (a crack: contact's)
   std::vector<double> weight;                      ///< per point: the area it stands for (m²)
   std::vector<double> max_separation;              ///< per point: the largest equivalent opening (history)
   std::vector<double> damage;                      ///< per point: 0 … 1 (1: failed: bears in compression only)
@@ -231,6 +232,7 @@ struct CohesiveElements {
     f("owner_b", field("owner_b", Location::model, 0), owner_b);
     f("law", field("law", Location::model, 0), law);
     f("size", field("size", Location::model, 0), size);
+    f("open", field("open", Location::model, 0), open);
     f("weight", field("weight", Location::model, 0), weight);
     f("max_separation", field("max_separation", Location::model, 0), max_separation);
     f("damage", field("damage", Location::model, 0), damage);

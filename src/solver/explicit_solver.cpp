@@ -268,7 +268,8 @@ void ExplicitSolver::compute_forces() {
       for (int k = 0; k < dim; ++k) nodes.force[dim * i + k] += nodes.mass[i] * g[k];
   }
   if (contact_) {
-    contact_->set_eroded_surfaces(state_.eroded_elements > 0);
+    // Faces exposed by erosion or by an interface that opened may meet already pressed.
+    contact_->set_eroded_surfaces(state_.eroded_elements > 0 || (cohesive_ && cohesive_->open_elements() > 0));
     contact_->set_tied_nodes(cohesive_ ? &cohesive_->tied_nodes() : nullptr);
     contact_->add_forces(model_, state_.time, state_.dt_half, total.stable_dt);
     state_.energy[terms_.friction] += contact_->friction_increment();

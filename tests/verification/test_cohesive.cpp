@@ -12,6 +12,8 @@
 //    balance closes (1e-6 of the work).
 // 3. Set-up: the split gives each block its own copy of the shared nodes, and the interface
 //    element's corner weights add up to the face area (1e-12).
+// 4. An element failed at every point opens to the contact: what it bore is released (1e-9), and
+//    it then adds no force, holds no node and leaves the stable step.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -169,6 +171,49 @@ TEST(CohesiveInterface, AnElementLeavesWithItsErodedNeighbourAndReleasesWhatItSt
   EXPECT_EQ(model.cohesive.weight.size(), 0u);
   EXPECT_NEAR(second.released, stored, 1e-9 * stored);
   EXPECT_EQ(second.work, 0.0);
+}
+
+// An element failed at every point opens: what its closed points stored is released in that
+// call, and from the next one it carries nothing and holds no node, so the contact takes its
+// faces. The upper cube slid 0.1 mm (twice the mode II failure opening 0.048 mm) and pressed
+// 30 nm into the lower one: every point fails but bears ½ K (30 nm)² per unit area until the
+// element opens.
+TEST(CohesiveInterface, AnElementFailedEverywhereOpensToTheContactAndReleasesWhatItBore) {
+  TiedCubes cubes;
+  Model& model = cubes.run.model;
+  const std::vector<int>& group = cubes.group;
+  model.nodes.mass.assign(model.nodes.count(), 1e-6);
+  Part& part = model.parts[0];
+  auto place_upper = [&](double dx, double dz) {
+    for (std::size_t e = 0; e < 2; ++e)
+      if (group[e] == 1)
+        for (int a = 0; a < 8; ++a) {
+          const std::int32_t n = part.connectivity[8 * e + a];
+          model.nodes.x[3 * n] = model.nodes.x0[3 * n] + dx;
+          model.nodes.x[3 * n + 2] = model.nodes.x0[3 * n + 2] + dz;
+        }
+  };
+  place_upper(0.1e-3, -30e-9);
+  CohesiveInterfaces interfaces({table3()});
+  const CohesiveInterfaces::Work first = interfaces.add_forces(model);
+  const double bearing = 0.5 * 1e15 * 30e-9 * 30e-9 * 1e-6;  // ½ K Δn² A
+  std::printf("[cohesive] opened: work %.4e J, released %.4e J (bearing %.4e J stored in the step)\n", first.work,
+              first.released, bearing);
+  EXPECT_EQ(model.cohesive.open[0], 1u);
+  EXPECT_EQ(interfaces.failed_points(), 4u);
+  EXPECT_NEAR(first.released, first.work, 1e-9 * first.work);  // nothing stays stored
+  EXPECT_NEAR(first.work, bearing, 1e-6 * bearing);  // the jump is closing only: no shear force once failed
+  for (double t : model.cohesive.traction) EXPECT_EQ(t, 0.0);
+  place_upper(0.1e-3, -60e-9);  // pressed deeper: the contact's business now
+  model.nodes.force.assign(model.nodes.force.size(), 0.0);
+  const CohesiveInterfaces::Work second = interfaces.add_forces(model);
+  EXPECT_EQ(second.work, 0.0);
+  EXPECT_EQ(second.released, 0.0);
+  EXPECT_EQ(interfaces.open_elements(), 1u);
+  EXPECT_EQ(interfaces.failed_points(), 4u);  // still counted as failed
+  for (char tied : interfaces.tied_nodes()) EXPECT_EQ(tied, 0);
+  for (double f : model.nodes.force) EXPECT_EQ(f, 0.0);
+  EXPECT_EQ(interfaces.max_frequency_squared(), 0.0);
 }
 
 TEST(CohesiveInterface, ModeOneAndModeTwoPeakAtTheStrengthAndReleaseTheFractureEnergy) {
