@@ -5,6 +5,7 @@
 #include <cmath>
 #include <numbers>
 #include <sstream>
+#include <stdexcept>
 
 #include "core/tensor_ops.hpp"
 
@@ -82,6 +83,14 @@ void change_frame(const double a[3][3], const double* t, double* out, bool to_ax
 }
 
 }  // namespace
+
+std::array<std::array<double, 5>, 6> coupling_matrix(const std::string& name) {
+  if (name == "eq12") return kCouplingEq12;
+  if (name == "d5_without_r5") return kCouplingD5WithoutR5;
+  if (name == "model_3") return kCouplingModel3;
+  if (name == "model_4") return kCouplingModel4;
+  throw std::invalid_argument("coupling: expected eq12, d5_without_r5, model_3 or model_4, not '" + name + "'");
+}
 
 std::array<std::array<double, 3>, 3> OrthotropicConstants::normal_compliance() const {
   std::array<std::array<double, 3>, 3> S{};
@@ -377,11 +386,7 @@ CompositeDamageParameters CompositeDamage::from(const ParameterValues& v, bool d
   p.tan_friction = std::tan(v.number("friction_angle") * std::numbers::pi / 180.0);
   p.m = v.number("m");
   for (int i = 0; i < 6; ++i) p.d_max[i] = v.number(kDamageMaxKeys[i]);
-  const std::string coupling = v.texts.count("coupling") ? v.texts.at("coupling") : "eq12";
-  p.coupling = coupling == "d5_without_r5" ? kCouplingD5WithoutR5
-               : coupling == "model_3"     ? kCouplingModel3
-               : coupling == "model_4"     ? kCouplingModel4
-                                           : kCouplingEq12;
+  p.coupling = coupling_matrix(v.texts.count("coupling") ? v.texts.at("coupling") : "eq12");
   const std::string criterion = v.texts.count("erosion_criterion") ? v.texts.at("erosion_criterion") : "none";
   p.erosion = criterion == "I"     ? CompositeErosion::shear_modulus
               : criterion == "II"  ? CompositeErosion::moduli

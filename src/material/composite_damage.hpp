@@ -16,6 +16,7 @@
 
 #include <array>
 #include <cstdint>
+#include <string>
 
 #include "material/material.hpp"
 
@@ -36,6 +37,11 @@ struct OrthotropicConstants {
 };
 
 enum class CompositeErosion : std::uint8_t { none, shear_modulus, moduli, load_ratios };
+
+/// The coupling matrix q_ij by its scenario name: "eq12" (the paper's eq. 12), "d5_without_r5"
+/// (the earlier form), "model_3" (no compression damage on G12), "model_4" (as model 3, and
+/// none on E33, G13, G23). Throws std::invalid_argument for another name.
+std::array<std::array<double, 5>, 6> coupling_matrix(const std::string& name);
 
 struct CompositeDamageParameters {
   OrthotropicConstants elastic;

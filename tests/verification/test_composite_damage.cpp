@@ -387,6 +387,38 @@ TEST(CompositeDamage, EachModePeaksAtItsStrengthAndDissipatesTheClosedFormEnergy
   }
 }
 
+// The paper's coupling variants (its models 3 and 4): fibre compression (φ2) damages G12 (d4)
+// under eq. (12) but not under model 3; through-thickness tension (φ5) damages E33, G13, G23
+// (d3, d5, d6) under eq. (12) but none of them under model 4.
+TEST(CompositeDamage, CouplingVariantsOfThePaperSpareTheModuliTheyName) {
+  auto loaded = [](const char* coupling, int component, double sign, double strength, double modulus) {
+    CompositeDamageParameters params = t800s_m21(true);
+    params.coupling = coupling_matrix(coupling);
+    const CompositeDamage ply("ply", 1550, params);
+    PlyPoint p(ply);
+    const int steps = 4000;
+    for (int n = 0; n < steps; ++n) p.uniaxial(component, sign * 3.0 * strength / modulus / steps);
+    return std::array<double, 6>{p.d(0), p.d(1), p.d(2), p.d(3), p.d(4), p.d(5)};
+  };
+  const auto eq12_compression = loaded("eq12", xx, -1, 1.2e9, 165e9);
+  const auto model3_compression = loaded("model_3", xx, -1, 1.2e9, 165e9);
+  std::printf("[composite] fibre compression: d1 %.3f d4 %.3f (eq. 12), d1 %.3f d4 %.3f (model 3)\n",
+              eq12_compression[0], eq12_compression[3], model3_compression[0], model3_compression[3]);
+  EXPECT_GT(eq12_compression[3], 0.9);
+  EXPECT_GT(model3_compression[0], 0.9);
+  EXPECT_EQ(model3_compression[3], 0.0);
+  const auto eq12_out = loaded("eq12", zz, 1, 45e6, 7.64e9);
+  const auto model4_out = loaded("model_4", zz, 1, 45e6, 7.64e9);
+  std::printf("[composite] through-thickness tension: d3 %.3f d5 %.3f d6 %.3f (eq. 12), %.3f %.3f %.3f (model 4)\n",
+              eq12_out[2], eq12_out[4], eq12_out[5], model4_out[2], model4_out[4], model4_out[5]);
+  for (int i : {2, 4, 5}) {
+    EXPECT_GT(eq12_out[i], 0.9) << "d" << i + 1;
+    EXPECT_EQ(model4_out[i], 0.0) << "d" << i + 1;
+  }
+  EXPECT_GT(model4_out[3], 0.9);  // φ5 still damages G12 (d4)
+  EXPECT_THROW(coupling_matrix("model_5"), std::invalid_argument);
+}
+
 // ---------------------------------------------------------------------------------------------
 // 5. Shear strength raised by transverse compression.
 // ---------------------------------------------------------------------------------------------
