@@ -344,6 +344,12 @@ class RunDriver {
       }
       const std::int64_t step = s.step;
       const double dt_used = s.dt_half;
+      if (sc_.crash) {  // the row reports the mean force since the last one, not a point sample
+        // F_n acts over Δt_n = ½(Δt_n−1/2 + Δt_n+1/2), as the central difference applies it.
+        const double dt_n = step == 0 ? 0.5 * s.dt_next : 0.5 * (s.dt_half + s.dt_next);
+        cursor_.crash_impulse += crash_force() * dt_n;
+        cursor_.crash_span += dt_n;
+      }
       solver_.advance();
       if (final || due(t, cursor_.next_history, out.history_interval)) {
         write_history_row(t, step, dt_used);
@@ -427,8 +433,9 @@ class RunDriver {
       history_ << ',' << sim_.cohesive->intact_points() << ',' << sim_.cohesive->failed_points() << ','
                << sim_.cohesive->open_elements();
     if (sc_.crash) {
-      write_number(crash_force());
+      write_number(cursor_.crash_span > 0 ? cursor_.crash_impulse / cursor_.crash_span : crash_force());
       write_number(crash_stroke());
+      cursor_.crash_impulse = cursor_.crash_span = 0;
     }
     if (contact_)
       for (const auto* values : {&contact_->pair_forces(), &contact_->wall_forces()})

@@ -12,7 +12,8 @@ namespace shard {
 namespace {
 
 // The last byte is the format version: 4 added the elements' reference length (distortion
-// criterion) and the particles' ring length; 5 the cohesive elements; 6 their open flag.
+// criterion) and the particles' ring length; 5 the cohesive elements; 6 their open flag and
+// the crash force's running mean.
 constexpr char kMagic[8] = {'S', 'H', 'A', 'R', 'D', 'C', 'K', '6'};
 
 /// Scalars of SolverState and OutputCursor in one fixed order, for both directions.
@@ -34,6 +35,8 @@ void visit_scalars(SolverState& s, OutputCursor& c, F&& f) {
   f(c.next_history);
   f(c.next_checkpoint);
   f(c.history_bytes);
+  f(c.crash_impulse);
+  f(c.crash_span);
 }
 
 /// Type tag of a checkpoint array, so that a reader never reinterprets one element type as another.

@@ -16,6 +16,8 @@ struct OutputCursor {
   std::int64_t next_history = 0;     ///< index of the next history row
   std::int64_t next_checkpoint = 1;  ///< index of the next checkpoint
   std::uint64_t history_bytes = 0;   ///< length of history.csv at the checkpoint
+  /// ∫ F dt of the crash force and ∫ dt since the last history row: the row reports the mean.
+  double crash_impulse = 0, crash_span = 0;
 };
 
 /// Writes `path` via "<path>.tmp" and a rename: a run killed while writing leaves the previous

@@ -10,6 +10,8 @@
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
+#include <fstream>
 
 #include "support/cli.hpp"
 
@@ -64,6 +66,29 @@ TEST(CompositeScenarios, LaminateCrushWithInterfacesAndCrashOutputs) {
   EXPECT_NEAR(field("absorbed_energy"), energy, 0.01 * energy);
   EXPECT_NEAR(field("mean_force"), field("absorbed_energy") / field("stroke"), 1e-6 * field("mean_force"));
   EXPECT_NE(summary.find("shorter than the filter's response"), std::string::npos);
+
+  // crash_force is the mean over each row's interval: rows every 0.5 µs carry the same impulse
+  // ∫F dt as rows every 0.1 µs (point samples of the penalty's ringing would not).
+  std::string text = testing::read_file(kScenario);
+  const std::string fine = "history_interval: 0.1 us";
+  ASSERT_NE(text.find(fine), std::string::npos);
+  text.replace(text.find(fine), fine.size(), "history_interval: 0.5 us");
+  std::filesystem::copy_file(std::filesystem::path(kScenario).parent_path() / "small_wedge.msh", dir / "small_wedge.msh");
+  { std::ofstream(dir / "coarse.yaml") << text; }
+  const auto coarse_run = testing::run_shard("run " + (dir / "coarse.yaml").string() + " --quiet -o " + (dir / "coarse").string());
+  ASSERT_EQ(coarse_run.status, 0) << coarse_run.output;
+  const testing::History c = testing::read_history(dir / "coarse" / "history.csv");
+  auto impulse = [](const testing::History& hist, double until) {
+    double sum = 0;
+    for (std::size_t r = 1; r < hist.rows.size() && hist.at(r, "time") <= until; ++r)
+      sum += hist.at(r, "crash_force") * (hist.at(r, "time") - hist.at(r - 1, "time"));
+    return sum;
+  };
+  const double until = c.at(c.rows.size() - 1, "time") * (1 + 1e-12);
+  const double fine_impulse = impulse(h, until), coarse_impulse = impulse(c, until);
+  std::printf("[laminate] crash impulse (scaled): %.6e N s from 0.1 us rows, %.6e N s from 0.5 us rows\n", fine_impulse,
+              coarse_impulse);
+  EXPECT_NEAR(coarse_impulse, fine_impulse, 2e-3 * fine_impulse);
   std::filesystem::remove_all(dir);
 }
 
