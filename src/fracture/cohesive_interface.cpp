@@ -121,15 +121,56 @@ void CohesiveInterfaces::rebuild(Model& model, Work& work) {
   }
 }
 
+// Work on the interface point p over the increment to the separation Δ with the traction T,
+// trapezoid in the tractions (as the stress work); what it stores is ½ T·Δ, the rest damage
+// released. Keeps Δ and T for the next increment.
+void CohesiveInterfaces::book_increment(CohesiveElements& c, std::size_t p, const double* delta, const double* T,
+                                        Work& work) {
+  const double w = c.weight[p];
+  double* T_old = &c.traction[3 * p];
+  double* d_old = &c.separation[3 * p];
+  double inc = 0, stored_old = 0, stored = 0;
+  for (int j = 0; j < 3; ++j) {
+    inc += 0.5 * (T_old[j] + T[j]) * (delta[j] - d_old[j]);
+    stored_old += 0.5 * T_old[j] * d_old[j];
+    stored += 0.5 * T[j] * delta[j];
+  }
+  work.work += inc * w;
+  work.released += (inc - (stored - stored_old)) * w;
+  for (int j = 0; j < 3; ++j) {
+    T_old[j] = T[j];
+    d_old[j] = delta[j];
+  }
+}
+
+// An open element's last increment: the traction of the step it opened in acted over the half
+// step after it, and ends at zero, so the trapezoid books that work and releases what the
+// points stored. Later calls find zero tractions and do nothing.
+void CohesiveInterfaces::close_open_element(Model& model, std::size_t e, Work& work) {
+  CohesiveElements& c = model.cohesive;
+  const int dim = model.dim(), k = c.nodes_per_face;
+  const double* X = model.nodes.x.data();
+  for (int q = 0; q < k; ++q) {
+    const std::size_t p = k * e + q;
+    const double* T_old = &c.traction[3 * p];
+    if (T_old[0] == 0 && T_old[1] == 0 && T_old[2] == 0) continue;
+    double delta[3] = {0, 0, 0};
+    const double zero[3] = {0, 0, 0};
+    for (int j = 0; j < dim; ++j) delta[j] = X[dim * node_b_[p] + j] - X[dim * node_a_[p] + j];
+    book_increment(c, p, delta, zero, work);
+  }
+}
+
 // The forces of element e's pairs at the positions x_n, their work, and their springs in the
-// stable-step bound. An element all of whose pairs have failed is a crack: in the step it fails
-// what its closed pairs store is released, and from the next step it carries nothing and holds
-// no node, so that the penalty contact with friction takes its faces (the contact's depth rule
-// keeps faces that meet already pressed from springing apart: docs/theory/cohesive_interfaces.md).
+// stable-step bound. An element all of whose pairs have failed is a crack: it opens, and from
+// the next step it carries nothing and holds no node, so that the penalty contact with friction
+// takes its faces (the contact's depth rule keeps faces that meet already pressed from springing
+// apart: docs/theory/cohesive_interfaces.md).
 void CohesiveInterfaces::element_forces(Model& model, std::size_t e, Work& work) {
   CohesiveElements& c = model.cohesive;
   const int dim = model.dim(), k = c.nodes_per_face;
   if (c.open[e]) {
+    close_open_element(model, e, work);
     failed_ += static_cast<std::size_t>(k);
     ++open_;
     return;
@@ -157,23 +198,8 @@ void CohesiveInterfaces::element_forces(Model& model, std::size_t e, Work& work)
     c.damage[p] = h.damage;
     double T[3];
     for (int j = 0; j < 3; ++j) T[j] = tn * n[j] + (ds > 0 ? ts * shear[j] / ds : 0.0);
-    // Work on the interface over the increment, trapezoid in the tractions (as the stress work);
-    // what it stores is ½ T·Δ, the rest damage released.
+    book_increment(c, p, delta, T, work);
     const double w = c.weight[p];
-    double* T_old = &c.traction[3 * p];
-    double* d_old = &c.separation[3 * p];
-    double inc = 0, stored_old = 0, stored = 0;
-    for (int j = 0; j < 3; ++j) {
-      inc += 0.5 * (T_old[j] + T[j]) * (delta[j] - d_old[j]);
-      stored_old += 0.5 * T_old[j] * d_old[j];
-      stored += 0.5 * T[j] * delta[j];
-    }
-    work.work += inc * w;
-    work.released += (inc - (stored - stored_old)) * w;
-    for (int j = 0; j < 3; ++j) {
-      T_old[j] = T[j];
-      d_old[j] = delta[j];
-    }
     for (int j = 0; j < dim; ++j) {
       F[dim * b + j] -= T[j] * w;
       F[dim * a + j] += T[j] * w;
@@ -184,22 +210,8 @@ void CohesiveInterfaces::element_forces(Model& model, std::size_t e, Work& work)
     row_[a] += spring;
     row_[b] += spring;
   }
-  if (all_failed) release_element(c, e, work);
+  c.open[e] = all_failed ? 1 : 0;
   for (int q = 0; q < k; ++q) (c.damage[k * e + q] >= 1.0 ? failed_ : intact_) += 1;
-}
-
-// Element e has failed at every pair: what its closed pairs store (½ T·Δ) is released, and it
-// is marked open.
-void CohesiveInterfaces::release_element(CohesiveElements& c, std::size_t e, Work& work) {
-  const int k = c.nodes_per_face;
-  for (int q = 0; q < k; ++q) {
-    const std::size_t p = k * e + q;
-    double stored = 0;
-    for (int j = 0; j < 3; ++j) stored += 0.5 * c.traction[3 * p + j] * c.separation[3 * p + j];
-    work.released += stored * c.weight[p];
-    for (int j = 0; j < 3; ++j) c.traction[3 * p + j] = 0;
-  }
-  c.open[e] = 1;
 }
 
 CohesiveInterfaces::Work CohesiveInterfaces::add_forces(Model& model) {

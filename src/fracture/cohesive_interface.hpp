@@ -51,7 +51,8 @@ class CohesiveInterfaces final : public TopologyListener {
   void rebuild(Model& model, Work& work);
   void drop_elements(Model& model, const std::vector<std::uint8_t>& keep, Work& work);
   void element_forces(Model& model, std::size_t e, Work& work);
-  static void release_element(CohesiveElements& c, std::size_t e, Work& work);
+  void close_open_element(Model& model, std::size_t e, Work& work);
+  static void book_increment(CohesiveElements& c, std::size_t p, const double* delta, const double* T, Work& work);
 
   std::vector<CohesiveLaw> laws_;
   bool stale_ = true;

@@ -5,6 +5,7 @@
 #include <memory>
 #include <vector>
 
+#include "contact/contact.hpp"
 #include "material/linear_elastic.hpp"
 #include "model/assembly.hpp"
 #include "model/model.hpp"
@@ -50,6 +51,7 @@ struct ElasticRun {
            const std::function<void(const ExplicitSolver&)>& after_step = {}) {
     ExplicitSolver solver(model, materials, loads, settings);
     if (cohesive) solver.attach_cohesive(cohesive);
+    if (contact) solver.attach_contact(contact);
     solver.initialise();
     while (true) {
       solver.compute_forces();
@@ -64,6 +66,7 @@ struct ElasticRun {
   }
 
   CohesiveInterfaces* cohesive = nullptr;  ///< attached to the solver when set
+  ContactSystem* contact = nullptr;        ///< attached to the solver when set
   EnergyLedger energy;
   std::int64_t steps = 0;
   double max_error = 0;
