@@ -5,6 +5,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/text.hpp"
+
 namespace shard {
 
 /// Bad input found before a run: scenario file, mesh file, command line.
@@ -32,7 +34,8 @@ class InputError : public std::runtime_error {
     }
     if (!key.empty()) out << "key '" << key << "': ";
     out << reason;
-    return out.str();
+    // Keys and values quoted from the input may hold any bytes: show them, never emit them.
+    return printable(out.str());
   }
   std::string file_;
   int line_;

@@ -1,8 +1,11 @@
 #include "io/scenario.hpp"
 
+#include <yaml-cpp/depthguard.h>
+
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <iterator>
 #include <limits>
 #include <map>
 #include <set>
@@ -11,6 +14,7 @@
 
 #include "contact/pair_law.hpp"
 #include "core/error.hpp"
+#include "core/text.hpp"
 #include "core/units.hpp"
 #include "io/scenario_interfaces.hpp"
 #include "io/scenario_particles.hpp"
@@ -20,6 +24,7 @@
 
 namespace shard {
 
+using scenario_detail::key_name;
 using scenario_detail::line_of;
 using scenario_detail::Section;
 using scenario_detail::velocity_component_keys;
@@ -104,7 +109,9 @@ KeyList analysis_keys() {
   k.quantity("initial_temperature", dim::temperature, "initial temperature of every part")
       .above(0)
       .defaults_to("293.15 K");
-  k.add("max_steps", ValueKind::integer, "stop with an error after this many steps (0: no limit)")
+  k.add("max_steps", ValueKind::integer,
+        "stop with an error after this many steps (0: no limit; a run estimated at more than 1e9 "
+        "steps is refused unless this is set)")
       .at_least(0)
       .defaults_to("0");
   KeySpec& g = k.add("gravity", ValueKind::vector, "body force per unit mass, e.g. [0, -9.81 m/s^2]");
@@ -244,6 +251,11 @@ KeyList mesh_keys() {
   k.quantity("unit", dim::length, "length of one coordinate unit of the file (e.g. 1 mm)")
       .above(0)
       .defaults_to("1 m");
+  k.add("max_elements", ValueKind::integer,
+        "largest element count a .geo may be meshed into at `size`, estimated from its bounding box "
+        "before meshing (raise it for a larger mesh)")
+      .at_least(1)
+      .defaults_to("10000000");
   return k;
 }
 
@@ -454,6 +466,7 @@ class ScenarioReader {
   Section analysis(top.value("analysis"), file, "analysis", a_keys, sc.resolved["analysis"], top.line("analysis"));
   sc.formulation = formulation_from(*analysis.choice("formulation"));
   sc.end_time = analysis.number("end_time");
+  sc.end_time_line = analysis.line("end_time");
   sc.time_step_safety = analysis.number("time_step_safety");
   sc.max_time_step = analysis.number("max_time_step");
   sc.thickness = analysis.number("thickness");
@@ -498,6 +511,8 @@ class ScenarioReader {
                           "' not found (a relative path is taken from the scenario file's folder)");
   sc.mesh_unit = mesh.number("unit");
   sc.mesh_size = mesh.optional_number("size").value_or(0.0);
+  sc.mesh_size_line = mesh.line("size");
+  sc.mesh_max_elements = mesh.integer("max_elements");
   }
 
   }
@@ -509,7 +524,7 @@ class ScenarioReader {
     top.fail("materials", "expected a map of named materials, e.g.\n  materials:\n    steel: {model: linear_elastic, density: 7830 kg/m^3, youngs_modulus: 210 GPa, poissons_ratio: 0.3}");
   for (auto it = materials.begin(); it != materials.end(); ++it) {
     MaterialInput mat;
-    mat.name = it->first.as<std::string>();
+    mat.name = key_name(it->first, file, "materials");
     mat.line = line_of(it->first);
     const YAML::Node body = it->second;
     const std::string path = "materials." + mat.name;
@@ -582,7 +597,7 @@ class ScenarioReader {
   const KeyList p_keys = part_keys();
   for (auto it = parts.IsMap() ? parts.begin() : YAML::const_iterator(); parts.IsMap() && it != parts.end(); ++it) {
     PartInput part;
-    part.name = it->first.as<std::string>();
+    part.name = key_name(it->first, file, "parts");
     part.line = line_of(it->first);
     for (const auto& other : sc.parts)
       if (other.name == part.name)
@@ -678,7 +693,7 @@ class ScenarioReader {
       std::vector<std::string> list;
       if (fix.IsScalar()) list.push_back(fix.Scalar());
       else if (fix.IsSequence())
-        for (const auto& c : fix) list.push_back(c.IsScalar() ? c.Scalar() : "?");
+        for (const auto& c : fix) list.push_back(s.name_in_list("fix", c, "a component name (x, y, z)"));
       else
         s.fail("fix", "expected a list of components such as [x, y], got " + Section::shape(fix));
       if (list.size() == 1 && list[0] == "all") list = components;
@@ -947,7 +962,7 @@ class ScenarioReader {
       const YAML::Node list = k.value("parts");
       if (!list.IsSequence()) k.fail("parts", "expected a list of part names, e.g. [plate]");
       for (const auto& n : list) {
-        const std::string name = n.IsScalar() ? n.Scalar() : "?";
+        const std::string name = k.name_in_list("parts", n, "a part name");
         if (std::find(part_names.begin(), part_names.end(), name) == part_names.end()) {
           std::string reason = "no part named '" + name + "'";
           const std::string close = closest_match(name, part_names);
@@ -982,7 +997,7 @@ class ScenarioReader {
     YAML::Node fo(YAML::NodeType::Sequence);
     fo.SetStyle(YAML::EmitterStyle::Flow);
     for (const auto& name : f) {
-      const std::string n = name.IsScalar() ? name.Scalar() : "?";
+      const std::string n = out.name_in_list("fields", name, "a field name");
       if (std::find(kFieldNames.begin(), kFieldNames.end(), n) == kFieldNames.end()) {
         std::string reason = "unknown field '" + n + "'";
         const std::string close = closest_match(n, kFieldNames);
@@ -1013,18 +1028,51 @@ class ScenarioReader {
 
 }  // namespace
 
+namespace {
+
+/// The text of a scenario file, refused before parsing when it cannot be a scenario: a folder,
+/// an unreadable file, one larger than kMaxScenarioBytes (a scenario names its mesh and data
+/// files; it does not hold them), or one that is not text (a NUL byte or invalid UTF-8).
+std::string scenario_text(const std::filesystem::path& path) {
+  const std::string file = path.string();
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) throw InputError(file, 0, "", "scenario file not found");
+  if (std::filesystem::is_directory(path, ec))
+    throw InputError(file, 0, "", "is a folder, not a scenario file (give the .yaml file in it)");
+  const auto bytes = std::filesystem::file_size(path, ec);
+  if (ec) throw InputError(file, 0, "", "cannot read the scenario file: " + ec.message());
+  if (bytes > kMaxScenarioBytes)
+    throw InputError(file, 0, "",
+                     "the scenario file is " + std::to_string(bytes / (1024 * 1024)) +
+                         " MiB; shard reads scenario files of up to " +
+                         std::to_string(kMaxScenarioBytes / (1024 * 1024)) +
+                         " MiB (meshes, particle samples and tables belong in files of their own)");
+  std::ifstream in(path, std::ios::binary);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (!in.good() && !in.eof()) throw InputError(file, 0, "", "cannot read the scenario file");
+  if (const auto bad = first_non_text_byte(text))
+    throw InputError(file, 1 + static_cast<int>(std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(*bad), '\n')),
+                     "", "not a text file: byte " + byte_hex(text[*bad]) +
+                             " is not UTF-8 text (a binary file, or a file saved in another encoding)");
+  return text;
+}
+
+}  // namespace
+
 Scenario read_scenario(const std::filesystem::path& path) {
   const std::string file = path.string();
-  if (!std::filesystem::exists(path))
-    throw InputError(file, 0, "", "scenario file not found");
+  const std::string text = scenario_text(path);
   YAML::Node root;
   try {
-    root = YAML::LoadFile(file);
+    root = YAML::Load(text);
+  } catch (const YAML::DeepRecursion& e) {
+    // yaml-cpp stops at a fixed nesting depth and calls it "bad file".
+    throw InputError(file, e.mark.line + 1, "",
+                     "not valid YAML here: lists or maps nested " + std::to_string(e.depth()) +
+                         " levels deep, past the parser's limit (a scenario needs a few levels)");
   } catch (const YAML::ParserException& e) {
     const auto [line, reason] = yaml_syntax_error(file, e.mark.line + 1, e.msg);
     throw InputError(file, line, "", reason);
-  } catch (const YAML::BadFile&) {
-    throw InputError(file, 0, "", "cannot read the scenario file");
   }
   if (!root.IsMap()) throw InputError(file, 1, "", "a scenario is a YAML map of sections (analysis:, mesh:, ...)");
 

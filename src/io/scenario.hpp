@@ -216,6 +216,7 @@ struct Scenario {
 
   Formulation formulation = Formulation::plane_strain;
   double end_time = 0;
+  int end_time_line = 0;  ///< where end_time is given (a refused step count points there)
   double time_step_safety = 0.9;
   double max_time_step = 0;
   double thickness = 1;
@@ -230,6 +231,8 @@ struct Scenario {
   double mesh_size = 0;             ///< m; 0: as the file says
   double mesh_unit = 1;             ///< m per coordinate unit of the file
   int mesh_line = 0;
+  int mesh_size_line = 0;
+  std::int64_t mesh_max_elements = 10000000;  ///< refused above this estimate (mesh.max_elements)
 
   bool has_mesh = true;  ///< false for a scenario of particle parts only
   std::vector<MaterialInput> materials;
@@ -253,6 +256,9 @@ struct Scenario {
 
   int dim() const { return formulation == Formulation::three_d ? 3 : 2; }
 };
+
+/// The largest scenario file read (larger ones are refused before parsing, with this figure).
+inline constexpr std::uintmax_t kMaxScenarioBytes = 4u * 1024 * 1024;
 
 /// Reads and validates a scenario file (not the mesh). Throws InputError.
 Scenario read_scenario(const std::filesystem::path& file);

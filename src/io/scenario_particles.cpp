@@ -444,7 +444,7 @@ void read_particle_parts(Section& top, Scenario& sc, const AutomatonMaterials& m
   for (const auto& p : sc.parts) names.push_back(p.name);
   for (auto it = parts.IsMap() ? parts.begin() : YAML::const_iterator(); parts.IsMap() && it != parts.end(); ++it) {
     ParticlePartInput p;
-    p.name = it->first.as<std::string>();
+    p.name = key_name(it->first, top.file(), "particles");
     p.line = line_of(it->first);
     const std::string path = "particles." + p.name;
     if (std::find(names.begin(), names.end(), p.name) != names.end())
@@ -460,7 +460,7 @@ void read_fixed_components(Section& s, YAML::Node& out, std::size_t dim, Particl
   const YAML::Node fix = s.value("fix");
   if (!fix.IsSequence()) s.fail("fix", "expected a list of components such as [x, y, rotation]");
   for (const auto& f : fix) {
-    const std::string name = f.IsScalar() ? f.Scalar() : "?";
+    const std::string name = s.name_in_list("fix", f, "a component name (x, y, z, rotation)");
     if (name == "rotation") {
       c.fix_rotation = true;
       continue;

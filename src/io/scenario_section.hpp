@@ -23,6 +23,15 @@ KeyList velocity_component_keys();
 
 inline int line_of(const YAML::Node& node) { return node.IsDefined() ? node.Mark().line + 1 : 0; }
 
+/// The name a map gives as a key ("steel:" under materials): its text, or an error at its line
+/// when the key is itself a list or a map.
+inline std::string key_name(const YAML::Node& key, const std::string& file, const std::string& section) {
+  if (key.IsScalar()) return key.Scalar();
+  throw InputError(file, line_of(key), section,
+                   std::string("expected a name (name: ...), got ") +
+                       (key.IsSequence() ? "a list" : key.IsMap() ? "a map" : "nothing") + " as a name");
+}
+
 /// One map section of the scenario under validation.
 class Section {
  public:
@@ -38,7 +47,10 @@ class Section {
       throw InputError(file_, line_, path_, "expected a map of keys (key: value), got " + shape(node_));
     if (node_.IsMap()) {
       for (auto it = node_.begin(); it != node_.end(); ++it) {
-        const std::string key = it->first.as<std::string>();
+        if (!it->first.IsScalar())
+          throw InputError(file_, line_of(it->first), path_,
+                           "expected a key name (key: value), got " + shape(it->first) + " as a key");
+        const std::string key = it->first.Scalar();
         if (key_lines_.count(key))
           throw InputError(file_, line_of(it->first), key_path(key),
                            "'" + key + "' is given twice (first at line " +
@@ -55,12 +67,17 @@ class Section {
         }
       }
     }
-    for (const auto& spec : keys_.keys())
+    for (const auto& spec : keys_.keys()) {
+      if (spec.required && node_.IsMap() && node_[spec.name].IsDefined() && node_[spec.name].IsNull())
+        // "end_time:" or "end_time: ~": the key is there, its value is not.
+        throw InputError(file_, line(spec.name), key_path(spec.name),
+                         "has no value; expected " + spec.type_text() + " (" + spec.doc + ")");
       if (spec.required && !has(spec.name))
         // At the line naming the section ("analysis:"), where the key belongs.
         throw InputError(file_, parent_line_ > 0 ? parent_line_ : line_, key_path(spec.name),
                          "missing required key '" + spec.name + "' (" + spec.doc + "; " +
                              spec.type_text() + ")");
+    }
   }
 
   static std::string shape(const YAML::Node& n) {
@@ -69,6 +86,14 @@ class Section {
       return "a list of " + std::to_string(n.size()) + (n.size() == 1 ? " entry" : " entries");
     if (n.IsScalar()) return "'" + n.Scalar() + "'";
     return "nothing";
+  }
+
+  /// One entry of a list of names (parts, components, fields) under `key`: its text, or an error
+  /// at the entry's own line when it is a list or a map instead of a name.
+  std::string name_in_list(const std::string& key, const YAML::Node& entry, const char* what) const {
+    if (entry.IsScalar()) return entry.Scalar();
+    throw InputError(file_, line_of(entry) > 0 ? line_of(entry) : line(key), key_path(key),
+                     std::string("expected ") + what + " in this list, got " + shape(entry));
   }
 
   bool has(const std::string& key) const {
