@@ -1,4 +1,5 @@
 // The `shard` command line: run, check, reference, info.
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <iostream>
@@ -109,6 +110,9 @@ int main(int argc, char** argv) {
           } catch (const std::invalid_argument& e) {
             return usage_error(std::string("--until: ") + e.what());
           }
+          if (!(*options.until > 0) || !std::isfinite(*options.until))
+            return usage_error("--until expects a time after the start (a positive, finite time such "
+                               "as 20us), got '" + v + "'");
         } else if (!a.empty() && a[0] == '-') return usage_error("unknown option '" + a + "'");
         else if (!scenario) scenario = a;
         else return usage_error("more than one scenario given ('" + *scenario + "', '" + a + "')");

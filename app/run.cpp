@@ -5,6 +5,7 @@
 #include <sys/resource.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -21,6 +22,7 @@
 #include "fem/element.hpp"
 #include "io/checkpoint.hpp"
 #include "io/frame_output.hpp"
+#include "io/output_file.hpp"
 #include "app/simulation.hpp"
 #include "io/particle_frame.hpp"
 #include "particle/mca_state.hpp"
@@ -40,13 +42,7 @@ double peak_memory_mb() {
 }
 
 void write_text_atomically(const std::filesystem::path& path, const std::string& text) {
-  const std::filesystem::path tmp = path.string() + ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::trunc);
-    out << text;
-    if (!out) throw RunError("cannot write '" + tmp.string() + "'");
-  }
-  std::filesystem::rename(tmp, path);
+  write_file_atomically(path, [&](std::ostream& out) { out << text; });
 }
 
 std::string json_string(const std::string& s) {
@@ -117,6 +113,70 @@ class Progress {
   Clock::time_point start_, last_;
 };
 
+/// A run estimated at more steps than this must say so with analysis.max_steps: at a few
+/// microseconds a step for the smallest model, it would run for days.
+constexpr double kStepsWithoutLimit = 1e9;
+
+/// Refuses, before any output, a run whose step count cannot be what was meant: a stable step
+/// that is not a positive finite time (a material constant out of scale), or a step count that
+/// overflows or exceeds kStepsWithoutLimit without analysis.max_steps.
+void check_step_count(const Scenario& sc, double dt, double start_time) {
+  const std::string file = shown_path(sc.file);
+  if (!(dt > 0) || !std::isfinite(dt)) {
+    std::ostringstream reason;
+    reason << "the stable time step at the start is " << dt
+           << " s, not a positive finite time: a density, modulus or contact stiffness is out of "
+              "scale (check their units; plain numbers are SI)";
+    throw InputError(file, sc.end_time_line, "analysis.end_time", reason.str());
+  }
+  const double steps = (sc.end_time - start_time) / dt;
+  if (sc.max_steps > 0 || (std::isfinite(steps) && steps <= kStepsWithoutLimit)) return;
+  std::ostringstream reason;
+  reason.precision(3);
+  reason << "at the stable time step of " << format_time(dt) << " the run to "
+         << format_time(sc.end_time) << " would take ";
+  if (std::isfinite(steps)) reason << "about " << steps << " steps";
+  else reason << "more steps than can be counted";
+  reason << " (more than " << kStepsWithoutLimit
+         << "): check end_time, max_time_step and the materials' constants, or set "
+            "analysis.max_steps to the number of steps you mean to run";
+  throw InputError(file, sc.end_time_line, "analysis.end_time", reason.str());
+}
+
+/// Refuses an output folder that cannot be one (a file, or a path under a file) before anything
+/// is read or meshed: that is the user's input, not a failure of the run.
+void check_output_folder(const std::filesystem::path& dir) {
+  std::error_code ec;
+  for (std::filesystem::path p = dir; !p.empty(); p = p.parent_path()) {
+    const auto status = std::filesystem::status(p, ec);
+    if (std::filesystem::exists(status) && !std::filesystem::is_directory(status))
+      throw InputError("", 0, "-o",
+                       "the output folder '" + dir.string() + "' " +
+                           (p == dir ? std::string("is a file, not a folder")
+                                     : "lies under '" + p.string() + "', which is a file, not a folder"));
+    if (std::filesystem::exists(status) || p == p.parent_path()) break;
+  }
+}
+
+/// Makes the output folder; one that cannot be made or written is bad input (exit 2), named with
+/// the system's reason.
+void make_output_folder(const std::filesystem::path& dir) {
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (!ec) {
+    // A folder that exists may still refuse files (permissions, a read-only file system).
+    const std::filesystem::path probe = dir / ".shard_write_probe";
+    errno = 0;
+    std::ofstream out(probe);
+    const int error_number = out ? 0 : (errno ? errno : EACCES);
+    out.close();
+    std::filesystem::remove(probe, ec);
+    ec = error_number ? std::error_code(error_number, std::generic_category()) : std::error_code();
+  }
+  if (ec)
+    throw InputError("", 0, "-o", "cannot make or write the output folder '" + dir.string() + "': " + ec.message());
+}
+
 struct Prepared {
   Scenario scenario;
   Simulation sim;
@@ -160,8 +220,10 @@ std::string check_scenario(const std::filesystem::path& file) {
     out << "\n";
   }
   const double dt = solver.state().dt_next;
-  out << "  initial time step " << format_time(dt) << ", about "
-      << static_cast<long long>(std::ceil(sim.settings.end_time / dt)) << " steps to "
+  check_step_count(p.scenario, dt, 0.0);
+  char steps[32];
+  std::snprintf(steps, sizeof steps, "%.4g", std::ceil(sim.settings.end_time / dt));
+  out << "  initial time step " << format_time(dt) << ", about " << steps << " steps to "
       << format_time(sim.settings.end_time) << "\n";
   return out.str();
 }
@@ -193,23 +255,28 @@ class RunDriver {
   }
 
   RunSummary run() {
-    open_outputs();
     start_ = Clock::now();
     first_step_ = solver_.state().step;
     try {
-      loop();
+      // The first forces give the step the whole run is judged by, before any output exists.
+      solver_.compute_forces();
     } catch (const RunError& e) {
+      open_outputs();
+      fail(e);
+    }
+    check_step_count(sc_, solver_.state().dt_next, solver_.state().time);
+    open_outputs();
+    forces_ready_ = true;
+    try {
+      loop();
       progress_.finish();
       history_.flush();
-      status_ = "failed";
-      message_ = e.what();
+      check_written(history_, history_path_);
       write_summary();
-      throw;
+      write_fragment_report();
+    } catch (const RunError& e) {
+      fail(e);
     }
-    progress_.finish();
-    history_.flush();
-    write_summary();
-    write_fragment_report();
     RunSummary summary;
     summary.steps = solver_.state().step;
     summary.end_time = solver_.state().time - solver_.state().dt_half;
@@ -219,6 +286,21 @@ class RunDriver {
   }
 
  private:
+  /// A run that went wrong: what it wrote so far stays, summary.json says why.
+  [[noreturn]] void fail(const RunError& e) {
+    progress_.finish();
+    history_.flush();
+    status_ = "failed";
+    message_ = e.what();
+    try {
+      write_summary();
+    } catch (const OutputError& also) {
+      // The disk that refused the run's outputs may refuse this one too: say both.
+      throw RunError(std::string(e.what()) + "; summary.json not written either (" + also.what() + ")");
+    }
+    throw e;
+  }
+
   static bool due(double t, std::int64_t index, double interval) {
     return interval <= 0 || t >= static_cast<double>(index) * interval * (1 - 1e-9);
   }
@@ -268,7 +350,7 @@ class RunDriver {
   }
 
   void open_outputs() {
-    std::filesystem::create_directories(dir_);
+    make_output_folder(dir_);
     write_text_atomically(dir_ / "resolved.yaml", "# " + sc_.file.string() + ", resolved by shard " + SHARD_VERSION +
                                                       " (SI units)\n" + to_yaml_text(sc_.resolved));
     for (const auto& pp : sim_.model.particle_parts)
@@ -332,7 +414,8 @@ class RunDriver {
     const auto& out = sc_.output;
     const double end = sc_.end_time;
     while (true) {
-      solver_.compute_forces();
+      if (!forces_ready_) solver_.compute_forces();
+      forces_ready_ = false;
       note_particle_step();
       note_cohesive_step();
       const SolverState& s = solver_.state();
@@ -368,6 +451,8 @@ class RunDriver {
   void write_frames(double t) {
     char name[32];
     std::snprintf(name, sizeof name, "frame_%05lld.vtu", static_cast<long long>(cursor_.next_frame));
+    history_.flush();  // a history the disk refused is noticed with the frame, not at the end
+    check_written(history_, history_path_);
     VtuGrid frame = make_frame(sim_.model, sim_.materials, sc_.output.fields, t);
     if (contact_) {
       VtuField p{"contact_pressure", 1, contact_->nodal_pressure(sim_.model)};
@@ -456,6 +541,7 @@ class RunDriver {
     const bool checkpoint_due = out.checkpoint_interval > 0 && due(s.time, cursor_.next_checkpoint, out.checkpoint_interval);
     if (!stop && !checkpoint_due) return false;
     history_.flush();
+    check_written(history_, history_path_);
     cursor_.history_bytes = std::filesystem::file_size(history_path_);
     if (checkpoint_due)
       cursor_.next_checkpoint = static_cast<std::int64_t>(std::floor(s.time / out.checkpoint_interval * (1 + 1e-9))) + 1;
@@ -608,6 +694,7 @@ class RunDriver {
   std::ofstream history_;
   Progress progress_;
   bool particle_step_noted_ = false, cohesive_step_noted_ = false;
+  bool forces_ready_ = false;  // the first step's forces, computed before the outputs opened
   std::vector<std::string> notes_;  ///< further notes for summary.json
 
   /// crash.csv and the summary's crash figures (empty without a `crash` section).
@@ -638,6 +725,7 @@ RunSummary run_scenario(const std::filesystem::path& file, const RunOptions& opt
   if (options.threads > 0) omp_set_num_threads(options.threads);
 #endif
   // Everything is validated before the output folder is touched.
+  check_output_folder(options.output_dir);
   RunDriver driver(file, options);
   return driver.run();
 }

@@ -19,11 +19,6 @@
 
 namespace shard {
 
-namespace {
-
-/// The scenario file as the person named it on the command line, so that errors found here read
-/// like those of the scenario reader ("bar.yaml:12: ..."). Scenario::file is absolute: made from
-/// the current directory and the given path, which is recovered when it was relative.
 std::string shown_path(const std::filesystem::path& file) {
   std::error_code ec;
   const std::string cwd = std::filesystem::current_path(ec).string();
@@ -33,8 +28,6 @@ std::string shown_path(const std::filesystem::path& file) {
     return full.substr(cwd.size() + 1);
   return full;
 }
-
-}  // namespace
 
 CrackGrowth* Simulation::crack_growth() {
   for (auto& e : events)
@@ -63,9 +56,11 @@ MeshData load_scenario_mesh(const Scenario& sc) {
   options.scale = sc.mesh_unit;
   options.mesh_size = sc.mesh_size > 0 ? sc.mesh_size / sc.mesh_unit : 0.0;
   options.dimension = sc.dim();
+  options.max_elements = static_cast<double>(sc.mesh_max_elements);
   try {
     return load_gmsh_mesh(sc.mesh_file, options);
   } catch (const InputError& e) {
+    if (e.key() == "mesh.size") throw InputError(shown_path(sc.file), sc.mesh_size_line, e.key(), e.reason());
     // Keep the importer's reason (and its line in the mesh file, if any), and point at the
     // scenario key that named the file.
     std::string where = e.file().empty() ? std::string("the mesh file") : "mesh file '" + e.file() + "'";

@@ -43,6 +43,12 @@ struct Simulation {
 /// The solver of a simulation, with its contact and events attached.
 std::unique_ptr<ExplicitSolver> make_solver(Simulation& sim);
 
+/// The scenario file as the person named it on the command line, so that errors found after
+/// reading read like those of the scenario reader ("bar.yaml:12: ..."). Scenario::file is
+/// absolute: made from the current directory and the given path, which is recovered when it was
+/// relative.
+std::string shown_path(const std::filesystem::path& file);
+
 /// Loads (or meshes) the scenario's mesh. Throws InputError naming the scenario line for bad
 /// mesh files.
 MeshData load_scenario_mesh(const Scenario& scenario);

@@ -1,5 +1,7 @@
 #include "io/checkpoint.hpp"
 
+#include "io/output_file.hpp"
+
 #include <cstring>
 #include <fstream>
 #include <type_traits>
@@ -54,7 +56,7 @@ constexpr std::uint8_t type_code() {
 
 class Writer {
  public:
-  explicit Writer(std::ofstream& out) : out_(out) {}
+  explicit Writer(std::ostream& out) : out_(out) {}
   template <class T>
   void raw(const T& v) {
     out_.write(reinterpret_cast<const char*>(&v), sizeof(T));
@@ -72,7 +74,7 @@ class Writer {
   }
 
  private:
-  std::ofstream& out_;
+  std::ostream& out_;
 };
 
 class Reader {
@@ -120,10 +122,7 @@ class Reader {
 
 void write_checkpoint(const std::filesystem::path& path, Model& model, const SolverState& state,
                       const OutputCursor& cursor, const std::string& fingerprint) {
-  const std::filesystem::path tmp = path.string() + ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out) throw RunError("cannot write checkpoint '" + tmp.string() + "'");
+  write_file_atomically(path, [&](std::ostream& out) {
     Writer w(out);
     out.write(kMagic, sizeof(kMagic));
     w.text(fingerprint);
@@ -140,10 +139,7 @@ void write_checkpoint(const std::filesystem::path& path, Model& model, const Sol
       if (info.checkpoint) w.array(name, a);
     });
     model.visit_counters([&](const char*, std::int64_t& v) { w.raw(v); });
-    out.flush();
-    if (!out) throw RunError("writing checkpoint '" + tmp.string() + "' failed (disk full?)");
-  }
-  std::filesystem::rename(tmp, path);
+  });
 }
 
 void read_checkpoint(const std::filesystem::path& path, Model& model, SolverState& state,

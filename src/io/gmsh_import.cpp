@@ -15,6 +15,7 @@
 #include <cstddef>
 #include <iomanip>
 #include <limits>
+#include <map>
 #include <mutex>
 #include <sstream>
 #include <string>
@@ -216,6 +217,7 @@ struct RawBlock {
   CellType type;
   std::vector<std::size_t> element_tags;
   std::vector<std::size_t> node_tags;
+  std::vector<int> entities;  // the Gmsh entity (curve, surface, volume) of each cell
 };
 
 struct RawGroup {
@@ -282,44 +284,32 @@ class CellChecker {
   CellChecker(const fs::path& file, int mesh_dim, double mesh_extent)
       : file_(file), mesh_dim_(mesh_dim), mesh_extent_(mesh_extent) {}
 
-  // Checks one cell (nodes: local ids into `coords`, reordered in place when mirrored).
-  void check(const std::string& group, CellType type, std::size_t element_tag,
-             std::int32_t* nodes, const std::vector<double>& coords,
-             const std::vector<std::size_t>& gmsh_node_tags) {
+  // Checks one cell (nodes: local ids into `coords`) and returns its orientation: +1 for positive
+  // area (2D, counter-clockwise) or volume (3D), -1 for negative, 0 for cells without one (lines,
+  // surface cells of a 3D mesh).
+  int check(const std::string& group, CellType type, std::size_t element_tag, const std::int32_t* nodes,
+            const std::vector<double>& coords, const std::vector<std::size_t>& gmsh_node_tags) {
     const int n = nodes_per_cell(type);
-    std::array<Vec3, 8> x{};
-    for (int i = 0; i < n; ++i) {
-      const double* p = &coords[3 * static_cast<std::size_t>(nodes[i])];
-      x[i] = {p[0], p[1], p[2]};
-    }
+    const auto x = corners(nodes, n, coords);
     const double h = diameter(x.data(), n);
     auto report = [&](const std::string& what) {
-      std::ostringstream out;
-      out << std::setprecision(10) << "physical group '" << group << "': " << cell_name(type)
-          << " (Gmsh element " << element_tag << ") " << what << "; its nodes (Gmsh tag: "
-          << "x, y, z in the file's units):";
-      for (int i = 0; i < n; ++i) {
-        out << (i ? "," : "") << ' ' << gmsh_node_tags[static_cast<std::size_t>(nodes[i])]
-            << ": (" << x[i][0] << ", " << x[i][1] << ", " << x[i][2] << ')';
-      }
-      fail(file_, out.str());
+      fail_cell(group, type, element_tag, nodes, coords, gmsh_node_tags, what);
     };
     const char* zero_area = "has zero area (collinear or duplicate nodes)";
     const char* zero_volume = "has zero volume (coplanar or duplicate nodes)";
     switch (type) {
       case CellType::line2:
         if (h <= kZeroMeasure * mesh_extent_) report("has zero length (duplicate nodes)");
-        break;
+        return 0;
       case CellType::tri3: {
         const Vec3 a = sub(x[1], x[0]), b = sub(x[2], x[0]);
         if (mesh_dim_ == 2) {
           const double area2 = cross_z(a, b);
           if (std::abs(area2) <= kZeroMeasure * h * h) report(zero_area);
-          if (area2 < 0) std::swap(nodes[1], nodes[2]);
-        } else if (norm(cross(a, b)) <= kZeroMeasure * h * h) {
-          report(zero_area);
+          return area2 < 0 ? -1 : 1;
         }
-        break;
+        if (norm(cross(a, b)) <= kZeroMeasure * h * h) report(zero_area);
+        return 0;
       }
       case CellType::quad4: {
         if (mesh_dim_ == 2) {
@@ -342,17 +332,15 @@ class CellChecker {
               report("is self-intersecting or non-convex (a corner above 180 degrees)");
             }
           }
-          if (area2 < 0) std::swap(nodes[1], nodes[3]);
-        } else if (norm(cross(sub(x[2], x[0]), sub(x[3], x[1]))) <= kZeroMeasure * h * h) {
-          report(zero_area);
+          return area2 < 0 ? -1 : 1;
         }
-        break;
+        if (norm(cross(sub(x[2], x[0]), sub(x[3], x[1]))) <= kZeroMeasure * h * h) report(zero_area);
+        return 0;
       }
       case CellType::tet4: {
         const double volume6 = det3(sub(x[1], x[0]), sub(x[2], x[0]), sub(x[3], x[0]));
         if (std::abs(volume6) <= kZeroMeasure * h * h * h) report(zero_volume);
-        if (volume6 < 0) std::swap(nodes[1], nodes[2]);
-        break;
+        return volume6 < 0 ? -1 : 1;
       }
       case CellType::hex8: {
         const double volume = hex_volume(x.data());
@@ -365,15 +353,39 @@ class CellChecker {
             report("is inverted or folded (negative Jacobian at a corner)");
           }
         }
-        if (volume < 0) {
-          for (int i = 0; i < 4; ++i) std::swap(nodes[i], nodes[i + 4]);
-        }
-        break;
+        return volume < 0 ? -1 : 1;
       }
     }
+    return 0;
+  }
+
+  // Refuses a cell, naming it, its group and its nodes with their coordinates.
+  [[noreturn]] void fail_cell(const std::string& group, CellType type, std::size_t element_tag,
+                              const std::int32_t* nodes, const std::vector<double>& coords,
+                              const std::vector<std::size_t>& gmsh_node_tags, const std::string& what) const {
+    const int n = nodes_per_cell(type);
+    const auto x = corners(nodes, n, coords);
+    std::ostringstream out;
+    out << std::setprecision(10) << "physical group '" << group << "': " << cell_name(type)
+        << " (Gmsh element " << element_tag << ") " << what << "; its nodes (Gmsh tag: "
+        << "x, y, z in the file's units):";
+    for (int i = 0; i < n; ++i) {
+      out << (i ? "," : "") << ' ' << gmsh_node_tags[static_cast<std::size_t>(nodes[i])] << ": (" << x[i][0]
+          << ", " << x[i][1] << ", " << x[i][2] << ')';
+    }
+    fail(file_, out.str());
   }
 
  private:
+  static std::array<Vec3, 8> corners(const std::int32_t* nodes, int n, const std::vector<double>& coords) {
+    std::array<Vec3, 8> x{};
+    for (int i = 0; i < n; ++i) {
+      const double* p = &coords[3 * static_cast<std::size_t>(nodes[i])];
+      x[i] = {p[0], p[1], p[2]};
+    }
+    return x;
+  }
+
   const fs::path& file_;
   int mesh_dim_;
   double mesh_extent_;
@@ -429,12 +441,34 @@ gmsh::vectorpair physical_groups(const fs::path& file, const GmshOptions& option
   return physical;
 }
 
+// Meshing at a size far below the geometry's would run for hours or exhaust memory: the element
+// count is estimated from the bounding box (an upper bound of the area or volume) and refused
+// above options.max_elements, before Gmsh starts.
+void refuse_oversized_mesh(const fs::path& file, const GmshOptions& options, int mesh_dim) {
+  double x0 = 0, y0 = 0, z0 = 0, x1 = 0, y1 = 0, z1 = 0;
+  gmsh::model::getBoundingBox(-1, -1, x0, y0, z0, x1, y1, z1);
+  const double h = options.mesh_size;
+  const double estimate = mesh_dim == 2 ? (x1 - x0) * (y1 - y0) / (std::sqrt(3.0) / 4 * h * h)
+                                        : (x1 - x0) * (y1 - y0) * (z1 - z0) / (h * h * h / (6 * std::sqrt(2.0)));
+  if (!(estimate > options.max_elements)) return;  // also a box Gmsh cannot give (NaN)
+  std::ostringstream reason;
+  reason.precision(3);
+  reason << "meshing '" << file.string() << "' at a size of " << h << " (file units) would make up to about "
+         << estimate << (mesh_dim == 2 ? " triangles" : " tetrahedra") << " (its bounding box is " << x1 - x0
+         << " x " << y1 - y0;
+  if (mesh_dim == 3) reason << " x " << z1 - z0;
+  reason << "), more than mesh.max_elements = " << static_cast<long long>(options.max_elements)
+         << ": check the size and its unit, or raise mesh.max_elements";
+  throw InputError(file.string(), 0, "mesh.size", reason.str());
+}
+
 // A geometry file (.geo, CAD) without a mesh of this dimension is meshed here.
 void mesh_if_needed(const fs::path& file, const GmshOptions& options, int mesh_dim) {
   if (lower_extension(file) == ".msh") return;
   std::vector<int> existing;
   gmsh::model::mesh::getElementTypes(existing, mesh_dim, -1);
   if (!existing.empty()) return;
+  if (options.mesh_size > 0 && options.max_elements > 0) refuse_oversized_mesh(file, options, mesh_dim);
   // Set after open so they win over options the geometry file itself sets.
   gmsh::option::setNumber("Mesh.ElementOrder", 1);
   if (options.mesh_size > 0) {
@@ -470,8 +504,9 @@ RawGroup read_group(const fs::path& file, int group_dim, int group_tag, std::vec
         block = group.blocks.insert(
             std::upper_bound(group.blocks.begin(), group.blocks.end(), type,
                              [](CellType a, const RawBlock& b) { return a < b.type; }),
-            RawBlock{type, {}, {}});
+            RawBlock{type, {}, {}, {}});
       }
+      block->entities.insert(block->entities.end(), element_tags[t].size(), entity);
       block->element_tags.insert(block->element_tags.end(), element_tags[t].begin(),
                                  element_tags[t].end());
       block->node_tags.insert(block->node_tags.end(), node_tags[t].begin(), node_tags[t].end());
@@ -532,14 +567,60 @@ void flatten_to_plane(const fs::path& file, MeshData& mesh, const std::vector<st
   }
 }
 
-// A group's cells numbered by the kept nodes, each checked (and turned to positive orientation).
+// Turns a cell of negative orientation to positive (see load_gmsh_mesh).
+void reverse_orientation(CellType type, std::int32_t* nodes) {
+  switch (type) {
+    case CellType::tri3:
+    case CellType::tet4: std::swap(nodes[1], nodes[2]); break;
+    case CellType::quad4: std::swap(nodes[1], nodes[3]); break;
+    case CellType::hex8:
+      for (int i = 0; i < 4; ++i) std::swap(nodes[i], nodes[i + 4]);
+      break;
+    case CellType::line2: break;
+  }
+}
+
+// Gmsh orients every cell of one entity (a surface, a volume) alike: all positive, or all
+// negative for a mirrored geometry. A cell against its entity's majority overlaps its neighbours
+// (a folded triangle), so it is refused rather than turned and run.
+void check_consistent_orientation(const RawGroup& raw, const CellBlock& block, std::size_t b,
+                                  const std::vector<std::vector<int>>& signs, const MeshData& mesh,
+                                  const std::vector<std::size_t>& used_nodes, const CellChecker& checker) {
+  std::map<int, std::array<std::size_t, 2>> count;  // entity -> (negative, positive) cells
+  for (std::size_t k = 0; k < raw.blocks.size(); ++k)
+    for (std::size_t c = 0; c < signs[k].size(); ++c)
+      if (signs[k][c] != 0) ++count[raw.blocks[k].entities[c]][signs[k][c] > 0 ? 1 : 0];
+  const auto n = static_cast<std::size_t>(nodes_per_cell(block.type));
+  for (std::size_t c = 0; c < signs[b].size(); ++c) {
+    if (signs[b][c] == 0) continue;
+    const auto& [negative, positive] = count[raw.blocks[b].entities[c]];
+    const int majority = positive >= negative ? 1 : -1;
+    if (signs[b][c] == majority) continue;
+    const bool two_d = mesh.dim == 2;
+    const std::string mine = two_d ? (signs[b][c] > 0 ? "counter-clockwise" : "clockwise")
+                                   : (signs[b][c] > 0 ? "positive volume" : "negative volume");
+    const std::string theirs = two_d ? (majority > 0 ? "counter-clockwise" : "clockwise")
+                                     : (majority > 0 ? "positive volume" : "negative volume");
+    checker.fail_cell(raw.name, block.type, raw.blocks[b].element_tags[c], &block.connectivity[c * n],
+                      mesh.coordinates, used_nodes,
+                      "is numbered " + mine + " while " + std::to_string(std::max(negative, positive)) +
+                          " of the " + std::to_string(negative + positive) + " cells of its Gmsh " +
+                          (two_d ? "surface" : "volume") + " are " + theirs +
+                          ": it is folded over its neighbours (the mesh overlaps itself) or its nodes "
+                          "are listed in the wrong order");
+  }
+}
+
+// A group's cells numbered by the kept nodes, each checked, and turned to positive orientation.
 MeshGroup number_group(RawGroup& raw, const MeshData& mesh, const std::vector<std::size_t>& used_nodes,
                        CellChecker& checker) {
   MeshGroup group;
-  group.name = std::move(raw.name);
+  group.name = raw.name;
   group.dim = raw.dim;
   group.tag = raw.tag;
-  for (RawBlock& raw_block : raw.blocks) {
+  std::vector<std::vector<int>> signs(raw.blocks.size());
+  for (std::size_t b = 0; b < raw.blocks.size(); ++b) {
+    const RawBlock& raw_block = raw.blocks[b];
     CellBlock block{raw_block.type, {}};
     block.connectivity.resize(raw_block.node_tags.size());
     for (std::size_t i = 0; i < raw_block.node_tags.size(); ++i) {
@@ -547,11 +628,17 @@ MeshGroup number_group(RawGroup& raw, const MeshData& mesh, const std::vector<st
       block.connectivity[i] = static_cast<std::int32_t>(it - used_nodes.begin());
     }
     const auto n = static_cast<std::size_t>(nodes_per_cell(block.type));
-    for (std::size_t c = 0; c < raw_block.element_tags.size(); ++c) {
-      checker.check(group.name, block.type, raw_block.element_tags[c], &block.connectivity[c * n],
-                    mesh.coordinates, used_nodes);
-    }
+    for (std::size_t c = 0; c < raw_block.element_tags.size(); ++c)
+      signs[b].push_back(checker.check(group.name, block.type, raw_block.element_tags[c],
+                                       &block.connectivity[c * n], mesh.coordinates, used_nodes));
     group.blocks.push_back(std::move(block));
+  }
+  for (std::size_t b = 0; b < group.blocks.size(); ++b) {
+    CellBlock& block = group.blocks[b];
+    check_consistent_orientation(raw, block, b, signs, mesh, used_nodes, checker);
+    const auto n = static_cast<std::size_t>(nodes_per_cell(block.type));
+    for (std::size_t c = 0; c < signs[b].size(); ++c)
+      if (signs[b][c] < 0) reverse_orientation(block.type, &block.connectivity[c * n]);
   }
   return group;
 }

@@ -13,6 +13,10 @@ struct GmshOptions {
   /// Mesh.MeshSizeMin 0; sizes given at points still refine), in the file's units; 0: as the file
   /// says. Ignored for .msh files.
   double mesh_size = 0;
+  /// >0: a geometry file is refused before meshing when its bounding box would hold more elements
+  /// than this at `mesh_size` (equilateral triangles or regular tetrahedra of edge mesh_size); the
+  /// InputError then names the key "mesh.size".
+  double max_elements = 0;
   double scale = 1;    ///< coordinates are multiplied by this (e.g. 1e-3 for a geometry in mm)
   int dimension = 0;   ///< 2 or 3; 0: the highest dimension with a physical group
   bool quiet = true;   ///< General.Terminal=0 unless false

@@ -1,5 +1,7 @@
 #include "io/vtu_writer.hpp"
 
+#include "io/output_file.hpp"
+
 #include <bit>
 #include <cerrno>
 #include <charconv>
@@ -107,50 +109,6 @@ std::string xml_escape(std::string_view text) {
 const char* byte_order_name() {
   // Headers and data are written in the host's byte order; the file says which that is.
   return std::endian::native == std::endian::little ? "LittleEndian" : "BigEndian";
-}
-
-std::string io_message(const fs::path& path, const std::string& what, int error_number) {
-  std::string message = "cannot write '" + path.string() + "': " + what;
-  if (error_number != 0) message += ": " + std::generic_category().message(error_number);
-  return message;
-}
-
-// Writes through "<path>.tmp" and renames it over `path`, so readers (ParaView, a restart) only
-// ever see a complete file: rename within one folder replaces the target in one step.
-template <class Body>
-void write_atomically(const fs::path& path, Body&& body) {
-  fs::path tmp = path;
-  tmp += ".tmp";
-  std::error_code ignored;
-  {
-    errno = 0;
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out) {
-      throw std::runtime_error(io_message(path, "cannot open '" + tmp.string() + "'", errno));
-    }
-    try {
-      body(out);
-    } catch (...) {
-      out.close();
-      fs::remove(tmp, ignored);
-      throw;
-    }
-    errno = 0;
-    out.close();
-    if (!out) {
-      const int error_number = errno;
-      fs::remove(tmp, ignored);
-      throw std::runtime_error(io_message(path, "error while writing '" + tmp.string() + "'",
-                                          error_number));
-    }
-  }
-  std::error_code ec;
-  fs::rename(tmp, path, ec);
-  if (ec) {
-    fs::remove(tmp, ignored);
-    throw std::runtime_error(io_message(path, "cannot rename '" + tmp.string() + "' to it: " +
-                                                  ec.message(), 0));
-  }
 }
 
 // ---- .vtu -------------------------------------------------------------------------------------
@@ -362,7 +320,7 @@ void write_vtu(const fs::path& path, const VtuGrid& grid) {
   const std::size_t point_count = grid.points.size() / 3;
   const std::size_t cell_count = grid.types.size();
 
-  write_atomically(path, [&](std::ostream& out) {
+  write_file_atomically(path, [&](std::ostream& out) {
     out << "<?xml version=\"1.0\"?>\n"
         << "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"" << byte_order_name()
         << "\" header_type=\"UInt64\">\n"
@@ -420,7 +378,7 @@ void PvdCollection::keep_first(std::size_t n) {
 }
 
 void PvdCollection::write() const {
-  write_atomically(path_, [&](std::ostream& out) {
+  write_file_atomically(path_, [&](std::ostream& out) {
     out << "<?xml version=\"1.0\"?>\n"
         << "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"" << byte_order_name()
         << "\">\n"

@@ -1,0 +1,150 @@
+// Runs that cannot or must not go on: command-line mistakes and output folders that cannot be
+// folders are bad input (exit 2, nothing written); a disk that fills during a run stops it with
+// "disk full while writing X", keeps every output written before and leaves no temporary file.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <unistd.h>
+
+#include "io/scenario.hpp"
+#include "support/cli.hpp"
+
+namespace shard {
+namespace {
+
+namespace fs = std::filesystem;
+
+const std::string kBarGeometry = std::string(SHARD_SOURCE_DIR) + "/examples/bar_impact/bar_2d.geo";
+
+/// The plane-strain bar of examples/bar_impact at 1 mm (1 000 triangles: frames of 645 kB,
+/// checkpoints of 489 kB), with the given output section.
+std::string write_bar_scenario(const fs::path& dir, const std::string& output) {
+  const fs::path file = dir / "bar.yaml";
+  std::ofstream(file) << "analysis: {formulation: plane_strain, end_time: 25 us}\n"
+                         "mesh: {file: " << kBarGeometry << ", unit: 1 mm, size: 1 mm}\n"
+                         "materials: {steel: {model: linear_elastic, density: 7830, youngs_modulus: 200 GPa, "
+                         "poissons_ratio: 0.3}}\n"
+                         "parts: {bar: {material: steel}}\n"
+                         "boundary_conditions: [{group: left, velocity: {x: 10 m/s}}]\n"
+                         "output: " << output << "\n";
+  return file.string();
+}
+
+bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+
+TEST(RunFailures, CommandLineMistakesAreBadInputAndWriteNothing) {
+  const auto dir = testing::fresh_dir("cli_mistakes");
+  const std::string scenario = write_bar_scenario(dir, "{frame_interval: 5 us}");
+  const fs::path out = dir / "out";
+  struct Case {
+    std::string arguments, message;
+  };
+  std::ofstream(dir / "a_file") << "not a folder\n";
+  const std::vector<Case> cases = {
+      {"run " + scenario + " -o " + out.string() + " --until -5us", "--until expects a time after the start"},
+      {"run " + scenario + " -o " + out.string() + " --until 0s", "--until expects a time after the start"},
+      {"run " + scenario + " -o " + (dir / "a_file").string(), "is a file, not a folder"},
+      {"run " + scenario + " -o " + (dir / "a_file" / "x" / "y").string(),
+       "lies under '" + (dir / "a_file").string() + "', which is a file"},
+      {"run " + dir.string() + " -o " + out.string(), "is a folder, not a scenario file"},
+      {"check " + dir.string(), "is a folder, not a scenario file"},
+  };
+  for (const auto& c : cases) {
+    SCOPED_TRACE("shard " + c.arguments);
+    const auto r = testing::run_shard(c.arguments);
+    EXPECT_EQ(r.status, 2) << r.output;
+    EXPECT_TRUE(contains(r.output, c.message)) << r.output;
+    EXPECT_FALSE(contains(r.output, "internal error")) << r.output;
+    EXPECT_FALSE(fs::exists(out)) << "bad input must write nothing";
+  }
+  fs::remove_all(dir);
+}
+
+TEST(RunFailures, OversizedScenarioFileIsRefusedBeforeParsing) {
+  // Millions of list items took seconds and gigabytes to reject: the size is checked first.
+  const auto dir = testing::fresh_dir("oversized");
+  const fs::path file = dir / "huge.yaml";
+  {
+    std::ofstream out(file);
+    out << "title: huge\nitems:\n";
+    for (std::uintmax_t written = 0; written <= kMaxScenarioBytes; written += 6) out << "  - 1\n";
+  }
+  const auto r = testing::run_shard("check " + file.string());
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_TRUE(contains(r.output, "shard reads scenario files of up to 4 MiB")) << r.output;
+  fs::remove_all(dir);
+}
+
+/// Runs `arguments` with the output folder `mounted` on a tmpfs of `bytes`, in a mount namespace
+/// of its own (nothing is left mounted); what the folder held is copied to `copy`. False when this
+/// machine cannot make one (not root, no user namespaces).
+bool run_on_small_disk(const std::string& arguments, const fs::path& mounted, std::size_t bytes,
+                       const fs::path& copy, testing::CommandResult& result) {
+  if (std::system("unshare -m true >/dev/null 2>&1") != 0) return false;
+  fs::create_directories(mounted);
+  const std::string script = "mount -t tmpfs -o size=" + std::to_string(bytes) + " tmpfs " + mounted.string() +
+                             " || exit 97; " + SHARD_EXECUTABLE + " " + arguments + " 2>&1; rc=$?; cp -r " +
+                             (mounted / "out").string() + " " + copy.string() + "; exit $rc";
+  FILE* pipe = popen(("unshare -m sh -c '" + script + "'").c_str(), "r");
+  if (!pipe) return false;
+  char buffer[4096];
+  while (std::fgets(buffer, sizeof buffer, pipe)) result.output += buffer;
+  const int raw = pclose(pipe);
+  result.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+  return result.status != 97;
+}
+
+/// After a disk-full stop: exit 1 naming the file, summary.json complete and saying why, no
+/// temporary left, and every frame that frames.pvd lists complete on disk.
+void expect_clean_disk_full_stop(const testing::CommandResult& r, const fs::path& copy, const std::string& file) {
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_TRUE(contains(r.output, "disk full while writing '")) << r.output;
+  EXPECT_TRUE(contains(r.output, file)) << r.output;
+  const std::string summary = testing::read_file(copy / "summary.json");
+  EXPECT_TRUE(contains(summary, "\"status\": \"failed\"")) << summary;
+  EXPECT_TRUE(contains(summary, "disk full while writing")) << summary;
+  EXPECT_EQ(summary.back(), '\n') << "summary.json is cut short";
+  for (const auto& entry : fs::directory_iterator(copy))
+    EXPECT_NE(entry.path().extension(), ".tmp") << "a temporary file is left: " << entry.path();
+  const std::string pvd = testing::read_file(copy / "frames.pvd");
+  for (std::size_t at = pvd.find("file=\""); at != std::string::npos; at = pvd.find("file=\"", at + 1)) {
+    const std::string frame = pvd.substr(at + 6, pvd.find('"', at + 6) - at - 6);
+    const std::string text = testing::read_file(copy / frame);
+    EXPECT_TRUE(contains(text, "</VTKFile>")) << frame << " is listed but incomplete";
+  }
+}
+
+TEST(RunFailures, DiskFullWhileWritingAFrameKeepsTheEarlierFrames) {
+  const auto dir = testing::fresh_dir("disk_full_frame");
+  const std::string scenario = write_bar_scenario(dir, "{frame_interval: 1 us, checkpoint_interval: 5 us}");
+  testing::CommandResult r;
+  // 3 MB hold four frames of 645 kB and the history, not the fifth frame.
+  if (!run_on_small_disk("run " + scenario + " --quiet -o " + (dir / "disk" / "out").string(), dir / "disk",
+                         3u << 20, dir / "kept", r))
+    GTEST_SKIP() << "cannot mount a small file system here (needs root and mount namespaces)";
+  expect_clean_disk_full_stop(r, dir / "kept", "frame_0000");
+  EXPECT_TRUE(fs::exists(dir / "kept" / "frame_00003.vtu"));
+  EXPECT_GT(testing::read_history(dir / "kept" / "history.csv").rows.size(), 40u);
+  fs::remove_all(dir);
+}
+
+TEST(RunFailures, DiskFullWhileWritingACheckpointKeepsThePreviousOne) {
+  const auto dir = testing::fresh_dir("disk_full_checkpoint");
+  const std::string scenario = write_bar_scenario(dir, "{frame_interval: 25 us, checkpoint_interval: 1 us}");
+  testing::CommandResult r;
+  // 1.5 MB hold the first frame and one checkpoint, not the second checkpoint's temporary.
+  if (!run_on_small_disk("run " + scenario + " --quiet -o " + (dir / "disk" / "out").string(), dir / "disk",
+                         1500u << 10, dir / "kept", r))
+    GTEST_SKIP() << "cannot mount a small file system here (needs root and mount namespaces)";
+  expect_clean_disk_full_stop(r, dir / "kept", "checkpoint.bin");
+  // The checkpoint kept is whole: the run restarts from it.
+  const auto restart = testing::run_shard("run " + scenario + " --quiet -o " + (dir / "kept").string() +
+                                          " --restart " + (dir / "kept" / "checkpoint.bin").string());
+  EXPECT_EQ(restart.status, 0) << restart.output;
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace shard
