@@ -402,14 +402,41 @@ std::vector<std::int32_t> build_parts(Scenario& sc, const MeshData& mesh, Simula
   return renumber;
 }
 
-void apply_initial_velocities(const Scenario& sc, Model& model) {
+// Initial velocity fields on the nodes of a part or a group, in the order given (a later entry
+// overrides an earlier one where they share nodes).
+void apply_initial_velocities(const Scenario& sc, const MeshData& mesh, Model& model, GroupNodeSets& sets) {
   const int dim = sc.dim();
-  for (const auto& ic : sc.initial_velocities) {
+  auto start = [&](const InitialVelocityInput& ic, std::int32_t n) {
+    const auto v = ic.at(&model.nodes.x[static_cast<std::size_t>(dim) * n], dim);
+    for (int k = 0; k < dim; ++k) model.nodes.v[dim * n + k] = v[k];
+  };
+  for (std::size_t i = 0; i < sc.initial_velocities.size(); ++i) {
+    const auto& ic = sc.initial_velocities[i];
+    if (!ic.group.empty()) {
+      const std::string key = "initial_conditions[" + std::to_string(i + 1) + "].group";
+      for (auto n : sets.of(find_group(sc, mesh, ic.group, ic.line, key, -1), ic.line, key).nodes) start(ic, n);
+    }
     for (const auto& part : model.parts)
       if (part.name == ic.part)
-        for (auto n : part.connectivity)
-          for (int k = 0; k < dim; ++k) model.nodes.v[dim * n + k] = ic.velocity[k];
+        for (auto n : part.connectivity) start(ic, n);
   }
+}
+
+// Initial velocity fields on particle parts: each particle moves with the field at its centre and
+// spins with the field's spin (a rigidly rotating body's particles turn with it).
+void apply_initial_particle_velocities(const Scenario& sc, Model& model) {
+  const int dim = sc.dim();
+  for (const auto& ic : sc.initial_velocities)
+    for (auto& pp : model.particle_parts) {
+      if (pp.name != ic.part) continue;
+      const auto spin = ic.spin();
+      const int r = pp.rot_dim();
+      for (std::size_t i = 0; i < pp.count(); ++i) {
+        const auto v = ic.at(&pp.x[static_cast<std::size_t>(dim) * i], dim);
+        for (int k = 0; k < dim; ++k) pp.v[dim * i + k] = v[k];
+        for (int k = 0; k < r; ++k) pp.omega[r * i + k] = r == 1 ? spin[2] : spin[k];
+      }
+    }
 }
 
 // Boundary conditions: one constraint per (node, component); a later entry overrides.
@@ -749,11 +776,12 @@ Simulation build_simulation(Scenario& sc, const MeshData& mesh) {
 
   const std::vector<std::int32_t> renumber = build_parts(sc, mesh, sim);
   GroupNodeSets sets{model, renumber, file};
-  apply_initial_velocities(sc, model);
+  apply_initial_velocities(sc, mesh, model, sets);
   apply_boundary_conditions(sc, mesh, sim, sets);
   apply_pressures(sc, mesh, sim, sets, renumber);
   build_contact(sc, sim, cracking_parts(sc, sim));
   build_particle_parts(sc, sim);
+  apply_initial_particle_velocities(sc, model);
   erosion_rules(sc, sim, file);
   comminution(sc, sim, file);
   build_particle_contact(sc, sim);

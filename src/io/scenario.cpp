@@ -310,10 +310,23 @@ KeyList orientation_keys(bool laminate) {
 
 KeyList initial_condition_keys() {
   KeyList k;
-  k.add("part", ValueKind::text, "name of a part").must_be_given();
-  KeySpec& v = k.add("velocity", ValueKind::vector, "initial velocity [vx, vy(, vz)]");
+  k.add("part", ValueKind::text, "a part or particle part whose nodes or particles start moving (or give `group`)");
+  k.add("group", ValueKind::text, "a Gmsh physical group whose nodes start moving (instead of `part`)");
+  KeySpec& v = k.add("velocity", ValueKind::vector,
+                     "velocity [vx, vy(, vz)] at `center` (of every point when nothing else is given)");
   v.dimension = dim::velocity;
-  v.must_be_given();
+  v.default_text = "[0, 0(, 0)]";
+  KeySpec& w = k.add("angular_velocity", ValueKind::vector,
+                     "rigid rotation about `center`: a rate in 2D (about z, counter-clockwise), [wx, wy, wz] "
+                     "in 3D; particles also spin at it");
+  w.dimension = dim::rate;
+  KeySpec& c = k.add("center", ValueKind::vector, "the point the rotation and the velocity gradient are about");
+  c.dimension = dim::length;
+  c.default_text = "[0, 0(, 0)]";
+  KeySpec& l = k.add("velocity_gradient", ValueKind::list,
+                     "a linear velocity field v = velocity + L (x - center): L as rows [[dvx/dx, dvx/dy], [dvy/dx, "
+                     "dvy/dy]] (3 x 3 in 3D), each a rate");
+  l.dimension = dim::rate;
   return k;
 }
 
@@ -430,7 +443,6 @@ class ScenarioReader {
     mesh();
     materials();
     parts();
-    initial_conditions();
     boundary_conditions();
     loads();
     contact();
@@ -439,6 +451,7 @@ class ScenarioReader {
     particle_contact();
     cracking();
     scenario_detail::read_particle_sections(top, sc);
+    initial_conditions();  // after the particle parts, which it may name
     scenario_detail::read_crash(top, sc);
     output();
   }
@@ -650,29 +663,78 @@ class ScenarioReader {
   }
 
   void initial_conditions() {
-  // initial conditions
+  // initial conditions: a velocity field v = v0 + w x (x - c) + L (x - c) on a part or a group
   const KeyList ic_keys = initial_condition_keys();
   const YAML::Node ics = list_of("initial_conditions");
   YAML::Node ic_out(YAML::NodeType::Sequence);
+  std::vector<std::string> moving = part_names;
+  for (const auto& pp : sc.particle_parts) moving.push_back(pp.name);
   for (std::size_t i = 0; i < (ics.IsSequence() ? ics.size() : 0); ++i) {
     YAML::Node entry_out(YAML::NodeType::Map);
     Section s(ics[i], file, "initial_conditions[" + std::to_string(i + 1) + "]", ic_keys, entry_out, line_of(ics[i]));
     InitialVelocityInput ic;
     ic.line = s.line();
+    if (s.has("part") == s.has("group")) s.fail("part", "give either 'part' or 'group' (one of them)");
     ic.part = s.text("part");
-    if (std::find(part_names.begin(), part_names.end(), ic.part) == part_names.end()) {
-      std::string reason = "no part named '" + ic.part + "'";
-      const std::string close = closest_match(ic.part, part_names);
+    ic.group = s.text("group");
+    if (!ic.part.empty() && std::find(moving.begin(), moving.end(), ic.part) == moving.end()) {
+      std::string reason = "no part or particle part named '" + ic.part + "'";
+      const std::string close = closest_match(ic.part, moving);
       if (!close.empty()) reason += " (did you mean '" + close + "'?)";
       s.fail("part", reason);
     }
-    const auto v = s.vector("velocity", dim);
-    std::copy(v.begin(), v.end(), ic.velocity.begin());
+    if (!s.has("velocity") && !s.has("angular_velocity") && !s.has("velocity_gradient"))
+      s.fail("velocity", "an initial condition needs velocity, angular_velocity or velocity_gradient");
+    if (s.has("velocity")) copy_into(s.vector("velocity", dim), ic.velocity);
+    if (s.has("center")) copy_into(s.vector("center", dim), ic.center);
+    if (s.has("angular_velocity")) ic.angular_velocity = angular_velocity(s);
+    if (s.has("velocity_gradient")) ic.velocity_gradient = velocity_gradient(s);
     sc.initial_velocities.push_back(ic);
     ic_out.push_back(entry_out);
   }
   sc.resolved["initial_conditions"] = ic_out;
+  }
 
+  static void copy_into(const std::vector<double>& from, std::array<double, 3>& to) {
+    std::copy(from.begin(), from.end(), to.begin());
+  }
+
+  /// In 2D one rate about z (a scalar, or a list of one); in 3D a vector of three.
+  std::array<double, 3> angular_velocity(Section& s) {
+    std::array<double, 3> w{0, 0, 0};
+    const YAML::Node n = s.value("angular_velocity");
+    if (dim == 2 && n.IsScalar()) {
+      w[2] = s.parse_number(n, s.spec("angular_velocity"), "angular_velocity");
+      s.resolved()["angular_velocity"] = w[2];
+    } else if (dim == 2) {
+      s.fail("angular_velocity", "expected one rate about z in a 2D model (e.g. 100 rad/s), got " + Section::shape(n));
+    } else {
+      copy_into(s.vector("angular_velocity", 3), w);
+    }
+    return w;
+  }
+
+  /// dim rows of dim rates.
+  std::array<double, 9> velocity_gradient(Section& s) {
+    std::array<double, 9> L{};
+    const YAML::Node rows = s.value("velocity_gradient");
+    const std::string expected = "expected " + std::to_string(dim) + " rows of " + std::to_string(dim) +
+                                 " rates, e.g. " + (dim == 2 ? "[[0, 100 1/s], [0, 0]]" : "[[0, 100 1/s, 0], [0, 0, 0], [0, 0, 0]]");
+    if (!rows.IsSequence() || rows.size() != dim) s.fail("velocity_gradient", expected + ", got " + Section::shape(rows));
+    YAML::Node out(YAML::NodeType::Sequence);
+    for (std::size_t r = 0; r < dim; ++r) {
+      if (!rows[r].IsSequence() || rows[r].size() != dim)
+        s.fail("velocity_gradient", expected + "; row " + std::to_string(r + 1) + " is " + Section::shape(rows[r]));
+      YAML::Node row(YAML::NodeType::Sequence);
+      row.SetStyle(YAML::EmitterStyle::Flow);
+      for (std::size_t c = 0; c < dim; ++c) {
+        L[3 * r + c] = s.parse_number(rows[r][c], s.spec("velocity_gradient"), "velocity_gradient");
+        row.push_back(L[3 * r + c]);
+      }
+      out.push_back(row);
+    }
+    s.resolved()["velocity_gradient"] = out;
+    return L;
   }
 
   void boundary_conditions() {

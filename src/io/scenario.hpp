@@ -72,10 +72,35 @@ struct PartInput {
   int line = 0;
 };
 
+/// An initial velocity field on a part, a particle part or the nodes of a group:
+/// v(x) = velocity + angular_velocity x (x - center) + velocity_gradient (x - center).
 struct InitialVelocityInput {
-  std::string part;
+  std::string part;   ///< a part or particle part (or empty)
+  std::string group;  ///< a Gmsh physical group (or empty)
   std::array<double, 3> velocity{0, 0, 0};
+  std::array<double, 3> angular_velocity{0, 0, 0};  ///< in 2D only [2], about z
+  std::array<double, 3> center{0, 0, 0};
+  std::array<double, 9> velocity_gradient{};  ///< row-major 3 x 3 (2 x 2 used in 2D)
   int line = 0;
+
+  /// The velocity at `x` (dim components).
+  std::array<double, 3> at(const double* x, int dim) const {
+    std::array<double, 3> r{0, 0, 0}, v = velocity;
+    for (int k = 0; k < dim; ++k) r[k] = x[k] - center[k];
+    const auto& w = angular_velocity;
+    const std::array<double, 3> spin{w[1] * r[2] - w[2] * r[1], w[2] * r[0] - w[0] * r[2], w[0] * r[1] - w[1] * r[0]};
+    for (int i = 0; i < dim; ++i) {
+      v[i] += spin[i];
+      for (int j = 0; j < dim; ++j) v[i] += velocity_gradient[3 * i + j] * r[j];
+    }
+    return v;
+  }
+  /// The spin of the field, ½ curl v: what a particle's rotation starts at (in 2D only [2]).
+  std::array<double, 3> spin() const {
+    const auto& L = velocity_gradient;
+    return {angular_velocity[0] + 0.5 * (L[7] - L[5]), angular_velocity[1] + 0.5 * (L[2] - L[6]),
+            angular_velocity[2] + 0.5 * (L[3] - L[1])};
+  }
 };
 
 struct BoundaryConditionInput {
