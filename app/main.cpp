@@ -14,6 +14,7 @@
 #include "core/error.hpp"
 #include "core/units.hpp"
 #include "io/scenario.hpp"
+#include "contact/pair_law.hpp"
 #include "material/material.hpp"
 #include "app/run.hpp"
 
@@ -26,6 +27,8 @@ const char* kHelp = R"(shard — explicit dynamics of cracking, fragmenting and 
 Usage:
   shard run SCENARIO.yaml [-o OUTDIR] [--threads N] [--quiet]
                           [--restart CHECKPOINT] [--until TIME]
+                                (shard run --help: the options; threads default to
+                                OMP_NUM_THREADS, else one per core)
   shard check SCENARIO.yaml     validate the scenario, its mesh and model; run nothing
   shard reference               print the scenario reference (Markdown) generated from the
                                 declared keys (docs/scenario.md)
@@ -40,6 +43,36 @@ filled in, SI units) and checkpoint.bin. --until 20us stops at that time with a 
 Exit status: 0 success, 1 the run failed (the outputs so far are kept, summary.json says why),
 2 bad input (nothing is written).
 )";
+
+const char* kRunHelp = R"(shard run SCENARIO.yaml [-o OUTDIR] [--threads N] [--quiet] [--restart CHECKPOINT] [--until TIME]
+
+Validates the scenario (as 'shard check' does), then runs it and writes into OUTDIR (default:
+out/<scenario name>): frames.pvd + frame_*.vtu, history.csv, summary.json, resolved.yaml and
+checkpoint.bin (docs/outputs.md).
+
+  -o, --output OUTDIR     the output folder (made if missing; a file there is an error)
+  --threads N             OpenMP threads (default: OMP_NUM_THREADS if set, else one per core);
+                          results are the same bits for any N
+  -q, --quiet             no progress lines
+  --until TIME            stop at TIME (e.g. 20us) with a checkpoint, to continue with --restart
+  --restart CHECKPOINT    continue OUTDIR/checkpoint.bin in the same OUTDIR
+
+Exit status: 0 success, 1 the run failed (outputs so far kept, summary.json says why),
+2 bad input (nothing written).
+)";
+
+const char* kCheckHelp = R"(shard check SCENARIO.yaml
+
+Reads and validates the scenario, meshes it, builds the model and computes the first forces,
+then prints what it found (nodes, elements, parts, particles, the initial time step and about how
+many steps the run takes). Runs nothing and writes nothing. Exit status: 0 valid, 2 bad input.
+)";
+
+bool asks_for_help(const std::vector<std::string>& args) {
+  for (std::size_t i = 1; i < args.size(); ++i)
+    if (args[i] == "--help" || args[i] == "-h") return true;
+  return false;
+}
 
 int usage_error(const std::string& message) {
   std::fprintf(stderr, "shard: %s\nRun 'shard --help' for usage.\n", message.c_str());
@@ -63,6 +96,10 @@ int main(int argc, char** argv) {
     std::printf("shard %s\n", SHARD_VERSION);
     return kOk;
   }
+  if ((command == "run" || command == "check") && asks_for_help(args)) {
+    std::fputs(command == "run" ? kRunHelp : kCheckHelp, stdout);
+    return kOk;
+  }
   try {
     if (command == "reference") {
       std::fputs(shard::scenario_reference_markdown().c_str(), stdout);
@@ -71,6 +108,9 @@ int main(int argc, char** argv) {
     if (command == "info") {
       std::printf("shard %s\nmaterial models:", SHARD_VERSION);
       for (const auto& n : shard::MaterialRegistry::names()) std::printf(" %s", n.c_str());
+      std::printf(" automaton (particles: movable cellular automata and discrete elements)");
+      std::printf("\nparticle contact laws:");
+      for (const auto& n : shard::pair_law_names()) std::printf(" %s", n.c_str());
       std::printf("\nelements: tri3 (2D), tet4, hex8, hex8_reduced (3D)\n"
                   "formulations: plane_strain, plane_stress, axisymmetric, 3d\n");
 #ifdef _OPENMP

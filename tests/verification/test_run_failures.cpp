@@ -62,6 +62,20 @@ TEST(RunFailures, CommandLineMistakesAreBadInputAndWriteNothing) {
   fs::remove_all(dir);
 }
 
+TEST(RunFailures, SubcommandHelpAndInfoSayWhatThereIs) {
+  const auto run = testing::run_shard("run --help");
+  EXPECT_EQ(run.status, 0) << run.output;
+  EXPECT_TRUE(contains(run.output, "--threads N")) << run.output;
+  EXPECT_TRUE(contains(run.output, "default: OMP_NUM_THREADS")) << run.output;
+  const auto check = testing::run_shard("check -h");
+  EXPECT_EQ(check.status, 0) << check.output;
+  EXPECT_TRUE(contains(check.output, "Runs nothing and writes nothing")) << check.output;
+  const auto info = testing::run_shard("info");
+  EXPECT_EQ(info.status, 0) << info.output;
+  for (const char* name : {"automaton", "linear_elastic", "hertz_mindlin", "linear_spring"})
+    EXPECT_TRUE(contains(info.output, name)) << info.output;
+}
+
 TEST(RunFailures, OversizedScenarioFileIsRefusedBeforeParsing) {
   // Millions of list items took seconds and gigabytes to reject: the size is checked first.
   const auto dir = testing::fresh_dir("oversized");
