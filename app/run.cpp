@@ -8,6 +8,7 @@
 #include <cerrno>
 #include <chrono>
 #include <cmath>
+#include <optional>
 #include <cstdio>
 #include <fstream>
 #include <functional>
@@ -120,7 +121,10 @@ constexpr double kStepsWithoutLimit = 1e9;
 /// Refuses, before any output, a run whose step count cannot be what was meant: a stable step
 /// that is not a positive finite time (a material constant out of scale), or a step count that
 /// overflows or exceeds kStepsWithoutLimit without analysis.max_steps.
-void check_step_count(const Scenario& sc, double dt, double start_time) {
+/// Above this many steps a run without analysis.max_steps is said to be long (a warning).
+constexpr double kStepsLong = 1e7;
+
+std::optional<std::string> check_step_count(const Scenario& sc, double dt, double start_time) {
   const std::string file = shown_path(sc.file);
   if (!(dt > 0) || !std::isfinite(dt)) {
     std::ostringstream reason;
@@ -130,7 +134,14 @@ void check_step_count(const Scenario& sc, double dt, double start_time) {
     throw InputError(file, sc.end_time_line, "analysis.end_time", reason.str());
   }
   const double steps = (sc.end_time - start_time) / dt;
-  if (sc.max_steps > 0 || (std::isfinite(steps) && steps <= kStepsWithoutLimit)) return;
+  if (sc.max_steps > 0 || steps <= kStepsLong) return std::nullopt;
+  if (std::isfinite(steps) && steps <= kStepsWithoutLimit) {
+    char text[256];
+    std::snprintf(text, sizeof text,
+                  "about %.3g steps at the first stable step of %s: a long run (set analysis.max_steps to "
+                  "say the count is meant)", steps, format_time(dt).c_str());
+    return InputError(file, sc.end_time_line, "analysis.end_time", text).what();
+  }
   std::ostringstream reason;
   reason.precision(3);
   reason << "at the stable time step of " << format_time(dt) << " the run to "
@@ -220,11 +231,13 @@ std::string check_scenario(const std::filesystem::path& file) {
     out << "\n";
   }
   const double dt = solver.state().dt_next;
-  check_step_count(p.scenario, dt, 0.0);
+  std::vector<std::string> warnings = p.scenario.warnings;
+  if (auto long_run = check_step_count(p.scenario, dt, 0.0)) warnings.push_back(*long_run);
   char steps[32];
   std::snprintf(steps, sizeof steps, "%.4g", std::ceil(sim.settings.end_time / dt));
   out << "  initial time step " << format_time(dt) << ", about " << steps << " steps to "
       << format_time(sim.settings.end_time) << "\n";
+  for (const auto& w : warnings) out << "warning: " << w << "\n";
   return out.str();
 }
 
@@ -264,8 +277,14 @@ class RunDriver {
       open_outputs();
       fail(e);
     }
-    check_step_count(sc_, solver_.state().dt_next, solver_.state().time);
+    std::vector<std::string> warnings = sc_.warnings;
+    if (auto long_run = check_step_count(sc_, solver_.state().dt_next, solver_.state().time))
+      warnings.push_back(*long_run);
     open_outputs();
+    for (const auto& w : warnings) {  // said even with --quiet: they may mean a wrong result
+      std::fprintf(stderr, "warning: %s\n", w.c_str());
+      notes_.push_back("warning: " + w);
+    }
     forces_ready_ = true;
     try {
       loop();

@@ -1141,6 +1141,7 @@ Scenario read_scenario(const std::filesystem::path& path) {
   Scenario sc;
   sc.file = std::filesystem::absolute(path);
   sc.resolved = YAML::Node(YAML::NodeType::Map);
+  const scenario_detail::ScenarioWarnings collect(sc.warnings);
   ScenarioReader(root, path, sc).read();
   return sc;
 }

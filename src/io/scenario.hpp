@@ -267,6 +267,8 @@ struct Scenario {
   std::vector<ParticleBoundaryInput> particle_conditions;
   std::vector<PartInput> parts;
   std::vector<InitialVelocityInput> initial_velocities;
+  /// Values that parse but are likely mistakes ("file:line: key 'k': ..."), said by check and run.
+  std::vector<std::string> warnings;
   std::vector<BoundaryConditionInput> boundary_conditions;
   std::vector<PressureInput> pressures;
   std::optional<ContactInput> contact;

@@ -23,6 +23,26 @@ KeyList velocity_component_keys();
 
 inline int line_of(const YAML::Node& node) { return node.IsDefined() ? node.Mark().line + 1 : 0; }
 
+/// The plausibility warnings of the scenario being read: read_scenario collects them into
+/// Scenario::warnings while it reads (one reader per thread).
+class ScenarioWarnings {
+ public:
+  explicit ScenarioWarnings(std::vector<std::string>& sink) : previous_(current()) { current() = &sink; }
+  ~ScenarioWarnings() { current() = previous_; }
+  ScenarioWarnings(const ScenarioWarnings&) = delete;
+  ScenarioWarnings& operator=(const ScenarioWarnings&) = delete;
+  static void add(std::string warning) {
+    if (current()) current()->push_back(std::move(warning));
+  }
+
+ private:
+  static std::vector<std::string>*& current() {
+    thread_local std::vector<std::string>* sink = nullptr;
+    return sink;
+  }
+  std::vector<std::string>* previous_;
+};
+
 /// The name a map gives as a key ("steel:" under materials): its text, or an error at its line
 /// when the key is itself a list or a map.
 inline std::string key_name(const YAML::Node& key, const std::string& file, const std::string& section) {
@@ -157,7 +177,30 @@ class Section {
     if (!s.in_range(v))
       fail(key, "value " + n.Scalar() + " is out of range: must be " + s.range_text() +
                     (s.dimension == dim::none ? "" : " (in " + s.dimension.si_unit() + ")"));
+    if (s.dimension != dim::none && parse_quantity(n.Scalar()).dimension == dim::none)
+      if (const auto doubt = implausible_plain_number(v, s.dimension))
+        warn(line_of(n), key, n.Scalar() + " has no unit and is read as " + n.Scalar() + " " +
+                                  s.dimension.si_unit() + ", " + *doubt + ": write the unit to say which (e.g. '" +
+                                  n.Scalar() + " " + s.dimension.si_unit() + "' if that is meant)");
     return v;
+  }
+
+  /// A doubt worth saying when a plain number read in SI units is far from what solids under
+  /// impact have (a modulus of 370 Pa meant in GPa, a density of 7.8 meant in g/cm^3); none
+  /// otherwise.
+  static std::optional<std::string> implausible_plain_number(double v, const Dimension& d) {
+    const double a = std::abs(v);
+    if (d == dim::pressure && a > 0 && a < 1e4) return "far below any solid's modulus or strength (MPa? GPa?)";
+    if (d == dim::density && a > 0 && a < 50) return "far below any solid's density (g/cm^3?)";
+    if (d == dim::time && a >= 1) return "far longer than an impact lasts (us? ms?)";
+    if (d == dim::length && a >= 10) return "larger than most specimens (mm?)";
+    return std::nullopt;
+  }
+
+  /// Says something that parses but is likely a mistake, to ScenarioWarnings::current (shard
+  /// check and run print them; they do not stop the run).
+  void warn(int at_line, const std::string& key, const std::string& what) const {
+    ScenarioWarnings::add(InputError(file_, at_line > 0 ? at_line : line(key), key_path(key), what).what());
   }
 
   std::int64_t integer(const std::string& key) {

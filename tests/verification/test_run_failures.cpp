@@ -76,6 +76,38 @@ TEST(RunFailures, SubcommandHelpAndInfoSayWhatThereIs) {
     EXPECT_TRUE(contains(info.output, name)) << info.output;
 }
 
+TEST(RunFailures, PlausibilityWarningsSayWhatLooksWrongAndHowToSilenceIt) {
+  const auto dir = testing::fresh_dir("plausibility");
+  auto scenario = [&](const std::string& modulus, const std::string& end_time) {
+    const fs::path file = dir / "plain.yaml";
+    std::ofstream(file) << "analysis: {formulation: plane_strain, end_time: " << end_time << "}\n"
+                           "mesh: {file: " << kBarGeometry << ", unit: 1 mm, size: 2 mm}\n"
+                           "materials: {steel: {model: linear_elastic, density: 7830, youngs_modulus: "
+                        << modulus << ", poissons_ratio: 0.3}}\nparts: {bar: {material: steel}}\n";
+    return file.string();
+  };
+  // A modulus of 370 with no unit is 370 Pa: said at its line, with the way to confirm it.
+  const auto plain = testing::run_shard("check " + scenario("370", "2 us"));
+  EXPECT_EQ(plain.status, 0) << plain.output;
+  EXPECT_TRUE(contains(plain.output, "plain.yaml:3: key 'materials.steel.youngs_modulus': 370 has no unit and is "
+                                     "read as 370 Pa")) << plain.output;
+  EXPECT_TRUE(contains(plain.output, "write the unit to say which (e.g. '370 Pa'")) << plain.output;
+  EXPECT_FALSE(contains(plain.output, "density")) << "7830 kg/m^3 is plausible: " << plain.output;
+  const auto confirmed = testing::run_shard("check " + scenario("370 Pa", "2 us"));
+  EXPECT_FALSE(contains(confirmed.output, "warning")) << confirmed.output;
+  // The run says it too, and keeps it in summary.json.
+  const auto run = testing::run_shard("run " + scenario("370", "2 us") + " --quiet -o " + (dir / "out").string());
+  EXPECT_TRUE(contains(run.output, "warning: ")) << run.output;
+  EXPECT_TRUE(contains(testing::read_file(dir / "out" / "summary.json"), "has no unit and is read as 370 Pa"));
+  // An end time of 10 (plain: seconds) at a step of about 0.1 us: 1e8 steps, said to be long.
+  const auto long_run = testing::run_shard("check " + scenario("200 GPa", "10"));
+  EXPECT_EQ(long_run.status, 0) << long_run.output;
+  EXPECT_TRUE(contains(long_run.output, "a long run (set analysis.max_steps to say the count is meant)"))
+      << long_run.output;
+  EXPECT_TRUE(contains(long_run.output, "far longer than an impact lasts")) << long_run.output;
+  fs::remove_all(dir);
+}
+
 TEST(RunFailures, OversizedScenarioFileIsRefusedBeforeParsing) {
   // Millions of list items took seconds and gigabytes to reject: the size is checked first.
   const auto dir = testing::fresh_dir("oversized");
