@@ -33,7 +33,7 @@ void ContactSystem::rebuild(const Model& model) {
   surface_ = extract_contact_surface(model);
   crack_face_ = model.crack_face_nodes();  // changes only when cracks split nodes, then rebuild
   hits_.assign(surface_.nodes.size(), Hit{});
-  normal_force_.assign(surface_.nodes.size(), 0.0);
+  normal_force_.assign(model.nodes.count(), 0.0);
   const int dim = model.dim();
   const std::size_t np = model.parts.size();
   pairs_.clear();
@@ -366,6 +366,7 @@ void ContactSystem::reset_step(Model& model) {
   active_ = 0;
   std::fill(pair_force_.begin(), pair_force_.end(), 0.0);
   std::fill(wall_force_.begin(), wall_force_.end(), 0.0);
+  if (normal_force_.size() != nn) normal_force_.assign(nn, 0.0);
   std::fill(normal_force_.begin(), normal_force_.end(), 0.0);
 }
 
@@ -463,7 +464,12 @@ void ContactSystem::add_facet_force(Model& model, std::size_t i, double dt, doub
       applied_.emplace_back(static_cast<std::int64_t>(dim) * fn[a] + d, -hit.weights[a] * f[d]);
     }
   }
-  normal_force_[i] = fn_mag;
+  // Both sides of the interface carry the spring: the node, and the facet's corners in
+  // proportion w_a. With the two-pass search each body's nodes press on the other's facets, so
+  // a node's share of the interface force is its own spring plus what it takes as a corner of
+  // the facets the other body's nodes press on (docs/theory/contact.md, "Contact pressure").
+  normal_force_[s] += fn_mag;
+  for (int a = 0; a < dim; ++a) normal_force_[fn[a]] += hit.weights[a] * fn_mag;
   ++active_;
   add_row_stiffness(s, 2.0 * k);
   for (int a = 0; a < dim; ++a) add_row_stiffness(fn[a], 2.0 * k * hit.weights[a]);
@@ -515,7 +521,7 @@ void ContactSystem::add_wall_forces(Model& model, std::size_t w, double time, do
       applied_.emplace_back(static_cast<std::int64_t>(dim) * s + d, f);
       wall_force_[dim * w + d] -= f;
     }
-    normal_force_[i] += fn_mag;
+    normal_force_[s] += fn_mag;
     ++active_;
   }
 }
@@ -528,7 +534,7 @@ void ContactSystem::add_row_stiffness(std::int32_t node, double stiffness) {
 std::vector<double> ContactSystem::nodal_pressure(const Model& model) const {
   std::vector<double> p(model.nodes.count(), 0.0);
   for (std::size_t i = 0; i < surface_.nodes.size(); ++i)
-    if (surface_.node_area[i] > 0) p[surface_.nodes[i]] = normal_force_[i] / surface_.node_area[i];
+    if (surface_.node_area[i] > 0) p[surface_.nodes[i]] = normal_force_[surface_.nodes[i]] / surface_.node_area[i];
   return p;
 }
 

@@ -95,7 +95,10 @@ class ContactSystem final : public TopologyListener {
   const ContactSettings& settings() const { return settings_; }
   const ContactSurface& surface() const { return surface_; }
 
-  /// Normal contact pressure at every node of the model (0 away from contact), for frames.
+  /// Normal contact pressure at every node of the model (0 away from contact), for frames: the
+  /// normal force the node takes across the interface in the last call (its own spring, plus
+  /// w_a × the springs of the nodes pressing on facets it is a corner of, plus walls) over its
+  /// tributary area on the undeformed surface. Both surfaces of an interface show its pressure.
   std::vector<double> nodal_pressure(const Model& model) const;
 
  private:
@@ -126,7 +129,7 @@ class ContactSystem final : public TopologyListener {
   int material_count_;
   ContactSurface surface_;
   std::vector<Hit> hits_;                // per surface node
-  std::vector<double> normal_force_;     // per surface node, last call (N)
+  std::vector<double> normal_force_;     // per node: normal force across the interface, last call (N)
   CellGrid grid_;                       // the facets near each node (the one broad phase)
   std::vector<char> crack_face_;        // per node: on a crack face (Model::crack_face_nodes)
   std::vector<double> facet_box_;       // scratch: per facet lo[3], hi[3] grown by the search depth
