@@ -25,11 +25,12 @@ constexpr int kOk = 0, kRunFailed = 1, kBadInput = 2;
 const char* kHelp = R"(shard — explicit dynamics of cracking, fragmenting and crushing solids
 
 Usage:
-  shard run SCENARIO.yaml [-o OUTDIR] [--threads N] [--quiet]
+  shard run SCENARIO.yaml [-o OUTDIR] [--threads N] [--quiet] [--set KEY=VALUE]...
                           [--restart CHECKPOINT] [--until TIME]
                                 (shard run --help: the options; threads default to
                                 OMP_NUM_THREADS, else one per core)
-  shard check SCENARIO.yaml     validate the scenario, its mesh and model; run nothing
+  shard check SCENARIO.yaml [--set KEY=VALUE]...
+                                validate the scenario, its mesh and model; run nothing
   shard reference               print the scenario reference (Markdown) generated from the
                                 declared keys (docs/scenario.md)
   shard info                    list material models, elements and formulations
@@ -44,7 +45,8 @@ Exit status: 0 success, 1 the run failed (the outputs so far are kept, summary.j
 2 bad input (nothing is written).
 )";
 
-const char* kRunHelp = R"(shard run SCENARIO.yaml [-o OUTDIR] [--threads N] [--quiet] [--restart CHECKPOINT] [--until TIME]
+const char* kRunHelp = R"(shard run SCENARIO.yaml [-o OUTDIR] [--threads N] [--quiet] [--set KEY=VALUE]...
+                        [--restart CHECKPOINT] [--until TIME]
 
 Validates the scenario (as 'shard check' does), then runs it and writes into OUTDIR (default:
 out/<scenario name>): frames.pvd + frame_*.vtu, history.csv, summary.json, resolved.yaml and
@@ -54,6 +56,10 @@ checkpoint.bin (docs/outputs.md).
   --threads N             OpenMP threads (default: OMP_NUM_THREADS if set, else one per core);
                           results are the same bits for any N
   -q, --quiet             no progress lines
+  --set KEY=VALUE         put VALUE over the file's KEY before reading, e.g.
+                          --set materials.alumina.tensile_strength="450 MPa"
+                          --set boundary_conditions[1].velocity.x="-5 m/s" (entries from 1);
+                          repeatable; a restart needs the same --set as the run it continues
   --until TIME            stop at TIME (e.g. 20us) with a checkpoint, to continue with --restart
   --restart CHECKPOINT    continue OUTDIR/checkpoint.bin in the same OUTDIR
 
@@ -61,7 +67,7 @@ Exit status: 0 success, 1 the run failed (outputs so far kept, summary.json says
 2 bad input (nothing written).
 )";
 
-const char* kCheckHelp = R"(shard check SCENARIO.yaml
+const char* kCheckHelp = R"(shard check SCENARIO.yaml [--set KEY=VALUE]...
 
 Reads and validates the scenario, meshes it, builds the model and computes the first forces,
 then prints what it found (nodes, elements, parts, particles, the initial time step and about how
@@ -119,8 +125,16 @@ int main(int argc, char** argv) {
       return kOk;
     }
     if (command == "check") {
-      if (args.size() != 2) return usage_error("check takes one scenario file");
-      std::fputs(shard::check_scenario(args[1]).c_str(), stdout);
+      std::optional<std::string> scenario;
+      std::vector<shard::ScenarioOverride> overrides;
+      for (std::size_t i = 1; i < args.size(); ++i) {
+        if (args[i] == "--set" && i + 1 < args.size()) overrides.push_back(shard::parse_override(args[++i]));
+        else if (!args[i].empty() && args[i][0] == '-') return usage_error("unknown option '" + args[i] + "' for check");
+        else if (!scenario) scenario = args[i];
+        else return usage_error("check takes one scenario file");
+      }
+      if (!scenario) return usage_error("check takes one scenario file");
+      std::fputs(shard::check_scenario(*scenario, overrides).c_str(), stdout);
       return kOk;
     }
     if (command == "run") {
@@ -142,6 +156,7 @@ int main(int argc, char** argv) {
             return usage_error("--threads expects a whole number >= 1, got '" + v + "'");
           options.threads = static_cast<int>(n);
         } else if (a == "--quiet" || a == "-q") options.quiet = true;
+        else if (a == "--set") options.overrides.push_back(shard::parse_override(value("--set")));
         else if (a == "--restart") options.restart = value("--restart");
         else if (a == "--until") {
           const std::string v = value("--until");

@@ -193,8 +193,8 @@ struct Prepared {
   Simulation sim;
 };
 
-Prepared prepare(const std::filesystem::path& file) {
-  Prepared p{read_scenario(file), {}};
+Prepared prepare(const std::filesystem::path& file, const std::vector<ScenarioOverride>& overrides) {
+  Prepared p{read_scenario(file, overrides), {}};
   const MeshData mesh = load_scenario_mesh(p.scenario);
   p.sim = build_simulation(p.scenario, mesh);
   return p;
@@ -202,8 +202,8 @@ Prepared prepare(const std::filesystem::path& file) {
 
 }  // namespace
 
-std::string check_scenario(const std::filesystem::path& file) {
-  Prepared p = prepare(file);
+std::string check_scenario(const std::filesystem::path& file, const std::vector<ScenarioOverride>& overrides) {
+  Prepared p = prepare(file, overrides);
   Simulation& sim = p.sim;
   const auto solver_ptr = make_solver(sim);
   ExplicitSolver& solver = *solver_ptr;
@@ -247,7 +247,7 @@ namespace {
 class RunDriver {
  public:
   RunDriver(const std::filesystem::path& file, const RunOptions& options)
-      : options_(options), p_(prepare(file)), sc_(p_.scenario), sim_(p_.sim), solver_ptr_(make_solver(sim_)),
+      : options_(options), p_(prepare(file, options.overrides)), sc_(p_.scenario), sim_(p_.sim), solver_ptr_(make_solver(sim_)),
         solver_(*solver_ptr_), contact_(solver_.contact()), cracks_(sim_.crack_growth()),
         fingerprint_(fingerprint_of(sc_)), dir_(options.output_dir), history_path_(dir_ / "history.csv"),
         dim_(sim_.model.dim()), pvd_(dir_ / "frames.pvd"),

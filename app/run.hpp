@@ -11,6 +11,7 @@ namespace shard {
 
 struct RunOptions {
   std::filesystem::path output_dir;
+  std::vector<ScenarioOverride> overrides;  ///< --set KEY=VALUE, in order
   int threads = 0;  ///< 0: OpenMP's default
   bool quiet = false;
   std::optional<std::filesystem::path> restart;  ///< continue from this checkpoint
@@ -31,6 +32,7 @@ RunSummary run_scenario(const std::filesystem::path& scenario_file, const RunOpt
 
 /// Validation only: reads the scenario, loads the mesh, builds the model. Returns a short
 /// description (nodes, elements, parts, estimated time step and steps).
-std::string check_scenario(const std::filesystem::path& scenario_file);
+std::string check_scenario(const std::filesystem::path& scenario_file,
+                           const std::vector<ScenarioOverride>& overrides = {});
 
 }  // namespace shard

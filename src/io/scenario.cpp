@@ -1121,7 +1121,76 @@ std::string scenario_text(const std::filesystem::path& path) {
 
 }  // namespace
 
-Scenario read_scenario(const std::filesystem::path& path) {
+ScenarioOverride parse_override(const std::string& text) {
+  const auto eq = text.find('=');
+  if (eq == std::string::npos || eq == 0)
+    throw InputError("", 0, "--set", "expected KEY=VALUE (e.g. materials.steel.youngs_modulus=210GPa), got '" + text + "'");
+  return {text.substr(0, eq), text.substr(eq + 1)};
+}
+
+namespace {
+
+/// Puts one override into the scenario's YAML tree: maps on the way are made when missing (the
+/// reader then checks every key as if it were in the file); list entries must exist.
+void apply_override(YAML::Node& root, const ScenarioOverride& o) {
+  auto fail = [&](const std::string& why) { throw InputError("", 0, "--set " + o.key, why); };
+  YAML::Node at = root;
+  std::size_t start = 0;
+  while (start <= o.key.size()) {
+    const std::size_t dot = std::min(o.key.find('.', start), o.key.size());
+    std::string segment = o.key.substr(start, dot - start);
+    std::vector<std::size_t> entries;
+    for (auto open = segment.find('['); open != std::string::npos; open = segment.find('[')) {
+      const auto close = segment.find(']', open);
+      const std::string number = close == std::string::npos ? "" : segment.substr(open + 1, close - open - 1);
+      if (number.empty() || number.find_first_not_of("0123456789") != std::string::npos || std::stoul(number) == 0)
+        fail("'" + segment + "' is not a name with list entries such as walls[2] (counted from 1)");
+      entries.push_back(std::stoul(number));
+      segment.erase(open, close - open + 1);
+    }
+    if (segment.empty()) fail("an empty name in the key");
+    if (!at.IsMap() && !at.IsNull()) fail("'" + segment + "' is under a value that is not a section of keys");
+    const bool last = dot == o.key.size();
+    YAML::Node next = at[segment];
+    for (std::size_t n : entries) {
+      if (!next.IsSequence() || next.size() < n)
+        fail("'" + segment + "' has no entry " + std::to_string(n) +
+             (next.IsSequence() ? " (it has " + std::to_string(next.size()) + ")" : " (it is not a list)"));
+      next.reset(next[n - 1]);
+    }
+    if (last) {
+      YAML::Node value;
+      try {
+        value = YAML::Load(o.value);
+      } catch (const YAML::Exception& e) {
+        fail("the value '" + o.value + "' is not valid YAML: " + e.msg);
+      }
+      if (entries.empty()) at[segment] = value;
+      else next = value;
+      return;
+    }
+    if (!next.IsDefined() || next.IsNull()) {
+      if (!entries.empty()) fail("'" + segment + "' has no such entry");
+      at[segment] = YAML::Node(YAML::NodeType::Map);
+      next.reset(at[segment]);
+    }
+    at.reset(next);
+    start = dot + 1;
+  }
+}
+
+/// The override an error of the reader is about, if any (its key, or a key below it).
+const ScenarioOverride* override_of(const InputError& e, const std::vector<ScenarioOverride>& overrides) {
+  for (auto it = overrides.rbegin(); it != overrides.rend(); ++it) {
+    std::string plain = it->key;  // "boundary_conditions[2].velocity" is named so by the reader too
+    if (e.key() == plain || e.key().rfind(plain + ".", 0) == 0 || plain.rfind(e.key() + ".", 0) == 0) return &*it;
+  }
+  return nullptr;
+}
+
+}  // namespace
+
+Scenario read_scenario(const std::filesystem::path& path, const std::vector<ScenarioOverride>& overrides) {
   const std::string file = path.string();
   const std::string text = scenario_text(path);
   YAML::Node root;
@@ -1138,11 +1207,20 @@ Scenario read_scenario(const std::filesystem::path& path) {
   }
   if (!root.IsMap()) throw InputError(file, 1, "", "a scenario is a YAML map of sections (analysis:, mesh:, ...)");
 
+  for (const auto& o : overrides) apply_override(root, o);
+
   Scenario sc;
   sc.file = std::filesystem::absolute(path);
   sc.resolved = YAML::Node(YAML::NodeType::Map);
   const scenario_detail::ScenarioWarnings collect(sc.warnings);
-  ScenarioReader(root, path, sc).read();
+  try {
+    ScenarioReader(root, path, sc).read();
+  } catch (const InputError& e) {
+    // A value from the command line has no line in the file: name the override instead.
+    if (const ScenarioOverride* o = override_of(e, overrides))
+      throw InputError("", 0, e.key(), e.reason() + " (the value given by --set " + o->key + "=" + o->value + ")");
+    throw;
+  }
   return sc;
 }
 

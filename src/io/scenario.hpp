@@ -287,8 +287,21 @@ struct Scenario {
 /// The largest scenario file read (larger ones are refused before parsing, with this figure).
 inline constexpr std::uintmax_t kMaxScenarioBytes = 4u * 1024 * 1024;
 
-/// Reads and validates a scenario file (not the mesh). Throws InputError.
-Scenario read_scenario(const std::filesystem::path& file);
+/// One value put over the scenario file's before it is read (`shard run X.yaml --set key=value`,
+/// the Python module's Scenario.set): `key` is a dotted path such as
+/// "materials.alumina.tensile_strength" or "boundary_conditions[2].velocity.x" (list entries
+/// counted from 1, as messages count them); `value` is YAML text ("450 MPa", "[0, -5 m/s]").
+struct ScenarioOverride {
+  std::string key;
+  std::string value;
+};
+
+/// Parses "key=value" (the command line's form). Throws InputError when there is no '=' or no key.
+ScenarioOverride parse_override(const std::string& text);
+
+/// Reads and validates a scenario file (not the mesh), with `overrides` put over it in order.
+/// Throws InputError; an error in an overridden value names "--set KEY".
+Scenario read_scenario(const std::filesystem::path& file, const std::vector<ScenarioOverride>& overrides = {});
 
 /// One section of the declared scenario schema (for the generated reference).
 struct SchemaSection {
