@@ -605,7 +605,8 @@ void predict_mean_stress(const ParticlePart& pt, MCAState& ps, const std::vector
     const double pred = first_step ? ps.sigma_mean[i] : 2 * ps.sigma_mean[i] - ps.sigma_mean_old[i];
     const double used = ps.sigma_mean_used[i];
     s.mean_increment[i] = pred - used;
-    s.energy_change[i] = automaton_energy_factor(pt, ps, i, s.many_body.data(), s.bulk.data()) * (pred * pred - used * used);
+    const double factor = automaton_energy_factor(pt, ps, i, s.many_body.data(), s.bulk.data());
+    s.energy_change[i] = factor * (pred * pred - used * used);
     ps.sigma_mean_used[i] = pred;
   }
 }

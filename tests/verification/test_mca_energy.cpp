@@ -25,8 +25,8 @@ namespace {
 void print(const char* name, const testing::ParticleEnergy& e) {
   std::printf("[ MCA energy ] %s: kinetic %.4g, elastic %.4g, plastic %.4g, breaking %.4g, friction %.4g, "
               "many-body work %.4g, external %.4g, initial %.4g J; residual %.3g J (%.3g %%)\n",
-              name, e.kinetic, e.elastic, e.plastic, e.breaking, e.friction, e.many_body, e.external_work, e.initial, e.residual(),
-              100 * e.relative_error());
+              name, e.kinetic, e.elastic, e.plastic, e.breaking, e.friction, e.many_body, e.external_work, e.initial,
+              e.residual(), 100 * e.relative_error());
 }
 
 TEST(MCAEnergy, FreeVibration3D) {
