@@ -480,13 +480,26 @@ double limit_contact_shear(PairList& P, std::size_t p, double mu, const double* 
   return (1 - P.k_link[p]) * P.area[p] * (work - 0.5 * (new2 - old2) / shear_k);
 }
 
+/// What automaton h's many-body store loses when a pair of area S comes unlinked by dk: the
+/// pair's part S R_h dk/(dim V_h) of the share s_h the automaton had at bonding (section 9).
+inline double released_many_body(const ParticlePart& pt, const MCAState& ps, const MCAScratch& s, int h, double S,
+                                 double dk) {
+  const double share = ps.many_body_share[h];
+  if (share <= 0) return 0;
+  const double w = std::min(1.0, S * pt.radius[h] * dk / (ps.dim * ps.volume[h] * share));
+  const double m = ps.sigma_mean_used[h];
+  return w * automaton_energy_factor(pt, ps, h, s.many_body.data(), s.bulk.data()) * m * m;
+}
+
 /// The pair force, the contact distances q (eq. (7), scaled so that q_ij + q_ji = r) and the
 /// relative-rotation torque of eq. (14), linked part only. Adds to `breaking` the energy
 /// released by a drop of k_link this step: the linked part's store less the contact's, for the
-/// area that came unlinked, and the relative-rotation spring's share.
+/// area that came unlinked, the relative-rotation spring's share and the pair's part of its two
+/// automata's many-body store; the last leaves `many_body` (it is still in the store, which
+/// gives it up as the mean stresses follow).
 template <int D>
-void finish_pair(const MCAState& ps, PairList& P, std::size_t p, const PairMotion<D>& m, const PairEnds& e,
-                 double k_old, double& breaking) {
+void finish_pair(const ParticlePart& pt, const MCAState& ps, PairList& P, std::size_t p, const PairMotion<D>& m,
+                 const PairEnds& e, const MCAScratch& s, double k_old, double& breaking, double& many_body) {
   constexpr int R = D == 2 ? 1 : 3;
   const double qi = e.Ri * (1 + P.xi_ij[p]), qj = e.Rj * (1 + P.xi_ji[p]);
   const double scale = m.ln / (qi + qj);
@@ -506,6 +519,10 @@ void finish_pair(const MCAState& ps, PairList& P, std::size_t p, const PairMotio
   breaking += pair_energy(P.area[p], k_old, P.eta[p], t2, tc2, e.Ri, e.Gi, e.ci, mi, e.Rj, e.Gj, e.cj, mj) -
               pair_energy(P.area[p], k, P.eta[p], t2, tc2, e.Ri, e.Gi, e.ci, mi, e.Rj, e.Gj, e.cj, mj);
   breaking += 0.5 * (k_old - k) * P.kappa[p] * dot(&P.phi[R * p], &P.phi[R * p], R);
+  const double released = released_many_body(pt, ps, s, e.i, P.area[p], k_old - k) +
+                          released_many_body(pt, ps, s, e.j, P.area[p], k_old - k);
+  breaking += released;
+  many_body -= released;
 }
 
 /// Pass A over pairs [p0, p1): see the file comment. sums: [0] friction, [1] breaking, [2] work
@@ -531,7 +548,7 @@ void pair_pass(const ParticlePart& pt, MCAState& ps, const std::vector<double>& 
     many_body += update_central(P, p, m.dr, k_old, e, ps, s);
     if (P.state_of(p) == PairState::breaking) break_gradually<D>(ps, P, p, *law, m.ln, dt, e);
     if (P.k_link[p] < 1) friction += limit_contact_shear<R>(P, p, law ? law->friction : 0.0, slip, tc_old, shear_k);
-    finish_pair<D>(ps, P, p, m, e, k_old, breaking);
+    finish_pair<D>(pt, ps, P, p, m, e, s, k_old, breaking, many_body);
   }
   sums[0] = friction;
   sums[1] = breaking;

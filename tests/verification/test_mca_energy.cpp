@@ -179,6 +179,57 @@ TEST(MCAEnergy, ChainWaveBalancesAtPoisson045) {
   EXPECT_LT(std::abs(b.many_body), 1e-3);
 }
 
+TEST(MCAEnergy, LonePairBreakingReleasesItsWholeStore) {
+  // Two automata (simple cubic, S = d², V = d³) pulled apart slowly until the bond breaks at
+  // once (Drucker–Prager, uniaxial: at σ_t). Each automaton reads its one pair with the share
+  // s = R S/(3V) = 1/6, so η (1 − A s) = 2G Δr/d and the pair stores S d η² (1 − A s)/(4G) at
+  // the break, its springs' share and its automata's many-body share. Breaking must release all
+  // of it, and leave nothing to the many-body work term (a lone pair is conservative).
+  const double d = 1e-3, E = 100e9, nu = 0.3;
+  PackingSpec spec;
+  spec.lattice = Lattice::simple_cubic;
+  spec.size = d;
+  spec.hi[0] = 1.2 * d, spec.hi[1] = 0.5 * d, spec.hi[2] = 0.5 * d;
+  ParticlePart sample = build_packing(spec, {testing::mca_steel_like(E, nu)});
+  BondLaw law;
+  law.criterion = BondCriterion::drucker_prager;
+  law.sigma_t = 300e6;
+  law.sigma_c = 2000e6;
+  mca_state(sample).bond_laws = {law};
+  mca_state(sample).set_bond_law(0, 0, 0);
+  finish_sample(sample);
+  const MCAMaterial material = mca_state(sample).materials[0];
+  testing::ParticleRun stepper(std::move(sample), 0.5);
+  const PairList& pairs = mca_state(stepper.part()).pairs;
+  ASSERT_EQ(pairs.count(), 1u);
+  const double speed = 2e-5 * law.sigma_t / E * d / stepper.time_step();  // 2e-5 σ_t per step
+  for (int a = 0; a < 2; ++a)
+    for (int c = 0; c < 3; ++c) {
+      testing::VelocityBC bc;
+      bc.automata = {a};
+      bc.component = c;
+      const double v = (a == 1 && c == 0) ? speed : 0.0;
+      bc.velocity = [v](double) { return v; };
+      stepper.add_velocity_bc(bc);
+    }
+  double eta = 0;
+  while (pairs.state_of(0) == PairState::linked && stepper.steps() < 1000000) {
+    eta = pairs.eta[0];
+    stepper.step();
+  }
+  for (int k = 0; k < 10; ++k) stepper.step();  // the automata's mean stresses follow
+  const double G = material.shear_modulus(), A = many_body_coefficient(material, 3, PlaneMode::none);
+  const double stored = d * d * d * eta * eta * (1 - A / 6) / (4 * G);
+  const testing::ParticleEnergy e = stepper.energy();
+  print("lone pair", e);
+  std::printf("[ MCA energy ] lone pair: breaks at %.5g MPa, stores S d eta^2 (1 - A/6)/(4G) = %.6g J; fracture %.6g J "
+              "(%+.3g %%), many-body work %.3g %% of it\n",
+              eta / 1e6, stored, e.breaking, 100 * (e.breaking / stored - 1), 100 * e.many_body / stored);
+  EXPECT_EQ(pairs.state_of(0), PairState::unlinked);
+  EXPECT_NEAR(e.breaking / stored, 1.0, 0.005);
+  EXPECT_LT(std::abs(e.many_body), 0.005 * stored);
+}
+
 TEST(MCAEnergy, NewContactBouncesElastically) {
   // Two unbonded automata meet head on: the contact pair is found by the cell bins during the
   // run (unlinked: compression only), they bounce apart with their speeds reversed (elastic,
