@@ -15,8 +15,8 @@ namespace {
 
 // The last byte is the format version: 4 added the elements' reference length (distortion
 // criterion) and the particles' ring length; 5 the cohesive elements; 6 their open flag and
-// the crash force's running mean.
-constexpr char kMagic[8] = {'S', 'H', 'A', 'R', 'D', 'C', 'K', '6'};
+// the crash force's running mean; 7 the automata's many-body share.
+constexpr char kMagic[8] = {'S', 'H', 'A', 'R', 'D', 'C', 'K', '7'};
 
 /// Scalars of SolverState and OutputCursor in one fixed order, for both directions.
 template <class F>

@@ -35,6 +35,9 @@ struct ParticleWork {
   /// The elastic energy the model stores after these forces (J), when the evaluation gives it
   /// on the way (it then equals stored_energy() to the bit); NaN when it does not.
   double stored = std::numeric_limits<double>::quiet_NaN();
+  /// Work of forces the model does not derive from what it stores, beyond that store (the
+  /// automata's many-body term, docs/theory/mca.md section 9): booked so that the balance closes.
+  double many_body_work = 0;
 };
 
 /// The interaction model of a particle part (the MCA bonds and many-body law today; contact laws

@@ -258,18 +258,22 @@ inline double many_body_bulk(const MCAMaterial& mat, double c, int dim) {
   return mat.shear_modulus() / (1 - c) / (dim == 3 ? 1.5 : 1.0);
 }
 
-/// The many-body (volumetric) energy of automaton i: A σ̂²/(2K) per unit volume, scaled by the
-/// share of a full neighbourhood the automaton has (tr A / dim). c, K: per material.
+/// The many-body (volumetric) energy of automaton i over σ̂²: the integral of the term's work,
+/// E = s V A σ̂²/(2K) (1 − A ρ)/(ρ (1 − A)), with s its share of a full neighbourhood (tr A/dim at
+/// bonding) and ρ the share with which it reads its pairs: 1 through A⁻¹ (surface automata), s
+/// with eq. (3) as it is (a chain; inside a close packing s = ρ = 1). Section 9. c, K: per material.
+inline double automaton_energy_factor(const ParticlePart& pt, const MCAState& ps, std::size_t i, const double* c,
+                                      const double* K) {
+  const int mat = pt.material[i];
+  const double share = ps.many_body_share[i];
+  if (ps.fabric_index[i] >= 0 || share == 1) return share * ps.volume[i] * c[mat] / (2 * K[mat]);
+  return ps.volume[i] * c[mat] * (1 - c[mat] * share) / (2 * K[mat] * (1 - c[mat]));
+}
+
 inline double automaton_energy(const ParticlePart& pt, const MCAState& ps, std::size_t i, const double* c,
                                const double* K) {
-  const int mat = pt.material[i];
   const double m = ps.sigma_mean_used[i];
-  double share = 1;
-  if (ps.fabric_index[i] >= 0) {
-    const double* A = &ps.fabric[9 * ps.fabric_index[i]];
-    share = (A[0] + A[4] + (ps.dim == 3 ? A[8] : 0.0)) / ps.dim;
-  }
-  return share * ps.volume[i] * c[mat] * m * m / (2 * K[mat]);
+  return automaton_energy_factor(pt, ps, i, c, K) * m * m;
 }
 
 /// The energy pair p stores: central, shear and relative-rotation springs. c, G: per material.
@@ -405,16 +409,28 @@ void update_shear(PairList& P, std::size_t p, const PairMotion<D>& m, const Pair
 }
 
 /// Central: Δh shared by continuity of η across the contact, eqs. (8)-(9), with the many-body
-/// term A Δσ_mean of each automaton (eq. (2)).
-inline void update_central(PairList& P, std::size_t p, double dr, const PairEnds& e, const MCAScratch& s) {
+/// term A Δσ_mean of each automaton (eq. (2)). Returns the work of the many-body term over the
+/// step (J): the central force's work over Δr (trapezoid) less the change of the pair's store,
+/// with the k_link `k` of the start of the step (section 9): linked, S Σ_h R_h A_h σ̄_h Δξ_h
+/// (σ̄: the mean of the step's two predicted mean stresses); unlinked, in compression,
+/// −S η̄_c Σ_h R_h A_h Δσ̂_h/(2G_h).
+inline double update_central(PairList& P, std::size_t p, double dr, double k, const PairEnds& e, const MCAState& ps,
+                             const MCAScratch& s) {
   const double ai = 2 * e.Gi, aj = 2 * e.Gj;
   const double mi_inc = e.ci * s.mean_increment[e.i], mj_inc = e.cj * s.mean_increment[e.j];
   const double den = ai * e.Rj + aj * e.Ri;
   const double dxi_ij = (aj * dr + e.Rj * (mj_inc - mi_inc)) / den;
   const double dxi_ji = (dr - dxi_ij * e.Ri) / e.Rj;
+  const double eta_old = P.eta[p];
   P.xi_ij[p] += dxi_ij;
   P.xi_ji[p] += dxi_ji;
   P.eta[p] += ai * dxi_ij + mi_inc;
+  const double si = ps.sigma_mean_used[e.i] - 0.5 * s.mean_increment[e.i];
+  const double sj = ps.sigma_mean_used[e.j] - 0.5 * s.mean_increment[e.j];
+  const double linked = e.ci * si * e.Ri * dxi_ij + e.cj * sj * e.Rj * dxi_ji;
+  const double etac = 0.5 * (std::min(eta_old, 0.0) + std::min(P.eta[p], 0.0));
+  const double contact = -etac * (e.Ri * mi_inc / ai + e.Rj * mj_inc / aj);
+  return P.area[p] * (k * linked + (1 - k) * contact);
 }
 
 /// Gradual breaking: k_link falls (stable: with the pair equivalent strain; unstable: the crack
@@ -464,13 +480,26 @@ double limit_contact_shear(PairList& P, std::size_t p, double mu, const double* 
   return (1 - P.k_link[p]) * P.area[p] * (work - 0.5 * (new2 - old2) / shear_k);
 }
 
+/// What automaton h's many-body store loses when a pair of area S comes unlinked by dk: the
+/// pair's part S R_h dk/(dim V_h) of the share s_h the automaton had at bonding (section 9).
+inline double released_many_body(const ParticlePart& pt, const MCAState& ps, const MCAScratch& s, int h, double S,
+                                 double dk) {
+  const double share = ps.many_body_share[h];
+  if (share <= 0) return 0;
+  const double w = std::min(1.0, S * pt.radius[h] * dk / (ps.dim * ps.volume[h] * share));
+  const double m = ps.sigma_mean_used[h];
+  return w * automaton_energy_factor(pt, ps, h, s.many_body.data(), s.bulk.data()) * m * m;
+}
+
 /// The pair force, the contact distances q (eq. (7), scaled so that q_ij + q_ji = r) and the
 /// relative-rotation torque of eq. (14), linked part only. Adds to `breaking` the energy
 /// released by a drop of k_link this step: the linked part's store less the contact's, for the
-/// area that came unlinked, and the relative-rotation spring's share.
+/// area that came unlinked, the relative-rotation spring's share and the pair's part of its two
+/// automata's many-body store; the last leaves `many_body` (it is still in the store, which
+/// gives it up as the mean stresses follow).
 template <int D>
-void finish_pair(const MCAState& ps, PairList& P, std::size_t p, const PairMotion<D>& m, const PairEnds& e,
-                 double k_old, double& breaking) {
+void finish_pair(const ParticlePart& pt, const MCAState& ps, PairList& P, std::size_t p, const PairMotion<D>& m,
+                 const PairEnds& e, const MCAScratch& s, double k_old, double& breaking, double& many_body) {
   constexpr int R = D == 2 ? 1 : 3;
   const double qi = e.Ri * (1 + P.xi_ij[p]), qj = e.Rj * (1 + P.xi_ji[p]);
   const double scale = m.ln / (qi + qj);
@@ -490,16 +519,20 @@ void finish_pair(const MCAState& ps, PairList& P, std::size_t p, const PairMotio
   breaking += pair_energy(P.area[p], k_old, P.eta[p], t2, tc2, e.Ri, e.Gi, e.ci, mi, e.Rj, e.Gj, e.cj, mj) -
               pair_energy(P.area[p], k, P.eta[p], t2, tc2, e.Ri, e.Gi, e.ci, mi, e.Rj, e.Gj, e.cj, mj);
   breaking += 0.5 * (k_old - k) * P.kappa[p] * dot(&P.phi[R * p], &P.phi[R * p], R);
+  const double released = released_many_body(pt, ps, s, e.i, P.area[p], k_old - k) +
+                          released_many_body(pt, ps, s, e.j, P.area[p], k_old - k);
+  breaking += released;
+  many_body -= released;
 }
 
-/// Pass A over pairs [p0, p1): see the file comment. sums: [0] friction, [1] breaking (torque
-/// springs only; the rest of breaking is booked in pass D).
+/// Pass A over pairs [p0, p1): see the file comment. sums: [0] friction, [1] breaking, [2] work
+/// of the many-body term.
 template <int D>
 void pair_pass(const ParticlePart& pt, MCAState& ps, const std::vector<double>& x_old, const std::vector<double>& dth,
                double dt, const MCAScratch& s, std::size_t p0, std::size_t p1, double* sums) {
   constexpr int R = D == 2 ? 1 : 3;
   PairList& P = ps.pairs;
-  double friction = 0, breaking = 0;
+  double friction = 0, breaking = 0, many_body = 0;
   for (std::size_t p = p0; p < p1; ++p) {
     const int i = P.i[p], j = P.j[p];
     const PairEnds e{i, j, s.shear[pt.material[i]], s.shear[pt.material[j]], pt.radius[i], pt.radius[j],
@@ -512,13 +545,14 @@ void pair_pass(const ParticlePart& pt, MCAState& ps, const std::vector<double>& 
     const double shear_k = 2 * e.Gi * e.Gj / (e.Gj * e.Ri + e.Gi * e.Rj);  // Δτ per Δl, eq. (13) split as (8)
     double slip[3] = {0, 0, 0}, tc_old[3] = {0, 0, 0};  // tangential displacement, contact shear before
     update_shear<D>(P, p, m, e, s, dth, shear_k, slip, tc_old);
-    update_central(P, p, m.dr, e, s);
+    many_body += update_central(P, p, m.dr, k_old, e, ps, s);
     if (P.state_of(p) == PairState::breaking) break_gradually<D>(ps, P, p, *law, m.ln, dt, e);
     if (P.k_link[p] < 1) friction += limit_contact_shear<R>(P, p, law ? law->friction : 0.0, slip, tc_old, shear_k);
-    finish_pair<D>(ps, P, p, m, e, k_old, breaking);
+    finish_pair<D>(pt, ps, P, p, m, e, s, k_old, breaking, many_body);
   }
   sums[0] = friction;
   sums[1] = breaking;
+  sums[2] = many_body;
 }
 
 /// Averaged stress of eq. (3) (in-plane only in 2D) from the pair forces.
@@ -571,20 +605,25 @@ bool material_coefficients(const MCAState& ps, MCAScratch& s) {
 
 /// 0. Predictor of the mean stress at the end of the step (linear extrapolation of the last two
 /// steps); the pair forces receive its increment over what they already hold. The rotation
-/// increments in Cayley form, once per automaton.
+/// increments in Cayley form, once per automaton. The change of each automaton's many-body
+/// energy goes to s.energy_change.
 template <int D>
 void predict_mean_stress(const ParticlePart& pt, MCAState& ps, const std::vector<double>& dth, bool first_step,
                          MCAScratch& s) {
   const std::size_t n = pt.count();
   constexpr int R = D == 2 ? 1 : 3;
   s.mean_increment.resize(n);
+  s.energy_change.resize(n);
   s.spin.resize(n * R);
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
     const double f = cayley_factor(dot(&dth[R * i], &dth[R * i], R));
     for (int a = 0; a < R; ++a) s.spin[R * i + a] = f * dth[R * i + a];
     const double pred = first_step ? ps.sigma_mean[i] : 2 * ps.sigma_mean[i] - ps.sigma_mean_old[i];
-    s.mean_increment[i] = pred - ps.sigma_mean_used[i];
+    const double used = ps.sigma_mean_used[i];
+    s.mean_increment[i] = pred - used;
+    const double factor = automaton_energy_factor(pt, ps, i, s.many_body.data(), s.bulk.data());
+    s.energy_change[i] = factor * (pred * pred - used * used);
     ps.sigma_mean_used[i] = pred;
   }
 }
@@ -741,10 +780,10 @@ MCADissipation forces_impl(ParticlePart& pt, MCAState& ps, const std::vector<dou
 
   // A. pairs
   const std::size_t nbp = (np + kBlock - 1) / kBlock;
-  std::vector<double> pair_sums(2 * nbp, 0.0);
+  std::vector<double> pair_sums(3 * nbp, 0.0);
 #pragma omp parallel for schedule(static)
   for (std::size_t b = 0; b < nbp; ++b)
-    pair_pass<D>(pt, ps, x_old, dth, dt, s, b * kBlock, std::min(np, (b + 1) * kBlock), &pair_sums[2 * b]);
+    pair_pass<D>(pt, ps, x_old, dth, dt, s, b * kBlock, std::min(np, (b + 1) * kBlock), &pair_sums[3 * b]);
 
   // B, C. plastic return
   std::vector<double> plastic_pairs(nbp, 0.0);
@@ -758,9 +797,11 @@ MCADissipation forces_impl(ParticlePart& pt, MCAState& ps, const std::vector<dou
 
   MCADissipation out;
   for (std::size_t b = 0; b < nbp; ++b) {
-    out.friction += pair_sums[2 * b];
-    out.breaking += pair_sums[2 * b + 1];
+    out.friction += pair_sums[3 * b];
+    out.breaking += pair_sums[3 * b + 1];
+    out.many_body += pair_sums[3 * b + 2];
   }
+  out.many_body -= deterministic_sum(s.energy_change);
   for (std::size_t b = 0; b < nbp; ++b) out.plastic += plastic_pairs[b];
   out.stored = stored_energy_after_step(pt, ps, s);
   return out;

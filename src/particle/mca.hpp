@@ -17,6 +17,9 @@ struct MCADissipation {
   double breaking = 0;  ///< elastic energy released when k_link drops
   double friction = 0;  ///< Amontons sliding of unlinked pairs
   double stored = 0;    ///< the elastic energy after the step, = mca_elastic_energy() to the bit
+  /// Work of the many-body term of eq. (2) on the pairs over the step, less the change of the
+  /// many-body energy `stored` includes: what the term did beyond its store (section 9).
+  double many_body = 0;
 };
 
 /// Pair and automaton forces for the configuration at the end of a step: the automata moved
@@ -26,8 +29,8 @@ struct MCADissipation {
 /// predictor of the mean stress.
 MCADissipation mca_forces(ParticlePart& part, double dt, bool first_step);
 
-/// Elastic energy stored: Σ_i V_i (σ_m²/2K + s:s/4G) over the automata's averaged stresses,
-/// plus the relative-rotation springs of eq. (14). J.
+/// Elastic energy stored (J): the pairs' central and shear springs, the many-body energy of each
+/// automaton and the relative-rotation springs of eq. (14) (docs/theory/mca.md, section 9).
 double mca_elastic_energy(const ParticlePart& part);
 
 /// Stable time step of velocity Verlet for the current pairs (before a safety factor):

@@ -102,6 +102,7 @@ void MCAState::visit_fields(const FieldCallback& f) {
   f(field("stress_int", P, 1), &stress_int);
   f(field("plastic_strain", P, 1), &plastic_strain);
   f(field("fabric_index", P, 1, Follow::copy, -1), &fabric_index);
+  f(field("many_body_share", P, 1, Follow::copy, 1.0), &many_body_share);
   // Every array of the pairs that changes during a run (broken bonds, k_link and the pair
   // stresses must never be lost across a restart).
   const auto Q = Location::pair;
@@ -136,7 +137,7 @@ void MCAState::after_change(const ParticlePart&) { build_adjacency(); }
 
 ParticleWork MCAState::forces(ParticlePart& part, double dt, bool first_step) {
   const MCADissipation d = mca_forces(part, dt, first_step);
-  return {d.plastic, d.breaking, d.friction, d.stored};
+  return {d.plastic, d.breaking, d.friction, d.stored, d.many_body};
 }
 
 double MCAState::stored_energy(const ParticlePart& part) const { return mca_elastic_energy(part); }
@@ -226,6 +227,7 @@ void compute_fabric(ParticlePart& part) {
       }
   }
   s.fabric_index.assign(n, -1);
+  s.many_body_share.assign(n, 1.0);
   s.fabric.clear();
   s.fabric_inv.clear();
   for (std::size_t i = 0; i < n; ++i) {
@@ -234,6 +236,7 @@ void compute_fabric(ParticlePart& part) {
       for (int c = 0; c < dim; ++c) m(r, c) = A[9 * i + 3 * r + c];
     const double off = (m - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff();
     if (off < 1e-9) continue;  // a full close-packed neighbourhood
+    s.many_body_share[i] = (m(0, 0) + m(1, 1) + (dim == 3 ? m(2, 2) : 0.0)) / dim;
     Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(m, Eigen::EigenvaluesOnly);
     // A nearly singular fabric (a chain, a lone pair) has no direction to correct from: leave
     // eq. (3) as it is there.

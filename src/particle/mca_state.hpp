@@ -101,6 +101,7 @@ struct PairAdjacency {
 /// Per-step scratch the force law needs (no allocation in the step loop).
 struct MCAScratch {
   std::vector<double> mean_increment;  ///< Δσ_mean of the predictor, per automaton
+  std::vector<double> energy_change;   ///< change of the many-body energy by the predictor, per automaton
   std::vector<double> return_factor;   ///< M_i of eq. (15), per automaton
   std::vector<double> trial_mean;      ///< 3D mean stress of the trial state (plastic pass)
   std::vector<double> many_body;       ///< A of eq. (2) per material
@@ -139,6 +140,9 @@ class MCAState final : public ParticleModel {
   /// stress is read exactly at a free surface (docs/theory/mca.md, "Surface automata").
   std::vector<int> fabric_index;            ///< −1: interior (A = I); else row in fabric/fabric_inv
   std::vector<double> fabric, fabric_inv;  ///< 3×3 row-major per surface automaton
+  /// s_i = tr A_i / dim at bonding (every automaton; 1 inside a close packing, 1/3 in a 3D
+  /// chain): the share of a full neighbourhood the automaton has, for its many-body energy.
+  std::vector<double> many_body_share;
 
   PairList pairs;
   PairAdjacency adjacency;  ///< derived from the pairs

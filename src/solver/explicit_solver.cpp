@@ -62,6 +62,14 @@ std::vector<EnergyTerm> particle_energy_terms() {
            r::particle_friction, {{G::dissipated, +1}}, "friction"}};
 }
 
+std::vector<EnergyTerm> particle_model_energy_terms() {
+  using G = EnergyGroup;
+  return {{"automata_many_body_work",
+           "work the automata's many-body force took from the motion beyond the energy it stores (its "
+           "non-conservative part; negative: it gave energy)",
+           energy_rank::particle_many_body, {{G::dissipated, +1}}, ""}};
+}
+
 ExplicitSolver::ExplicitSolver(Model& model,
                                const std::vector<std::unique_ptr<Material>>& materials,
                                const Loads& loads, SolverSettings settings)
@@ -74,6 +82,12 @@ ExplicitSolver::ExplicitSolver(Model& model,
             E.find("stress_work"), E.find("viscosity"), E.find("hourglass"), E.find("plastic"),
             E.find("heat"),     E.find("fracture"),  E.find("eroded"),       E.find("particle_elastic"),
             E.find("particle_friction")};
+  // Runs with a particle model (the automata) book the work of its many-body term.
+  if (std::any_of(model_.particle_parts.begin(), model_.particle_parts.end(),
+                  [](const ParticlePart& p) { return static_cast<bool>(p.model); })) {
+    for (auto& t : particle_model_energy_terms()) E.add(std::move(t));
+    terms_.particle_many_body = E.find("automata_many_body_work");
+  }
   if (std::any_of(model_.parts.begin(), model_.parts.end(), [](const Part& p) { return p.erosion.to_particles; })) {
     for (auto& t : ErosionCompaction::conversion_energy_terms()) E.add(std::move(t));
     terms_.conversion_elastic = E.find("conversion_elastic");
@@ -221,6 +235,7 @@ double ExplicitSolver::add_particle_forces() {
     E[terms_.plastic] += d.plastic;
     E[terms_.fracture] += d.fracture;
     E[terms_.particle_friction] += d.friction;
+    if (terms_.particle_many_body >= 0) E[terms_.particle_many_body] += d.many_body_work;
     if (pp.model) particle_elastic += std::isnan(d.stored) ? pp.model->stored_energy(pp) : d.stored;
     if (pp.count() > 0) particle_dt = std::min(particle_dt, particle_time_step_limit(pp));
   }

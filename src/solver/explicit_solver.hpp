@@ -146,7 +146,7 @@ class ExplicitSolver : private TopologyListener {
     int kinetic, initial, external_work, damping, stress_work, viscosity, hourglass, plastic, heat, fracture,
         eroded, particle_elastic, particle_friction, wall_work = -1, contact_work = -1, friction = -1,
         particle_contact_elastic = -1, particle_contact_dissipation = -1, particle_wall_work = -1,
-        conversion_elastic = -1, cohesive_work = -1, cohesive_released = -1;
+        conversion_elastic = -1, cohesive_work = -1, cohesive_released = -1, particle_many_body = -1;
   } terms_;
 };
 
@@ -157,6 +157,9 @@ std::vector<EnergyTerm> solver_energy_terms();
 /// now (a state function, not accumulated) and their sliding friction. Their plastic work and
 /// bond-breaking release go into the common "plastic" and "fracture" terms.
 std::vector<EnergyTerm> particle_energy_terms();
+/// Registered when a run has particles with a model: the work of the automata's many-body force
+/// beyond the energy it stores (docs/theory/mca.md, section 9).
+std::vector<EnergyTerm> particle_model_energy_terms();
 
 /// Lumped (row-sum) nodal masses of every part, added into model.nodes.mass.
 void lump_masses(Model& model, const std::vector<std::unique_ptr<Material>>& materials);

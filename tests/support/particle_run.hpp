@@ -30,10 +30,11 @@ struct ParticleEnergy {
   double plastic = 0;        ///< Wilkins return
   double breaking = 0;       ///< released by bonds whose k_link dropped
   double friction = 0;       ///< Amontons sliding of unlinked pairs
+  double many_body = 0;      ///< work of the many-body term beyond what the automata store
   double external_work = 0;  ///< of the prescribed velocities
   double initial = 0;        ///< kinetic at the start (the samples start stress-free)
 
-  double dissipated() const { return plastic + breaking + friction; }
+  double dissipated() const { return plastic + breaking + friction + many_body; }
   /// kinetic + elastic + dissipated − external work − initial
   double residual() const { return kinetic + elastic + dissipated() - external_work - initial; }
   /// |residual| over the largest of the energies in play
@@ -123,6 +124,7 @@ class ParticleRun {
     e.plastic = E.value("plastic");
     e.breaking = E.value("fracture");
     e.friction = E.value("particle_friction");
+    e.many_body = E.value("automata_many_body_work");
     e.external_work = E.value("external_work");
     e.initial = E.value("initial");
     return e;

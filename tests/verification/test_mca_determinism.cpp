@@ -1,7 +1,7 @@
 // MCA determinism: the same run with 1 and 2 OpenMP threads gives the same bits (positions,
-// velocities, rotations, pair states, energies). A 3D FCC sample with plasticity, Drucker–Prager
-// bonds with unstable breaking and friction, compressed fast enough to break bonds within the
-// run; large enough that every parallel loop has several blocks.
+// velocities, rotations, pair states, energies, the many-body work among them). A 3D FCC sample
+// with plasticity, Drucker–Prager bonds with unstable breaking and friction, compressed fast
+// enough to break bonds within the run; large enough that every parallel loop has several blocks.
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -16,7 +16,7 @@ namespace {
 
 struct Result {
   std::vector<double> x, v, omega, eta, k_link;
-  double energy[5];
+  double energy[6];
   std::size_t broken = 0;
 };
 
@@ -46,12 +46,12 @@ Result run(int threads) {
   for (int k = 0; k < 150; ++k) stepper.step();
   Result r{ps.x, ps.v, ps.omega, pairs.eta, pairs.k_link, {}, 0};
   const testing::ParticleEnergy e = stepper.energy();
-  const double en[5] = {e.kinetic, e.elastic, e.plastic, e.breaking, e.friction};
+  const double en[6] = {e.kinetic, e.elastic, e.plastic, e.breaking, e.friction, e.many_body};
   std::memcpy(r.energy, en, sizeof en);
   for (std::size_t p = 0; p < pairs.count(); ++p) r.broken += pairs.state_of(p) != PairState::linked;
   std::printf("[ MCA determinism ] %d thread(s): %zu automata, %zu pairs, %zu breaking or broken, plastic %.4g J, "
-              "breaking %.4g J, friction %.4g J\n",
-              omp_get_max_threads(), ps.count(), pairs.count(), r.broken, e.plastic, e.breaking, e.friction);
+              "breaking %.4g J, friction %.4g J, many-body work %.4g J\n",
+              omp_get_max_threads(), ps.count(), pairs.count(), r.broken, e.plastic, e.breaking, e.friction, e.many_body);
   return r;
 }
 
