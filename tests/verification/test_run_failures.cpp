@@ -108,6 +108,34 @@ TEST(RunFailures, PlausibilityWarningsSayWhatLooksWrongAndHowToSilenceIt) {
   fs::remove_all(dir);
 }
 
+TEST(RunFailures, SetOverridesGiveTheRunOfTheEditedFile) {
+  // --set materials.steel.youngs_modulus=... on the file gives the same bytes as the file edited.
+  const auto dir = testing::fresh_dir("overrides");
+  const std::string base = write_bar_scenario(dir, "{frame_interval: 5 us, history_interval: 0.5 us}");
+  std::string text = testing::read_file(base);
+  const auto at = text.find("youngs_modulus: 200 GPa");
+  ASSERT_NE(at, std::string::npos);
+  text.replace(at, 23, "youngs_modulus: 150 GPa");
+  std::ofstream(dir / "edited.yaml") << text;
+  const auto a = testing::run_shard("run " + base + " --quiet --set analysis.end_time=4us "
+                                    "--set materials.steel.youngs_modulus='150 GPa' -o " + (dir / "a").string());
+  const auto b = testing::run_shard("run " + (dir / "edited.yaml").string() + " --quiet --set analysis.end_time=4us -o " +
+                                    (dir / "b").string());
+  ASSERT_EQ(a.status, 0) << a.output;
+  ASSERT_EQ(b.status, 0) << b.output;
+  const std::string history = testing::read_file(dir / "a" / "history.csv");
+  EXPECT_GT(history.size(), 1000u);
+  EXPECT_EQ(history, testing::read_file(dir / "b" / "history.csv"));
+  // A mistake in an override names it; a list entry that is not there too.
+  const auto typo = testing::run_shard("check " + base + " --set materials.steel.youngs_modulus=150Gpa");
+  EXPECT_EQ(typo.status, 2) << typo.output;
+  EXPECT_TRUE(contains(typo.output, "(the value given by --set materials.steel.youngs_modulus=150Gpa)")) << typo.output;
+  const auto entry = testing::run_shard("check " + base + " --set boundary_conditions[3].velocity.x=1");
+  EXPECT_EQ(entry.status, 2) << entry.output;
+  EXPECT_TRUE(contains(entry.output, "'boundary_conditions' has no entry 3 (it has 1)")) << entry.output;
+  fs::remove_all(dir);
+}
+
 TEST(RunFailures, OversizedScenarioFileIsRefusedBeforeParsing) {
   // Millions of list items took seconds and gigabytes to reject: the size is checked first.
   const auto dir = testing::fresh_dir("oversized");
