@@ -78,28 +78,40 @@ std::string fingerprint_of(const Scenario& sc) {
   return std::to_string(std::hash<std::string>{}(text));
 }
 
-/// Progress: a live status line on a terminal, plain periodic lines otherwise.
+/// Progress: a live status line on a terminal, plain periodic lines otherwise. The ETA follows
+/// the recent rate of simulated time per wall second (a run slows many times once cracks and
+/// debris appear, so the rate since the start promises too early an end).
 class Progress {
  public:
   Progress(bool quiet, double log_interval, double end_time)
       : quiet_(quiet), tty_(isatty(STDERR_FILENO) != 0), log_interval_(log_interval),
         end_time_(end_time), start_(Clock::now()), last_(start_) {}
 
-  void update(const SolverState& s, double t, bool force = false) {
+  /// `counts` gives what the run holds now ("fragments 12  particles 480"), asked only when a
+  /// line is written.
+  template <class Counts>
+  void update(const SolverState& s, double t, bool force, Counts&& counts) {
     if (quiet_) return;
     const auto now = Clock::now();
     const double since = std::chrono::duration<double>(now - last_).count();
     if (!force && since < (tty_ ? 0.25 : log_interval_)) return;
+    if (since > 0 && t > last_time_) {
+      // Simulated time per wall second, smoothed over the last few lines.
+      const double rate = (t - last_time_) / since;
+      recent_rate_ = recent_rate_ > 0 ? 0.6 * recent_rate_ + 0.4 * rate : rate;
+    }
     last_ = now;
+    last_time_ = t;
     const double wall = std::chrono::duration<double>(now - start_).count();
     const double fraction = std::min(1.0, t / end_time_);
-    const double eta = fraction > 0 ? wall * (1 - fraction) / fraction : 0;
-    char line[256];
+    const double eta = recent_rate_ > 0 ? std::max(0.0, end_time_ - t) / recent_rate_ : 0;
+    const std::string held = counts();
+    char line[384];
     std::snprintf(line, sizeof line,
-                  "t = %s / %s (%3.0f%%)  step %lld  dt %s  wall %.1f s  ETA %.1f s  energy error %+.3f%%",
+                  "t = %s / %s (%3.0f%%)  step %lld  dt %s  wall %.1f s  ETA %.1f s  energy error %+.3f%%%s%s",
                   format_time(t).c_str(), format_time(end_time_).c_str(), 100 * fraction,
                   static_cast<long long>(s.step), format_time(s.dt_half).c_str(), wall, eta,
-                  100 * s.energy.relative_error());
+                  100 * s.energy.relative_error(), held.empty() ? "" : "  ", held.c_str());
     if (tty_) std::fprintf(stderr, "\r%s\033[K", line);
     else std::fprintf(stderr, "%s\n", line);
     std::fflush(stderr);
@@ -112,7 +124,11 @@ class Progress {
   bool quiet_, tty_;
   double log_interval_, end_time_;
   Clock::time_point start_, last_;
+  double last_time_ = 0, recent_rate_ = 0;
 };
+
+/// Above this many steps a run without analysis.max_steps is said to be long (a warning).
+constexpr double kStepsLong = 1e7;
 
 /// A run estimated at more steps than this must say so with analysis.max_steps: at a few
 /// microseconds a step for the smallest model, it would run for days.
@@ -120,9 +136,8 @@ constexpr double kStepsWithoutLimit = 1e9;
 
 /// Refuses, before any output, a run whose step count cannot be what was meant: a stable step
 /// that is not a positive finite time (a material constant out of scale), or a step count that
-/// overflows or exceeds kStepsWithoutLimit without analysis.max_steps.
-/// Above this many steps a run without analysis.max_steps is said to be long (a warning).
-constexpr double kStepsLong = 1e7;
+/// overflows or exceeds kStepsWithoutLimit without analysis.max_steps; a run of more than
+/// kStepsLong steps is a warning (returned).
 
 std::optional<std::string> check_step_count(const Scenario& sc, double dt, double start_time) {
   const std::string file = shown_path(sc.file);
@@ -320,6 +335,21 @@ class RunDriver {
     throw e;
   }
 
+  /// What the progress line says the run holds: crack-face nodes and fragments when parts crack,
+  /// particles when there are any.
+  std::string held_counts() const {
+    std::string out;
+    if (cracks_) {
+      const auto faces = sim_.model.crack_face_nodes();
+      out += "crack-face nodes " + std::to_string(std::count(faces.begin(), faces.end(), 1)) + "  fragments " +
+             std::to_string(find_fragments(sim_.model).list.size());
+    }
+    std::size_t particles = 0;
+    for (const auto& pp : sim_.model.particle_parts) particles += pp.count();
+    if (particles > 0) out += (out.empty() ? "" : "  ") + std::string("particles ") + std::to_string(particles);
+    return out;
+  }
+
   static bool due(double t, std::int64_t index, double interval) {
     return interval <= 0 || t >= static_cast<double>(index) * interval * (1 - 1e-9);
   }
@@ -458,7 +488,7 @@ class RunDriver {
         if (out.history_interval > 0)
           cursor_.next_history = static_cast<std::int64_t>(std::floor(t / out.history_interval * (1 + 1e-9))) + 1;
       }
-      progress_.update(s, t, final);
+      progress_.update(s, t, final, [&] { return held_counts(); });
       if (final) break;
       if (sc_.max_steps > 0 && s.step >= sc_.max_steps)
         throw RunError("reached analysis.max_steps = " + std::to_string(sc_.max_steps) + " at t = " +

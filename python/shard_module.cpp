@@ -1,0 +1,134 @@
+// The Python module for scripted studies: the same scenario, overrides and run as the command
+// line (`shard run X.yaml --set key=value`), with the history handed back as NumPy arrays and the
+// summary as a dict. A run releases the interpreter while it steps.
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "app/run.hpp"
+#include "core/error.hpp"
+#include "io/scenario.hpp"
+
+namespace py = pybind11;
+
+namespace {
+
+std::string read_text(const std::filesystem::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+/// history.csv as {column: numpy array}, every value read back to the same double.
+py::dict read_history(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  std::string line;
+  std::getline(in, line);
+  std::vector<std::string> names;
+  std::stringstream header(line);
+  for (std::string c; std::getline(header, c, ',');) names.push_back(c);
+  std::vector<std::vector<double>> columns(names.size());
+  while (std::getline(in, line)) {
+    const char* p = line.c_str();
+    for (auto& column : columns) {
+      char* end = nullptr;
+      column.push_back(std::strtod(p, &end));
+      p = *end == ',' ? end + 1 : end;
+    }
+  }
+  py::dict history;
+  for (std::size_t c = 0; c < names.size(); ++c)
+    history[py::str(names[c])] = py::array_t<double>(static_cast<py::ssize_t>(columns[c].size()), columns[c].data());
+  return history;
+}
+
+/// A scenario file with the overrides put over it, as `shard run FILE --set KEY=VALUE ...` has.
+class Scenario {
+ public:
+  explicit Scenario(std::string file) : file_(std::move(file)) {
+    (void)shard::read_scenario(file_);  // a bad file is an error here, not at run()
+  }
+
+  /// Puts `value` over `key` (text such as "450 MPa", or a number in SI units); checked at once.
+  Scenario& set(const std::string& key, const py::object& value) {
+    std::string text = py::str(value);
+    if (py::isinstance<py::bool_>(value)) text = value.cast<bool>() ? "true" : "false";
+    else if (py::isinstance<py::float_>(value)) text = py::str(py::repr(value));
+    overrides_.push_back({key, text});
+    try {
+      (void)shard::read_scenario(file_, overrides_);
+    } catch (...) {
+      overrides_.pop_back();
+      throw;
+    }
+    return *this;
+  }
+
+  std::string check() const { return shard::check_scenario(file_, overrides_); }
+
+  /// Runs into `output` with `threads` (0: OpenMP's default); returns {"history", "summary",
+  /// "output"}.
+  py::dict run(const std::string& output, int threads, bool quiet) const {
+    shard::RunOptions options;
+    options.output_dir = output;
+    options.threads = threads;
+    options.quiet = quiet;
+    options.overrides = overrides_;
+    {
+      py::gil_scoped_release unlocked;
+      (void)shard::run_scenario(file_, options);
+    }
+    py::dict result;
+    result["output"] = output;
+    result["history"] = read_history(options.output_dir / "history.csv");
+    result["summary"] = py::module_::import("json").attr("loads")(read_text(options.output_dir / "summary.json"));
+    return result;
+  }
+
+  std::vector<std::pair<std::string, std::string>> overrides() const {
+    std::vector<std::pair<std::string, std::string>> out;
+    for (const auto& o : overrides_) out.emplace_back(o.key, o.value);
+    return out;
+  }
+
+ private:
+  std::string file_;
+  std::vector<shard::ScenarioOverride> overrides_;
+};
+
+}  // namespace
+
+PYBIND11_MODULE(shard, m) {
+  m.doc() = "shard: explicit dynamics of cracking, fragmenting and crushing solids (docs/python.md)";
+  m.attr("__version__") = SHARD_VERSION;
+  static py::exception<shard::InputError> input_error(m, "InputError", PyExc_ValueError);
+  static py::exception<shard::RunError> run_error(m, "RunError", PyExc_RuntimeError);
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const shard::InputError& e) {
+      PyErr_SetString(input_error.ptr(), e.what());
+    } catch (const shard::RunError& e) {
+      PyErr_SetString(run_error.ptr(), e.what());
+    }
+  });
+  py::class_<Scenario>(m, "Scenario", "a scenario file and the overrides put over it")
+      .def(py::init<std::string>(), py::arg("file"))
+      .def("set", &Scenario::set, py::arg("key"), py::arg("value"), py::return_value_policy::reference_internal,
+           "put a value over a key (dotted, list entries from 1), e.g. set('materials.alumina.tensile_strength', "
+           "'450 MPa'); checked at once (InputError)")
+      .def("check", &Scenario::check, "what `shard check` prints")
+      .def("run", &Scenario::run, py::arg("output"), py::arg("threads") = 0, py::arg("quiet") = true,
+           "run into the folder `output`; returns {'history': {column: numpy array}, 'summary': dict, 'output': str}")
+      .def_property_readonly("overrides", &Scenario::overrides);
+  m.def("read_history", [](const std::string& path) { return read_history(path); }, py::arg("path"),
+        "a history.csv as {column: numpy array}");
+}

@@ -1,0 +1,83 @@
+#!/usr/bin/python3
+"""CI test of the Python module `shard` (python/shard_module.cpp, ctest label "cli").
+
+- A scenario loaded, one key overridden with a unit (the bar of examples/bar_impact with another
+  Young's modulus and a shorter end time), run on two threads: the history it returns as NumPy
+  arrays equals, bit for bit, the history.csv of `shard run FILE --set ...` on one thread, and
+  the module's own history.csv is the same bytes; the summary is a dict that says the run ended.
+- The override acts: the front of the elastic wave reaches the free end later with the lower
+  modulus (c = sqrt(E(1-nu)/(rho(1+nu)(1-2nu))) in plane strain): the kinetic energy at 4 us is
+  different from the run without it.
+- A bad override is an InputError (a ValueError) naming the key, at set(), before any run.
+
+Usage: test_python_module.py SHARD_EXECUTABLE MODULE_DIR SOURCE_DIR WORK_DIR
+"""
+
+import json
+import os
+import shutil
+import subprocess
+import sys
+
+
+def fail(message):
+    print(f"FAIL: {message}")
+    sys.exit(1)
+
+
+def main():
+    shard_exe, module_dir, source, work = sys.argv[1:5]
+    sys.path.insert(0, module_dir)
+    import numpy as np
+    import shard
+
+    shutil.rmtree(work, ignore_errors=True)
+    os.makedirs(work)
+    scenario_file = os.path.join(work, "bar.yaml")
+    with open(os.path.join(source, "examples", "bar_impact", "bar_2d.yaml")) as f:
+        text = f.read().replace("file: bar_2d.geo", "file: " + os.path.join(source, "examples", "bar_impact", "bar_2d.geo"))
+    with open(scenario_file, "w") as f:
+        f.write(text.replace("size: 0.5 mm", "size: 1 mm"))
+
+    s = shard.Scenario(scenario_file)
+    s.set("materials.steel.bulk_modulus", "120 GPa").set("analysis.end_time", "4 us")
+    print("overrides:", s.overrides)
+    result = s.run(os.path.join(work, "module"), threads=2)
+    history = result["history"]
+    if result["summary"]["status"] != "completed":
+        fail(f"summary status {result['summary']['status']!r}")
+    if not isinstance(history["kinetic"], np.ndarray) or history["kinetic"].size < 20:
+        fail("the history is not a column of NumPy values")
+
+    cli_out = os.path.join(work, "cli")
+    subprocess.run([shard_exe, "run", scenario_file, "--quiet", "--threads", "1", "-o", cli_out,
+                    "--set", "materials.steel.bulk_modulus=120 GPa", "--set", "analysis.end_time=4 us"], check=True)
+    with open(os.path.join(cli_out, "history.csv"), "rb") as a, open(os.path.join(work, "module", "history.csv"), "rb") as b:
+        if a.read() != b.read():
+            fail("the module's history.csv differs from shard run --set's")
+    cli = shard.read_history(os.path.join(cli_out, "history.csv"))
+    for name, column in cli.items():
+        if not np.array_equal(column, history[name]):
+            fail(f"column {name} differs between the module and the command line")
+    print(f"history: {len(history)} columns x {history['time'].size} rows identical to shard run --set")
+
+    plain = shard.Scenario(scenario_file).set("analysis.end_time", "4 us").run(os.path.join(work, "plain"))
+    k_soft, k_plain = history["kinetic"][-1], plain["history"]["kinetic"][-1]
+    print(f"kinetic energy at 4 us: {k_soft:.6e} J with K = 120 GPa, {k_plain:.6e} J with the file's 159 GPa")
+    if k_soft == k_plain:
+        fail("the override did not change the run")
+
+    try:
+        shard.Scenario(scenario_file).set("materials.steel.bulk_modulus", "120 Gpa")
+        fail("a misspelt unit was accepted")
+    except shard.InputError as e:
+        if "materials.steel.bulk_modulus" not in str(e) or "GPa" not in str(e):
+            fail(f"the error does not name the key and the unit: {e}")
+        if not isinstance(e, ValueError):
+            fail("InputError is not a ValueError")
+        print(f"bad override: {e}")
+    print("PASS")
+
+
+if __name__ == "__main__":
+    main()
