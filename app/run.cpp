@@ -5,6 +5,7 @@
 #include <sys/resource.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -344,12 +345,9 @@ class RunDriver {
       }
       const std::int64_t step = s.step;
       const double dt_used = s.dt_half;
-      if (sc_.crash) {  // the row reports the mean force since the last one, not a point sample
-        // F_n acts over Δt_n = ½(Δt_n−1/2 + Δt_n+1/2), as the central difference applies it.
-        const double dt_n = step == 0 ? 0.5 * s.dt_next : 0.5 * (s.dt_half + s.dt_next);
-        cursor_.crash_impulse += crash_force() * dt_n;
-        cursor_.crash_span += dt_n;
-      }
+      // Before advance(): its events (crack growth) may rebuild the contact system, which
+      // clears the forces it applied in this step.
+      book_forces(step == 0 ? 0.5 * s.dt_next : 0.5 * (s.dt_half + s.dt_next));
       solver_.advance();
       if (final || due(t, cursor_.next_history, out.history_interval)) {
         write_history_row(t, step, dt_used);
@@ -385,6 +383,38 @@ class RunDriver {
       write_vtu(dir_ / pname, make_particle_frame(pp, t));
       particle_pvd_[p].add(t, pname);
     }
+  }
+
+  /// The force columns of history.csv at t_n, in column order: the crash force, the contact
+  /// force of every reported pair of parts, the force on every wall from the elements, then
+  /// from the particles.
+  void force_columns(std::vector<double>& f) const {
+    f.clear();
+    if (sc_.crash) f.push_back(crash_force());
+    if (contact_)
+      for (const auto* values : {&contact_->pair_forces(), &contact_->wall_forces()})
+        f.insert(f.end(), values->begin(), values->end());
+    if (sim_.particle_contact) {
+      const auto& w = sim_.particle_contact->wall_forces();
+      for (std::size_t i = 0; i < sim_.particle_contact->settings().walls.size() * dim_; ++i)
+        f.push_back(i < w.size() ? w[i] : 0.0);
+    }
+  }
+
+  /// Books the forces of step n over Δt_n = ½(Δt_n−1/2 + Δt_n+1/2), the span the central
+  /// difference applies them over: each row reports the mean force since the last row
+  /// (∫F dt/∫dt), so that the rows carry every impulse, whatever an event did after the step.
+  void book_forces(double dt_n) {
+    force_columns(forces_);
+    auto& impulse = cursor_.force_impulse;
+    if (impulse.size() != forces_.size()) impulse.assign(forces_.size(), 0.0);
+    for (std::size_t i = 0; i < forces_.size(); ++i) impulse[i] += forces_[i] * dt_n;
+    cursor_.row_span += dt_n;
+  }
+
+  /// The mean of force column i since the last row (the force of the step if none was booked).
+  double mean_force(std::size_t i) const {
+    return cursor_.row_span > 0 ? cursor_.force_impulse[i] / cursor_.row_span : forces_[i];
   }
 
   void write_number(double v) {
@@ -432,19 +462,15 @@ class RunDriver {
     if (sim_.cohesive)
       history_ << ',' << sim_.cohesive->intact_points() << ',' << sim_.cohesive->failed_points() << ','
                << sim_.cohesive->open_elements();
+    // The force columns: means over the steps since the last row (book_forces).
+    std::size_t column = 0;
     if (sc_.crash) {
-      write_number(cursor_.crash_span > 0 ? cursor_.crash_impulse / cursor_.crash_span : crash_force());
+      write_number(mean_force(column++));
       write_number(crash_stroke());
-      cursor_.crash_impulse = cursor_.crash_span = 0;
     }
-    if (contact_)
-      for (const auto* values : {&contact_->pair_forces(), &contact_->wall_forces()})
-        for (double v : *values) write_number(v);
-    if (sim_.particle_contact) {
-      const auto& f = sim_.particle_contact->wall_forces();
-      for (std::size_t i = 0; i < sim_.particle_contact->settings().walls.size() * dim_; ++i)
-        write_number(i < f.size() ? f[i] : 0.0);
-    }
+    for (; column < forces_.size(); ++column) write_number(mean_force(column));
+    std::fill(cursor_.force_impulse.begin(), cursor_.force_impulse.end(), 0.0);
+    cursor_.row_span = 0;
     history_ << '\n';
   }
 
@@ -609,6 +635,7 @@ class RunDriver {
   Progress progress_;
   bool particle_step_noted_ = false, cohesive_step_noted_ = false;
   std::vector<std::string> notes_;  ///< further notes for summary.json
+  std::vector<double> forces_;      ///< the force columns of the last step (force_columns)
 
   /// crash.csv and the summary's crash figures (empty without a `crash` section).
   std::string crash_summary() {
