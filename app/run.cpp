@@ -5,6 +5,7 @@
 #include <sys/resource.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <chrono>
 #include <cmath>
@@ -372,7 +373,13 @@ class RunDriver {
         columns.push_back("particle_mass_" + pp.name);
       }
     }
-    if (cracks_) columns.push_back("fragments");
+    if (cracks_) {
+      columns.push_back("fragments");
+      // Per part: the pieces holding its elements and the heaviest of them (the target's
+      // breakup apart from the projectile's).
+      for (const Part& part : sim_.model.parts) columns.push_back("fragments_" + part.name);
+      for (const Part& part : sim_.model.parts) columns.push_back("largest_fragment_" + part.name);
+    }
     if (sim_.cohesive) {
       columns.push_back("interface_points_intact");
       columns.push_back("interface_points_failed");
@@ -476,12 +483,9 @@ class RunDriver {
       }
       const std::int64_t step = s.step;
       const double dt_used = s.dt_half;
-      if (sc_.crash) {  // the row reports the mean force since the last one, not a point sample
-        // F_n acts over Δt_n = ½(Δt_n−1/2 + Δt_n+1/2), as the central difference applies it.
-        const double dt_n = step == 0 ? 0.5 * s.dt_next : 0.5 * (s.dt_half + s.dt_next);
-        cursor_.crash_impulse += crash_force() * dt_n;
-        cursor_.crash_span += dt_n;
-      }
+      // Before advance(): its events (crack growth) may rebuild the contact system, which
+      // clears the forces it applied in this step.
+      book_forces(step == 0 ? 0.5 * s.dt_next : 0.5 * (s.dt_half + s.dt_next));
       solver_.advance();
       if (final || due(t, cursor_.next_history, out.history_interval)) {
         write_history_row(t, step, dt_used);
@@ -497,6 +501,29 @@ class RunDriver {
     }
   }
 
+  /// Elements turn into debris particles in this run.
+  bool makes_debris() const {
+    return std::any_of(sim_.model.parts.begin(), sim_.model.parts.end(),
+                       [](const Part& p) { return p.erosion.to_particles; });
+  }
+
+  /// With cracks or debris, the fields `fragment`: the fragment of every element (−1: eroded)
+  /// on the mesh frame, of every debris particle (−1: not debris) on each particle part's, the
+  /// ids fragments.csv gives them when written at this moment.
+  void add_fragment_fields(VtuGrid& frame, std::vector<std::vector<double>>& particle_fragment) const {
+    if (!cracks_ && !makes_debris()) return;
+    const Fragments f = find_fragments(sim_.model);
+    VtuField cells{"fragment", 1, {}};
+    for (const auto& ids : f.element_fragment) cells.values.insert(cells.values.end(), ids.begin(), ids.end());
+    frame.cell_fields.push_back(std::move(cells));
+    auto next = static_cast<double>(f.list.size());  // debris ids follow, as debris_fragments numbers them
+    for (const auto& pp : sim_.model.particle_parts) {
+      particle_fragment.emplace_back(pp.count(), -1.0);
+      for (std::size_t i = 0; i < pp.count(); ++i)
+        if (pp.origin_element[i] >= 0) particle_fragment.back()[i] = next++;
+    }
+  }
+
   void write_frames(double t) {
     char name[32];
     std::snprintf(name, sizeof name, "frame_%05lld.vtu", static_cast<long long>(cursor_.next_frame));
@@ -507,6 +534,8 @@ class RunDriver {
       VtuField p{"contact_pressure", 1, contact_->nodal_pressure(sim_.model)};
       frame.point_fields.push_back(std::move(p));
     }
+    std::vector<std::vector<double>> particle_fragment;
+    add_fragment_fields(frame, particle_fragment);
     if (!sim_.model.parts.empty()) {
       write_vtu(dir_ / name, frame);
       pvd_.add(t, name);
@@ -516,9 +545,44 @@ class RunDriver {
       char pname[160];
       std::snprintf(pname, sizeof pname, "particles_%s_%05lld.vtu", pp.name.c_str(),
                     static_cast<long long>(cursor_.next_frame));
-      write_vtu(dir_ / pname, make_particle_frame(pp, t));
+      VtuGrid particles = make_particle_frame(pp, t);
+      if (p < particle_fragment.size() && !find_mca_state(pp))
+        particles.point_fields.push_back({"fragment", 1, std::move(particle_fragment[p])});
+      write_vtu(dir_ / pname, particles);
       particle_pvd_[p].add(t, pname);
     }
+  }
+
+  /// The force columns of history.csv at t_n, in column order: the crash force, the contact
+  /// force of every reported pair of parts, the force on every wall from the elements, then
+  /// from the particles.
+  void force_columns(std::vector<double>& f) const {
+    f.clear();
+    if (sc_.crash) f.push_back(crash_force());
+    if (contact_)
+      for (const auto* values : {&contact_->pair_forces(), &contact_->wall_forces()})
+        f.insert(f.end(), values->begin(), values->end());
+    if (sim_.particle_contact) {
+      const auto& w = sim_.particle_contact->wall_forces();
+      for (std::size_t i = 0; i < sim_.particle_contact->settings().walls.size() * dim_; ++i)
+        f.push_back(i < w.size() ? w[i] : 0.0);
+    }
+  }
+
+  /// Books the forces of step n over Δt_n = ½(Δt_n−1/2 + Δt_n+1/2), the span the central
+  /// difference applies them over: each row reports the mean force since the last row
+  /// (∫F dt/∫dt), so that the rows carry every impulse, whatever an event did after the step.
+  void book_forces(double dt_n) {
+    force_columns(forces_);
+    auto& impulse = cursor_.force_impulse;
+    if (impulse.size() != forces_.size()) impulse.assign(forces_.size(), 0.0);
+    for (std::size_t i = 0; i < forces_.size(); ++i) impulse[i] += forces_[i] * dt_n;
+    cursor_.row_span += dt_n;
+  }
+
+  /// The mean of force column i since the last row (the force of the step if none was booked).
+  double mean_force(std::size_t i) const {
+    return cursor_.row_span > 0 ? cursor_.force_impulse[i] / cursor_.row_span : forces_[i];
   }
 
   void write_number(double v) {
@@ -562,24 +626,41 @@ class RunDriver {
       for (std::size_t p = 0; p < pairs.count(); ++p) linked += pairs.state_of(p) == PairState::linked;
       history_ << ',' << linked;
     }
-    if (cracks_) history_ << ',' << find_fragments(sim_.model).list.size();
+    if (cracks_) write_fragment_counts();
     if (sim_.cohesive)
       history_ << ',' << sim_.cohesive->intact_points() << ',' << sim_.cohesive->failed_points() << ','
                << sim_.cohesive->open_elements();
+    // The force columns: means over the steps since the last row (book_forces).
+    std::size_t column = 0;
     if (sc_.crash) {
-      write_number(cursor_.crash_span > 0 ? cursor_.crash_impulse / cursor_.crash_span : crash_force());
+      write_number(mean_force(column++));
       write_number(crash_stroke());
-      cursor_.crash_impulse = cursor_.crash_span = 0;
     }
-    if (contact_)
-      for (const auto* values : {&contact_->pair_forces(), &contact_->wall_forces()})
-        for (double v : *values) write_number(v);
-    if (sim_.particle_contact) {
-      const auto& f = sim_.particle_contact->wall_forces();
-      for (std::size_t i = 0; i < sim_.particle_contact->settings().walls.size() * dim_; ++i)
-        write_number(i < f.size() ? f[i] : 0.0);
-    }
+    for (; column < forces_.size(); ++column) write_number(mean_force(column));
+    std::fill(cursor_.force_impulse.begin(), cursor_.force_impulse.end(), 0.0);
+    cursor_.row_span = 0;
     history_ << '\n';
+  }
+
+  /// The fragments now: their count, then per part the count of those holding its elements and
+  /// the mass of the heaviest (a fragment that spans parts counts in each).
+  void write_fragment_counts() {
+    const Fragments f = find_fragments(sim_.model);
+    history_ << ',' << f.list.size();
+    std::vector<std::int64_t> count(f.element_fragment.size(), 0);
+    std::vector<double> largest(f.element_fragment.size(), 0.0);
+    std::vector<char> seen(f.list.size());
+    for (std::size_t p = 0; p < f.element_fragment.size(); ++p) {
+      std::fill(seen.begin(), seen.end(), 0);
+      for (const std::int32_t id : f.element_fragment[p]) {
+        if (id < 0 || seen[id]) continue;
+        seen[id] = 1;
+        ++count[p];
+        largest[p] = std::max(largest[p], f.list[id].mass);
+      }
+    }
+    for (const auto c : count) history_ << ',' << c;
+    for (const double m : largest) write_number(m);
   }
 
   /// A checkpoint when one is due or the run stops here (--until); true when it stops.
@@ -605,9 +686,7 @@ class RunDriver {
   /// fragments.csv at the end of a run that cracks or makes debris: the pieces of the mesh, then
   /// each debris particle as a fragment of its own (the fine end of the mass distribution).
   void write_fragment_report() {
-    const bool debris = std::any_of(sim_.model.parts.begin(), sim_.model.parts.end(),
-                                    [](const Part& p) { return p.erosion.to_particles; });
-    if (!cracks_ && !debris) return;
+    if (!cracks_ && !makes_debris()) return;
     std::vector<Fragment> list = find_fragments(sim_.model).list;
     const std::vector<Fragment> particles = debris_fragments(sim_.model, static_cast<std::int32_t>(list.size()));
     list.insert(list.end(), particles.begin(), particles.end());
@@ -745,6 +824,7 @@ class RunDriver {
   bool particle_step_noted_ = false, cohesive_step_noted_ = false;
   bool forces_ready_ = false;  // the first step's forces, computed before the outputs opened
   std::vector<std::string> notes_;  ///< further notes for summary.json
+  std::vector<double> forces_;      ///< the force columns of the last step (force_columns)
 
   /// crash.csv and the summary's crash figures (empty without a `crash` section).
   std::string crash_summary() {

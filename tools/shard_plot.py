@@ -538,13 +538,23 @@ def show_info(args):
 # ---- fragments -----------------------------------------------------------------------------------
 
 def read_fragments(folder):
-    """fragments.csv of a run (written at its end) as {column: array}."""
+    """fragments.csv of a run (written at its end) as {column: array}; the column 'part' holds
+    strings (a file without one, of an older shard, gets part '' for every fragment)."""
     path = os.path.join(folder, "fragments.csv") if os.path.isdir(folder) else folder
     if not os.path.isfile(path):
         raise PlotError(f"no such file: {path} (a run writes it at its end when a part cracks)")
-    columns = read_history(path, key="id")
-    if "mass" not in columns:
+    with open(path, newline="") as stream:
+        rows = list(csv.reader(stream))
+    names = [name.strip() for name in rows[0]] if rows else []
+    if "mass" not in names:
         raise PlotError(f"{path} has no column 'mass': not a fragments.csv")
+    rows = [row for row in rows[1:] if len(row) == len(names)]
+    columns = {}
+    for i, name in enumerate(names):
+        values = [row[i] for row in rows]
+        columns[name] = np.array(values, dtype=object) if name == "part" else np.array(values, dtype=float)
+    if "part" not in columns:
+        columns["part"] = np.array([""] * len(rows), dtype=object)
     return path, columns
 
 
@@ -593,25 +603,39 @@ def plot_crash(args):
     print(f"wrote {out}")
 
 
+def fragment_statistics(mass, debris):
+    """Count, debris count and mass, total, largest and median by mass of one part's fragments."""
+    order = np.sort(mass)
+    total = order.sum()
+    # cumulative mass fraction of the fragments no heavier than m (the sieve curve)
+    passing = np.cumsum(order) / total
+    return {"count": int(mass.size - debris.sum()), "debris": int(debris.sum()), "debris_mass": mass[debris].sum(),
+            "total": total, "largest": order[-1], "median": order[np.searchsorted(passing, 0.5)],
+            "sorted": order, "passing": passing}
+
+
 def plot_fragments(args):
-    """Mass distribution of the fragments at the end of a run, and their count over time."""
+    """Mass distribution of the fragments of each part at the end of a run (the target's apart
+    from the projectile's), and their count over time."""
     path, columns = read_fragments(args.folder)
     mass = np.asarray(columns["mass"], dtype=float)
     if mass.size == 0 or not mass.sum() > 0:
         raise PlotError(f"{path} lists no fragment with mass")
     # debris particles (comminuted or eroded elements) are fragments of one particle each
     particle = np.asarray(columns.get("particles", np.zeros_like(mass)), dtype=float) > 0
-    debris_count, debris_mass = int(particle.sum()), mass[particle].sum()
-    mass = np.sort(mass)
-    total = mass.sum()
-    # cumulative mass fraction of the fragments no heavier than m (the sieve curve)
-    passing = np.cumsum(mass) / total
     kinetic = np.asarray(columns.get("kinetic_energy", np.zeros_like(mass)), dtype=float)
-    largest = mass[-1]
-    print(f"{path}: {mass.size} fragments, total mass {total:.6g} kg; largest {largest:.6g} kg "
-          f"({largest / total:.1%}); median by mass {mass[np.searchsorted(passing, 0.5)]:.4g} kg; "
-          f"kinetic energy {kinetic.sum():.4g} J; debris: {debris_count} particles, "
-          f"{debris_mass:.4g} kg ({debris_mass / total:.1%})")
+    part = columns["part"]
+    parts = list(dict.fromkeys(part))  # in the order of the fragment ids: the scenario's parts
+    statistics = {}
+    for name in parts:
+        chosen = part == name
+        if not mass[chosen].sum() > 0:
+            continue
+        st = statistics[name] = fragment_statistics(mass[chosen], particle[chosen])
+        print(f"{path}: part {name or '?'}: {st['count']} fragments, mass {st['total']:.6g} kg; largest "
+              f"{st['largest']:.6g} kg ({st['largest'] / st['total']:.1%} of the part); median by mass "
+              f"{st['median']:.4g} kg; kinetic energy {kinetic[chosen].sum():.4g} J; debris: {st['debris']} "
+              f"particles, {st['debris_mass']:.4g} kg ({st['debris_mass'] / st['total']:.1%})")
     history = None
     if os.path.isdir(args.folder) and os.path.isfile(os.path.join(args.folder, "history.csv")):
         history = read_history(os.path.join(args.folder, "history.csv"))
@@ -620,23 +644,30 @@ def plot_fragments(args):
     figure, panels = plt.subplots(1, 2 if history else 1, figsize=(11 if history else 6, 4.2),
                                   squeeze=False)
     axes = panels[0][0]
-    axes.step(mass, passing, where="post", color="tab:blue")
+    titles = []
+    for name, st in statistics.items():
+        label = f"{name or 'fragments'}: {st['count']}, largest {st['largest'] / st['total']:.0%}"
+        if st["debris"]:
+            label += f", + {st['debris']} debris ({st['debris_mass'] / st['total']:.1%})"
+        axes.step(st["sorted"], st["passing"], where="post", label=label)
+        titles.append(f"{name}: {st['count']}")
     axes.set_xscale("log")
     axes.set_xlabel("fragment mass m [kg]")
-    axes.set_ylabel("mass fraction in fragments ≤ m")
+    axes.set_ylabel("mass fraction of the part in fragments ≤ m")
     axes.set_ylim(0, 1.02)
     axes.grid(True, which="both", alpha=0.3)
-    title = f"{mass.size - debris_count} fragments, largest {largest / total:.0%} of the mass"
-    if debris_count:
-        title += f"\n+ {debris_count} debris particles, {debris_mass / total:.1%} of the mass"
-    axes.set_title(title)
+    axes.legend(fontsize=8, loc="upper left")
+    axes.set_title("fragments per part: " + ", ".join(titles))
     if history:
         axes = panels[0][1]
-        axes.step(np.asarray(history["time"]) * 1e6, history["fragments"], where="post",
-                  color="tab:red")
+        per_part = [name for name in parts if f"fragments_{name}" in history]
+        for name in per_part or [None]:
+            column = f"fragments_{name}" if name else "fragments"
+            axes.step(np.asarray(history["time"]) * 1e6, history[column], where="post", label=name or column)
         axes.set_xlabel("time [µs]")
         axes.set_ylabel("fragments")
         axes.grid(True, alpha=0.3)
+        axes.legend(fontsize=8, loc="upper left")
         axes.set_title("fragments over time")
     figure.suptitle(args.title or run_name(path))
     output = args.output or os.path.join(os.path.dirname(os.path.abspath(path)), "fragments.png")
@@ -1656,10 +1687,11 @@ particle part, or --part), with --frame (default last).""")
 
     fragments = commands.add_parser(
         "fragments", help="mass distribution of the fragments (fragments.csv) and their count",
-        description="Cumulative mass distribution of the fragments at the end of a run "
-                    "(RUN/fragments.csv: mass fraction in fragments no heavier than m, against m), "
-                    "and the fragment count over time from history.csv when it has a 'fragments' "
-                    "column. Prints the count, the largest fragment and the median by mass.")
+        description="Cumulative mass distribution of the fragments of each part at the end of a "
+                    "run (RUN/fragments.csv: the part's mass fraction in fragments no heavier than "
+                    "m, against m), and the fragment count of each part over time from history.csv "
+                    "when it has 'fragments' columns. Prints per part (the target apart from the "
+                    "projectile) the count, the largest fragment and the median by mass.")
     fragments.add_argument("folder", metavar="RUN", help="run folder, or a fragments.csv")
     fragments.add_argument("-o", "--output", help="image file (default: RUN/fragments.png)")
     fragments.add_argument("--title", help="title (default: the run folder's name)")

@@ -48,6 +48,7 @@ Fragments find_fragments(const Model& model) {
 
   Fragments out;
   std::vector<std::int32_t> id_of_root(nn, -1);
+  std::vector<std::size_t> last_part;  // per fragment: the last part whose name it got
   out.element_fragment.resize(model.parts.size());
   for (std::size_t p = 0; p < model.parts.size(); ++p) {
     const Part& part = model.parts[p];
@@ -61,6 +62,11 @@ Fragments find_fragments(const Model& model) {
         id = static_cast<std::int32_t>(out.list.size());
         out.list.push_back(Fragment{});
         out.list.back().id = id;
+        out.list.back().part = part.name;
+        last_part.push_back(p);
+      } else if (last_part[id] != p) {  // parts in order: each name once, in the scenario's order
+        out.list[id].part += "+" + part.name;
+        last_part[id] = p;
       }
       fragment_of[e] = id;
       ++out.list[id].elements;
@@ -97,10 +103,14 @@ std::vector<Fragment> debris_fragments(const Model& model, std::int32_t first_id
   std::vector<Fragment> out;
   for (const ParticlePart& p : model.particle_parts) {
     const int D = p.dim, R = p.rot_dim();
+    std::string origin = p.name;  // the debris part of part X is X_particles
+    for (const Part& part : model.parts)
+      if (part.name + "_particles" == p.name) origin = part.name;
     for (std::size_t i = 0; i < p.count(); ++i) {
       if (p.origin_element[i] < 0) continue;
       Fragment f;
       f.id = first_id + static_cast<std::int32_t>(out.size());
+      f.part = origin;
       f.particles = 1;
       f.mass = p.mass[i];
       for (int k = 0; k < D; ++k) {
@@ -119,13 +129,13 @@ void write_fragments_csv(const std::filesystem::path& path, const std::vector<Fr
   std::ofstream out(path, std::ios::trunc);
   if (!out) throw std::runtime_error("cannot write " + path.string());
   const char* axis[3] = {"x", "y", "z"};
-  out << "id,elements,mass";
+  out << "id,part,elements,mass";
   for (int k = 0; k < dim; ++k) out << ",centroid_" << axis[k];
   for (int k = 0; k < dim; ++k) out << ",velocity_" << axis[k];
   out << ",kinetic_energy,particles\n";
   out.precision(std::numeric_limits<double>::max_digits10);
   for (const Fragment& f : fragments) {
-    out << f.id << ',' << f.elements << ',' << f.mass;
+    out << f.id << ',' << f.part << ',' << f.elements << ',' << f.mass;
     for (int k = 0; k < dim; ++k) out << ',' << f.centroid[k];
     for (int k = 0; k < dim; ++k) out << ',' << f.velocity[k];
     out << ',' << f.kinetic_energy << ',' << f.particles << '\n';

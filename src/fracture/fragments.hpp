@@ -5,6 +5,7 @@
 #include <array>
 #include <cstdint>
 #include <filesystem>
+#include <string>
 #include <vector>
 
 #include "model/model.hpp"
@@ -13,6 +14,11 @@ namespace shard {
 
 struct Fragment {
   std::int32_t id = 0;
+  /// The part its elements belong to. A fragment lies in one part unless parts share nodes (two
+  /// parts meshed as one conforming mesh, not separated by a contact or an interface): then the
+  /// names of the parts it spans, joined by '+' in the scenario's order. A debris particle: the
+  /// part of the element it came from.
+  std::string part;
   std::int64_t elements = 0;            ///< live elements
   double mass = 0;                      ///< Σ nodal lumped mass, each node once
   std::array<double, 3> centroid{};     ///< centre of mass Σ m x / Σ m (current positions)
@@ -37,10 +43,11 @@ Fragments find_fragments(const Model& model);
 
 /// The debris: each particle converted from an element (origin_element ≥ 0) as a fragment of
 /// its own (elements 0, particles 1, its kinetic energy with its spin), ids from `first_id` on,
-/// in particle part and storage order.
+/// in particle part and storage order; its part is the one the particle part `<part>_particles`
+/// holds the debris of.
 std::vector<Fragment> debris_fragments(const Model& model, std::int32_t first_id);
 
-/// Writes `fragments.csv`: id,elements,mass,centroid_x,centroid_y[,centroid_z],
+/// Writes `fragments.csv`: id,part,elements,mass,centroid_x,centroid_y[,centroid_z],
 /// velocity_x,velocity_y[,velocity_z],kinetic_energy,particles (SI units, full precision).
 void write_fragments_csv(const std::filesystem::path& path, const std::vector<Fragment>& fragments, int dim);
 

@@ -15,8 +15,9 @@ namespace {
 
 // The last byte is the format version: 4 added the elements' reference length (distortion
 // criterion) and the particles' ring length; 5 the cohesive elements; 6 their open flag and
-// the crash force's running mean; 7 the automata's many-body share.
-constexpr char kMagic[8] = {'S', 'H', 'A', 'R', 'D', 'C', 'K', '7'};
+// the crash force's running mean; 7 the automata's many-body share; 8 the running means of every
+// force column of the history.
+constexpr char kMagic[8] = {'S', 'H', 'A', 'R', 'D', 'C', 'K', '8'};
 
 /// Scalars of SolverState and OutputCursor in one fixed order, for both directions.
 template <class F>
@@ -37,8 +38,7 @@ void visit_scalars(SolverState& s, OutputCursor& c, F&& f) {
   f(c.next_history);
   f(c.next_checkpoint);
   f(c.history_bytes);
-  f(c.crash_impulse);
-  f(c.crash_span);
+  f(c.row_span);
 }
 
 /// Type tag of a checkpoint array, so that a reader never reinterprets one element type as another.
@@ -129,6 +129,7 @@ void write_checkpoint(const std::filesystem::path& path, Model& model, const Sol
     SolverState s = state;
     OutputCursor c = cursor;
     visit_scalars(s, c, [&](auto& v) { w.raw(v); });
+    w.array("history_force_impulse", c.force_impulse);
     // The energy ledger, by name: every registered term.
     w.raw<std::uint64_t>(state.energy.terms().size());
     for (const EnergyTerm& t : state.energy.terms()) {
@@ -156,6 +157,7 @@ void read_checkpoint(const std::filesystem::path& path, Model& model, SolverStat
   if (r.text() != fingerprint)
     r.fail("it was written by a different scenario (restart with the scenario that wrote it)");
   visit_scalars(state, cursor, [&](auto& v) { v = r.raw<std::decay_t<decltype(v)>>(); });
+  r.array("history_force_impulse", cursor.force_impulse);
   const auto terms = r.raw<std::uint64_t>();
   if (terms > 4096) r.fail("corrupt energy ledger");
   for (std::uint64_t k = 0; k < terms; ++k) {

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "model/model.hpp"
 #include "solver/explicit_solver.hpp"
@@ -16,8 +17,11 @@ struct OutputCursor {
   std::int64_t next_history = 0;     ///< index of the next history row
   std::int64_t next_checkpoint = 1;  ///< index of the next checkpoint
   std::uint64_t history_bytes = 0;   ///< length of history.csv at the checkpoint
-  /// ∫ F dt of the crash force and ∫ dt since the last history row: the row reports the mean.
-  double crash_impulse = 0, crash_span = 0;
+  /// ∫ dt since the last history row, and ∫ F dt of each of its force columns (the crash force,
+  /// the contact forces per pair, the walls' forces from the elements and from the particles, in
+  /// column order): the row reports the means, F booked in the step that applied it.
+  double row_span = 0;
+  std::vector<double> force_impulse;
 };
 
 /// Writes `path` via "<path>.tmp" and a rename: a run killed while writing leaves the previous

@@ -107,10 +107,12 @@ VtuGrid make_particle_frame(const ParticlePart& part, double time) {
   };
   cell_scalar("bond_state", -1.0, [&](std::size_t p) { return static_cast<double>(mca.pairs.state[p]); });
   cell_scalar("k_link", 0.0, [&](std::size_t p) { return mca.pairs.k_link[p]; });
-  cell_scalar("bond_normal_stress", 0.0, [&](std::size_t p) { return mca.pairs.eta[p]; });
+  // What each pair applies (force per contact area): a broken pair no tension, and only the
+  // friction of its contact part, however far η has integrated since it broke.
+  cell_scalar("bond_normal_stress", 0.0, [&](std::size_t p) { return pair_normal_traction(mca.pairs, p); });
   cell_scalar("bond_shear_stress", 0.0, [&](std::size_t p) {
     double s = 0;
-    for (int k = 0; k < T; ++k) s += mca.pairs.tau[T * p + k] * mca.pairs.tau[T * p + k];
+    for (int k = 0; k < T; ++k) s += std::pow(pair_shear_traction(mca.pairs, p, T, k), 2);
     return std::sqrt(s);
   });
   g.field_data.push_back({"TimeValue", 1, {time}});

@@ -240,16 +240,14 @@ inline double pair_equivalent_strain(double r, double r0, double tau_norm, doubl
 /// k_link S (η n + τ) and the unlinked part (1 − k_link) S (min(η, 0) n + τ_c).
 template <int D>
 inline void pair_force(PairList& P, std::size_t p, const double* n, double* F) {
-  const double k = P.k_link[p], S = P.area[p];
-  const double eta = P.eta[p];
-  const double etac = std::min(eta, 0.0);
-  const double fn = S * (k * eta + (1 - k) * etac);
+  const double S = P.area[p];
+  const double fn = S * pair_normal_traction(P, p);
   if constexpr (D == 2) {
-    const double ft = S * (k * P.tau[p] + (1 - k) * P.tau_c[p]);
+    const double ft = S * pair_shear_traction(P, p, 1, 0);
     F[0] = fn * n[0] - ft * n[1];
     F[1] = fn * n[1] + ft * n[0];
   } else {
-    for (int a = 0; a < 3; ++a) F[a] = fn * n[a] + S * (k * P.tau[3 * p + a] + (1 - k) * P.tau_c[3 * p + a]);
+    for (int a = 0; a < 3; ++a) F[a] = fn * n[a] + S * pair_shear_traction(P, p, 3, a);
   }
 }
 

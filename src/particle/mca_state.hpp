@@ -6,6 +6,7 @@
 // Theory note: docs/theory/mca.md. Method: the MCA paper (Psakhie et al.).
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -90,6 +91,20 @@ struct PairList {
   PairState state_of(std::size_t p) const { return static_cast<PairState>(state[p]); }
   void set_state(std::size_t p, PairState s) { state[p] = static_cast<std::uint8_t>(s); }
 };
+
+/// The traction pair p applies (force per unit contact area S, on i; on j the opposite), normal
+/// component (tension > 0): the linked part k_link η and the unlinked part (1 − k_link) min(η, 0),
+/// which carries no tension. η keeps integrating after a bond breaks (so that a separated pair
+/// comes back into contact where it left): it is not what a broken pair applies.
+inline double pair_normal_traction(const PairList& P, std::size_t p) {
+  const double k = P.k_link[p];
+  return k * P.eta[p] + (1 - k) * std::min(P.eta[p], 0.0);
+}
+/// Component a of the shear traction of pair p (T = 1 in 2D, 3 in 3D): k_link τ + (1 − k_link) τ_c.
+inline double pair_shear_traction(const PairList& P, std::size_t p, int T, int a) {
+  const double k = P.k_link[p];
+  return k * P.tau[T * p + a] + (1 - k) * P.tau_c[T * p + a];
+}
 
 /// For each automaton, the pairs it belongs to, in ascending pair index (a fixed order, so the
 /// gather of eq. (1) and eq. (3) gives the same bits for any thread count).

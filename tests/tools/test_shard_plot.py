@@ -12,9 +12,14 @@ what the plotting tool reads from them:
   linked_bonds column says were lost;
 - fragments on a cracking run (tests/data/fracture/notched_plate_coarse.yaml): the fragment
   masses add up to rho * area * thickness of the notched plate (1e-12), the plate is in at least
-  two pieces, and the count equals the history's last 'fragments' value;
+  two pieces, every row is of part 'plate', the count equals the history's last 'fragments'
+  and 'fragments_plate' values, and the last frame's 'fragment' field holds each fragment's
+  elements;
 - debris on the plate perforation example to 6 µs: the particles drawn, their mass, and the debris
-  rows of fragments.csv against the history's particle count and mass;
+  rows of fragments.csv against the history's particle count and mass; fragments on the same run:
+  the projectile is a fragment of part 'projectile', and the largest fragment and the mass the
+  tool reports for the plate are those of the plate's rows (1e-5, the printed digits); and on a
+  fragments.csv with a striker heavier than the target's pieces, the target's largest is its own;
 - a misspelt group name stops with exit status 2 (bad input, as argparse) and names the groups there are.
 
 Usage: test_shard_plot.py SHARD_EXECUTABLE SOURCE_DIR WORK_DIR
@@ -26,6 +31,9 @@ import os
 import shutil
 import subprocess
 import sys
+
+import meshio
+import numpy
 
 
 def fail(message):
@@ -113,12 +121,27 @@ def main():
     if run(plot + ["fragments", plate]).returncode != 0:
         fail("fragments on the notched plate run failed")
     with open(os.path.join(plate, "fragments.csv")) as stream:
-        masses = [float(row["mass"]) for row in csv.DictReader(stream)]
+        rows = list(csv.DictReader(stream))
+    masses = [float(row["mass"]) for row in rows]
     check_close("fragment masses against rho A t", sum(masses), 3900 * (200e-6 - 0.8e-6) * 1e-3, 1e-12)
     count = history_column(plate, "fragments")[-1]
-    print(f"fragments: {len(masses)} in fragments.csv, {count:g} in the history")
-    if len(masses) < 2 or count != len(masses):
+    of_plate = history_column(plate, "fragments_plate")[-1]
+    print(f"fragments: {len(masses)} in fragments.csv, {count:g} in the history ({of_plate:g} of the plate)")
+    if len(masses) < 2 or count != len(masses) or of_plate != count:
         fail("the plate is not in pieces, or the history disagrees with fragments.csv")
+    if any(row["part"] != "plate" for row in rows):
+        fail("fragments.csv gives a fragment of the plate another part")
+    # The last frame's cell field 'fragment': the elements of each fragment, as fragments.csv
+    # counts them (no crack grows in the last step of this run).
+    with open(os.path.join(plate, "frames.pvd")) as stream:
+        last = [l.split('file="')[1].split('"')[0] for l in stream if 'file="' in l][-1]
+    frame = meshio.read(os.path.join(plate, last))
+    ids = numpy.concatenate([numpy.asarray(block) for block in frame.cell_data["fragment"]]).astype(int)
+    counts = {int(i): int((ids == i).sum()) for i in set(ids.tolist())}
+    expected = {int(row["id"]): int(row["elements"]) for row in rows}
+    print(f"fragment field of the last frame: {len(counts)} ids, elements per id {sorted(counts.values())}")
+    if counts != expected:
+        fail(f"the frame's fragment ids disagree with fragments.csv ({counts} against {expected})")
     if not os.path.getsize(os.path.join(plate, "fragments.png")) > 0:
         fail("no fragments.png")
 
@@ -150,6 +173,40 @@ def main():
     check_close("debris mass in fragments.csv", sum(float(row["mass"]) for row in rows), history_mass, 1e-12)
     if len(rows) != count or not os.path.getsize(os.path.join(debris, "debris.png")) > 0:
         fail("fragments.csv does not list every debris particle, or no debris.png")
+    # Fragments per part: the projectile is a fragment of its own part, not of the plate; the
+    # tool's largest fragment of the plate and the plate's mass are those of the plate's rows.
+    result = run(plot + ["fragments", debris])
+    if result.returncode != 0:
+        fail("fragments on the perforation run failed")
+    with open(os.path.join(debris, "fragments.csv")) as stream:
+        rows = list(csv.DictReader(stream))
+    projectile = [float(row["mass"]) for row in rows if row["part"] == "projectile"]
+    plate_rows = [float(row["mass"]) for row in rows if row["part"] == "plate"]
+    line = [l for l in result.stdout.splitlines() if ": part plate:" in l]
+    if not projectile or not plate_rows or len(line) != 1:
+        fail("fragments.csv or the tool does not tell the projectile's fragments from the plate's")
+    words = line[0].split(": part plate:")[1].split()
+    total, largest = float(words[words.index("mass") + 1]), float(words[words.index("largest") + 1])
+    print(f"fragments of the perforation: projectile {len(projectile)} ({max(projectile):.4g} kg), plate "
+          f"{len(plate_rows)} (largest {max(plate_rows):.4g} kg)")
+    check_close("the plate's largest fragment", largest, max(plate_rows), 1e-5)
+    check_close("the plate's fragment mass", total, sum(plate_rows), 1e-5)
+    # A striker heavier than every piece of the target it broke (a fragments.csv written here):
+    # the target's largest fragment is its own, 2 g, not the 50 g striker.
+    table = os.path.join(work, "striker_fragments.csv")
+    with open(table, "w") as stream:
+        stream.write("id,part,elements,mass,centroid_x,centroid_y,velocity_x,velocity_y,kinetic_energy,particles\n"
+                     "0,tile,40,0.001,0,0,0,0,0,0\n1,tile,80,0.002,0,0,0,0,0,0\n2,striker,300,0.05,0,0,0,0,0,0\n"
+                     "3,tile,0,0.00001,0,0,0,0,0,1\n")
+    result = run(plot + ["fragments", table, "-o", os.path.join(work, "striker_fragments.png")])
+    line = [l for l in result.stdout.splitlines() if ": part tile:" in l]
+    if result.returncode != 0 or len(line) != 1:
+        fail("fragments on a table with a striker failed, or reports no part 'tile'")
+    words = line[0].split(": part tile:")[1].split()
+    check_close("the target's largest fragment beside a heavier striker", float(words[words.index("largest") + 1]),
+                0.002, 1e-5)
+    if int(words[0]) != 2:
+        fail("the target's fragment count is not 2 (its two pieces, without the striker and the debris particle)")
 
     # Crash outputs: the four-ply laminate crush; the tool's absorbed energy against ∫ F ds of
     # crash.csv, and the mean force it prints against the summary.

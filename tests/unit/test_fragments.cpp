@@ -82,6 +82,31 @@ TEST(Fragments, SeparatePartsAreSeparateFragmentsInElementOrder) {
   EXPECT_NEAR(f.list[1].velocity[0], -7.0, 1e-12);
   EXPECT_NEAR(f.list[1].centroid[0], 1.05, 1e-12);
   for (std::size_t e = 0; e < f.element_fragment[1].size(); ++e) EXPECT_EQ(f.element_fragment[1][e], 1);
+  EXPECT_EQ(f.list[0].part, "body");
+  EXPECT_EQ(f.list[1].part, "b_body");
+}
+
+TEST(Fragments, PartsSharingNodesMakeOneFragmentOfBoth) {
+  // A 0.3 × 0.2 plate and a 0.1 × 0.1 one put against its right edge, their two coincident
+  // nodes (x = 0.3, y = 0 and 0.1) made one, as a conforming mesh of two parts would: one
+  // fragment of both parts, its part "body+b_body", of both masses.
+  Model model = box_model("tri3", {3, 2, 1}, {0.3, 0.2, 1});
+  const std::size_t n0 = model.nodes.count();
+  testing::append_model(model, box_model("tri3", {2, 2, 1}, {0.1, 0.1, 1}), {0.3, 0, 0}, "b_", 0);
+  std::size_t merged = 0;
+  for (auto& n : model.parts[1].connectivity)
+    for (std::size_t i = 0; i < n0; ++i)
+      if (model.nodes.x0[2 * i] == model.nodes.x0[2 * n] && model.nodes.x0[2 * i + 1] == model.nodes.x0[2 * n + 1]) {
+        n = static_cast<std::int32_t>(i);
+        ++merged;
+      }
+  EXPECT_GT(merged, 0u);
+  auto run = prepared(std::move(model));
+  const auto f = find_fragments(run.model);
+  ASSERT_EQ(f.list.size(), 1u);
+  EXPECT_EQ(f.list[0].part, "body+b_body");
+  EXPECT_EQ(f.list[0].elements, 20);
+  EXPECT_NEAR(f.list[0].mass, kRho * 0.07, 1e-12 * kRho * 0.07);
 }
 
 TEST(Fragments, ErodedElementsDoNotConnect) {
@@ -139,8 +164,10 @@ TEST(Fragments, CsvHeaderAndRoundTrip) {
   a.centroid = {1.0 / 7, 2.0 / 9, 0.0};
   a.velocity = {-3.25, 1e-17, 0.0};
   a.kinetic_energy = 2.0 / 3;
+  a.part = "plate";
   Fragment b = a;
   b.id = 1;
+  b.part = "plate+b";
   b.elements = 4;
   b.centroid[2] = 5.5;
   const auto dir = std::filesystem::temp_directory_path() / ("shard_fragments_" + std::to_string(::getpid()));
@@ -150,11 +177,16 @@ TEST(Fragments, CsvHeaderAndRoundTrip) {
   std::ifstream in2(dir / "f2.csv"), in3(dir / "f3.csv");
   std::string header, row;
   std::getline(in2, header);
-  EXPECT_EQ(header, "id,elements,mass,centroid_x,centroid_y,velocity_x,velocity_y,kinetic_energy,particles");
+  EXPECT_EQ(header, "id,part,elements,mass,centroid_x,centroid_y,velocity_x,velocity_y,kinetic_energy,particles");
   std::getline(in2, row);
-  std::vector<double> values;
+  std::vector<std::string> cells;
   std::stringstream fields(row);
-  for (std::string v; std::getline(fields, v, ',');) values.push_back(std::stod(v));
+  for (std::string v; std::getline(fields, v, ',');) cells.push_back(v);
+  ASSERT_EQ(cells.size(), 10u);
+  EXPECT_EQ(cells[1], "plate");  // the part, then the numbers
+  cells.erase(cells.begin() + 1);
+  std::vector<double> values;
+  for (const auto& v : cells) values.push_back(std::stod(v));
   ASSERT_EQ(values.size(), 9u);
   EXPECT_EQ(values[0], 0);
   EXPECT_EQ(values[1], 12);
@@ -166,11 +198,11 @@ TEST(Fragments, CsvHeaderAndRoundTrip) {
   EXPECT_EQ(values[7], a.kinetic_energy);
   EXPECT_EQ(values[8], 0);
   std::getline(in2, row);
-  EXPECT_EQ(row.substr(0, 4), "1,4,");
+  EXPECT_EQ(row.substr(0, 12), "1,plate+b,4,");
   EXPECT_FALSE(std::getline(in2, row));
   std::getline(in3, header);
   EXPECT_EQ(header,
-            "id,elements,mass,centroid_x,centroid_y,centroid_z,velocity_x,velocity_y,velocity_z,kinetic_energy,"
+            "id,part,elements,mass,centroid_x,centroid_y,centroid_z,velocity_x,velocity_y,velocity_z,kinetic_energy,"
             "particles");
   std::filesystem::remove_all(dir);
 }
@@ -198,9 +230,14 @@ TEST(Fragments, DebrisParticlesAreFragmentsOfTheirOwn) {
     for (int k = 0; k < 2; ++k) p.v[2 * i + k] = v[i][k];
   }
   p.origin_element = {7, 9, -1};
+  p.name = "plate_particles";
   model.particle_parts.push_back(p);
+  Part plate;
+  plate.name = "plate";
+  model.parts.push_back(plate);
   const std::vector<Fragment> debris = debris_fragments(model, 4);
   ASSERT_EQ(debris.size(), 2u);
+  EXPECT_EQ(debris[0].part, "plate");  // the part whose elements became the particles
   EXPECT_EQ(debris[0].id, 4);
   EXPECT_EQ(debris[1].id, 5);
   EXPECT_EQ(debris[0].particles, 1);

@@ -49,11 +49,12 @@ BallRun run_ball(const std::string& file, const std::string& end_time) {
     out.worst = std::max(out.worst, std::abs(out.history.at(i, "energy_error")));
   std::ifstream fragments(dir / "out" / "fragments.csv");
   std::string line;
-  std::getline(fragments, line);  // header: id,elements,mass,...,particles
+  std::getline(fragments, line);  // header: id,part,elements,mass,...,particles
   while (std::getline(fragments, line)) {
     std::stringstream fields(line);
-    std::string id, elements, mass;
+    std::string id, part, elements, mass;
     std::getline(fields, id, ',');
+    std::getline(fields, part, ',');
     std::getline(fields, elements, ',');
     std::getline(fields, mass, ',');
     out.total_mass += std::stod(mass);

@@ -198,6 +198,53 @@ std::pair<testing::History, double> run_alumina_example(const std::string& file,
   return {std::move(h), worst};
 }
 
+TEST(CrackScenario, ContactImpulseInTheHistoryEqualsTheSpheresMomentumChange) {
+  // The 300 m/s sphere on alumina on a coarse mesh with cracks in the plate, to 2 µs
+  // (tests/data/fracture/sphere_on_plate_coarse.yaml): cracks grow in many of the steps the
+  // sphere presses the plate. The contact force the history reports (force on the plate from
+  // the sphere, the mean over each row's interval) integrated over the rows, ∫F dt, must equal
+  // the sphere's change of momentum, Σ m v at the end less m·(−300 m/s), from the same run
+  // stepped here (nothing else acts on the sphere along y), within 1 %. Crack growth rebuilt the
+  // contact system after the forces and the rows of such steps reported 0.
+  const std::string scenario = kData + "sphere_on_plate_coarse.yaml";
+  const auto dir = testing::fresh_dir("sphere_impulse");
+  const auto r = testing::run_shard("run " + scenario + " --quiet --threads 1 -o " + (dir / "out").string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  const auto h = testing::read_history(dir / "out" / "history.csv");
+  ASSERT_GT(h.rows.size(), 10u);
+  double impulse = 0;
+  std::size_t zero_rows = 0, cracking_rows = 0;
+  for (std::size_t k = 1; k < h.rows.size(); ++k) {
+    const double f = h.at(k, "contact_force_plate_from_sphere_y");
+    impulse -= f * (h.at(k, "time") - h.at(k - 1, "time"));  // on the sphere: the opposite
+    cracking_rows += h.at(k, "fragments") != h.at(k - 1, "fragments");
+    zero_rows += f == 0 && h.at(k, "time") > 0.2e-6;  // the sphere lands at 0.1 µs
+  }
+  testing::ScenarioRun run(scenario);
+  const Model& model = run.sim.model;
+  auto sphere_momentum = [&] {  // the nodes of the sphere's elements, each once
+    std::vector<char> sphere(model.nodes.count(), 0);
+    for (const Part& part : model.parts)
+      if (part.name == "sphere")
+        for (auto n : part.connectivity) sphere[n] = 1;
+    double p = 0;
+    for (std::size_t i = 0; i < model.nodes.count(); ++i)
+      if (sphere[i]) p += model.nodes.mass[i] * model.nodes.v[2 * i + 1];
+    return p;
+  };
+  const double p0 = sphere_momentum();
+  while (!run.solver->finished()) run.step();
+  const double p1 = sphere_momentum();
+  std::printf("sphere with cracks to 2 us: %zu rows, %zu in which fragments appeared, %zu rows after landing with no "
+              "contact force; contact impulse in the history %.6g N s, sphere's momentum change %.6g N s "
+              "(of %.6g N s), ratio %.5f\n",
+              h.rows.size(), cracking_rows, zero_rows, impulse, p1 - p0, -p0, impulse / (p1 - p0));
+  EXPECT_GT(cracking_rows, 10u);
+  EXPECT_GT(p1 - p0, 0.1 * -p0);  // the sphere has lost a good part of its momentum
+  EXPECT_NEAR(impulse / (p1 - p0), 1.0, 0.01);
+  std::filesystem::remove_all(dir);
+}
+
 TEST(CrackScenario, SphereOnAluminaWithCracksRunsPastTheFragmentPileUnderTheContact) {
   // The sphere on alumina at 300 m/s with discrete cracks (examples/sphere_on_alumina/). Up to
   // 2.67 µs the plate under the sphere breaks into some 250 fragments. A three-triangle fragment

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "io/particle_frame.hpp"
 #include "support/mca_samples.hpp"
 
 namespace shard {
@@ -177,6 +178,82 @@ TEST(MCABond, UnstableBreakingAtCrackSpeed) {
   const double expected = std::sqrt(1e-6) / law.crack_speed;
   std::printf("[ MCA bond ] unstable breaking: contact crossed in %.5g s (width / V_crack = %.5g s)\n", g.duration, expected);
   EXPECT_NEAR(g.duration / expected, 1.0, 0.01);
+}
+
+/// The values of a cell field of a particle frame at the pair cells (after the vertex cells).
+std::vector<double> pair_cells(const VtuGrid& frame, const std::string& name, std::size_t automata) {
+  for (const VtuField& f : frame.cell_fields)
+    if (f.name == name) return std::vector<double>(f.values.begin() + static_cast<std::ptrdiff_t>(automata), f.values.end());
+  ADD_FAILURE() << "no cell field " << name;
+  return {};
+}
+
+TEST(MCABond, FramesShowTheTractionBrokenPairsApply) {
+  // A 2D plate pulled apart until it breaks in two (Drucker–Prager bonds, σ_t = 70 MPa, unstable
+  // breaking, friction 0.3), as in MCAEnergy.FractureBooksBreaking. The frame's
+  // bond_normal_stress and bond_shear_stress of every pair must be the traction it applied in
+  // the last force pass, F·n/S and |F − (F·n) n|/S: 0 for a broken pair apart, whose η has
+  // integrated the opening since it broke (8.9 GPa here), and no more than the friction allows
+  // in contact. Tolerance 1e-9 of σ_t.
+  MCAMaterial m = testing::mca_steel_like(70e9, 0.0, 2500);
+  PackingSpec spec;
+  spec.lattice = Lattice::hexagonal_2d;
+  spec.size = 1e-3;
+  spec.hi[0] = 10e-3, spec.hi[1] = 20e-3;
+  spec.plane = PlaneMode::plane_stress;
+  spec.thickness = 1e-3;
+  ParticlePart sample = build_packing(spec, {m});
+  const double sigma_t = 70e6;
+  testing::bond_drucker_prager(sample, sigma_t, 10 * sigma_t, 100, 0.3);
+  const double T = testing::transit_time(m, 20e-3);
+  testing::ParticleRun stepper(std::move(sample), 0.5);
+  const ParticlePart& ps = stepper.part();
+  testing::VelocityBC bottom, top;
+  bottom.automata = boundary_layer(ps, 1, false, 1e-5);
+  bottom.component = 1;
+  bottom.velocity = [](double) { return 0.0; };
+  top.automata = boundary_layer(ps, 1, true, 1e-5);
+  top.component = 1;
+  top.velocity = [T](double t) { return testing::ramp(t, 5 * T, 0.5); };
+  stepper.add_velocity_bc(bottom);
+  stepper.add_velocity_bc(top);
+  stepper.advance_to(40 * T);
+
+  const PairList& P = mca_state(ps).pairs;
+  const VtuGrid frame = make_particle_frame(ps, stepper.time());
+  const std::vector<double> normal = pair_cells(frame, "bond_normal_stress", ps.count());
+  const std::vector<double> shear = pair_cells(frame, "bond_shear_stress", ps.count());
+  ASSERT_EQ(normal.size(), P.count());
+  ASSERT_EQ(shear.size(), P.count());
+  double worst = 0, linked_max = 0, unlinked_max = 0, unlinked_eta = 0, contact_max = 0;
+  std::size_t unlinked = 0, in_contact = 0;
+  for (std::size_t p = 0; p < P.count(); ++p) {
+    const double* n = &P.normal[2 * p];
+    const double* F = &P.force[2 * p];
+    const double fn = F[0] * n[0] + F[1] * n[1];
+    const double ft = std::hypot(F[0] - fn * n[0], F[1] - fn * n[1]);
+    worst = std::max({worst, std::abs(normal[p] - fn / P.area[p]), std::abs(shear[p] - ft / P.area[p])});
+    const double shown = std::max(std::abs(normal[p]), shear[p]);
+    if (P.state_of(p) == PairState::linked) {
+      linked_max = std::max(linked_max, shown);
+      continue;
+    }
+    ++unlinked;
+    unlinked_max = std::max(unlinked_max, shown);
+    unlinked_eta = std::max(unlinked_eta, std::abs(P.eta[p]));
+    if (P.eta[p] < 0) {
+      ++in_contact;
+      contact_max = std::max(contact_max, shown);
+    }
+  }
+  std::printf("[ MCA bond ] frames of a broken plate: %zu of %zu pairs unlinked (%zu in contact); largest shown traction "
+              "%.4g MPa on linked pairs, %.4g MPa on unlinked ones (%.4g MPa in contact; their |eta| reaches %.4g GPa); "
+              "largest difference from F/S %.3g Pa\n",
+              unlinked, P.count(), in_contact, linked_max * 1e-6, unlinked_max * 1e-6, contact_max * 1e-6,
+              unlinked_eta * 1e-9, worst);
+  EXPECT_GT(unlinked, 10u);
+  EXPECT_GT(unlinked_eta, 10 * sigma_t);  // what the frames showed before
+  EXPECT_LT(worst, 1e-9 * sigma_t);
 }
 
 }  // namespace
