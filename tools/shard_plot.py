@@ -16,7 +16,16 @@ import re
 import sys
 import xml.etree.ElementTree as ET
 
-import matplotlib
+DEBIAN_PYTHON = "/usr/bin/python3"
+try:
+    import matplotlib
+except ImportError:
+    # Started by another python3 (a virtual environment, pyenv) without Debian's packages: go on
+    # with Debian's interpreter, which has them, rather than fail.
+    if os.path.realpath(sys.executable) != os.path.realpath(DEBIAN_PYTHON) and os.path.exists(DEBIAN_PYTHON):
+        os.execv(DEBIAN_PYTHON, [DEBIAN_PYTHON, os.path.abspath(__file__)] + sys.argv[1:])
+    sys.exit(f"{os.path.basename(sys.argv[0])}: needs matplotlib, numpy and meshio "
+             "(Debian: apt-get install python3-matplotlib python3-numpy python3-meshio)")
 
 matplotlib.use("Agg")  # before pyplot: plots are files, there may be no display at all
 
@@ -188,14 +197,23 @@ def read_pvd(path):
     return frames
 
 
+def run_frames(folder):
+    """The frame series of a run folder: frames.pvd (the mesh), or for a run of particles only the
+    first particles_<part>.pvd."""
+    pvd = os.path.join(folder, "frames.pvd")
+    if os.path.isfile(pvd):
+        return pvd
+    particles = sorted(f for f in os.listdir(folder) if f.startswith("particles_") and f.endswith(".pvd"))
+    if particles:
+        return os.path.join(folder, particles[0])
+    raise PlotError(f"no such file: {pvd} (nor particles_<part>.pvd: is {folder} a run folder?)")
+
+
 def pick_frame(args):
     """(vtu path, time or None, frame label) chosen by the input and --frame."""
     path = args.input
     if os.path.isdir(path):
-        pvd = os.path.join(path, "frames.pvd")
-        if not os.path.isfile(pvd):
-            raise PlotError(f"no such file: {pvd}")
-        path = pvd
+        path = run_frames(path)
     elif not os.path.isfile(path):
         raise PlotError(f"no such file: {path}")
     if not path.endswith(".pvd"):
@@ -377,6 +395,24 @@ def cell_outlines(mesh, xy, types):
     return outlines
 
 
+def draw_points(axes, mesh, points, location, values, args):
+    """A frame of particles (vertex cells): discs of their diameter, coloured by a point field."""
+    if location != "point" or "diameter" not in mesh.point_data:
+        raise PlotError("the frame has no triangles or quads to draw, nor particles with a point field")
+    diameter = np.asarray(mesh.point_data["diameter"]).reshape(-1) * 1e3
+    cmap, low, high = colour_scale(values, args)
+    discs = EllipseCollection(diameter, diameter, np.zeros_like(diameter), units="xy",
+                              offsets=points[:, :2] * 1e3, offset_transform=axes.transData, cmap=cmap)
+    discs.set_array(values)
+    discs.set_clim(low, high)
+    axes.add_collection(discs)
+    axes.set_xlim((points[:, 0] * 1e3 - diameter).min(), (points[:, 0] * 1e3 + diameter).max())
+    axes.set_ylim((points[:, 1] * 1e3 - diameter).min(), (points[:, 1] * 1e3 + diameter).max())
+    axes.set_xlabel("x [mm]")
+    axes.set_ylabel("y [mm]")
+    return discs
+
+
 def draw_planar(axes, mesh, points, location, values, args):
     """tripcolor on triangles (quads split in two): flat per cell, Gouraud for point fields."""
     triangles, per_triangle = [], []
@@ -391,7 +427,7 @@ def draw_planar(axes, mesh, points, location, values, args):
             if location == "cell":
                 per_triangle.append(np.concatenate([values[b], values[b]]))
     if not triangles:
-        raise PlotError("the frame has no triangles or quads to draw")
+        return draw_points(axes, mesh, points, location, values, args)
     triangulation = Triangulation(points[:, 0] * 1e3, points[:, 1] * 1e3, np.vstack(triangles))
     shown = np.concatenate(per_triangle) if location == "cell" else values
     cmap, low, high = colour_scale(shown, args)
@@ -518,8 +554,7 @@ def auto_height(points, plane, width):
 def show_info(args):
     vtu, time, frame_label = pick_frame(args)
     if os.path.isdir(args.input) or args.input.endswith(".pvd"):
-        pvd = args.input if args.input.endswith(".pvd") else os.path.join(args.input,
-                                                                          "frames.pvd")
+        pvd = args.input if args.input.endswith(".pvd") else run_frames(args.input)
         for index, (t, file) in enumerate(read_pvd(pvd)):
             print(f"frame {index:4d}  t = {t * 1e6:12.6g} µs  {os.path.relpath(file)}")
     mesh = read_mesh(vtu)
@@ -1422,17 +1457,18 @@ def parse_arguments(argv):
         description="Quick-look PNG plots of a shard run: energy history and field frames; the "
                     "figures of virtual tests of particle (MCA) samples and their broken bonds.",
         epilog="""examples:
-  %(prog)s energy runs/taylor                      energy balance -> energy.png
+  %(prog)s energy runs/taylor                      energy balance -> runs/taylor/energy.png
   %(prog)s field runs/taylor --field von_mises     last frame, deformed shape
   %(prog)s field runs/taylor --field stress --component xx --frame 3 -o sxx.png
   %(prog)s field runs/taylor --field velocity --magnitude --undeformed
   %(prog)s field runs/taylor --field displacement --scale 10 --view yz
-  %(prog)s field runs/taylor/frames/frame_000010.vtu --field plastic_strain
+  %(prog)s field runs/taylor/frame_00010.vtu --field plastic_strain
   %(prog)s info runs/taylor                        frames, times and field names
   %(prog)s virtual-test runs/comp --load top --support bottom --lateral left right --area 60um*1um
-  %(prog)s particles runs/bend --out cracks.png     automata by material, broken bonds in red
+  %(prog)s particles runs/bend -o cracks.png       automata by material, broken bonds in red
 
 A run folder holds history.csv (energy) and frames.pvd listing the .vtu frames (field, info).
+Pictures go into the run folder unless -o names another file.
 Errors print one line to stderr and exit with status 2.""")
     commands = parser.add_subparsers(dest="command", metavar="COMMAND", required=True)
 
@@ -1448,8 +1484,8 @@ throughout are left out (named in a note at the bottom). energy_error is drawn i
 small axis below. Incomplete lines (a run killed while writing) are skipped.""")
     energy.add_argument("input", metavar="OUTDIR_OR_history.csv",
                         help="run folder (uses OUTDIR/history.csv) or the csv file itself")
-    energy.add_argument("-o", "--output", default="energy.png",
-                        help="image file to write, type from its extension (default: %(default)s)")
+    energy.add_argument("-o", "--output", default=None,
+                        help="image file to write, type from its extension (default: energy.png in the run folder)")
     energy.add_argument("--title", help="plot title (default: the run folder's name)")
     energy.add_argument("--dpi", type=int, default=150, help="resolution (default: %(default)s)")
     energy.set_defaults(run=plot_energy)
@@ -1464,8 +1500,8 @@ small axis below. Incomplete lines (a run killed while writing) are skipped.""")
     history.add_argument("--columns", nargs="+", required=True, help="column names to plot")
     history.add_argument("--scale", type=float, default=1.0, help="multiply values by this")
     history.add_argument("--ylabel", help="label of the vertical axis")
-    history.add_argument("-o", "--output", default="history.png",
-                         help="image file to write (default: %(default)s)")
+    history.add_argument("-o", "--output", default=None,
+                         help="image file to write (default: history.png in the run folder)")
     history.add_argument("--title", help="plot title (default: the run folder's name)")
     history.add_argument("--dpi", type=int, default=150, help="resolution (default: %(default)s)")
     history.set_defaults(run=plot_history)
@@ -1525,8 +1561,8 @@ mean of their corners.""")
                                       "centred on 0 for signed data)")
     field.add_argument("--vmin", type=float, help="colour scale minimum (in the shown unit)")
     field.add_argument("--vmax", type=float, help="colour scale maximum (in the shown unit)")
-    field.add_argument("-o", "--output", default="field.png",
-                       help="image file to write, type from its extension (default: %(default)s)")
+    field.add_argument("-o", "--output", default=None,
+                       help="image file to write, type from its extension (default: field.png in the run folder)")
     field.add_argument("--title", help="first title line (default: the run folder's name)")
     field.add_argument("--width", type=float, default=9.0, help="inches (default: %(default)s)")
     field.add_argument("--height", type=float,
@@ -1546,7 +1582,7 @@ mean of their corners.""")
                          help="metres per unit of the csv (default %(default)s: mm)")
     profile.add_argument("--measured-label", default="measured", help="legend of the measured points")
     profile.add_argument("--bins", type=int, default=60, help="slices along the axis (default %(default)s)")
-    profile.add_argument("-o", "--output", default="profile.png", help="image file (default %(default)s)")
+    profile.add_argument("-o", "--output", default=None, help="image file (default: profile.png in the first run folder)")
     profile.add_argument("--title", help="plot title")
     profile.add_argument("--dpi", type=int, default=150, help="resolution (default: %(default)s)")
     profile.set_defaults(run=plot_profile)
@@ -1656,8 +1692,8 @@ particle part, or --part), with --frame (default last).""")
     particles.add_argument("--line-width", type=float, default=0.8,
                            help="width of the bond lines in points (default: %(default)s)")
     particles.add_argument("--json", help="write the bond table to this file")
-    particles.add_argument("-o", "--out", "--output", dest="output", default="particles.png",
-                           help="image file (default: %(default)s)")
+    particles.add_argument("-o", "--out", "--output", dest="output", default=None,
+                           help="image file (default: particles.png in the run folder)")
     particles.add_argument("--title", help="title (default: the run folder's name)")
     particles.add_argument("--width", type=float, default=10.0,
                            help="inches (default: %(default)s)")
@@ -1700,8 +1736,17 @@ particle part, or --part), with --frame (default last).""")
     return parser.parse_args(argv)
 
 
+def run_folder(path):
+    """The run folder of a command's input: the folder itself, or the folder of a file in it."""
+    return path if os.path.isdir(path) else os.path.dirname(os.path.abspath(path))
+
+
 def main(argv=None):
     args = parse_arguments(sys.argv[1:] if argv is None else argv)
+    if getattr(args, "output", "") is None and args.command in ("energy", "history", "field", "profile", "particles"):
+        # Every picture goes into its run's folder unless -o says otherwise.
+        source = args.inputs[0] if args.command == "profile" else args.input
+        args.output = os.path.join(run_folder(source), f"{args.command}.png")
     try:
         args.run(args)
     except PlotError as error:

@@ -20,6 +20,8 @@ what the plotting tool reads from them:
   the projectile is a fragment of part 'projectile', and the largest fragment and the mass the
   tool reports for the plate are those of the plate's rows (1e-5, the printed digits); and on a
   fragments.csv with a striker heavier than the target's pieces, the target's largest is its own;
+- info and field on a run of particles only (no frames.pvd): its particle frames are read and
+  the picture goes into the run folder;
 - a misspelt group name stops with exit status 2 (bad input, as argparse) and names the groups there are.
 
 Usage: test_shard_plot.py SHARD_EXECUTABLE SOURCE_DIR WORK_DIR
@@ -104,6 +106,14 @@ def main():
     if run(plot + ["particles", tension, "--json", bonds_json,
                    "--out", os.path.join(work, "bonds.png")]).returncode != 0:
         fail("particles on the tension run failed")
+    # A run of particles only has no frames.pvd: info and field take its particle frames, and
+    # the picture goes into the run folder.
+    if run(plot + ["info", tension]).returncode != 0:
+        fail("info on a run of particles only failed")
+    if run(plot + ["field", tension, "--field", "velocity", "--magnitude"]).returncode != 0:
+        fail("field on a run of particles only failed")
+    if not os.path.isfile(os.path.join(tension, "field.png")):
+        fail("field did not write its picture into the run folder")
     with open(bonds_json) as stream:
         table = json.load(stream)
     linked = history_column(tension, "linked_bonds_sample")
