@@ -529,7 +529,7 @@ class RunDriver {
     std::snprintf(name, sizeof name, "frame_%05lld.vtu", static_cast<long long>(cursor_.next_frame));
     history_.flush();  // a history the disk refused is noticed with the frame, not at the end
     check_written(history_, history_path_);
-    VtuGrid frame = make_frame(sim_.model, sim_.materials, sc_.output.fields, t);
+    VtuGrid frame = make_frame(sim_.model, sim_.materials, sc_.output.fields, t, cracks_ != nullptr);
     if (contact_) {
       VtuField p{"contact_pressure", 1, contact_->nodal_pressure(sim_.model)};
       frame.point_fields.push_back(std::move(p));

@@ -12,7 +12,7 @@ bool wants(const std::vector<std::string>& fields, const char* name) {
 }  // namespace
 
 VtuGrid make_frame(const Model& model, const std::vector<std::unique_ptr<Material>>& materials,
-                   const std::vector<std::string>& fields, double time) {
+                   const std::vector<std::string>& fields, double time, bool cracking) {
   VtuGrid grid;
   const int dim = model.dim();
   const std::size_t nn = model.nodes.count();
@@ -44,9 +44,10 @@ VtuGrid make_frame(const Model& model, const std::vector<std::unique_ptr<Materia
     point_vector("displacement", [&](std::size_t d) { return model.nodes.x[d] - model.nodes.x0[d]; });
   if (wants(fields, "velocity"))
     point_vector("velocity", [&](std::size_t d) { return model.nodes.v[d]; });
-  if (model.has_cracks()) {
-    // After cracks split nodes: 1 on the nodes of crack faces (the copies and their origins),
-    // so that a threshold on it in ParaView shows the crack paths.
+  if (cracking) {
+    // 1 on the nodes of crack faces (the copies and their origins), so that a threshold on it in
+    // ParaView shows the crack paths; written from the first frame on (all 0 then), so that
+    // ParaView offers it for the whole series.
     const std::vector<char> on_face = model.crack_face_nodes();
     grid.point_fields.push_back({"crack_face", 1, std::vector<double>(on_face.begin(), on_face.end())});
   }

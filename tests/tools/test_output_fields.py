@@ -1,0 +1,111 @@
+#!/usr/bin/python3
+"""CI test that every output says what it is (ctest label "cli").
+
+Runs short pieces of six scenarios that between them write every kind of output (discrete cracks
+with contact, a laminate with interfaces, debris particles and crash outputs, Johnson-Cook in
+axisymmetry with a wall, automata with conditions, loose grains) and checks that
+- every field of any frame of a series is already in its first frame (ParaView offers a field
+  for the whole series only then: crack_face used to appear with the first crack);
+- every frame field and history column is listed with its unit in docs/fields.csv, the one
+  machine-readable list of them (names with <part>, <axis>, ... stand for a family).
+
+Usage: test_output_fields.py SHARD_EXECUTABLE SOURCE_DIR WORK_DIR
+"""
+
+import csv
+import glob
+import os
+import re
+import shutil
+import subprocess
+import sys
+
+RUNS = [  # scenario, --until, label
+    ("tests/data/fracture/notched_plate_coarse.yaml", "50us", "cracks"),  # cracks from about 30 us
+    ("tests/data/composite/laminate_crush.yaml", "0.3us", "laminate"),
+    ("examples/plate_perforation/plate_perforation.yaml", "0.3us", "debris"),
+    ("examples/taylor_bar/steel_4340_axisymmetric.yaml", "0.3us", "taylor"),
+    ("examples/mca_virtual_tests/tension_2d.yaml", "0.05us", "automata"),
+    ("examples/granular_column/settle.yaml", "0.2ms", "grains"),
+]
+STRUCTURE = {"Points", "connectivity", "offsets", "types", "TimeValue"}
+
+
+def fail(message):
+    print(f"FAIL: {message}")
+    sys.exit(1)
+
+
+def catalogue(source):
+    """docs/fields.csv as {where: [(regex, unit)]}."""
+    table = {}
+    with open(os.path.join(source, "docs", "fields.csv")) as stream:
+        for row in csv.DictReader(stream):
+            if not row["unit"]:
+                fail(f"docs/fields.csv: {row['name']} has no unit")
+            pattern = re.escape(row["name"]).replace(re.escape("<axis>"), "[xyz]")
+            pattern = re.sub(r"<[a-z]+>", "[A-Za-z0-9_]+", pattern.replace("\\<", "<").replace("\\>", ">"))
+            table.setdefault(row["where"], []).append((re.compile(pattern + "$"), row["unit"]))
+    return table
+
+
+def listed(table, where, name):
+    return any(p.match(name) for p, _ in table.get(where, []))
+
+
+def frame_fields(path):
+    """{'point': names, 'cell': names} of a .vtu, from its PointData and CellData sections."""
+    text = open(path, encoding="utf-8", errors="replace").read()
+    out = {}
+    for kind in ("Point", "Cell"):
+        section = re.search(f"<{kind}Data>(.*?)</{kind}Data>", text, re.S)
+        names = set(re.findall(r'Name="([^"]+)"', section.group(1))) if section else set()
+        out[kind.lower()] = names - STRUCTURE
+    return out
+
+
+def check_series(table, frames, prefix, label):
+    first = frame_fields(frames[0])
+    for frame in frames[1:]:
+        later = frame_fields(frame)
+        for kind in ("point", "cell"):
+            missing = later[kind] - first[kind]
+            if missing:
+                fail(f"{label}: {os.path.basename(frame)} has {kind} fields {sorted(missing)} "
+                     f"that {os.path.basename(frames[0])} lacks")
+    for kind in ("point", "cell"):
+        for name in sorted(first[kind]):
+            if not listed(table, f"{prefix}_{kind}", name):
+                fail(f"{label}: {prefix} {kind} field '{name}' is not in docs/fields.csv")
+    return sum(len(v) for v in first.values())
+
+
+def main():
+    shard, source, work = sys.argv[1:4]
+    table = catalogue(source)
+    shutil.rmtree(work, ignore_errors=True)
+    os.makedirs(work)
+    for scenario, until, label in RUNS:
+        out = os.path.join(work, label)
+        subprocess.run([shard, "run", os.path.join(source, scenario), "-o", out, "--quiet", "--until", until],
+                       check=True)
+        with open(os.path.join(out, "history.csv")) as stream:
+            columns = stream.readline().strip().split(",")
+        for c in columns:
+            if not listed(table, "history", c):
+                fail(f"{label}: history column '{c}' is not in docs/fields.csv")
+        counted = len(columns)
+        mesh = sorted(glob.glob(os.path.join(out, "frame_*.vtu")))
+        if mesh:
+            counted += check_series(table, mesh, "frame", label)
+        for pvd in sorted(glob.glob(os.path.join(out, "particles_*.pvd"))):
+            part = os.path.basename(pvd)[len("particles_"):-len(".pvd")]
+            frames = sorted(glob.glob(os.path.join(out, f"particles_{part}_*.vtu")))
+            counted += check_series(table, frames, "particle", f"{label} ({part})")
+        print(f"{label}: {counted} columns and fields, each listed with its unit; "
+              f"{len(mesh)} mesh frames")
+    print("PASS")
+
+
+if __name__ == "__main__":
+    main()
