@@ -402,6 +402,12 @@ class RunDriver {
     if (sim_.particle_contact)
       for (const auto& w : sim_.particle_contact->settings().walls)
         for (int k = 0; k < dim_; ++k) columns.push_back("wall_" + w.name + "_particle_force_" + axes[k]);
+    // The reaction of each boundary condition's node group and the work done through it: the
+    // load-displacement curve of a notched bar, the base force of a crush test.
+    for (const auto& g : sim_.loads.node_groups) {
+      for (int k = 0; k < dim_; ++k) columns.push_back("reaction_" + g + "_" + axes[k]);
+      columns.push_back("work_" + g);
+    }
     return columns;
   }
 
@@ -485,8 +491,10 @@ class RunDriver {
       const double dt_used = s.dt_half;
       // Before advance(): its events (crack growth) may rebuild the contact system, which
       // clears the forces it applied in this step.
-      book_forces(step == 0 ? 0.5 * s.dt_next : 0.5 * (s.dt_half + s.dt_next));
+      const double dt_n = step == 0 ? 0.5 * s.dt_next : 0.5 * (s.dt_half + s.dt_next);
+      book_forces(dt_n);
       solver_.advance();
+      book_reactions(dt_n);
       if (final || due(t, cursor_.next_history, out.history_interval)) {
         write_history_row(t, step, dt_used);
         if (out.history_interval > 0)
@@ -580,6 +588,40 @@ class RunDriver {
     cursor_.row_span += dt_n;
   }
 
+  /// Books the reactions of the boundary conditions' node groups at step n (found in advance(),
+  /// over the same Δt_n as the forces) and adds their work to each group's running total.
+  void book_reactions(double dt_n) {
+    const auto& r = solver_.node_group_reactions();
+    const auto& w = solver_.node_group_work();
+    auto& impulse = cursor_.reaction_impulse;
+    if (impulse.size() != r.size()) impulse.assign(r.size(), 0.0);
+    // Per group: the work to t_n, and the half after t_n, which counts at the next step (as the
+    // ledger's external work counts it).
+    auto& work = cursor_.reaction_work;
+    if (work.size() != w.size()) work.assign(w.size(), 0.0);
+    for (std::size_t i = 0; i < r.size(); ++i) impulse[i] += r[i] * dt_n;
+    for (std::size_t g = 0; 2 * g < w.size(); ++g) {
+      work[2 * g] += w[2 * g] + work[2 * g + 1];
+      work[2 * g + 1] = w[2 * g + 1];
+    }
+  }
+
+  /// The reactions and work of the node groups: the mean reaction since the last row per
+  /// component, then the work done through the group since the start.
+  void write_reactions() {
+    const auto& r = solver_.node_group_reactions();
+    for (std::size_t g = 0; g < sim_.loads.node_groups.size(); ++g) {
+      for (int k = 0; k < dim_; ++k) {
+        const std::size_t i = 6 * g + static_cast<std::size_t>(k);
+        write_number(cursor_.row_span > 0 && i < cursor_.reaction_impulse.size()
+                         ? cursor_.reaction_impulse[i] / cursor_.row_span
+                         : (i < r.size() ? r[i] : 0.0));
+      }
+      write_number(2 * g < cursor_.reaction_work.size() ? cursor_.reaction_work[2 * g] : 0.0);
+    }
+    std::fill(cursor_.reaction_impulse.begin(), cursor_.reaction_impulse.end(), 0.0);
+  }
+
   /// The mean of force column i since the last row (the force of the step if none was booked).
   double mean_force(std::size_t i) const {
     return cursor_.row_span > 0 ? cursor_.force_impulse[i] / cursor_.row_span : forces_[i];
@@ -637,6 +679,7 @@ class RunDriver {
       write_number(crash_stroke());
     }
     for (; column < forces_.size(); ++column) write_number(mean_force(column));
+    write_reactions();
     std::fill(cursor_.force_impulse.begin(), cursor_.force_impulse.end(), 0.0);
     cursor_.row_span = 0;
     history_ << '\n';

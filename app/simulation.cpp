@@ -439,23 +439,28 @@ void apply_initial_particle_velocities(const Scenario& sc, Model& model) {
     }
 }
 
-// Boundary conditions: one constraint per (node, component); a later entry overrides.
+// Boundary conditions: one constraint per (node, component); a later entry overrides, and its
+// group then reports the node's reaction.
 void apply_boundary_conditions(const Scenario& sc, const MeshData& mesh, Simulation& sim, GroupNodeSets& sets) {
-  std::map<std::pair<std::int32_t, int>, int> constraint_table;
+  std::map<std::pair<std::int32_t, int>, std::pair<int, int>> constraint_table;  // -> (table, group)
+  auto& groups = sim.loads.node_groups;
   for (std::size_t i = 0; i < sc.boundary_conditions.size(); ++i) {
     const auto& bc = sc.boundary_conditions[i];
     const std::string key = "boundary_conditions[" + std::to_string(i + 1) + "].group";
     const MeshGroup& g = find_group(sc, mesh, bc.group, bc.line, key, -1);
     const NodeSet& set = sets.of(g, bc.line, key);
+    const auto named = std::find(groups.begin(), groups.end(), bc.group);
+    const int group = static_cast<int>(named - groups.begin());
+    if (named == groups.end()) groups.push_back(bc.group);
     for (int k = 0; k < sc.dim(); ++k) {
       if (!bc.velocity[k]) continue;
       sim.loads.tables.push_back(*bc.velocity[k]);
       const int table = static_cast<int>(sim.loads.tables.size()) - 1;
-      for (auto n : set.nodes) constraint_table[{n, k}] = table;
+      for (auto n : set.nodes) constraint_table[{n, k}] = {table, group};
     }
   }
-  for (const auto& [dof, table] : constraint_table)
-    prescribe_node(sim.model, sim.loads, dof.first, dof.second, table);
+  for (const auto& [dof, prescription] : constraint_table)
+    prescribe_node(sim.model, sim.loads, dof.first, dof.second, prescription.first, prescription.second);
 }
 
 // Pressure loads on boundary facets.

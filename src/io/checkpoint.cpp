@@ -16,8 +16,8 @@ namespace {
 // The last byte is the format version: 4 added the elements' reference length (distortion
 // criterion) and the particles' ring length; 5 the cohesive elements; 6 their open flag and
 // the crash force's running mean; 7 the automata's many-body share; 8 the running means of every
-// force column of the history.
-constexpr char kMagic[8] = {'S', 'H', 'A', 'R', 'D', 'C', 'K', '8'};
+// force column of the history; 9 the node groups' reactions and work.
+constexpr char kMagic[8] = {'S', 'H', 'A', 'R', 'D', 'C', 'K', '9'};
 
 /// Scalars of SolverState and OutputCursor in one fixed order, for both directions.
 template <class F>
@@ -130,6 +130,8 @@ void write_checkpoint(const std::filesystem::path& path, Model& model, const Sol
     OutputCursor c = cursor;
     visit_scalars(s, c, [&](auto& v) { w.raw(v); });
     w.array("history_force_impulse", c.force_impulse);
+    w.array("history_reaction_impulse", c.reaction_impulse);
+    w.array("history_reaction_work", c.reaction_work);
     // The energy ledger, by name: every registered term.
     w.raw<std::uint64_t>(state.energy.terms().size());
     for (const EnergyTerm& t : state.energy.terms()) {
@@ -158,6 +160,8 @@ void read_checkpoint(const std::filesystem::path& path, Model& model, SolverStat
     r.fail("it was written by a different scenario (restart with the scenario that wrote it)");
   visit_scalars(state, cursor, [&](auto& v) { v = r.raw<std::decay_t<decltype(v)>>(); });
   r.array("history_force_impulse", cursor.force_impulse);
+  r.array("history_reaction_impulse", cursor.reaction_impulse);
+  r.array("history_reaction_work", cursor.reaction_work);
   const auto terms = r.raw<std::uint64_t>();
   if (terms > 4096) r.fail("corrupt energy ledger");
   for (std::uint64_t k = 0; k < terms; ++k) {

@@ -22,6 +22,8 @@ struct OutputCursor {
   /// column order): the row reports the means, F booked in the step that applied it.
   double row_span = 0;
   std::vector<double> force_impulse;
+  std::vector<double> reaction_impulse;  ///< node groups' reactions × Δt since the last row
+  std::vector<double> reaction_work;     ///< per node group: work to t_n, and the half step after
 };
 
 /// Writes `path` via "<path>.tmp" and a rename: a run killed while writing leaves the previous

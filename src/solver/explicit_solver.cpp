@@ -345,7 +345,10 @@ void ExplicitSolver::apply_prescribed_velocities(const AdvanceCoefficients& c, d
   // v+ = v_prescribed; the difference is the reaction, whose work is external work. The
   // particles' reactions are summed per group for the history (load-displacement curves).
   const double t_half = state_.time + 0.5 * state_.dt_next;
-  apply_prescribed(moving_points(model_.nodes), node_dofs_, loads_, c, t_half, external_back, external_ahead, nullptr);
+  node_reactions_.assign(6 * loads_.node_groups.size(), 0.0);
+  node_work_.assign(2 * loads_.node_groups.size(), 0.0);
+  apply_prescribed(moving_points(model_.nodes), node_dofs_, loads_, c, t_half, external_back, external_ahead,
+                   &node_reactions_, &node_work_);
   particle_reactions_.assign(6 * loads_.particle_groups.size(), 0.0);
   for (std::size_t p = 0; p < model_.particle_parts.size(); ++p)
     apply_prescribed(moving_points(model_.particle_parts[p]), particle_dofs_[p], loads_, c, t_half, external_back,

@@ -108,6 +108,11 @@ class ExplicitSolver : private TopologyListener {
   /// Reaction of the prescribed velocities on each particle group at the last advance: 6 slots
   /// per group (translation components, then rotation components), N or N m.
   const std::vector<double>& particle_group_reactions() const { return particle_reactions_; }
+  /// The same for the node groups of the boundary conditions (Loads::node_groups, 6 slots per
+  /// group), and the work of each group's reaction over the last step (2 per group: the halves
+  /// before and after t_n).
+  const std::vector<double>& node_group_reactions() const { return node_reactions_; }
+  const std::vector<double>& node_group_work() const { return node_work_; }
 
  private:
   void topology_changed(const Model& model, const Remap& remap) override;
@@ -136,7 +141,7 @@ class ExplicitSolver : private TopologyListener {
   ParticleContact* particle_contact_ = nullptr;
   CohesiveInterfaces* cohesive_ = nullptr;
   double element_dt_ = 0, cohesive_dt_ = 0;
-  std::vector<double> particle_reactions_;
+  std::vector<double> particle_reactions_, node_reactions_, node_work_;
   /// The prescribed degrees of freedom of the nodes and of each particle part, from their
   /// `prescribed` fields; rebuilt after every topology change.
   std::vector<PrescribedDof> node_dofs_;

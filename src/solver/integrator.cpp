@@ -51,17 +51,23 @@ DofRef dof_of(const MovingPoints& p, const PrescribedDof& d) {
 
 void apply_prescribed(const MovingPoints& p, const std::vector<PrescribedDof>& dofs, const Loads& loads,
                       const AdvanceCoefficients& c, double time_half, double& external_back,
-                      double& external_ahead, std::vector<double>* group_reactions) {
+                      double& external_ahead, std::vector<double>* group_reactions,
+                      std::vector<double>* group_work) {
   for (const auto& d : dofs) {
     const DofRef dof = dof_of(p, d);
     const Prescription& pr = loads.prescriptions[d.prescription];
     const double vp = loads.tables[pr.table].at(time_half);
     const double f_needed = dof.inertia * (vp / c.d2 - c.d1 * dof.velocity) / c.dt_n;
     const double reaction = f_needed - dof.force;
-    external_back += reaction * c.back * dof.velocity;
-    external_ahead += reaction * c.ahead * vp;
+    const double back = reaction * c.back * dof.velocity, ahead = reaction * c.ahead * vp;
+    external_back += back;
+    external_ahead += ahead;
     dof.force = f_needed;
     if (group_reactions && pr.group >= 0) (*group_reactions)[6 * pr.group + d.component] += reaction;
+    if (group_work && pr.group >= 0) {
+      (*group_work)[2 * pr.group] += back;
+      (*group_work)[2 * pr.group + 1] += ahead;
+    }
   }
 }
 

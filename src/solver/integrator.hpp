@@ -57,10 +57,12 @@ DofRef dof_of(const MovingPoints& p, const PrescribedDof& d);
 /// Replaces the force of each prescribed degree of freedom by the one that gives it its
 /// prescribed velocity at t_n+1/2 (`time_half`); adds the work of the reactions to
 /// external_back/ahead and, per prescription group, the reaction to `group_reactions` (6 per
-/// group) when given.
+/// group) and its work over the step to `group_work` (2 per group: the halves before and after
+/// t_n, as the ledger books them) when given.
 void apply_prescribed(const MovingPoints& p, const std::vector<PrescribedDof>& dofs, const Loads& loads,
                       const AdvanceCoefficients& c, double time_half, double& external_back,
-                      double& external_ahead, std::vector<double>* group_reactions);
+                      double& external_ahead, std::vector<double>* group_reactions,
+                      std::vector<double>* group_work = nullptr);
 
 /// Velocities to t_n+1/2 and positions to t_n+1 (rotations too). sums[0..4] (kinetic at t_n,
 /// damping back and ahead, gravity work back and ahead) are added to, block by block. Returns

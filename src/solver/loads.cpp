@@ -20,11 +20,11 @@ int Loads::prescription(int table, int group) {
   return static_cast<int>(prescriptions.size()) - 1;
 }
 
-void prescribe_node(Model& model, Loads& loads, std::int32_t node, int component, int table) {
+void prescribe_node(Model& model, Loads& loads, std::int32_t node, int component, int table, int group) {
   const int dim = model.dim();
   if (model.nodes.prescribed.size() != model.nodes.count() * dim)
     model.nodes.prescribed.assign(model.nodes.count() * dim, -1);
-  model.nodes.prescribed[static_cast<std::size_t>(dim) * node + component] = loads.prescription(table);
+  model.nodes.prescribed[static_cast<std::size_t>(dim) * node + component] = loads.prescription(table, group);
 }
 
 namespace {

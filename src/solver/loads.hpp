@@ -16,7 +16,8 @@ namespace shard {
 /// node or particle component points at.
 struct Prescription {
   int table = 0;   ///< index into Loads::tables
-  int group = -1;  ///< particles: index into Loads::particle_groups, for the reported reaction
+  int group = -1;  ///< index into Loads::particle_groups (particles) or Loads::node_groups (nodes),
+                   ///< for the reported reaction; -1: none
 };
 
 /// A pressure on a facet set, positive pushing into the body (follows the current geometry).
@@ -37,6 +38,8 @@ struct Loads {
   std::vector<Prescription> prescriptions;
   std::vector<PressureLoad> pressures;
   std::vector<ParticleGroup> particle_groups;
+  /// The groups of the nodes' boundary conditions, whose reactions and work are reported.
+  std::vector<std::string> node_groups;
 
   /// A table holding a constant value; returns its index.
   int constant_table(double value);
@@ -46,7 +49,7 @@ struct Loads {
 
 /// Prescribes velocity component `component` of node `node` to follow table `table` (a later
 /// call for the same component replaces the earlier one).
-void prescribe_node(Model& model, Loads& loads, std::int32_t node, int component, int table);
+void prescribe_node(Model& model, Loads& loads, std::int32_t node, int component, int table, int group = -1);
 
 /// A degree of freedom whose velocity is prescribed: a point (node or particle), a component
 /// (particles: translation 0..dim−1, then rotation), and its Prescription.

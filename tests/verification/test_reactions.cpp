@@ -1,0 +1,64 @@
+// Reactions of the boundary conditions in history.csv (reaction_<group>_<axis>, work_<group>):
+// the bar of examples/bar_impact, its left end driven at v = 10 m/s in uniaxial strain.
+//
+// Closed forms: while the wave runs, the driven end pushes with ρ c v A (c = √((K + 4G/3)/ρ));
+// the momentum the bar gains is the impulse of that reaction (the rollers act across x only);
+// the work through the driven end is all the external work (rollers do none).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+
+#include "support/cli.hpp"
+#include "support/scenario_run.hpp"
+
+namespace shard {
+namespace {
+
+const std::string kBar = std::string(SHARD_SOURCE_DIR) + "/examples/bar_impact/bar_2d.yaml";
+
+TEST(Reactions, DrivenEndOfABarPushesWithRhoCVAndItsImpulseIsTheMomentum) {
+  const auto dir = testing::fresh_dir("reactions");
+  const auto r = testing::run_shard("run " + kBar + " --quiet -o " + (dir / "out").string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  const auto h = testing::read_history(dir / "out" / "history.csv");
+  const double rho = 7830, K = 159e9, G = 81.8e9, v = 10, area = 0.01 * 1.0;  // 10 mm high, 1 m thick
+  const double c = std::sqrt((K + 4 * G / 3) / rho);
+  const double expected = rho * c * v * area;
+
+  // The plateau while the front runs (before the reflection from the free end returns, 34 us).
+  double sum = 0, impulse = 0, worst_work = 0;
+  int n = 0;
+  for (std::size_t i = 1; i < h.rows.size(); ++i) {
+    const double t = h.at(i, "time");
+    if (t > 2e-6 && t < 14e-6) {
+      sum += h.at(i, "reaction_left_x");
+      ++n;
+    }
+    impulse += h.at(i, "reaction_left_x") * (t - h.at(i - 1, "time"));
+    const double work = h.at(i, "work_left"), external = h.at(i, "external_work");
+    worst_work = std::max(worst_work, std::abs(work - external) / std::max(1e-30, std::abs(external)));
+    EXPECT_EQ(h.at(i, "work_top"), 0.0) << "rollers do no work";
+  }
+  const double plateau = sum / n;
+  std::printf("driven end: mean reaction %.6e N against rho c v A = %.6e N (%+.3f %%); work against external "
+              "work %.1e\n", plateau, expected, 100 * (plateau / expected - 1), worst_work);
+  EXPECT_NEAR(plateau / expected, 1.0, 0.01);
+  EXPECT_LT(worst_work, 1e-9);
+
+  // The same run in process: the bar's momentum at the end against the history's impulse.
+  testing::ScenarioRun run(kBar);
+  while (!run.solver->finished()) run.step();
+  const double momentum = run.momentum()[0];
+  const double initial = [&] {
+    testing::ScenarioRun start(kBar);
+    return start.momentum()[0];
+  }();
+  std::printf("impulse of reaction_left_x %.6e N s against the momentum gained %.6e N s (%+.3f %%)\n", impulse,
+              momentum - initial, 100 * (impulse / (momentum - initial) - 1));
+  EXPECT_NEAR(impulse / (momentum - initial), 1.0, 0.01);
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace shard
