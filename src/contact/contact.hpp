@@ -39,6 +39,10 @@ struct ContactSettings {
   double penalty_scale = 1.0;
   /// The automatic penalty keeps the stable time step within this fraction of the element one.
   double time_step_reduction = 0.1;
+  /// Normal contact damping: a dashpot beside each penalty spring, this fraction of the critical
+  /// damping 2√(k μ) of the spring between the node and the facet (μ their reduced mass); it
+  /// never pulls (the normal force stays ≥ 0). 0: the bare penalty, which rings after an impact.
+  double damping = 0.2;
   std::vector<RigidWall> walls;
 
   bool any_pairs() const;
@@ -73,6 +77,11 @@ class ContactSystem final : public TopologyListener {
   void set_tied_nodes(const std::vector<char>* tied) { tied_ = tied; }
 
   double friction_increment() const { return friction_work_; }  ///< dissipated in this call (J)
+  double damping_increment() const { return damping_work_; }    ///< dissipated by the dashpots in this call (J)
+  /// Bound on the largest eigenvalue of M⁻¹C, C the contact dashpots of the last call (1/s):
+  /// Gershgorin's row sums, as for the springs. The stable step of central difference with
+  /// damping is 2/(γ/2 + √(γ²/4 + ω²)) (docs/theory/contact.md, "Normal damping").
+  double max_damping_rate() const { return max_damping_rate_; }
   std::size_t active_contacts() const { return active_; }
   /// Bound on the largest ω² the contact springs of the last call add (1/s²): Gershgorin's
   /// bound on M⁻¹K, the largest over nodes of the row sum of the springs' stiffness over the
@@ -118,7 +127,7 @@ class ContactSystem final : public TopologyListener {
   double loaded_depth(Model& model, std::int32_t s, const Hit& hit, double vn, double dt) const;
   void add_facet_force(Model& model, std::size_t i, double dt, double stable_dt);
   void add_wall_forces(Model& model, std::size_t w, double time, double dt, double stable_dt);
-  void add_row_stiffness(std::int32_t node, double stiffness);
+  void add_row_stiffness(std::int32_t node, double stiffness, double damping = 0);
 
   ContactSettings settings_;
   const std::vector<char>* tied_ = nullptr;
@@ -136,7 +145,10 @@ class ContactSystem final : public TopologyListener {
   bool eroded_surfaces_ = false;
   double max_penetration_ = 0;
   double max_frequency2_ = 0;
+  double damping_work_ = 0;
+  double max_damping_rate_ = 0;
   std::vector<double> row_stiffness_;     // per node: Σ of the springs' row stiffness, this call
+  std::vector<double> row_damping_;       // per node: Σ of the dashpots' row damping, this call
   std::vector<std::int32_t> stiffened_;   // nodes with row_stiffness_ > 0, in the order touched
   std::vector<double> wall_force_, pair_force_;
   std::vector<std::pair<int, int>> pairs_;

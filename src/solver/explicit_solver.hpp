@@ -144,7 +144,7 @@ class ExplicitSolver : private TopologyListener {
   /// Handles of the ledger terms the solver books (−1: not registered, no contact).
   struct Terms {
     int kinetic, initial, external_work, damping, stress_work, viscosity, hourglass, plastic, heat, fracture,
-        eroded, particle_elastic, particle_friction, wall_work = -1, contact_work = -1, friction = -1,
+        eroded, particle_elastic, particle_friction, wall_work = -1, contact_work = -1, friction = -1, contact_damping = -1,
         particle_contact_elastic = -1, particle_contact_dissipation = -1, particle_wall_work = -1,
         conversion_elastic = -1, cohesive_work = -1, cohesive_released = -1;
   } terms_;
