@@ -370,7 +370,6 @@ void ContactSystem::reset_step(Model& model) {
   if (model.contact.wall_tangential.size() != nw * dim * nn) model.contact.wall_tangential.assign(nw * dim * nn, 0.0);
   if (model.contact.wall_offset.size() != nw * dim) model.contact.wall_offset.assign(nw * dim, 0.0);
   friction_work_ = 0;
-  damping_work_ = 0;
   for (const std::int32_t n : stiffened_) row_stiffness_[n] = row_damping_[n] = 0;
   stiffened_.clear();
   if (row_stiffness_.size() != nn) row_stiffness_.assign(nn, 0.0);
@@ -378,6 +377,7 @@ void ContactSystem::reset_step(Model& model) {
   max_frequency2_ = 0;
   max_damping_rate_ = 0;
   applied_.clear();
+  damping_applied_.clear();
   max_penetration_ = 0;
   active_ = 0;
   std::fill(pair_force_.begin(), pair_force_.end(), 0.0);
@@ -472,7 +472,6 @@ void ContactSystem::add_facet_force(Model& model, std::size_t i, double dt, doub
   const double spring = -k * loaded_depth(model, s, hit, vn, dt);
   const double dashpot = settings_.damping * 2.0 * std::sqrt(k * 0.5 * pair_mass);
   const double fn_mag = std::max(0.0, spring - dashpot * vn);
-  damping_work_ -= (fn_mag - spring) * vn * dt;
   max_penetration_ = std::max(max_penetration_, -hit.gap);
   double vt[3];
   for (int d = 0; d < dim; ++d) vt[d] = vrel[d] - vn * hit.normal[d];
@@ -489,6 +488,13 @@ void ContactSystem::add_facet_force(Model& model, std::size_t i, double dt, doub
       applied_.emplace_back(static_cast<std::int64_t>(dim) * fn[a] + d, -hit.weights[a] * f[d]);
     }
   }
+  if (fn_mag != spring)
+    for (int d = 0; d < dim; ++d) {
+      const double fd = (fn_mag - spring) * hit.normal[d];
+      damping_applied_.emplace_back(static_cast<std::int64_t>(dim) * s + d, fd);
+      for (int a = 0; a < dim; ++a)
+        damping_applied_.emplace_back(static_cast<std::int64_t>(dim) * fn[a] + d, -hit.weights[a] * fd);
+    }
   normal_force_[i] = fn_mag;
   ++active_;
   // Row sums of |K|: a weight can be a little below 0 where the node projects just past the facet.

@@ -77,7 +77,6 @@ class ContactSystem final : public TopologyListener {
   void set_tied_nodes(const std::vector<char>* tied) { tied_ = tied; }
 
   double friction_increment() const { return friction_work_; }  ///< dissipated in this call (J)
-  double damping_increment() const { return damping_work_; }    ///< dissipated by the dashpots in this call (J)
   /// Bound on the largest eigenvalue of M⁻¹C, C the contact dashpots of the last call (1/s):
   /// Gershgorin's row sums, as for the springs. The stable step of central difference with
   /// damping is 2/(γ/2 + √(γ²/4 + ω²)) (docs/theory/contact.md, "Normal damping").
@@ -95,6 +94,10 @@ class ContactSystem final : public TopologyListener {
   double max_penetration() const { return max_penetration_; }
   /// (dof, force) of every contact and wall force added in the last call, in a fixed order.
   const std::vector<std::pair<std::int64_t, double>>& applied_forces() const { return applied_; }
+  /// (dof, force) of the dashpots' part of those forces: the solver books their work as
+  /// contact_damping, over the same half steps as the contact work, so that the contact column
+  /// keeps only the springs (docs/theory/contact.md, "Normal damping").
+  const std::vector<std::pair<std::int64_t, double>>& damping_forces() const { return damping_applied_; }
 
   /// Force on each wall from the bodies (dim per wall): what a load cell under it measures.
   const std::vector<double>& wall_forces() const { return wall_force_; }
@@ -145,7 +148,6 @@ class ContactSystem final : public TopologyListener {
   bool eroded_surfaces_ = false;
   double max_penetration_ = 0;
   double max_frequency2_ = 0;
-  double damping_work_ = 0;
   double max_damping_rate_ = 0;
   std::vector<double> row_stiffness_;     // per node: Σ of the springs' row stiffness, this call
   std::vector<double> row_damping_;       // per node: Σ of the dashpots' row damping, this call
@@ -153,6 +155,7 @@ class ContactSystem final : public TopologyListener {
   std::vector<double> wall_force_, pair_force_;
   std::vector<std::pair<int, int>> pairs_;
   std::vector<std::pair<std::int64_t, double>> applied_;
+  std::vector<std::pair<std::int64_t, double>> damping_applied_;
   std::vector<int> pair_of_parts_;     // part a * parts + b → index in pairs_ (a ≤ b), or −1
   std::vector<double> node_normal_;    // outward normal of each node (surface nodes non-zero)
 };

@@ -274,7 +274,6 @@ void ExplicitSolver::compute_forces() {
     contact_->set_tied_nodes(cohesive_ ? &cohesive_->tied_nodes() : nullptr);
     contact_->add_forces(model_, state_.time, state_.dt_half, total.stable_dt);
     state_.energy[terms_.friction] += contact_->friction_increment();
-    state_.energy[terms_.contact_damping] += contact_->damping_increment();
     const auto& wf = contact_->wall_forces();
     state_.wall_force_on_bodies.assign(wf.size(), 0.0);
     for (std::size_t i = 0; i < wf.size(); ++i) state_.wall_force_on_bodies[i] = -wf[i];
@@ -346,7 +345,8 @@ void ExplicitSolver::apply_prescribed_velocities(const AdvanceCoefficients& c, d
 
 void ExplicitSolver::book_contact_work(double dt_n, double d1, double d2, double back, double ahead,
                                        double dt_next, double& contact_back, double& contact_ahead,
-                                       double& wall_back, double& wall_ahead, double& particle_wall_back,
+                                       double& damping_back, double& damping_ahead, double& wall_back,
+                                       double& wall_ahead, double& particle_wall_back,
                                        double& particle_wall_ahead) {
   // Work of the contact forces on the nodes, and of moving rigid walls on the bodies they push
   // (F_wall→body · v_wall, external work); the particles' share of the walls' work is its own term.
@@ -359,6 +359,11 @@ void ExplicitSolver::book_contact_work(double dt_n, double d1, double d2, double
     for (const auto& [dof, f] : contact_->applied_forces()) {
       contact_back += f * back * V[dof];
       contact_ahead += f * ahead * new_velocity(dof, M[dof / dim]);
+    }
+    // The dashpots' share of that work, over the same half steps: dissipated (contact_damping).
+    for (const auto& [dof, f] : contact_->damping_forces()) {
+      damping_back -= f * back * V[dof];
+      damping_ahead -= f * ahead * new_velocity(dof, M[dof / dim]);
     }
   }
   const std::vector<RigidWall>* walls = contact_ ? &contact_->settings().walls
@@ -412,8 +417,9 @@ void ExplicitSolver::advance() {
     external_ahead += f * c.ahead * ((c.d1 * V[dof] + c.dt_n * (F[dof] / m)) * c.d2);
   }
   double contact_back = 0, contact_ahead = 0, wall_back = 0, wall_ahead = 0, pwall_back = 0, pwall_ahead = 0;
-  book_contact_work(c.dt_n, c.d1, c.d2, c.back, c.ahead, c.dt_next, contact_back, contact_ahead, wall_back,
-                    wall_ahead, pwall_back, pwall_ahead);
+  double dashpot_back = 0, dashpot_ahead = 0;
+  book_contact_work(c.dt_n, c.d1, c.d2, c.back, c.ahead, c.dt_next, contact_back, contact_ahead, dashpot_back,
+                    dashpot_ahead, wall_back, wall_ahead, pwall_back, pwall_ahead);
 
   // kinetic, damping back/ahead, external back/ahead (the nodes' gravity work adds to the latter)
   double sums[5] = {0, 0, 0, external_back, external_ahead};
@@ -451,6 +457,7 @@ void ExplicitSolver::advance() {
   if (contact_) {
     E[terms_.wall_work] += state_.pending_wall + wall_back;
     E[terms_.contact_work] += state_.pending_contact + contact_back;
+    E[terms_.contact_damping] += state_.pending_contact_damping + dashpot_back;
   }
   if (particle_contact_) E[terms_.particle_wall_work] += state_.pending_particle_wall + pwall_back;
   state_.pending_particle_wall = pwall_ahead;
@@ -458,6 +465,7 @@ void ExplicitSolver::advance() {
   state_.pending_external = external_ahead;
   state_.pending_wall = wall_ahead;
   state_.pending_contact = contact_ahead;
+  state_.pending_contact_damping = dashpot_ahead;
   state_.dt_half = dt_next;
   state_.time += dt_next;
   state_.step += 1;

@@ -176,11 +176,12 @@ void print(const char* name, const PlateImpact& c, const PlateImpactResult& r) {
   std::printf("[plate impact %s] %s, %d across, %.1f m/s, contact damping %.2f: rho c v/2 = %.1f MPa; peak "
               "compression behind the contact %.1f MPa (%+.2f %%), plateau %.1f MPa (%+.2f %%); largest tension in "
               "the flyer %.1f MPa (%.2f %% of rho c v/2); energy error max %.2e, contact_damping %.3g J of %.3g J "
-              "kinetic at the start; %lld steps, %.2f s\n",
+              "kinetic at the start, contact column at the end %.2g J; %lld steps, %.2f s\n",
               name, c.element.c_str(), c.across, c.velocity, c.contact.damping, r.expected * 1e-6,
               r.peak_compression * 1e-6, 100 * (r.peak_compression / r.expected - 1), r.plateau * 1e-6,
               100 * (r.plateau / r.expected - 1), r.flyer_tension * 1e-6, 100 * r.flyer_tension / r.expected,
-              r.balance, r.energy.value("contact_damping"), r.energy.initial(), static_cast<long long>(r.steps),
+              r.balance, r.energy.value("contact_damping"), r.energy.initial(), r.energy.contact(),
+              static_cast<long long>(r.steps),
               r.seconds);
 }
 
