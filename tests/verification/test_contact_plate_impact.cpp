@@ -225,6 +225,71 @@ void spall(const std::string& element) {
 
 }  // namespace
 
+// The dashpot by hand. Block B's left face (nodes at y = 0.25, 0.75) is δ inside block A's right
+// face (one segment, unit squares of tri3): two springs, each with a dashpot ξ·2√(k μ), μ = m/2
+// the reduced mass the penalty is built on. Closing at 1 m/s the normal force is kδ + c·1 and the
+// dashpot's part of it is c; leaving at 10 m/s it is kδ − 10c > 0; leaving at 100 m/s it is 0,
+// not a pull, and the dashpot's part is −kδ. The damping-rate bound is Gershgorin's row sum over mass, (1 + Σ|w|)c at the node and
+// 2c·w_a summed over the springs at corner a (1e-12; the forces 1e-8 of kδ, the round-off of a
+// gap of 1e-6 found from coordinates near 1; docs/theory/contact.md, "Normal damping").
+TEST(ContactPlateImpact, DashpotForceAndDampingRateByHand) {
+  BoxMesh box;
+  box.element = "tri3";
+  Model model = make_box_model(Formulation::plane_strain, box);
+  const double delta = 1e-6, dt = 1e-7, xi = 0.2;
+  BoxMesh bbox = box;
+  bbox.size = {1, 0.5, 1};
+  const std::size_t a_nodes = model.nodes.count();
+  testing::append_model(model, make_box_model(Formulation::plane_strain, bbox), {1 - delta, 0.25, 0}, "b_", 0);
+  const std::size_t n = model.nodes.count();
+  for (std::size_t i = 0; i < n; ++i) model.nodes.mass[i] = i < a_nodes ? 2.0 + 0.5 * i : 1.0 + 0.25 * (i - a_nodes);
+  ContactSettings settings = testing::all_pairs(2, 1);
+  settings.damping = xi;
+  ContactSystem contact(model, settings, {0, 0}, 1);
+  // A's right face: nodes at x = 1 (the lighter one, y = 0, is the facet's lightest corner).
+  std::vector<std::int32_t> face, pressing;
+  std::vector<double> forces;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double x = model.nodes.x[2 * i];
+    if (i < a_nodes && std::abs(x - 1) < 1e-12) face.push_back(static_cast<std::int32_t>(i));
+    if (i >= a_nodes && std::abs(x - (1 - delta)) < 1e-12) pressing.push_back(static_cast<std::int32_t>(i));
+  }
+  ASSERT_EQ(face.size(), 2u);
+  ASSERT_EQ(pressing.size(), 2u);
+  const double* M = model.nodes.mass.data();
+  const double lightest = std::min(M[face[0]], M[face[1]]);
+  for (const double speed : {-1.0, 10.0, 100.0}) {
+    for (std::size_t i = a_nodes; i < n; ++i) model.nodes.v[2 * i] = speed;
+    std::fill(model.nodes.force.begin(), model.nodes.force.end(), 0.0);
+    model.contact = {};
+    contact.add_forces(model, 0, dt, dt);
+    double rate = 0;
+    std::vector<double> row(n, 0.0);
+    for (const std::int32_t s : pressing) {
+      const double pair = 2 / (1 / M[s] + 1 / lightest);
+      const double k = pair * 4 / (dt * dt) * (1 / (0.9 * 0.9) - 1) / 4;
+      const double c = xi * 2 * std::sqrt(k * pair / 2);
+      const double expected = std::max(0.0, k * delta - c * speed);
+      EXPECT_NEAR(model.nodes.force[2 * s], expected, 1e-8 * k * delta) << speed;
+      double dashpot = 0;
+      for (const auto& [dof, f] : contact.damping_forces())
+        if (dof == 2 * s) dashpot += f;
+      EXPECT_NEAR(dashpot, expected - k * delta, 1e-8 * k * delta) << speed;
+      EXPECT_GE(model.nodes.force[2 * s], 0.0);
+      // the node's projection on A's face: y of the node from the corner at y = 0 or 1
+      const double y = model.nodes.x[2 * s + 1];
+      for (const std::int32_t a : face) row[a] += 2 * c * (1 - std::abs(model.nodes.x[2 * a + 1] - y));
+      row[s] += 2 * c;
+    }
+    for (std::size_t i = 0; i < n; ++i) rate = std::max(rate, row[i] / M[i]);
+    std::printf("[dashpot by hand] B at %+.0f m/s: normal forces %.6e, %.6e N; damping rate bound %.6e 1/s, by "
+                "hand %.6e\n",
+                speed, model.nodes.force[2 * pressing[0]], model.nodes.force[2 * pressing[1]],
+                contact.max_damping_rate(), rate);
+    EXPECT_NEAR(contact.max_damping_rate(), rate, 1e-12 * rate);
+  }
+}
+
 TEST(ContactPlateImpact, Hex8ReducedStressBehindTheContactIsRhoCVOverTwoWithoutTension) {
   symmetric_impact("hex8_reduced", 2);
 }
