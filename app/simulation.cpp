@@ -539,6 +539,7 @@ void contact_pairs_and_friction(const Scenario& sc, const Model& model, ContactS
   }
   cs.penalty_scale = ci.penalty_scale;
   cs.time_step_reduction = ci.time_step_reduction;
+  cs.damping = ci.damping;
 }
 
 // The crack faces a cracking part grows must close and slide, so each is in contact with itself

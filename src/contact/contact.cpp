@@ -15,7 +15,9 @@ std::vector<EnergyTerm> ContactSystem::energy_terms() {
            {{G::contact, +1}}, "-"},
           {"contact_work", "work done on the nodes by contact and wall forces", r::contact_work, {{G::contact, -1}}, "-"},
           {"friction", "dissipated by friction (contact, walls; automata add theirs)", r::friction,
-           {{G::contact, -1}, {G::dissipated, +1}}, ""}};
+           {{G::contact, -1}, {G::dissipated, +1}}, ""},
+          {"contact_damping", "dissipated by the normal dashpots of the penalty contact (contact.damping)",
+           r::contact_damping, {{G::contact, -1}, {G::dissipated, +1}}, ""}};
 }
 
 bool ContactSettings::any_pairs() const {
@@ -105,6 +107,10 @@ double coulomb(double* T, const double* n, const double* vt, double k, double dt
 
 namespace {
 
+/// A node may project outside a facet by its depth, up to this fraction of the facet (its
+/// weights then lie in [−margin, 1 + margin]; docs/theory/contact.md, "Search").
+constexpr double kProjectionMargin = 0.1;
+
 /// Copies of one split node (same NodeArrays::origin).
 bool is_sibling(const std::vector<std::int64_t>& origin, std::int32_t p, std::int32_t q) {
   return p != q && static_cast<std::size_t>(std::max(p, q)) < origin.size() && origin[p] == origin[q];
@@ -134,7 +140,10 @@ bool triangle_hit(const double* X, const std::int32_t* fn, const double* x, cons
   const double den = d00 * d11 - d01 * d01;
   double lb = (d11 * d20 - d01 * d21) / den, lc = (d00 * d21 - d01 * d20) / den;
   const double la = 1 - lb - lc;
-  if (la < 0.0 || lb < 0.0 || lc < 0.0) return false;
+  // Inside, give or take the node's depth (as for segments, ContactSystem::segment_hit: at an
+  // edge or vertex of the surface a node just behind it must not fall between the facets).
+  const double margin = std::min(kProjectionMargin, -gap / std::sqrt(nl));
+  if (la < -margin || lb < -margin || lc < -margin) return false;
   if (n[0] * nn[0] + n[1] * nn[1] + n[2] * nn[2] >= 0) return false;  // not facing each other
   weights[0] = la;
   weights[1] = lb;
@@ -276,16 +285,20 @@ bool ContactSystem::segment_hit(const Model& model, std::int32_t f, std::int32_t
   hit.crack_faces = ps == pf && (crack_face_[s] != 0 || crack_face_[fn[0]] != 0 || crack_face_[fn[1]] != 0);
   const double xi = ((x[0] - a[0]) * tx + (x[1] - a[1]) * ty) / l2;
   if (xi < 0.0 && sibling_a) return reflex_corner_hit(X, f, x, hit);
-  // Only a node whose projection falls on the facet: past a convex corner of the master
-  // surface the next facet decides, not this one's extended line.
-  if (xi < 0.0 || xi > 1.0) return false;
   hit.normal[0] = ty / l;
   hit.normal[1] = -tx / l;
+  hit.gap = (x[0] - a[0]) * hit.normal[0] + (x[1] - a[1]) * hit.normal[1];
+  // Only a node whose projection falls on the facet, give or take its depth: past a convex
+  // corner of the master surface the next facet decides, not this one's extended line. A node
+  // at depth d behind both faces of a corner that turns by up to 90° projects within d of one
+  // of them; without the margin it is lost whenever the faces tilt by a hair (a node on the edge
+  // of an impact face flickers in and out of contact every step, and the face rings).
+  const double margin = std::min(kProjectionMargin, std::max(0.0, -hit.gap) / l);
+  if (xi < -margin || xi > 1.0 + margin) return false;
   // Not facing each other: two bodies' corners that meet must not push each other sideways. A
   // copy and its sibling's corner are not two bodies' corners: they were one point, and the test
   // would hide a segment the copy is behind.
   if (!sibling_a && !sibling_b && hit.normal[0] * nn[0] + hit.normal[1] * nn[1] >= 0) return false;
-  hit.gap = (x[0] - a[0]) * hit.normal[0] + (x[1] - a[1]) * hit.normal[1];
   if (hit.gap >= 0 || hit.gap < -0.5 * l) return false;
   if (past_corner(model, f, surface_.facet_before[f], true, x) ||
       past_corner(model, f, surface_.facet_after[f], false, x))
@@ -357,11 +370,14 @@ void ContactSystem::reset_step(Model& model) {
   if (model.contact.wall_tangential.size() != nw * dim * nn) model.contact.wall_tangential.assign(nw * dim * nn, 0.0);
   if (model.contact.wall_offset.size() != nw * dim) model.contact.wall_offset.assign(nw * dim, 0.0);
   friction_work_ = 0;
-  for (const std::int32_t n : stiffened_) row_stiffness_[n] = 0;
+  for (const std::int32_t n : stiffened_) row_stiffness_[n] = row_damping_[n] = 0;
   stiffened_.clear();
   if (row_stiffness_.size() != nn) row_stiffness_.assign(nn, 0.0);
+  if (row_damping_.size() != nn) row_damping_.assign(nn, 0.0);
   max_frequency2_ = 0;
+  max_damping_rate_ = 0;
   applied_.clear();
+  damping_applied_.clear();
   max_penetration_ = 0;
   active_ = 0;
   std::fill(pair_force_.begin(), pair_force_.end(), 0.0);
@@ -380,7 +396,10 @@ void ContactSystem::add_forces(Model& model, double time, double dt, double stab
   for (std::size_t w = 0; w < settings_.walls.size(); ++w) add_wall_forces(model, w, time, dt, stable_dt);
   const double* M = model.nodes.mass.data();
   for (const std::int32_t n : stiffened_)
-    if (M[n] > 0) max_frequency2_ = std::max(max_frequency2_, row_stiffness_[n] / M[n]);
+    if (M[n] > 0) {
+      max_frequency2_ = std::max(max_frequency2_, row_stiffness_[n] / M[n]);
+      max_damping_rate_ = std::max(max_damping_rate_, row_damping_[n] / M[n]);
+    }
 }
 
 // The depth the penalty acts on (hit.gap less the offset carried without force) for surface
@@ -447,7 +466,13 @@ void ContactSystem::add_facet_force(Model& model, std::size_t i, double dt, doub
   const double k = penalty(pair_mass, stable_dt, settings_.time_step_reduction, settings_.penalty_scale);
   double vn = 0;
   for (int d = 0; d < dim; ++d) vn += vrel[d] * hit.normal[d];
-  const double fn_mag = -k * loaded_depth(model, s, hit, vn, dt);
+  // The spring, and beside it the dashpot on the closing or opening speed vn (at t_n−1/2, as
+  // the friction's), a fraction of the pair's critical damping 2√(k μ) with μ = m/2 the reduced
+  // mass the penalty is built on. The total never pulls: the dashpot only takes off the spring's
+  // force as the node leaves (docs/theory/contact.md, "Normal damping").
+  const double spring = -k * loaded_depth(model, s, hit, vn, dt);
+  const double dashpot = settings_.damping * 2.0 * std::sqrt(k * 0.5 * pair_mass);
+  const double fn_mag = std::max(0.0, spring - dashpot * vn);
   max_penetration_ = std::max(max_penetration_, -hit.gap);
   double vt[3];
   for (int d = 0; d < dim; ++d) vt[d] = vrel[d] - vn * hit.normal[d];
@@ -464,6 +489,13 @@ void ContactSystem::add_facet_force(Model& model, std::size_t i, double dt, doub
       applied_.emplace_back(static_cast<std::int64_t>(dim) * fn[a] + d, -hit.weights[a] * f[d]);
     }
   }
+  if (fn_mag != spring)
+    for (int d = 0; d < dim; ++d) {
+      const double fd = (fn_mag - spring) * hit.normal[d];
+      damping_applied_.emplace_back(static_cast<std::int64_t>(dim) * s + d, fd);
+      for (int a = 0; a < dim; ++a)
+        damping_applied_.emplace_back(static_cast<std::int64_t>(dim) * fn[a] + d, -hit.weights[a] * fd);
+    }
   // Both sides of the interface carry the spring: the node, and the facet's corners in
   // proportion w_a. With the two-pass search each body's nodes press on the other's facets, so
   // a node's share of the interface force is its own spring plus what it takes as a corner of
@@ -471,8 +503,14 @@ void ContactSystem::add_facet_force(Model& model, std::size_t i, double dt, doub
   normal_force_[s] += fn_mag;
   for (int a = 0; a < dim; ++a) normal_force_[fn[a]] += hit.weights[a] * fn_mag;
   ++active_;
-  add_row_stiffness(s, 2.0 * k);
-  for (int a = 0; a < dim; ++a) add_row_stiffness(fn[a], 2.0 * k * hit.weights[a]);
+  // Row sums of |K|: a weight can be a little below 0 where the node projects just past the facet.
+  double wsum = 0;
+  for (int a = 0; a < dim; ++a) wsum += std::abs(hit.weights[a]);
+  add_row_stiffness(s, (1 + wsum) * k, (1 + wsum) * dashpot);
+  for (int a = 0; a < dim; ++a) {
+    const double w = std::abs(hit.weights[a]);
+    add_row_stiffness(fn[a], (1 + wsum) * k * w, (1 + wsum) * dashpot * w);
+  }
   const std::size_t np = model.parts.size();
   const int p = ps <= pf ? pair_of_parts_[ps * np + pf] : pair_of_parts_[pf * np + ps];
   if (p >= 0)
@@ -526,9 +564,10 @@ void ContactSystem::add_wall_forces(Model& model, std::size_t w, double time, do
   }
 }
 
-void ContactSystem::add_row_stiffness(std::int32_t node, double stiffness) {
+void ContactSystem::add_row_stiffness(std::int32_t node, double stiffness, double damping) {
   if (row_stiffness_[node] == 0) stiffened_.push_back(node);
   row_stiffness_[node] += stiffness;
+  row_damping_[node] += damping;
 }
 
 std::vector<double> ContactSystem::nodal_pressure(const Model& model) const {

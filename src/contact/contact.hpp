@@ -39,6 +39,10 @@ struct ContactSettings {
   double penalty_scale = 1.0;
   /// The automatic penalty keeps the stable time step within this fraction of the element one.
   double time_step_reduction = 0.1;
+  /// Normal contact damping: a dashpot beside each penalty spring, this fraction of the critical
+  /// damping 2√(k μ) of the spring between the node and the facet (μ their reduced mass); it
+  /// never pulls (the normal force stays ≥ 0). 0: the bare penalty, which rings after an impact.
+  double damping = 0.2;
   std::vector<RigidWall> walls;
 
   bool any_pairs() const;
@@ -73,6 +77,10 @@ class ContactSystem final : public TopologyListener {
   void set_tied_nodes(const std::vector<char>* tied) { tied_ = tied; }
 
   double friction_increment() const { return friction_work_; }  ///< dissipated in this call (J)
+  /// Bound on the largest eigenvalue of M⁻¹C, C the contact dashpots of the last call (1/s):
+  /// Gershgorin's row sums, as for the springs. The stable step of central difference with
+  /// damping is 2/(γ/2 + √(γ²/4 + ω²)) (docs/theory/contact.md, "Normal damping").
+  double max_damping_rate() const { return max_damping_rate_; }
   std::size_t active_contacts() const { return active_; }
   /// Bound on the largest ω² the contact springs of the last call add (1/s²): Gershgorin's
   /// bound on M⁻¹K, the largest over nodes of the row sum of the springs' stiffness over the
@@ -86,6 +94,10 @@ class ContactSystem final : public TopologyListener {
   double max_penetration() const { return max_penetration_; }
   /// (dof, force) of every contact and wall force added in the last call, in a fixed order.
   const std::vector<std::pair<std::int64_t, double>>& applied_forces() const { return applied_; }
+  /// (dof, force) of the dashpots' part of those forces: the solver books their work as
+  /// contact_damping, over the same half steps as the contact work, so that the contact column
+  /// keeps only the springs (docs/theory/contact.md, "Normal damping").
+  const std::vector<std::pair<std::int64_t, double>>& damping_forces() const { return damping_applied_; }
 
   /// Force on each wall from the bodies (dim per wall): what a load cell under it measures.
   const std::vector<double>& wall_forces() const { return wall_force_; }
@@ -121,7 +133,7 @@ class ContactSystem final : public TopologyListener {
   double loaded_depth(Model& model, std::int32_t s, const Hit& hit, double vn, double dt) const;
   void add_facet_force(Model& model, std::size_t i, double dt, double stable_dt);
   void add_wall_forces(Model& model, std::size_t w, double time, double dt, double stable_dt);
-  void add_row_stiffness(std::int32_t node, double stiffness);
+  void add_row_stiffness(std::int32_t node, double stiffness, double damping = 0);
 
   ContactSettings settings_;
   const std::vector<char>* tied_ = nullptr;
@@ -139,11 +151,14 @@ class ContactSystem final : public TopologyListener {
   bool eroded_surfaces_ = false;
   double max_penetration_ = 0;
   double max_frequency2_ = 0;
+  double max_damping_rate_ = 0;
   std::vector<double> row_stiffness_;     // per node: Σ of the springs' row stiffness, this call
+  std::vector<double> row_damping_;       // per node: Σ of the dashpots' row damping, this call
   std::vector<std::int32_t> stiffened_;   // nodes with row_stiffness_ > 0, in the order touched
   std::vector<double> wall_force_, pair_force_;
   std::vector<std::pair<int, int>> pairs_;
   std::vector<std::pair<std::int64_t, double>> applied_;
+  std::vector<std::pair<std::int64_t, double>> damping_applied_;
   std::vector<int> pair_of_parts_;     // part a * parts + b → index in pairs_ (a ≤ b), or −1
   std::vector<double> node_normal_;    // outward normal of each node (surface nodes non-zero)
 };

@@ -87,7 +87,7 @@ class EnergyLedger {
 namespace energy_rank {
 inline constexpr int kinetic = 0, initial = 0, external_work = 0, stress_work = 10, viscosity = 20,
                      hourglass = 30, damping = 40, plastic = 50, heat = 55, fracture = 60,
-                     particle_elastic = 62, wall_work = 64, contact_work = 66, friction = 70,
+                     particle_elastic = 62, wall_work = 64, contact_work = 66, friction = 70, contact_damping = 71,
                      particle_contact = 72, particle_friction = 75, particle_many_body = 77, eroded = 80,
                      later = 100;
 }

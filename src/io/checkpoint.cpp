@@ -15,9 +15,10 @@ namespace {
 
 // The last byte is the format version: 4 added the elements' reference length (distortion
 // criterion) and the particles' ring length; 5 the cohesive elements; 6 their open flag and
-// the crash force's running mean; 7 the automata's many-body share; 8 the running means of every
-// force column of the history; 9 the node groups' reactions and work.
-constexpr char kMagic[8] = {'S', 'H', 'A', 'R', 'D', 'C', 'K', '9'};
+// the crash force's running mean; 7 the automata's many-body share, the running means of the
+// history's force columns, the node groups' reactions and work, and the pending half step of the
+// contact dashpots' work.
+constexpr char kMagic[8] = {'S', 'H', 'A', 'R', 'D', 'C', 'K', '7'};
 
 /// Scalars of SolverState and OutputCursor in one fixed order, for both directions.
 template <class F>
@@ -34,6 +35,7 @@ void visit_scalars(SolverState& s, OutputCursor& c, F&& f) {
   f(s.pending_contact);
   f(s.pending_wall);
   f(s.pending_particle_wall);
+  f(s.pending_contact_damping);
   f(c.next_frame);
   f(c.next_history);
   f(c.next_checkpoint);

@@ -143,6 +143,11 @@ KeyList contact_keys() {
       .above(0)
       .below(1)
       .defaults_to("0.1");
+  k.quantity("damping", dim::none,
+             "normal contact damping: a dashpot beside each penalty spring, this fraction of the critical "
+             "damping of the node-facet pair (0: the bare penalty, which rings after an impact)")
+      .at_least(0)
+      .defaults_to("0.2");
   return k;
 }
 
@@ -927,6 +932,7 @@ class ScenarioReader {
     ci.dynamic_friction = c.number("dynamic_friction", ci.friction);
     ci.penalty_scale = c.number("penalty_scale");
     ci.time_step_reduction = c.number("time_step_reduction");
+    ci.damping = c.number("damping");
     if (c.has("material_friction")) {
       const YAML::Node list = c.value("material_friction");
       if (!list.IsSequence()) c.fail("material_friction", "expected a list of {materials: [a, b], static: ..}");

@@ -147,6 +147,7 @@ struct ContactInput {
   double friction = 0, dynamic_friction = 0;
   std::vector<FrictionInput> material_friction;
   double penalty_scale = 1, time_step_reduction = 0.1;
+  double damping = 0.2;  ///< fraction of the critical damping of a node-facet pair
   int line = 0;
 };
 

@@ -52,6 +52,8 @@ struct SolverState {
   /// Work of the nodal forces at t_n over [t_n, t_n+1/2]: booked with the next step, so that
   /// all terms of `energy` end at t_n (see docs/theory/time_integration_and_energy.md).
   double pending_external = 0, pending_damping = 0, pending_contact = 0, pending_wall = 0;
+  /// The same for the contact dashpots' work (dissipated, contact_damping).
+  double pending_contact_damping = 0;
   /// The wall forces on the bodies at t_n (dim per wall), for the work of moving walls.
   std::vector<double> wall_force_on_bodies;
   /// The same for particles on the walls (their work is booked apart: src/contact/particle_contact.hpp).
@@ -123,8 +125,9 @@ class ExplicitSolver : private TopologyListener {
   /// External work of the prescribed velocities of the nodes and particles (back, ahead halves).
   void apply_prescribed_velocities(const AdvanceCoefficients& c, double& external_back, double& external_ahead);
   void book_contact_work(double dt_n, double d1, double d2, double back, double ahead, double dt_next,
-                         double& contact_back, double& contact_ahead, double& wall_back, double& wall_ahead,
-                         double& particle_wall_back, double& particle_wall_ahead);
+                         double& contact_back, double& contact_ahead, double& damping_back, double& damping_ahead,
+                         double& wall_back, double& wall_ahead, double& particle_wall_back,
+                         double& particle_wall_ahead);
 
   Model& model_;
   const std::vector<std::unique_ptr<Material>>& materials_;
@@ -149,7 +152,7 @@ class ExplicitSolver : private TopologyListener {
   /// Handles of the ledger terms the solver books (−1: not registered, no contact).
   struct Terms {
     int kinetic, initial, external_work, damping, stress_work, viscosity, hourglass, plastic, heat, fracture,
-        eroded, particle_elastic, particle_friction, wall_work = -1, contact_work = -1, friction = -1,
+        eroded, particle_elastic, particle_friction, wall_work = -1, contact_work = -1, friction = -1, contact_damping = -1,
         particle_contact_elastic = -1, particle_contact_dissipation = -1, particle_wall_work = -1,
         conversion_elastic = -1, cohesive_work = -1, cohesive_released = -1, particle_many_body = -1;
   } terms_;
