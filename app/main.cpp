@@ -28,7 +28,7 @@ Usage:
   shard run SCENARIO.yaml [-o OUTDIR] [--threads N] [--quiet] [--set KEY=VALUE]...
                           [--restart CHECKPOINT] [--until TIME]
                                 (shard run --help: the options; threads default to
-                                OMP_NUM_THREADS, else one per core)
+                                OMP_NUM_THREADS, else one per core and 5000 elements or particles)
   shard check SCENARIO.yaml [--set KEY=VALUE]...
                                 validate the scenario, its mesh and model; run nothing
   shard reference               print the scenario reference (Markdown) generated from the
@@ -53,8 +53,9 @@ out/<scenario name>): frames.pvd + frame_*.vtu, history.csv, summary.json, resol
 checkpoint.bin (docs/outputs.md).
 
   -o, --output OUTDIR     the output folder (made if missing; a file there is an error)
-  --threads N             OpenMP threads (default: OMP_NUM_THREADS if set, else one per core);
-                          results are the same bits for any N
+  --threads N             OpenMP threads (default: OMP_NUM_THREADS if set, else one per core
+                          but at most one per 5000 elements and particles); results are the
+                          same bits for any N
   -q, --quiet             no progress lines
   --set KEY=VALUE         put VALUE over the file's KEY before reading, e.g.
                           --set materials.alumina.tensile_strength="450 MPa"

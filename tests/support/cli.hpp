@@ -1,6 +1,7 @@
 // Test support: run the shard executable and read its outputs.
 #pragma once
 
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
