@@ -446,6 +446,15 @@ class RunDriver {
       for (int k = 0; k < dim_; ++k) columns.push_back("reaction_" + g + "_" + axes[k]);
       columns.push_back("work_" + g);
     }
+    // Per part: what a projectile keeps (its residual velocity) without digging in the frames.
+    std::vector<std::string> parts;
+    for (const auto& p : sim_.model.parts) parts.push_back(p.name);
+    for (const auto& pp : sim_.model.particle_parts) parts.push_back(pp.name);
+    for (const auto& name : parts) {
+      columns.push_back("kinetic_" + name);
+      for (int k = 0; k < dim_; ++k) columns.push_back("momentum_" + name + "_" + axes[k]);
+      for (int k = 0; k < dim_; ++k) columns.push_back("velocity_" + name + "_" + axes[k]);
+    }
     return columns;
   }
 
@@ -536,9 +545,11 @@ class RunDriver {
       // clears the forces it applied in this step.
       const double dt_n = step == 0 ? 0.5 * s.dt_next : 0.5 * (s.dt_half + s.dt_next);
       book_forces(dt_n);
+      const bool row = final || due(t, cursor_.next_history, out.history_interval);
+      if (row) part_sums_ = part_sums();  // with the velocities the frames show, before they move on
       solver_.advance();
       book_reactions(dt_n);
-      if (final || due(t, cursor_.next_history, out.history_interval)) {
+      if (row) {
         write_history_row(t, step, dt_used);
         if (out.history_interval > 0)
           cursor_.next_history = static_cast<std::int64_t>(std::floor(t / out.history_interval * (1 + 1e-9))) + 1;
@@ -629,6 +640,46 @@ class RunDriver {
     if (impulse.size() != forces_.size()) impulse.assign(forces_.size(), 0.0);
     for (std::size_t i = 0; i < forces_.size(); ++i) impulse[i] += forces_[i] * dt_n;
     cursor_.row_span += dt_n;
+  }
+
+  /// Per part (the parts, then the particle parts): kinetic energy, momentum and mass of its nodes
+  /// or particles, at the velocities of the last half step. A node shared by two parts counts in
+  /// the first.
+  std::vector<double> part_sums() const {
+    const std::size_t D = static_cast<std::size_t>(dim_);
+    const auto& nodes = sim_.model.nodes;
+    std::vector<int> owner(nodes.count(), -1);
+    for (std::size_t p = 0; p < sim_.model.parts.size(); ++p)
+      for (auto n : sim_.model.parts[p].connectivity)
+        if (owner[n] < 0) owner[n] = static_cast<int>(p);
+    const std::size_t stride = 2 + D;  // kinetic, mass, momentum
+    std::vector<double> sums(stride * (sim_.model.parts.size() + sim_.model.particle_parts.size()), 0.0);
+    auto add = [&](std::size_t part, double m, const double* v) {
+      double* s = &sums[stride * part];
+      for (std::size_t k = 0; k < D; ++k) {
+        s[0] += 0.5 * m * v[k] * v[k];
+        s[2 + k] += m * v[k];
+      }
+      s[1] += m;
+    };
+    for (std::size_t i = 0; i < nodes.count(); ++i)
+      if (owner[i] >= 0) add(static_cast<std::size_t>(owner[i]), nodes.mass[i], &nodes.v[D * i]);
+    for (std::size_t p = 0; p < sim_.model.particle_parts.size(); ++p) {
+      const auto& pp = sim_.model.particle_parts[p];
+      for (std::size_t i = 0; i < pp.count(); ++i) add(sim_.model.parts.size() + p, pp.mass[i], &pp.v[D * i]);
+    }
+    return sums;
+  }
+
+  /// The part sums of the row: kinetic energy, momentum and mean velocity of each part.
+  void write_part_sums() {
+    const std::size_t D = static_cast<std::size_t>(dim_), stride = 2 + D;
+    for (std::size_t p = 0; stride * p < part_sums_.size(); ++p) {
+      const double* s = &part_sums_[stride * p];
+      write_number(s[0]);
+      for (std::size_t k = 0; k < D; ++k) write_number(s[2 + k]);
+      for (std::size_t k = 0; k < D; ++k) write_number(s[1] > 0 ? s[2 + k] / s[1] : 0.0);
+    }
   }
 
   /// Books the reactions of the boundary conditions' node groups at step n (found in advance(),
@@ -723,6 +774,7 @@ class RunDriver {
     }
     for (; column < forces_.size(); ++column) write_number(mean_force(column));
     write_reactions();
+    write_part_sums();
     std::fill(cursor_.force_impulse.begin(), cursor_.force_impulse.end(), 0.0);
     cursor_.row_span = 0;
     history_ << '\n';
@@ -909,6 +961,7 @@ class RunDriver {
   Progress progress_;
   bool particle_step_noted_ = false, cohesive_step_noted_ = false;
   bool forces_ready_ = false;  // the first step's forces, computed before the outputs opened
+  std::vector<double> part_sums_;  // of the row being written (part_sums)
   std::vector<std::string> notes_;  ///< further notes for summary.json
   std::vector<double> forces_;      ///< the force columns of the last step (force_columns)
 

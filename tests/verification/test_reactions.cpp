@@ -62,3 +62,40 @@ TEST(Reactions, DrivenEndOfABarPushesWithRhoCVAndItsImpulseIsTheMomentum) {
 
 }  // namespace
 }  // namespace shard
+
+namespace shard {
+namespace {
+
+// Per-part sums in history.csv (kinetic_<part>, momentum_<part>_<axis>, velocity_<part>_<axis>):
+// the sphere on a cracking alumina plate. At the first row the sphere moves at −300 m/s and the
+// plate is at rest; the parts' kinetic energies add up to the run's; the sphere's momentum
+// change equals the impulse of the contact on it (history.csv's contact_force column), both read
+// from the history alone.
+TEST(PartSums, SphereKeepsWhatTheContactDidNotTakeFromIt) {
+  const auto dir = testing::fresh_dir("part_sums");
+  const std::string scenario = std::string(SHARD_TEST_DATA_DIR) + "/fracture/sphere_on_plate_coarse.yaml";
+  const auto r = testing::run_shard("run " + scenario + " --quiet -o " + (dir / "out").string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  const auto h = testing::read_history(dir / "out" / "history.csv");
+  EXPECT_EQ(h.at(0, "velocity_sphere_y"), -300.0);
+  EXPECT_EQ(h.at(0, "kinetic_plate"), 0.0);
+  double worst = 0, impulse = 0;
+  for (std::size_t i = 1; i < h.rows.size(); ++i) {
+    const double kinetic = h.at(i, "kinetic");
+    worst = std::max(worst, std::abs(h.at(i, "kinetic_plate") + h.at(i, "kinetic_sphere") - kinetic) / kinetic);
+    // The history reports the force on the plate from the sphere: the sphere gets its opposite.
+    impulse -= h.at(i, "contact_force_plate_from_sphere_y") * (h.at(i, "time") - h.at(i - 1, "time"));
+  }
+  const std::size_t last = h.rows.size() - 1;
+  const double gained = h.at(last, "momentum_sphere_y") - h.at(0, "momentum_sphere_y");
+  std::printf("sphere: %.3f m/s at the end; parts' kinetic energy against the run's: %.2e at worst; momentum "
+              "gained %.6e N s against the contact's impulse %.6e N s\n",
+              h.at(last, "velocity_sphere_y"), worst, gained, impulse);
+  EXPECT_LT(worst, 0.02);  // the rows' velocities are half a step from the ledger's
+  EXPECT_NEAR(gained / impulse, 1.0, 0.02);
+  EXPECT_GT(h.at(last, "velocity_sphere_y"), -300.0);
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace shard
