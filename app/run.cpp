@@ -27,6 +27,7 @@
 #include "io/checkpoint.hpp"
 #include "io/frame_output.hpp"
 #include "io/output_file.hpp"
+#include "app/probe_output.hpp"
 #include "app/simulation.hpp"
 #include "io/particle_frame.hpp"
 #include "particle/mca_state.hpp"
@@ -302,7 +303,7 @@ class RunDriver {
       : options_(options), p_(prepare(file, options.overrides)), sc_(p_.scenario), sim_(p_.sim), solver_ptr_(make_solver(sim_)),
         solver_(*solver_ptr_), contact_(solver_.contact()), cracks_(sim_.crack_growth()),
         fingerprint_(fingerprint_of(sc_)), dir_(options.output_dir), history_path_(dir_ / "history.csv"),
-        dim_(sim_.model.dim()), pvd_(dir_ / "frames.pvd"),
+        dim_(sim_.model.dim()), pvd_(dir_ / "frames.pvd"), probes_(sim_.probes, dir_, dim_),
         progress_(options.quiet, sc_.output.log_interval, sc_.end_time) {
 #ifdef _OPENMP
     if (options_.threads == 0 && std::getenv("OMP_NUM_THREADS") == nullptr)
@@ -482,7 +483,9 @@ class RunDriver {
         c.keep_first(static_cast<std::size_t>(cursor_.next_frame));
       }
       history_.open(history_path_, std::ios::app);
+      probes_.open(true, cursor_.probe_bytes);
     } else {
+      probes_.open(false, {});
       history_.open(history_path_, std::ios::trunc);
       history_ << "time,step,dt";
       for (const auto& c : solver_.state().energy.column_names()) history_ << ',' << c;
@@ -535,6 +538,7 @@ class RunDriver {
       const SolverState& s = solver_.state();
       const double t = s.time;
       const bool final = t >= end * (1 - 1e-12);
+      probes_.sample(sim_.model, t, cursor_.probe_next);  // the state the frames show
       if (final || due(t, cursor_.next_frame, out.frame_interval)) {
         write_frames(t);
         cursor_.next_frame = static_cast<std::int64_t>(std::floor(t / out.frame_interval * (1 + 1e-9))) + 1;
@@ -811,6 +815,7 @@ class RunDriver {
     history_.flush();
     check_written(history_, history_path_);
     cursor_.history_bytes = std::filesystem::file_size(history_path_);
+    cursor_.probe_bytes = probes_.sizes();
     if (checkpoint_due)
       cursor_.next_checkpoint = static_cast<std::int64_t>(std::floor(s.time / out.checkpoint_interval * (1 + 1e-9))) + 1;
     write_checkpoint(dir_ / "checkpoint.bin", sim_.model, s, cursor_, fingerprint_);
@@ -956,6 +961,7 @@ class RunDriver {
   int threads_ = 1;
   OutputCursor cursor_;
   PvdCollection pvd_;
+  ProbeOutput probes_;
   std::vector<PvdCollection> particle_pvd_;
   std::ofstream history_;
   Progress progress_;

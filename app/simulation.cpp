@@ -422,6 +422,35 @@ void apply_initial_velocities(const Scenario& sc, const MeshData& mesh, Model& m
   }
 }
 
+// Probes: the node nearest each point at the start, or a group's nodes, by their stable ids (a
+// crack that splits a probe's node keeps the id on one of the copies).
+void build_probes(const Scenario& sc, const MeshData& mesh, Simulation& sim, GroupNodeSets& sets) {
+  const Model& model = sim.model;
+  const int dim = sc.dim();
+  for (std::size_t i = 0; i < sc.probes.size(); ++i) {
+    const auto& in = sc.probes[i];
+    Simulation::Probe p{in.name, in.interval, {}};
+    if (in.point) {
+      if (model.nodes.count() == 0)
+        throw InputError(shown_path(sc.file), in.line, "probes[" + std::to_string(i + 1) + "].point",
+                         "a probe at a point needs a mesh (this scenario has particles only)");
+      std::size_t nearest = 0;
+      double best = std::numeric_limits<double>::infinity();
+      for (std::size_t n = 0; n < model.nodes.count(); ++n) {
+        double d2 = 0;
+        for (int k = 0; k < dim; ++k) d2 += std::pow(model.nodes.x0[dim * n + k] - (*in.point)[k], 2);
+        if (d2 < best) best = d2, nearest = n;
+      }
+      p.nodes.push_back(model.nodes.id[nearest]);
+    } else {
+      const std::string key = "probes[" + std::to_string(i + 1) + "].group";
+      for (auto n : sets.of(find_group(sc, mesh, in.group, in.line, key, -1), in.line, key).nodes)
+        p.nodes.push_back(model.nodes.id[n]);
+    }
+    sim.probes.push_back(std::move(p));
+  }
+}
+
 // Initial velocity fields on particle parts: each particle moves with the field at its centre and
 // spins with the field's spin (a rigidly rotating body's particles turn with it).
 void apply_initial_particle_velocities(const Scenario& sc, Model& model) {
@@ -794,6 +823,7 @@ Simulation build_simulation(Scenario& sc, const MeshData& mesh) {
   solver_settings(sc, sim.settings);
 
   model.assign_ids();
+  build_probes(sc, mesh, sim, sets);
   build_interfaces(sc, sim);
   if (sim.contact)
     sim.contact_system.emplace(sim.model, *sim.contact, sim.part_materials(),

@@ -34,6 +34,13 @@ struct Simulation {
   std::vector<std::unique_ptr<StepEvent>> events;
   /// The ply of every element of each laminate part (by part name; element order of set-up).
   std::map<std::string, std::vector<int>> plies;
+  /// The probes (`probes`): a name, an interval, and the stable ids of the nodes they average.
+  struct Probe {
+    std::string name;
+    double interval = 0;
+    std::vector<std::int64_t> nodes;
+  };
+  std::vector<Probe> probes;
 
   std::vector<int> part_materials() const;
   /// The crack growth event, if the scenario has one.

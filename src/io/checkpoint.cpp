@@ -134,6 +134,8 @@ void write_checkpoint(const std::filesystem::path& path, Model& model, const Sol
     w.array("history_force_impulse", c.force_impulse);
     w.array("history_reaction_impulse", c.reaction_impulse);
     w.array("history_reaction_work", c.reaction_work);
+    w.array("probe_bytes", c.probe_bytes);
+    w.array("probe_next", c.probe_next);
     // The energy ledger, by name: every registered term.
     w.raw<std::uint64_t>(state.energy.terms().size());
     for (const EnergyTerm& t : state.energy.terms()) {
@@ -164,6 +166,8 @@ void read_checkpoint(const std::filesystem::path& path, Model& model, SolverStat
   r.array("history_force_impulse", cursor.force_impulse);
   r.array("history_reaction_impulse", cursor.reaction_impulse);
   r.array("history_reaction_work", cursor.reaction_work);
+  r.array("probe_bytes", cursor.probe_bytes);
+  r.array("probe_next", cursor.probe_next);
   const auto terms = r.raw<std::uint64_t>();
   if (terms > 4096) r.fail("corrupt energy ledger");
   for (std::uint64_t k = 0; k < terms; ++k) {

@@ -24,6 +24,8 @@ struct OutputCursor {
   std::vector<double> force_impulse;
   std::vector<double> reaction_impulse;  ///< node groups' reactions × Δt since the last row
   std::vector<double> reaction_work;     ///< per node group: work to t_n, and the half step after
+  std::vector<double> probe_bytes;       ///< length of each probe file at the checkpoint
+  std::vector<double> probe_next;        ///< index of each probe's next row
 };
 
 /// Writes `path` via "<path>.tmp" and a rename: a run killed while writing leaves the previous

@@ -71,6 +71,10 @@ KeyList top_keys() {
         "the contact law particles touch each other and the walls with (docs/theory/particle_contact.md)");
   k.add("cracking", ValueKind::section,
         "discrete crack insertion in tri3 parts of a cracking material (docs/theory/crack_insertion.md)");
+  k.add("probes", ValueKind::list,
+        "point histories: position, velocity, acceleration and stress at a point or a group, at their own "
+        "interval, in probe_<name>.csv")
+      .defaults_to("[]");
   k.add("crash", ValueKind::section,
         "crash outputs of a crush test: crushing force (SAE J211 filtered), stroke, absorbed energy, SEA, "
         "crush-force efficiency (docs/outputs.md)");
@@ -459,6 +463,7 @@ class ScenarioReader {
     initial_conditions();  // after the particle parts, which it may name
     scenario_detail::read_crash(top, sc);
     output();
+    scenario_detail::read_probes(top, sc);  // after output: its interval defaults to the history's
   }
 
  private:
@@ -1253,6 +1258,7 @@ std::vector<SchemaSection> scenario_schema() {
           {"parts.<name>.laminate", "material axes ply by ply through the part", orientation_keys(true)},
           {"cracking", "discrete crack insertion", cracking_keys()},
           {"crash", "crash outputs of a crush test", scenario_detail::crash_keys()},
+          {"probes[]", "a point history (probe_<name>.csv)", scenario_detail::probe_keys()},
           {"output", "what is written to the output folder", output_keys()}};
   for (auto& section : scenario_detail::particle_schema()) schema.push_back(std::move(section));
   return schema;

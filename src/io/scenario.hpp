@@ -134,6 +134,16 @@ struct CrashInput {
   int line = 0;
 };
 
+/// A point history: the node nearest `point` at the start (followed through cracks by its id), or
+/// the mean over the nodes of a physical group, written every `interval`.
+struct ProbeInput {
+  std::string name;
+  std::optional<std::array<double, 3>> point;
+  std::string group;
+  double interval = 0;  ///< 0: every step
+  int line = 0;
+};
+
 struct FrictionInput {
   std::string material_a, material_b;
   double static_coefficient = 0, dynamic_coefficient = 0;
@@ -279,6 +289,7 @@ struct Scenario {
   std::optional<ParticleContactInput> particle_contact;
   OutputSettings output;
   std::optional<CrashInput> crash;
+  std::vector<ProbeInput> probes;
 
   YAML::Node resolved;  ///< the scenario as resolved (SI, defaults filled in)
 

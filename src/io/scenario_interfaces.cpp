@@ -166,3 +166,48 @@ void read_crash(Section& top, Scenario& sc) {
 }
 
 }  // namespace shard::scenario_detail
+
+namespace shard::scenario_detail {
+
+KeyList probe_keys() {
+  KeyList k;
+  k.add("name", ValueKind::text, "the probe's name: its file is probe_<name>.csv").must_be_given();
+  KeySpec& p = k.add("point", ValueKind::vector, "a point: the probe follows the node nearest to it at the start");
+  p.dimension = dim::length;
+  k.add("group", ValueKind::text, "a Gmsh physical group: the probe gives the mean over its nodes (instead of `point`)");
+  k.quantity("interval", dim::time, "time between rows (0: every step)").at_least(0).defaults_to("output.history_interval");
+  return k;
+}
+
+void read_probes(Section& top, Scenario& sc) {
+  if (!top.has("probes")) return;
+  static const KeyList keys = probe_keys();
+  const YAML::Node list = top.value("probes");
+  if (!list.IsSequence()) top.fail("probes", "expected a list of probes, e.g. [{name: back_face, point: [0, -8.6 mm]}]");
+  YAML::Node list_out(YAML::NodeType::Sequence);
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    YAML::Node out(YAML::NodeType::Map);
+    Section s(list[i], top.file(), "probes[" + std::to_string(i + 1) + "]", keys, out, line_of(list[i]));
+    ProbeInput p;
+    p.line = s.line();
+    p.name = s.text("name");
+    if (p.name.empty() || p.name.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-") !=
+                              std::string::npos)
+      s.fail("name", "a probe's name names its file: letters, digits, '_' and '-' only");
+    for (const auto& other : sc.probes)
+      if (other.name == p.name) s.fail("name", "a second probe named '" + p.name + "'");
+    if (s.has("point") == s.has("group")) s.fail("name", "a probe needs either 'point' or 'group' (one of them)");
+    if (s.has("point")) {
+      const auto x = s.vector("point", static_cast<std::size_t>(sc.dim()));
+      p.point = std::array<double, 3>{0, 0, 0};
+      std::copy(x.begin(), x.end(), p.point->begin());
+    }
+    p.group = s.text("group");
+    p.interval = s.number("interval", sc.output.history_interval);
+    sc.probes.push_back(p);
+    list_out.push_back(out);
+  }
+  sc.resolved["probes"] = list_out;
+}
+
+}  // namespace shard::scenario_detail

@@ -19,5 +19,8 @@ void read_interfaces(Section& top, Scenario& scenario);
 KeyList crash_keys();
 /// Reads `crash` (parts and walls already read).
 void read_crash(Section& top, Scenario& scenario);
+KeyList probe_keys();
+/// probes: point histories at the node nearest a point or at a group's nodes (their mean).
+void read_probes(Section& top, Scenario& scenario);
 
 }  // namespace shard::scenario_detail

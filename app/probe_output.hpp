@@ -1,0 +1,36 @@
+// Point histories (`probes`): each probe's position, velocity, acceleration and stress at its own
+// interval, in OUTDIR/probe_<name>.csv.
+#pragma once
+
+#include <filesystem>
+#include <fstream>
+#include <vector>
+
+#include "app/simulation.hpp"
+
+namespace shard {
+
+class ProbeOutput {
+ public:
+  ProbeOutput(const std::vector<Simulation::Probe>& probes, std::filesystem::path dir, int dim);
+
+  /// Opens the files: new with their header, or (restart) cut back to `bytes` and appended to.
+  void open(bool restart, const std::vector<double>& bytes);
+  /// Writes a row for every probe due at t (`next`: each probe's index of its next row), from
+  /// the state the frames show: positions, velocities of the last half step, accelerations
+  /// force/mass at t, and the mean stress of the elements around each node.
+  void sample(const Model& model, double t, std::vector<double>& next);
+  /// Flushes the files and returns their sizes (for a checkpoint); throws OutputError when one
+  /// could not be written.
+  std::vector<double> sizes();
+
+ private:
+  std::vector<double> values(const Model& model, const Simulation::Probe& probe) const;
+
+  const std::vector<Simulation::Probe>& probes_;
+  std::filesystem::path dir_;
+  int dim_;
+  std::vector<std::ofstream> files_;
+};
+
+}  // namespace shard
