@@ -590,6 +590,8 @@ class RunDriver {
     }
   }
 
+  VtuOptions frame_options() const { return {sc_.output.compress, sc_.output.single_precision}; }
+
   void write_frames(double t) {
     char name[32];
     std::snprintf(name, sizeof name, "frame_%05lld.vtu", static_cast<long long>(cursor_.next_frame));
@@ -603,7 +605,7 @@ class RunDriver {
     std::vector<std::vector<double>> particle_fragment;
     add_fragment_fields(frame, particle_fragment);
     if (!sim_.model.parts.empty()) {
-      write_vtu(dir_ / name, frame);
+      write_vtu(dir_ / name, frame, frame_options());
       pvd_.add(t, name);
     }
     for (std::size_t p = 0; p < sim_.model.particle_parts.size(); ++p) {
@@ -614,7 +616,7 @@ class RunDriver {
       VtuGrid particles = make_particle_frame(pp, t);
       if (p < particle_fragment.size() && !find_mca_state(pp))
         particles.point_fields.push_back({"fragment", 1, std::move(particle_fragment[p])});
-      write_vtu(dir_ / pname, particles);
+      write_vtu(dir_ / pname, particles, frame_options());
       particle_pvd_[p].add(t, pname);
     }
   }

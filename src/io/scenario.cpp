@@ -384,6 +384,13 @@ KeyList output_keys() {
              "time between checkpoints (0: only at the end)")
       .at_least(0)
       .defaults_to("end_time / 10");
+  k.choice("compression", {"zlib", "none"},
+           "frames' data arrays compressed with zlib, as ParaView writes them (or not)")
+      .defaults_to("zlib");
+  k.choice("precision", {"double", "single"},
+           "frames' real values as Float64 or Float32 (half the size, 7 digits; history, probes and checkpoints "
+           "stay exact)")
+      .defaults_to("double");
   k.quantity("log_interval", dim::time,
              "wall-clock seconds between progress lines when the output is not a terminal")
       .above(0)
@@ -1064,6 +1071,8 @@ class ScenarioReader {
   sc.output.history_interval = out.number("history_interval", sc.end_time / 1000);
   sc.output.checkpoint_interval = out.number("checkpoint_interval", sc.end_time / 10);
   sc.output.log_interval = out.number("log_interval");
+  sc.output.compress = out.choice("compression").value_or("zlib") == "zlib";
+  sc.output.single_precision = out.choice("precision").value_or("double") == "single";
   if (out.has("fields")) {
     const YAML::Node f = out.value("fields");
     if (!f.IsSequence()) out.fail("fields", "expected a list of field names, e.g. [stress, velocity]");

@@ -120,6 +120,8 @@ struct OutputSettings {
   double history_interval = 0;
   double checkpoint_interval = 0;
   double log_interval = 0;  ///< wall seconds between progress lines when not on a terminal
+  bool compress = true;           ///< frames' data compressed with zlib
+  bool single_precision = false;  ///< frames' real values as Float32
   std::vector<std::string> fields;
 };
 

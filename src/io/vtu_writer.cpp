@@ -2,6 +2,10 @@
 
 #include "io/output_file.hpp"
 
+#include <type_traits>
+
+#include <zlib.h>
+
 #include <bit>
 #include <cerrno>
 #include <charconv>
@@ -113,10 +117,50 @@ const char* byte_order_name() {
 
 // ---- .vtu -------------------------------------------------------------------------------------
 
+/// The bytes of an array compressed as VTK's zlib compressor writes them: blocks of kVtkBlock
+/// bytes, each deflated on its own, after a header of UInt64 (block count, block size, size of
+/// the last block when it is partial, else 0, compressed size of each block). Base64 of the
+/// header, then of the blocks. Level and blocks are fixed, so the same frame is the same bytes.
+constexpr std::size_t kVtkBlock = 32768;
+
+void write_compressed(std::ostream& out, const void* data, std::uint64_t bytes) {
+  const auto* p = static_cast<const unsigned char*>(data);
+  const std::uint64_t blocks = bytes == 0 ? 0 : (bytes + kVtkBlock - 1) / kVtkBlock;
+  const std::uint64_t partial = bytes % kVtkBlock;
+  std::vector<std::uint64_t> header{blocks, kVtkBlock, partial};
+  std::vector<unsigned char> packed;
+  for (std::uint64_t b = 0; b < blocks; ++b) {
+    const uLong in = static_cast<uLong>(b + 1 < blocks || partial == 0 ? kVtkBlock : partial);
+    uLongf size = compressBound(in);
+    const std::size_t at = packed.size();
+    packed.resize(at + size);
+    if (compress2(packed.data() + at, &size, p + b * kVtkBlock, in, Z_DEFAULT_COMPRESSION) != Z_OK)
+      throw std::runtime_error("zlib could not compress a data array");
+    packed.resize(at + size);
+    header.push_back(size);
+  }
+  Base64Encoder head(&out);
+  head.put(header.data(), header.size() * sizeof(std::uint64_t));
+  head.finish();
+  Base64Encoder body(&out);
+  if (!packed.empty()) body.put(packed.data(), packed.size());
+  body.finish();
+}
+
 template <class T>
 void write_data_array(std::ostream& out, const char* vtk_type, const std::string& name,
                       int components, const T* data, std::size_t count,
-                      const char* indent = "        ", bool with_tuple_count = false) {
+                      const char* indent = "        ", bool with_tuple_count = false,
+                      const VtuOptions& options = {}) {
+  if constexpr (std::is_same_v<T, double>) {
+    if (options.single_precision && !with_tuple_count) {  // field data (the time) stays double
+      std::vector<float> narrow(data, data + count);
+      VtuOptions exact = options;
+      exact.single_precision = false;
+      write_data_array(out, "Float32", name, components, narrow.data(), count, indent, with_tuple_count, exact);
+      return;
+    }
+  }
   out << indent << "<DataArray type=\"" << vtk_type << "\" Name=\"" << xml_escape(name) << '"';
   // Scalars carry no NumberOfComponents, as VTK itself writes them.
   if (components != 1) out << " NumberOfComponents=\"" << components << '"';
@@ -124,8 +168,13 @@ void write_data_array(std::ostream& out, const char* vtk_type, const std::string
     out << " NumberOfTuples=\"" << count / static_cast<std::size_t>(components) << '"';
   }
   out << " format=\"binary\">\n" << indent << "  ";
-  // Uncompressed "binary" format: base64 of (UInt64 byte count, then the raw values).
   const std::uint64_t byte_count = count * sizeof(T);
+  if (options.compress) {
+    write_compressed(out, data, byte_count);
+    out << '\n' << indent << "</DataArray>\n";
+    return;
+  }
+  // Uncompressed "binary" format: base64 of (UInt64 byte count, then the raw values).
   Base64Encoder encoder(&out);
   encoder.put(&byte_count, sizeof byte_count);
   if (count > 0) encoder.put(data, byte_count);
@@ -314,7 +363,7 @@ std::string base64_encode(const void* data, std::size_t size) {
   return std::move(encoder.finish());
 }
 
-void write_vtu(const fs::path& path, const VtuGrid& grid) {
+void write_vtu(const fs::path& path, const VtuGrid& grid, const VtuOptions& options) {
   // All checks come before the file is opened, so a bad grid never costs an earlier good frame.
   check_grid(path, grid);
   const std::size_t point_count = grid.points.size() / 3;
@@ -323,13 +372,13 @@ void write_vtu(const fs::path& path, const VtuGrid& grid) {
   write_file_atomically(path, [&](std::ostream& out) {
     out << "<?xml version=\"1.0\"?>\n"
         << "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"" << byte_order_name()
-        << "\" header_type=\"UInt64\">\n"
+        << "\" header_type=\"UInt64\"" << (options.compress ? " compressor=\"vtkZLibDataCompressor\"" : "") << ">\n"
         << "  <UnstructuredGrid>\n";
     if (!grid.field_data.empty()) {
       out << "    <FieldData>\n";
       for (const VtuField& field : grid.field_data) {
         write_data_array(out, "Float64", field.name, field.components, field.values.data(),
-                         field.values.size(), "      ", true);
+                         field.values.size(), "      ", true, options);
       }
       out << "    </FieldData>\n";
     }
@@ -340,21 +389,21 @@ void write_vtu(const fs::path& path, const VtuGrid& grid) {
       out << "      <" << tag << ">\n";
       for (const VtuField& field : fields) {
         write_data_array(out, "Float64", field.name, field.components, field.values.data(),
-                         field.values.size());
+                         field.values.size(), "        ", false, options);
       }
       out << "      </" << tag << ">\n";
     };
     write_fields("PointData", grid.point_fields);
     write_fields("CellData", grid.cell_fields);
     out << "      <Points>\n";
-    write_data_array(out, "Float64", "Points", 3, grid.points.data(), grid.points.size());
+    write_data_array(out, "Float64", "Points", 3, grid.points.data(), grid.points.size(), "        ", false, options);
     out << "      </Points>\n"
         << "      <Cells>\n";
     write_data_array(out, "Int64", "connectivity", 1, grid.connectivity.data(),
-                     grid.connectivity.size());
-    write_data_array(out, "Int64", "offsets", 1, grid.offsets.data(), grid.offsets.size());
+                     grid.connectivity.size(), "        ", false, options);
+    write_data_array(out, "Int64", "offsets", 1, grid.offsets.data(), grid.offsets.size(), "        ", false, options);
     static_assert(sizeof(VtkCellType) == 1, "types are written as UInt8");
-    write_data_array(out, "UInt8", "types", 1, grid.types.data(), grid.types.size());
+    write_data_array(out, "UInt8", "types", 1, grid.types.data(), grid.types.size(), "        ", false, options);
     out << "      </Cells>\n"
         << "    </Piece>\n"
         << "  </UnstructuredGrid>\n"

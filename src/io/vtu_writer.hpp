@@ -43,13 +43,21 @@ struct VtuGrid {
   std::vector<VtuField> field_data;
 };
 
+/// How a .vtu is written: data compressed with zlib as ParaView writes it (blocks of 32 KiB,
+/// vtkZLibDataCompressor), and the Float64 fields and points as Float32 (half the size, 7
+/// digits).
+struct VtuOptions {
+  bool compress = false;
+  bool single_precision = false;
+};
+
 /// Writes an UnstructuredGrid .vtu with binary base64-encoded data arrays (format="binary",
 /// header_type="UInt64", Float64 / Int64 / UInt8), atomically: to "<path>.tmp", then
 /// std::filesystem::rename, so a killed run never leaves a half-written frame.
 /// Checks sizes (fields vs point/cell counts, offsets vs connectivity, point ids, points per cell
 /// type, unique non-empty names) before touching the disk and throws std::logic_error on mismatch.
 /// Throws std::runtime_error naming the path on I/O failure (no .tmp file is left behind).
-void write_vtu(const std::filesystem::path& path, const VtuGrid& grid);
+void write_vtu(const std::filesystem::path& path, const VtuGrid& grid, const VtuOptions& options = {});
 
 /// RFC 4648 base64 (standard alphabet, '=' padding) of `size` bytes; exposed for tests.
 std::string base64_encode(const void* data, std::size_t size);
