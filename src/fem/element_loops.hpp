@@ -273,7 +273,7 @@ void update_points(const StepContext& ctx, Part& part, const Material& material,
       for (int q = 0; q < npts; ++q) {
         const std::size_t slot = npts * (first_slot + e - begin) + q;
         out.eroded_energy += layout.stored_energy_density(&ws.stress_old[kTensorSize * slot],
-                                                          &part.state[state_size * (npts * e + q)]) *
+                                                          part.state.data() + state_size * (npts * e + q)) *
                              part.volume[e] / npts;
       }
       part.eroded[e] = 1;
@@ -299,7 +299,7 @@ void update_points(const StepContext& ctx, Part& part, const Material& material,
     if constexpr (Kernel::has_hourglass_control) out.hourglass_work -= ws.hourglass_new_half[first_slot + e - begin];
     for (int q = 0; q < npts; ++q) {
       double* s = &part.stress[kTensorSize * (npts * e + q)];
-      out.eroded_energy += layout.stored_energy_density(s, &part.state[state_size * (npts * e + q)]) *
+      out.eroded_energy += layout.stored_energy_density(s, part.state.data() + state_size * (npts * e + q)) *
                            ws.point_volume[npts * (first_slot + e - begin) + q];
       std::fill_n(s, kTensorSize, 0.0);
     }

@@ -505,7 +505,7 @@ double reinitialise_element(Part& part, std::size_t e, const CrackingPart& cp, d
   double released = 0;
   for (int q = 0; q < npts; ++q) {
     double* s = &part.stress[kTensorSize * (npts * e + q)];
-    double* state = &part.state[state_size * (npts * e + q)];
+    double* state = part.state.data() + state_size * (npts * e + q);
     if (cp.energy_density_index >= 0)
       released += state[cp.energy_density_index] * volume;
     else if (cp.moduli.bulk > 0 && cp.moduli.shear > 0)
