@@ -142,7 +142,6 @@ constexpr double kStepsWithoutLimit = 1e9;
 /// that is not a positive finite time (a material constant out of scale), or a step count that
 /// overflows or exceeds kStepsWithoutLimit without analysis.max_steps; a run of more than
 /// kStepsLong steps is a warning (returned).
-
 std::optional<std::string> check_step_count(const Scenario& sc, double dt, double start_time) {
   const std::string file = shown_path(sc.file);
   if (!(dt > 0) || !std::isfinite(dt)) {

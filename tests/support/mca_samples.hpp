@@ -114,7 +114,7 @@ inline double ramp(double t, double t_ramp, double v) {
 }
 
 /// Uniaxial test along `axis`: the min face held (axial component only), the max face moved at
-/// −v (compression) with a smooth ramp; lateral faces free.
+/// v (v < 0: compression, v > 0: tension) with a smooth ramp; lateral faces free.
 struct UniaxialRun {
   ParticleRun stepper;
   std::vector<double> x0;

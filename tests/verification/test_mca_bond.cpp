@@ -206,17 +206,10 @@ TEST(MCABond, FramesShowTheTractionBrokenPairsApply) {
   const double sigma_t = 70e6;
   testing::bond_drucker_prager(sample, sigma_t, 10 * sigma_t, 100, 0.3);
   const double T = testing::transit_time(m, 20e-3);
-  testing::ParticleRun stepper(std::move(sample), 0.5);
+  // Pulled apart along y: the bottom row held, the top row ramped to 0.5 m/s over 5 T.
+  testing::UniaxialRun run(std::move(sample), 1, 0.5, 5 * T);
+  testing::ParticleRun& stepper = run.stepper;
   const ParticlePart& ps = stepper.part();
-  testing::VelocityBC bottom, top;
-  bottom.automata = boundary_layer(ps, 1, false, 1e-5);
-  bottom.component = 1;
-  bottom.velocity = [](double) { return 0.0; };
-  top.automata = boundary_layer(ps, 1, true, 1e-5);
-  top.component = 1;
-  top.velocity = [T](double t) { return testing::ramp(t, 5 * T, 0.5); };
-  stepper.add_velocity_bc(bottom);
-  stepper.add_velocity_bc(top);
   stepper.advance_to(40 * T);
 
   const PairList& P = mca_state(ps).pairs;

@@ -79,17 +79,11 @@ testing::ParticleEnergy fracture_run(double nu) {
     return s;
   }();
   const double T = testing::transit_time(m, 40e-3);
-  testing::ParticleRun stepper(std::move(sample), 0.5);
+  // Pulled apart along y: the bottom row held, the top row ramped to 0.5 m/s over 5 T.
+  testing::UniaxialRun run(std::move(sample), 1, 0.5, 5 * T);
+  testing::ParticleRun& stepper = run.stepper;
   const ParticlePart& ps = stepper.part();
-  testing::VelocityBC bottom, top;
-  bottom.automata = boundary_layer(ps, 1, false, 1e-5);
-  bottom.component = 1;
-  bottom.velocity = [](double) { return 0.0; };
-  top.automata = boundary_layer(ps, 1, true, 1e-5);
-  top.component = 1;
-  top.velocity = [T](double t) { return testing::ramp(t, 5 * T, 0.5); };
-  stepper.add_velocity_bc(bottom);
-  const int top_bc = stepper.add_velocity_bc(top);
+  const int top_bc = run.top;
   double peak = 0;
   while (stepper.time() < 60 * T) {
     stepper.step();
