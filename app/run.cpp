@@ -452,6 +452,7 @@ class RunDriver {
     for (const auto& pp : sim_.model.particle_parts) parts.push_back(pp.name);
     for (const auto& name : parts) {
       columns.push_back("kinetic_" + name);
+      columns.push_back("internal_" + name);
       for (int k = 0; k < dim_; ++k) columns.push_back("momentum_" + name + "_" + axes[k]);
       for (int k = 0; k < dim_; ++k) columns.push_back("velocity_" + name + "_" + axes[k]);
     }
@@ -676,12 +677,18 @@ class RunDriver {
     return sums;
   }
 
-  /// The part sums of the row: kinetic energy, momentum and mean velocity of each part.
+  /// The part sums of the row: kinetic and internal energy, momentum and mean velocity of each part.
   void write_part_sums() {
     const std::size_t D = static_cast<std::size_t>(dim_), stride = 2 + D;
+    const SolverState& state = solver_.state();
+    const std::size_t elements = sim_.model.parts.size();
     for (std::size_t p = 0; stride * p < part_sums_.size(); ++p) {
       const double* s = &part_sums_[stride * p];
       write_number(s[0]);
+      // Stored energy as the ledger's internal books it, at the row's moment (after the events).
+      const auto& stored = p < elements ? state.part_stored : state.particle_part_stored;
+      const std::size_t i = p < elements ? p : p - elements;
+      write_number(i < stored.size() ? stored[i] : 0.0);
       for (std::size_t k = 0; k < D; ++k) write_number(s[2 + k]);
       for (std::size_t k = 0; k < D; ++k) write_number(s[1] > 0 ? s[2 + k] / s[1] : 0.0);
     }

@@ -547,7 +547,10 @@ void reinitialise_failed_elements(Model& model, std::span<const CrackingPart> pa
     if (!element_failed(part, e, cp.factor_index, threshold)) continue;
     const double volume =
         std::abs(element_measure(part, model.nodes, e, model.formulation, model.thickness)) / part.type->points;
-    out.released_energy += reinitialise_element(part, e, cp, volume);
+    const double released = reinitialise_element(part, e, cp, volume);
+    out.released_energy += released;
+    out.released_by_part.resize(model.parts.size(), 0.0);
+    out.released_by_part[pi] += released;
     ++out.reinitialised_elements;
   }
 }

@@ -68,6 +68,8 @@ struct CrackInsertion {
   /// Recoverable energy of the re-initialised points, whose stress was set to 0 (Ψ·V, or
   /// p²/2K + s:s/4G · V): the damage "coalesced into the crack"; book it as fracture energy.
   double released_energy = 0;
+  /// The same per part (empty when nothing was released).
+  std::vector<double> released_by_part;
 
   std::size_t new_node_count() const { return parent.size(); }
 };

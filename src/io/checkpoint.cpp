@@ -17,8 +17,8 @@ namespace {
 // criterion) and the particles' ring length; 5 the cohesive elements; 6 their open flag and
 // the crash force's running mean; 7 the automata's many-body share, the running means of the
 // history's force columns, the node groups' reactions and work, and the pending half step of the
-// contact dashpots' work.
-constexpr char kMagic[8] = {'S', 'H', 'A', 'R', 'D', 'C', 'K', '7'};
+// contact dashpots' work; 8 the stored energy of each element part.
+constexpr char kMagic[8] = {'S', 'H', 'A', 'R', 'D', 'C', 'K', '8'};
 
 /// Scalars of SolverState and OutputCursor in one fixed order, for both directions.
 template <class F>
@@ -136,6 +136,7 @@ void write_checkpoint(const std::filesystem::path& path, Model& model, const Sol
     w.array("history_reaction_work", c.reaction_work);
     w.array("probe_bytes", c.probe_bytes);
     w.array("probe_next", c.probe_next);
+    w.array("part_stored", s.part_stored);
     // The energy ledger, by name: every registered term.
     w.raw<std::uint64_t>(state.energy.terms().size());
     for (const EnergyTerm& t : state.energy.terms()) {
@@ -168,6 +169,7 @@ void read_checkpoint(const std::filesystem::path& path, Model& model, SolverStat
   r.array("history_reaction_work", cursor.reaction_work);
   r.array("probe_bytes", cursor.probe_bytes);
   r.array("probe_next", cursor.probe_next);
+  r.array("part_stored", state.part_stored);
   const auto terms = r.raw<std::uint64_t>();
   if (terms > 4096) r.fail("corrupt energy ledger");
   for (std::uint64_t k = 0; k < terms; ++k) {

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstdint>
+#include <vector>
 
 #include "core/energy_ledger.hpp"
 #include "model/model.hpp"
@@ -22,6 +23,9 @@ struct EventContext {
   std::int64_t& eroded_elements;
   EnergyLedger& energy;  ///< to book what the event releases or removes
   Topology& topology;     ///< the only way to change the topology
+  /// Per element part, its stored energy (SolverState::part_stored): an event that takes
+  /// stored energy from a part's elements takes it from the part's entry as well (may be null).
+  std::vector<double>* part_stored = nullptr;
 };
 
 class StepEvent {

@@ -34,7 +34,8 @@ CrackGrowth::CrackGrowth(const Model& model, const std::vector<std::unique_ptr<M
   }
 }
 
-std::size_t CrackGrowth::insert(Model& model, EnergyLedger& energy, Topology& topology, std::int64_t* eroded) {
+std::size_t CrackGrowth::insert(Model& model, EnergyLedger& energy, Topology& topology, std::int64_t* eroded,
+                                std::vector<double>* part_stored) {
   if (settings_.parts.empty()) return 0;
   // No node can reach the threshold while no point has (the nodal factor is a weighted mean).
   bool any = false;
@@ -51,7 +52,10 @@ std::size_t CrackGrowth::insert(Model& model, EnergyLedger& energy, Topology& to
   s.min_fragment_elements = settings_.min_fragment_elements;
   const CrackInsertion ins = insert_cracks(model, parts_, map_.factor, map_.direction, s);
   energy.at("fracture") += ins.released_energy;
-  const std::int64_t comminuted = comminute(model, ins, energy);
+  if (part_stored)
+    for (std::size_t p = 0; p < ins.released_by_part.size() && p < part_stored->size(); ++p)
+      (*part_stored)[p] -= ins.released_by_part[p];
+  const std::int64_t comminuted = comminute(model, ins, energy, part_stored);
   if (eroded) *eroded += comminuted;
   if (ins.new_node_count() == 0 && comminuted == 0) return 0;
   topology.changed(model, ins.remap);
@@ -59,7 +63,8 @@ std::size_t CrackGrowth::insert(Model& model, EnergyLedger& energy, Topology& to
   return ins.new_node_count();
 }
 
-std::int64_t CrackGrowth::comminute(Model& model, const CrackInsertion& ins, EnergyLedger& energy) {
+std::int64_t CrackGrowth::comminute(Model& model, const CrackInsertion& ins, EnergyLedger& energy,
+                                    std::vector<double>* part_stored) {
   std::int64_t count = 0;
   for (const auto& [p, e] : ins.comminuted) {
     Part& part = model.parts[p];
@@ -73,6 +78,7 @@ std::int64_t CrackGrowth::comminute(Model& model, const CrackInsertion& ins, Ene
       const double psi = cp.energy_density_index >= 0 ? part.state[state_size * point + cp.energy_density_index]
                                                       : cp.moduli.energy_density(&part.stress[kTensorSize * point]);
       energy.at("conversion_elastic") += psi * volume;
+      if (part_stored && static_cast<std::size_t>(p) < part_stored->size()) (*part_stored)[p] -= psi * volume;
       std::fill_n(&part.stress[kTensorSize * point], kTensorSize, 0.0);
     }
     part.eroded[e] = 1;

@@ -202,9 +202,13 @@ void ExplicitSolver::add_element_forces(ForceSums& total) {
   ctx.q_linear = settings_.q_linear;
   ctx.q_quadratic = settings_.q_quadratic;
   part_caches_.resize(model_.parts.size());
+  state_.part_stored.resize(model_.parts.size(), 0.0);
   for (std::size_t p = 0; p < model_.parts.size(); ++p) {
     Part& part = model_.parts[p];
     ForceSums sums = add_internal_forces(part, *materials_[part.material], model_.nodes, ctx, part_caches_[p]);
+    // The part's share of the internal group (stress_work − plastic − fracture − eroded or
+    // conversion_elastic), booked in the same order as the ledger's terms.
+    state_.part_stored[p] += sums.stress_work - sums.plastic_work - sums.fracture_work - sums.eroded_energy;
     if (part.erosion.to_particles) {
       // Elements that become particles: their elastic energy is a conversion term, not erosion.
       state_.energy[terms_.conversion_elastic] += sums.eroded_energy;
@@ -229,7 +233,9 @@ double ExplicitSolver::add_particle_forces() {
   auto& E = state_.energy;
   double particle_dt = std::numeric_limits<double>::infinity();
   double particle_elastic = 0;
-  for (ParticlePart& pp : model_.particle_parts) {
+  state_.particle_part_stored.assign(model_.particle_parts.size(), 0.0);
+  for (std::size_t ip = 0; ip < model_.particle_parts.size(); ++ip) {
+    ParticlePart& pp = model_.particle_parts[ip];
     const ParticleWork d = particle_forces(pp, state_.step, state_.dt_half, settings_.gravity);
     // The pair forces did the plastic and breaking work beyond what they store: stress work.
     E[terms_.stress_work] += d.plastic + d.fracture;
@@ -237,7 +243,8 @@ double ExplicitSolver::add_particle_forces() {
     E[terms_.fracture] += d.fracture;
     E[terms_.particle_friction] += d.friction;
     if (terms_.particle_many_body >= 0) E[terms_.particle_many_body] += d.many_body_work;
-    if (pp.model) particle_elastic += std::isnan(d.stored) ? pp.model->stored_energy(pp) : d.stored;
+    if (pp.model) state_.particle_part_stored[ip] = std::isnan(d.stored) ? pp.model->stored_energy(pp) : d.stored;
+    particle_elastic += state_.particle_part_stored[ip];
     if (pp.count() > 0) particle_dt = std::min(particle_dt, particle_time_step_limit(pp));
   }
   E[terms_.particle_elastic] = particle_elastic;
@@ -499,7 +506,8 @@ void ExplicitSolver::remove_event(const StepEvent& event) {
 void ExplicitSolver::run_events(StepEvent::Phase phase) {
   auto run = [&](StepEvent& event) {
     if (event.phase() != phase) return;
-    EventContext context{state_.step, state_.time, state_.eroded_elements, state_.energy, topology_};
+    EventContext context{state_.step, state_.time, state_.eroded_elements, state_.energy, topology_,
+                         &state_.part_stored};
     event.run(model_, context);
   };
   for (StepEvent* event : events_) run(*event);

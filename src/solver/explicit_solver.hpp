@@ -59,6 +59,13 @@ struct SolverState {
   /// The same for particles on the walls (their work is booked apart: src/contact/particle_contact.hpp).
   double pending_particle_wall = 0;
   std::vector<double> particle_wall_force_on_bodies;
+  /// Per element part, the stored energy it holds through t_n by the ledger's own accounting:
+  /// its stress work less what its materials dissipated and what erosion, conversion and crack
+  /// insertion took from it. Summed with the particle parts' and the interfaces' stored energy
+  /// it is the ledger's `internal`.
+  std::vector<double> part_stored;
+  /// Per particle part, the elastic energy of its bonds at t_n (a state function, not summed).
+  std::vector<double> particle_part_stored;
 };
 
 class ExplicitSolver : private TopologyListener {

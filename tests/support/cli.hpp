@@ -54,6 +54,13 @@ struct History {
       if (columns[c] == column) return rows[row][c];
     return NAN;
   }
+  /// The sum of the columns whose names start with prefix (0 when none does).
+  double sum_of(std::size_t row, const std::string& prefix) const {
+    double sum = 0;
+    for (std::size_t c = 0; c < columns.size(); ++c)
+      if (columns[c].rfind(prefix, 0) == 0) sum += rows[row][c];
+    return sum;
+  }
 };
 
 inline History read_history(const std::filesystem::path& p) {

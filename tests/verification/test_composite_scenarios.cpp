@@ -47,6 +47,16 @@ TEST(CompositeScenarios, LaminateCrushWithInterfacesAndCrashOutputs) {
   const double failed = h.at(last, "interface_points_failed"), open = h.at(last, "interface_elements_open");
   double worst = 0;
   for (std::size_t r = 0; r < h.rows.size(); ++r) worst = std::max(worst, std::abs(h.at(r, "energy_error")));
+  // The plies', the debris' and the interfaces' stored energies add up to the run's internal
+  // energy through damage, erosion to particles and interface failure (and across the restart).
+  double worst_internal = 0, scale = 0;
+  for (std::size_t r = 0; r < h.rows.size(); ++r) scale = std::max(scale, std::abs(h.at(r, "internal")));
+  for (std::size_t r = 0; r < h.rows.size(); ++r) {
+    const double interfaces = h.at(r, "cohesive_work") - h.at(r, "cohesive_released");
+    worst_internal = std::max(worst_internal, std::abs(h.sum_of(r, "internal_") + interfaces - h.at(r, "internal")) / scale);
+  }
+  std::printf("[laminate] parts' and interfaces' stored energy against internal: %.1e of its peak at worst\n", worst_internal);
+  EXPECT_LT(worst_internal, 1e-9);
   // ∫ F ds from the raw rows, trapezoid: what crash.csv must book (it resamples at 0.1 µs).
   double energy = 0;
   for (std::size_t r = 1; r < h.rows.size(); ++r)
