@@ -472,7 +472,7 @@ class RunDriver {
     // The samples as built (also on a restart: the same file), for a study to import.
     for (const auto& [part, sample] : sim_.samples)
       write_particle_sample(dir_ / ("particles_" + part + "_sample.csv"), sample,
-                            "part '" + part + "' of " + sc_.file.string() + ", as built");
+                            "part '" + part + "' of " + shown_path(sc_.file) + ", as built");
     if (options_.restart) {
       if (!std::filesystem::exists(history_path_) || std::filesystem::file_size(history_path_) < cursor_.history_bytes)
         throw InputError(options_.restart->string(), 0, "--restart",
