@@ -211,7 +211,7 @@ void make_output_folder(const std::filesystem::path& dir) {
 bool is_run_output(const std::string& name) {
   static const std::regex pattern(
       R"((frame_[0-9]{5}\.vtu|particles_.+_[0-9]{5}\.vtu|frames\.pvd|particles_.+\.pvd|history\.csv|summary\.json|)"
-      R"(resolved\.yaml|checkpoint\.bin|fragments\.csv|crash\.csv)(\.tmp)?)");
+      R"(particles_.+_sample\.csv|resolved\.yaml|checkpoint\.bin|fragments\.csv|crash\.csv)(\.tmp)?)");
   return std::regex_match(name, pattern);
 }
 
@@ -470,6 +470,10 @@ class RunDriver {
                                                       " (SI units)\n" + to_yaml_text(sc_.resolved));
     for (const auto& pp : sim_.model.particle_parts)
       particle_pvd_.emplace_back(dir_ / ("particles_" + pp.name + ".pvd"));
+    // The samples as built (also on a restart: the same file), for a study to import.
+    for (const auto& [part, sample] : sim_.samples)
+      write_particle_sample(dir_ / ("particles_" + part + "_sample.csv"), sample,
+                            "part '" + part + "' of " + shown_path(sc_.file) + ", as built");
     if (options_.restart) {
       if (!std::filesystem::exists(history_path_) || std::filesystem::file_size(history_path_) < cursor_.history_bytes)
         throw InputError(options_.restart->string(), 0, "--restart",

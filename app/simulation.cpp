@@ -12,6 +12,7 @@
 #include "model/assembly.hpp"
 #include "particle/mca_contact_update.hpp"
 #include "particle/packing.hpp"
+#include "io/particle_sample.hpp"
 #include "solver/element_conversion.hpp"
 #include "fracture/interface_split.hpp"
 #include "material/laminate.hpp"
@@ -201,55 +202,110 @@ void make_grains(ParticlePart& part, const std::vector<MCAMaterial>& materials, 
   }
 }
 
-/// Particle parts from their packing specifications: materials by region, inclusions,
-/// interphases, pores, then bonding; and the constraints of particle_boundary_conditions.
+/// The index of the automaton material `name` among a part's materials (those of the scenario,
+/// then an interphase's graded ones); −1 if none.
+int material_index(const std::vector<MCAMaterial>& materials, const std::string& name) {
+  for (std::size_t m = 0; m < materials.size(); ++m)
+    if (materials[m].name == name) return static_cast<int>(m);
+  return -1;
+}
+
+/// The bond laws of the scenario on the part's materials (before an interphase, which copies
+/// them onto its graded materials).
+void add_bond_laws(const Scenario& sc, ParticlePart& part) {
+  MCAState& ms = mca_state(part);
+  for (const auto& b : sc.bonds) {
+    ms.bond_laws.push_back(b.law);
+    ms.set_bond_law(material_index(ms.materials, b.material_a), material_index(ms.materials, b.material_b),
+                    static_cast<int>(ms.bond_laws.size()) - 1);
+  }
+}
+
+/// A sample from the builder: the lattice in its box, materials by region, inclusions and their
+/// interphase, pores (the random draws, from the seeds).
+ParticlePart build_sample(const Scenario& sc, const ParticlePartInput& in, const std::vector<MCAMaterial>& materials) {
+  const int dim = sc.dim();
+  const std::string file = shown_path(sc.file), path = "particles." + in.name;
+  PackingSpec spec = in.packing;
+  spec.material = material_index(materials, in.material);
+  ParticlePart part = build_packing(spec, materials);
+  if (part.count() == 0) throw InputError(file, in.line, path, "the sample box holds no automaton");
+  for (const auto& [name, region] : in.material_regions)
+    assign_material(part, [&](const double* x) { return region.contains(x, dim); }, material_index(materials, name));
+  add_bond_laws(sc, part);
+  if (in.inclusions) {
+    InclusionSpec inc = *in.inclusions;
+    inc.material = material_index(materials, in.inclusion_material);
+    const int made = add_inclusions(part, inc);
+    if (made == 0)
+      throw InputError(file, in.line, path + ".inclusions",
+                       "no inclusion fits the sample (diameter larger than the sample?)");
+    if (in.interphase) {
+      InterphaseSpec g = *in.interphase;
+      g.inclusion_material = inc.material;
+      g.matrix_material = spec.material;
+      add_interphase(part, g);
+    }
+  }
+  if (in.pores) add_pores(part, *in.pores);
+  return part;
+}
+
+/// A sample read from a file: its automata as they are, the graded materials of its interphase
+/// made again from the scenario's, so that the part equals the one the builder made.
+ParticlePart import_sample(const Scenario& sc, const ParticlePartInput& in, const std::vector<MCAMaterial>& materials) {
+  const ParticleSample& f = *in.sample;
+  ParticlePart part = place_automata(in.packing, materials, f.x, f.radius, f.id, std::vector<int>(f.count(), 0));
+  add_bond_laws(sc, part);
+  if (f.interphase) {
+    InterphaseSpec g;
+    g.matrix_material = material_index(materials, f.interphase->matrix);
+    g.inclusion_material = material_index(materials, f.interphase->inclusion);
+    g.levels = f.interphase->levels;
+    add_interphase_materials(part, g);
+  }
+  std::vector<int> index;
+  for (const auto& name : f.material_names) index.push_back(material_index(mca_state(part).materials, name));
+  for (std::size_t i = 0; i < f.count(); ++i) part.material[i] = index[f.material[i]];
+  return part;
+}
+
+/// The part as built, for its sample file: ids within the part, its materials by name, the
+/// interphase whose graded materials it names.
+ParticleSample sample_of(const ParticlePart& part, const ParticlePartInput& in, std::int64_t first_id) {
+  ParticleSample s;
+  s.dim = part.dim;
+  s.lattice = in.packing.lattice;
+  s.automaton_size = in.packing.size;
+  if (in.sample) s.interphase = in.sample->interphase;
+  if (in.interphase && in.inclusions) s.interphase = {in.material, in.inclusion_material, in.interphase->levels};
+  for (const auto id : part.id) s.id.push_back(id - first_id);
+  s.x = part.x;
+  s.radius = part.radius;
+  for (const auto& m : mca_state(part).materials) s.material_names.push_back(m.name);
+  s.material = part.material;
+  return s;
+}
+
+/// Particle parts from their packing specifications or sample files, then bonding; and the
+/// constraints of particle_boundary_conditions.
 void build_particle_parts(const Scenario& sc, Simulation& sim) {
   Model& model = sim.model;
   const int dim = sc.dim();
   const std::string file = shown_path(sc.file);
   std::vector<MCAMaterial> materials;
   for (const auto& m : sc.automaton_materials) materials.push_back(m.material);
-  auto index_of = [&](const std::string& name) {
-    for (std::size_t m = 0; m < sc.automaton_materials.size(); ++m)
-      if (sc.automaton_materials[m].name == name) return static_cast<int>(m);
-    return -1;
-  };
   for (const auto& in : sc.particle_parts) {
-    const std::string path = "particles." + in.name;
-    PackingSpec spec = in.packing;
-    spec.material = index_of(in.material);
-    ParticlePart part = build_packing(spec, materials);
+    ParticlePart part = in.sample ? import_sample(sc, in, materials) : build_sample(sc, in, materials);
     part.name = in.name;
     part.time_step_safety = in.time_step_safety;
     part.contact_update_interval = in.contact_update_interval;
     part.contact_skin = in.contact_skin;
     // Ids after every particle of the parts before (a pair is keyed by its automata's ids).
-    for (auto& id : part.id) id += model.next_particle_id;
-    if (part.count() == 0) throw InputError(file, in.line, path, "the sample box holds no automaton");
-    MCAState& ms = mca_state(part);
-    for (const auto& [name, region] : in.material_regions)
-      assign_material(part, [&](const double* x) { return region.contains(x, dim); }, index_of(name));
-    // Bond laws before the interphase, which copies them onto its graded materials.
-    for (const auto& b : sc.bonds) {
-      ms.bond_laws.push_back(b.law);
-      ms.set_bond_law(index_of(b.material_a), index_of(b.material_b), static_cast<int>(ms.bond_laws.size()) - 1);
-    }
-    if (in.inclusions) {
-      InclusionSpec inc = *in.inclusions;
-      inc.material = index_of(in.inclusion_material);
-      const int made = add_inclusions(part, inc);
-      if (made == 0)
-        throw InputError(file, in.line, path + ".inclusions",
-                         "no inclusion fits the sample (diameter larger than the sample?)");
-      if (in.interphase) {
-        InterphaseSpec g = *in.interphase;
-        g.inclusion_material = inc.material;
-        g.matrix_material = spec.material;
-        add_interphase(part, g);
-      }
-    }
-    if (in.pores) add_pores(part, *in.pores);
-    finish_sample(part, spec.bond_tolerance);
+    const std::int64_t first_id = model.next_particle_id;
+    for (auto& id : part.id) id += first_id;
+    finish_sample(part, in.packing.bond_tolerance);
+    sim.samples[in.name] = sample_of(part, in, first_id);
     if (in.grains) make_grains(part, materials, sc.thickness);
     for (std::size_t i = 0; i < part.count(); ++i)
       for (int k = 0; k < dim; ++k) part.v[dim * i + k] = in.velocity[k];

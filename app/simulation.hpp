@@ -9,6 +9,7 @@
 
 #include "contact/contact.hpp"
 #include "io/gmsh_import.hpp"
+#include "io/particle_sample.hpp"
 #include "io/scenario.hpp"
 #include "material/material.hpp"
 #include "model/model.hpp"
@@ -41,6 +42,9 @@ struct Simulation {
     std::vector<std::int64_t> nodes;
   };
   std::vector<Probe> probes;
+  /// Each particle part of the scenario as built, by part name: what a run writes at t = 0 as
+  /// particles_<part>_sample.csv (taken before a restart moves the automata).
+  std::map<std::string, ParticleSample> samples;
 
   std::vector<int> part_materials() const;
   /// The crack growth event, if the scenario has one.

@@ -15,6 +15,7 @@
 #include "core/parameters.hpp"
 #include "core/time_table.hpp"
 #include "fracture/cohesive_law.hpp"
+#include "io/particle_sample.hpp"
 #include "model/model.hpp"
 #include "particle/packing.hpp"
 
@@ -211,6 +212,9 @@ struct ParticlePartInput {
   std::string name;
   int line = 0;
   PackingSpec packing;              ///< lattice, size, box, angle (materials by index later)
+  /// The automata read from `sample` instead of built (packing then holds only the lattice, the
+  /// size, the plane and the bond tolerance; no regions, inclusions, pores or interphase).
+  std::optional<ParticleSample> sample;
   std::string material;
   std::vector<std::pair<std::string, RegionInput>> material_regions;
   std::optional<InclusionSpec> inclusions;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 
 namespace shard::scenario_detail {
 
@@ -47,20 +48,21 @@ KeyList region_keys() {
 
 KeyList particle_part_keys() {
   KeyList k;
+  k.add("sample", ValueKind::text,
+        "a sample file (path relative to the scenario), as a run writes it (particles_<part>_sample.csv): "
+        "its automata with their places, sizes and materials instead of lattice, automaton_size, min, max, "
+        "angle, material, regions, inclusions, pores and interphase; bonded by bond_tolerance (docs/outputs.md)");
   k.choice("lattice", {"hexagonal", "square", "fcc", "simple_cubic"},
-           "close packing (2D: hexagonal, square; 3D: fcc, simple_cubic)")
-      .must_be_given();
-  k.quantity("automaton_size", dim::length, "automaton size d (nearest-neighbour distance)")
-      .above(0)
-      .must_be_given();
-  KeySpec& lo = k.add("min", ValueKind::vector, "lower corner of the sample box");
+           "close packing (2D: hexagonal, square; 3D: fcc, simple_cubic); required without 'sample'");
+  k.quantity("automaton_size", dim::length,
+             "automaton size d (nearest-neighbour distance); required without 'sample'")
+      .above(0);
+  KeySpec& lo = k.add("min", ValueKind::vector, "lower corner of the sample box; required without 'sample'");
   lo.dimension = dim::length;
-  lo.must_be_given();
-  KeySpec& hi = k.add("max", ValueKind::vector, "upper corner of the sample box");
+  KeySpec& hi = k.add("max", ValueKind::vector, "upper corner of the sample box; required without 'sample'");
   hi.dimension = dim::length;
-  hi.must_be_given();
   k.quantity("angle", dim::none, "lattice rotated about z by this angle (degrees)").defaults_to("0");
-  k.add("material", ValueKind::text, "automaton material of the sample (matrix)").must_be_given();
+  k.add("material", ValueKind::text, "automaton material of the sample (matrix); required without 'sample'");
   k.add("regions", ValueKind::list, "other materials by region: [{material: m, min: .., max: ..}, ...]")
       .defaults_to("[]");
   k.add("inclusions", ValueKind::section, "random equiaxed inclusions");
@@ -327,6 +329,23 @@ void read_bonds(Section& top, Scenario& sc, const AutomatonMaterials& materials)
   if (top.has("bonds")) sc.resolved["bonds"] = bonds_out;
 }
 
+PlaneMode plane_of(const Scenario& sc) {
+  return sc.dim() == 3 ? PlaneMode::none
+         : sc.formulation == Formulation::plane_stress ? PlaneMode::plane_stress
+                                                       : PlaneMode::plane_strain;
+}
+
+/// The builder's keys a part needs when it names no sample file.
+void require_builder_keys(const Section& s, int part_line) {
+  for (const std::string key : {"lattice", "automaton_size", "min", "max", "material"})
+    if (!s.has(key)) {
+      const KeySpec& k = s.spec(key);
+      throw InputError(s.file(), part_line, s.key_path(key),
+                       "missing required key '" + key + "' (" + k.doc + "; " + k.type_text() +
+                           "), or give 'sample': a sample file that a run wrote");
+    }
+}
+
 PackingSpec read_packing(Section& s, const Scenario& sc) {
   const std::size_t dim = static_cast<std::size_t>(sc.dim());
   if (sc.formulation == Formulation::axisymmetric)
@@ -350,9 +369,7 @@ PackingSpec read_packing(Section& s, const Scenario& sc) {
       s.fail("max", "the sample box must be larger than one automaton along every axis");
   }
   k.angle = s.number("angle") * M_PI / 180.0;
-  k.plane = dim == 3 ? PlaneMode::none
-            : sc.formulation == Formulation::plane_stress ? PlaneMode::plane_stress
-                                                          : PlaneMode::plane_strain;
+  k.plane = plane_of(sc);
   k.thickness = sc.thickness;
   k.bond_tolerance = s.number("bond_tolerance");
   return k;
@@ -417,14 +434,46 @@ void read_microstructure(Section& s, const std::string& path, const AutomatonMat
   }
 }
 
+/// `sample`: the automata from a file, in place of every key of the builder.
+void read_sample(Section& s, const Scenario& sc, ParticlePartInput& p) {
+  for (const std::string key :
+       {"lattice", "automaton_size", "min", "max", "angle", "material", "regions", "inclusions", "pores", "interphase"})
+    if (s.has(key))
+      s.fail(key, "'" + key + "' and 'sample' (line " + std::to_string(s.line("sample")) +
+                      ") exclude each other: the sample file gives the automata with their places, sizes and "
+                      "materials, and its header the lattice and automaton size; remove '" + key + "'");
+  if (sc.formulation == Formulation::axisymmetric)
+    s.fail("sample", "particle parts are plane strain, plane stress or 3D, not axisymmetric");
+  const std::string given = s.text("sample");
+  std::filesystem::path file = given;
+  if (file.is_relative()) file = sc.file.parent_path() / file;
+  file = file.lexically_normal();
+  s.resolved()["sample"] = file.string();
+  if (!std::filesystem::is_regular_file(file))
+    s.fail("sample", "no sample file '" + file.string() +
+                         "' (the path is relative to the scenario file; a run writes particles_<part>_sample.csv)");
+  const SampleReference where{s.file(), s.line("sample"), s.key_path("sample"), given};
+  p.sample = read_particle_sample(file, sc.dim(), automaton_names(sc), where);
+  p.packing.lattice = p.sample->lattice;
+  p.packing.size = p.sample->automaton_size;
+  p.packing.plane = plane_of(sc);
+  p.packing.thickness = sc.thickness;
+  p.packing.bond_tolerance = s.number("bond_tolerance");
+}
+
 void read_particle_part(Section& s, const std::string& path, const Scenario& sc,
                         const AutomatonMaterials& materials, ParticlePartInput& p) {
   const std::size_t dim = static_cast<std::size_t>(sc.dim());
-  p.packing = read_packing(s, sc);
-  p.material = s.text("material");
-  materials.require(s, "material", p.material, "automaton material (model: automaton)");
-  read_material_regions(s, path, dim, materials, p);
-  read_microstructure(s, path, materials, p);
+  if (s.has("sample")) {
+    read_sample(s, sc, p);
+  } else {
+    require_builder_keys(s, p.line);
+    p.packing = read_packing(s, sc);
+    p.material = s.text("material");
+    materials.require(s, "material", p.material, "automaton material (model: automaton)");
+    read_material_regions(s, path, dim, materials, p);
+    read_microstructure(s, path, materials, p);
+  }
   p.time_step_safety = s.number("time_step_safety");
   p.contact_update_interval = static_cast<int>(s.integer("contact_update_interval"));
   if (p.contact_update_interval < 0) s.fail("contact_update_interval", "must be 0 or more");

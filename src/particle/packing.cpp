@@ -127,6 +127,39 @@ ParticlePart build_packing(const PackingSpec& spec, std::vector<MCAMaterial> mat
   return part;
 }
 
+const char* lattice_name(Lattice lattice) {
+  switch (lattice) {
+    case Lattice::hexagonal_2d: return "hexagonal";
+    case Lattice::square_2d: return "square";
+    case Lattice::fcc: return "fcc";
+    case Lattice::simple_cubic: return "simple_cubic";
+  }
+  return "?";
+}
+
+ParticlePart place_automata(const PackingSpec& spec, std::vector<MCAMaterial> materials, std::vector<double> x,
+                            const std::vector<double>& radius, const std::vector<std::int64_t>& id,
+                            const std::vector<int>& material) {
+  const LatticeCell cell = lattice_cell(spec.lattice, spec.size);
+  // The same products as build_packing, so that a sample read back has the same bits.
+  const double volume = cell.dim == 2 ? cell.volume * spec.thickness : cell.volume;
+  const double face = cell.dim == 2 ? cell.face * spec.thickness : cell.face;
+  const std::size_t n = radius.size();
+  SHARD_ASSERT(x.size() == n * static_cast<std::size_t>(cell.dim) && id.size() == n && material.size() == n,
+               "sample arrays of " << n << " automata");
+  ParticlePart part = make_automata(cell.dim, spec.plane, spec.thickness, std::move(materials), n);
+  MCAState& s = mca_state(part);
+  part.x = std::move(x);
+  for (std::size_t i = 0; i < n; ++i) {
+    part.id[i] = id[i];
+    part.radius[i] = radius[i];
+    part.material[i] = material[i];
+    s.volume[i] = volume;
+    s.face_area[i] = face;
+  }
+  return part;
+}
+
 void finish_sample(ParticlePart& ps, double bond_tolerance) {
   MCAState& s = mca_state(ps);
   if (s.pairs.count() > 0) {
@@ -243,8 +276,6 @@ int add_interphase(ParticlePart& ps, const InterphaseSpec& spec) {
   const int nm0 = static_cast<int>(mca_state(ps).materials.size());
   SHARD_ASSERT(spec.inclusion_material < nm0 && spec.matrix_material < nm0, "material index");
   if (spec.levels < 1 || spec.width <= 0) throw InputError("interphase: width and levels must be positive");
-  const MCAMaterial inc = mca_state(ps).materials[spec.inclusion_material];  // copies: materials grows below
-  const MCAMaterial mat = mca_state(ps).materials[spec.matrix_material];
   // Inclusion automata sorted by x for a windowed nearest search.
   std::vector<std::pair<double, int>> incl;
   for (std::size_t i = 0; i < ps.count(); ++i)
@@ -265,6 +296,18 @@ int add_interphase(ParticlePart& ps, const InterphaseSpec& spec) {
       ++changed;
     }
   }
+  const int first = add_interphase_materials(ps, spec);
+  for (std::size_t i = 0; i < ps.count(); ++i)
+    if (level[i] >= 0) ps.material[i] = first + level[i];
+  return changed;
+}
+
+int add_interphase_materials(ParticlePart& ps, const InterphaseSpec& spec) {
+  const int nm0 = static_cast<int>(mca_state(ps).materials.size());
+  SHARD_ASSERT(spec.inclusion_material < nm0 && spec.matrix_material < nm0, "material index");
+  if (spec.levels < 1) throw InputError("interphase: levels must be positive");
+  const MCAMaterial inc = mca_state(ps).materials[spec.inclusion_material];  // copies: materials grows below
+  const MCAMaterial mat = mca_state(ps).materials[spec.matrix_material];
   const std::vector<int> old_laws = mca_state(ps).bond_law_of;
   for (int l = 0; l < spec.levels; ++l) {
     const double t = (l + 0.5) / spec.levels;  // 0: inclusion, 1: matrix
@@ -291,9 +334,7 @@ int add_interphase(ParticlePart& ps, const InterphaseSpec& spec) {
       mca_state(ps).bond_law_of[g * nm + b] = interface_law;
       mca_state(ps).bond_law_of[b * nm + g] = interface_law;
     }
-  for (std::size_t i = 0; i < ps.count(); ++i)
-    if (level[i] >= 0) ps.material[i] = nm0 + level[i];
-  return changed;
+  return nm0;
 }
 
 std::vector<int> boundary_layer(const ParticlePart& ps, int axis, bool at_max, double tol) {

@@ -32,6 +32,16 @@ struct PackingSpec {
 /// materials, pores etc.
 ParticlePart build_packing(const PackingSpec& spec, std::vector<MCAMaterial> materials);
 
+/// The scenario's name of a lattice ("hexagonal", "square", "fcc", "simple_cubic").
+const char* lattice_name(Lattice lattice);
+
+/// Automata at the given centres (dim per automaton) and radii, ids and materials, each with the
+/// volume and face area of the lattice's Voronoi cell of `spec.size`, as build_packing gives its
+/// sites: a sample read back from a file. No pairs yet: call finish_sample().
+ParticlePart place_automata(const PackingSpec& spec, std::vector<MCAMaterial> materials, std::vector<double> x,
+                            const std::vector<double>& radius, const std::vector<std::int64_t>& id,
+                            const std::vector<int>& material);
+
 /// Bonds neighbours, computes the fabric and finalizes (masses, pair laws, adjacency).
 void finish_sample(ParticlePart& ps, double bond_tolerance = 0.1);
 
@@ -69,6 +79,11 @@ struct InterphaseSpec {
 /// linear from inclusion to matrix over the width). Bond laws of the graded materials copy the
 /// matrix–inclusion law, or the matrix law. Returns the number of automata changed.
 int add_interphase(ParticlePart& ps, const InterphaseSpec& spec);
+
+/// The graded materials of an interphase (named <matrix>_interphase_<level>, appended to the
+/// part's materials) and their bond laws, without choosing automata: what add_interphase adds,
+/// for a sample whose automata already name their levels. Returns the index of level 0.
+int add_interphase_materials(ParticlePart& ps, const InterphaseSpec& spec);
 
 /// Automata whose coordinate `axis` is within `tol` of the extreme (min or max) of the sample.
 std::vector<int> boundary_layer(const ParticlePart& ps, int axis, bool at_max, double tol);

@@ -6,8 +6,9 @@ with contact, a laminate with interfaces, debris particles and crash outputs, Jo
 axisymmetry with a wall, automata with conditions, loose grains) and checks that
 - every field of any frame of a series is already in its first frame (ParaView offers a field
   for the whole series only then: crack_face used to appear with the first crack);
-- every frame field and history column is listed with its unit in docs/fields.csv, the one
-  machine-readable list of them (names with <part>, <axis>, ... stand for a family).
+- every frame field, history column and column of a particle sample file is listed with its unit
+  in docs/fields.csv, the one machine-readable list of them (names with <part>, <axis>, ... stand
+  for a family).
 
 Usage: test_output_fields.py SHARD_EXECUTABLE SOURCE_DIR WORK_DIR
 """
@@ -80,6 +81,16 @@ def check_series(table, frames, prefix, label):
     return sum(len(v) for v in first.values())
 
 
+def check_sample_columns(table, path, label):
+    """The column line of a particle sample file (the first line that is not a comment)."""
+    with open(path) as stream:
+        columns = next(line for line in stream if not line.startswith("#")).strip().split(",")
+    for c in columns:
+        if not listed(table, "sample", c):
+            fail(f"{label}: column '{c}' of {os.path.basename(path)} is not in docs/fields.csv")
+    return len(columns)
+
+
 def main():
     shard, source, work = sys.argv[1:4]
     table = catalogue(source)
@@ -102,6 +113,8 @@ def main():
             part = os.path.basename(pvd)[len("particles_"):-len(".pvd")]
             frames = sorted(glob.glob(os.path.join(out, f"particles_{part}_*.vtu")))
             counted += check_series(table, frames, "particle", f"{label} ({part})")
+        for sample in sorted(glob.glob(os.path.join(out, "particles_*_sample.csv"))):
+            counted += check_sample_columns(table, sample, label)
         print(f"{label}: {counted} columns and fields, each listed with its unit; "
               f"{len(mesh)} mesh frames")
     print("PASS")
