@@ -230,8 +230,10 @@ ParticlePart build_sample(const Scenario& sc, const ParticlePartInput& in, const
   spec.material = material_index(materials, in.material);
   ParticlePart part = build_packing(spec, materials);
   if (part.count() == 0) throw InputError(file, in.line, path, "the sample box holds no automaton");
-  for (const auto& [name, region] : in.material_regions)
-    assign_material(part, [&](const double* x) { return region.contains(x, dim); }, material_index(materials, name));
+  for (const auto& [name, region] : in.material_regions) {
+    const auto& box = region;  // clang 14 cannot capture a structured binding in a lambda
+    assign_material(part, [&](const double* x) { return box.contains(x, dim); }, material_index(materials, name));
+  }
   add_bond_laws(sc, part);
   if (in.inclusions) {
     InclusionSpec inc = *in.inclusions;

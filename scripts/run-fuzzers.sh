@@ -1,17 +1,16 @@
 #!/usr/bin/env bash
 # Builds the libFuzzer targets (clang, AddressSanitizer and UndefinedBehaviorSanitizer) in
-# build-fuzz/, replays every input kept in fuzz/regressions/ (each must pass), then fuzzes each
-# target for SECONDS (default 60) from a seed corpus of the examples, tests/bad_input and the test
+# build-sanitize/, replays every input kept in fuzz/regressions/ (each must pass), then fuzzes each
+# target for SECONDS (default 60; as many targets at once as there are cores) from a seed corpus of the examples, tests/bad_input and the test
 # meshes. A crash stops with status 1 and leaves the input in fuzz/regressions/<target>/: commit it
 # with the fix. Usage: bash scripts/run-fuzzers.sh [SECONDS]
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds="${1:-60}"
-CXX=clang++ cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=Release -DSHARD_FUZZ=ON -DSHARD_NATIVE=OFF \
-  -DSHARD_BUILD_TESTS=OFF -DSHARD_BUILD_BENCH=OFF -DSHARD_BUILD_PYTHON=OFF > build-fuzz.log 2>&1 || { cat build-fuzz.log; exit 1; }
-cmake --build build-fuzz -j "$(nproc)" --target fuzz_scenario fuzz_units fuzz_mesh
+bash scripts/configure-sanitized.sh
+cmake --build build-sanitize -j "$(nproc)" --target fuzz_scenario fuzz_units fuzz_mesh
 
-corpus=build-fuzz/corpus
+corpus=build-sanitize/corpus
 rm -rf "$corpus"
 mkdir -p "$corpus"/fuzz_scenario "$corpus"/fuzz_units "$corpus"/fuzz_mesh
 i=0
@@ -24,17 +23,41 @@ done
 
 export ASAN_OPTIONS="detect_leaks=0:abort_on_error=1"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
-for target in fuzz_scenario fuzz_units fuzz_mesh; do
+# Replay first: every input that ever failed must pass before new ones are looked for.
+targets=(fuzz_scenario fuzz_mesh fuzz_units)
+for target in "${targets[@]}"; do
   kept="fuzz/regressions/$target"
   mkdir -p "$kept"
   if compgen -G "$kept/*" > /dev/null; then
     echo "== $target: replaying $(ls "$kept" | wc -l) kept inputs"
-    build-fuzz/fuzz/$target -runs=0 "$kept"/* > "build-fuzz/$target.replay.log" 2>&1 \
-      || { tail -40 "build-fuzz/$target.replay.log"; exit 1; }
+    build-sanitize/fuzz/$target -runs=0 "$kept"/* > "build-sanitize/$target.replay.log" 2>&1 \
+      || { tail -40 "build-sanitize/$target.replay.log"; exit 1; }
   fi
-  echo "== $target: fuzzing for $seconds s"
-  build-fuzz/fuzz/$target -max_total_time="$seconds" -timeout=20 -rss_limit_mb=2048 -max_len=65536 \
-    -artifact_prefix="$kept/" -print_final_stats=1 "$corpus/$target" > "build-fuzz/$target.log" 2>&1 \
-    || { tail -60 "build-fuzz/$target.log"; echo "$target found a crash: the input is in $kept/"; exit 1; }
-  grep -E "stat::number_of_executed_units|stat::peak_rss_mb" "build-fuzz/$target.log" | tr '\n' ' '; echo
 done
+
+# Each target fuzzes on one core; as many side by side as there are cores.
+fuzz() {
+  local target=$1 kept="fuzz/regressions/$1"
+  if ! build-sanitize/fuzz/$target -max_total_time="$seconds" -timeout=20 -rss_limit_mb=2048 -max_len=65536 \
+      -artifact_prefix="$kept/" -print_final_stats=1 "$corpus/$target" > "build-sanitize/$target.log" 2>&1; then
+    tail -60 "build-sanitize/$target.log"
+    echo "$target found a crash: the input is in $kept/"
+    return 1
+  fi
+  echo "== $target: $seconds s, $(grep -E "stat::number_of_executed_units|stat::peak_rss_mb" "build-sanitize/$target.log" | tr '\n' ' ')"
+}
+status=0
+running=0
+for target in "${targets[@]}"; do
+  fuzz "$target" &
+  running=$((running + 1))
+  if [ "$running" -ge "$(nproc)" ]; then
+    wait -n || status=1
+    running=$((running - 1))
+  fi
+done
+while [ "$running" -gt 0 ]; do
+  wait -n || status=1
+  running=$((running - 1))
+done
+exit "$status"

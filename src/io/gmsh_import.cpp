@@ -13,6 +13,7 @@
 #include <clocale>
 #include <cmath>
 #include <cstddef>
+#include <fstream>
 #include <iomanip>
 #include <limits>
 #include <map>
@@ -23,6 +24,7 @@
 #include <vector>
 
 #include "core/error.hpp"
+#include "core/text.hpp"
 
 namespace shard {
 
@@ -413,6 +415,34 @@ void check_options(const fs::path& file, const GmshOptions& options) {
   }
 }
 
+// Gmsh 4.8 reads a $PhysicalNames entry of a dimension outside 0-3 out of bounds and crashes
+// (found by fuzz_mesh): the section is text in every .msh format, so it is checked here first.
+void check_physical_names(const fs::path& file) {
+  if (file.extension() != ".msh") return;
+  std::ifstream in(file, std::ios::binary);
+  std::string line;
+  std::size_t number = 0;
+  while (std::getline(in, line)) {
+    ++number;
+    if (line.rfind("$PhysicalNames", 0) != 0) continue;
+    long long count = -1;
+    if (!std::getline(in, line) || !(std::istringstream(line) >> count) || count < 0)
+      fail(file, "line " + std::to_string(number + 1) + ": $PhysicalNames must start with the number of names");
+    ++number;
+    for (long long k = 0; k < count && std::getline(in, line); ++k) {
+      ++number;
+      if (line.rfind("$EndPhysicalNames", 0) == 0) break;
+      long long dim = -1, tag = 0;
+      std::istringstream entry(line);
+      if (!(entry >> dim >> tag) || dim < 0 || dim > 3)
+        fail(file, "line " + std::to_string(number) +
+                       ": a physical name must start with its dimension (0 to 3) and its tag, not '" +
+                       printable(line.substr(0, 40)) + "'");
+    }
+    return;
+  }
+}
+
 // The physical groups of the open model up to the mesh dimension (set in `mesh_dim`: the one
 // asked for, or the highest dimension with a physical group).
 gmsh::vectorpair physical_groups(const fs::path& file, const GmshOptions& options, int& mesh_dim) {
@@ -647,6 +677,7 @@ MeshGroup number_group(RawGroup& raw, const MeshData& mesh, const std::vector<st
 
 MeshData load_gmsh_mesh(const fs::path& file, const GmshOptions& options) {
   check_options(file, options);
+  check_physical_names(file);
   std::lock_guard lock(gmsh_mutex());
   GmshSession session(options.quiet);
   call_gmsh(file, "read '" + file.string() + "'", [&] { gmsh::open(file.string()); });

@@ -345,7 +345,8 @@ void apply_remap(Model& model, const Remap& remap) {
     node_map = remap.nodes->new_of_old();
   }
   std::map<int, std::vector<std::int32_t>> element_maps;
-  for (const auto& [p, r] : remap.elements) {
+  for (const auto& [p, map] : remap.elements) {
+    const EntityRemap& r = map;  // clang 14 cannot capture a structured binding in a lambda
     Part& part = model.parts.at(p);
     validate(r, part.element_count(), ("elements of part " + part.name).c_str());
     part.visit_fields([&](const FieldInfo& info, auto& a) {

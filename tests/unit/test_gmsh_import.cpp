@@ -286,6 +286,15 @@ TEST(GmshImport, UnnamedGroupIsCalledByItsTag) {
               1.0, 1e-15);
 }
 
+// Found by fuzz_mesh (fuzz/regressions/fuzz_mesh/): Gmsh 4.8 crashes on a physical name of
+// dimension 4; shard refuses it first, with its line.
+TEST(GmshImport, PhysicalNameOfDimensionFourIsRefusedBeforeGmshReadsIt) {
+  const std::string message = load_error(std::string(SHARD_SOURCE_DIR) +
+                                         "/fuzz/regressions/fuzz_mesh/physical_name_of_dimension_4.msh");
+  EXPECT_TRUE(contains(message, "line 6")) << message;
+  EXPECT_TRUE(contains(message, "dimension (0 to 3)")) << message;
+}
+
 TEST(GmshImport, ScaleMultipliesCoordinates) {
   GmshOptions options;
   options.scale = 0.5;

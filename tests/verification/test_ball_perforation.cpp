@@ -26,7 +26,7 @@ struct BallRun {
   std::size_t debris = 0;    ///< rows of fragments.csv that are debris particles
 };
 
-BallRun run_ball(const std::string& file, const std::string& end_time) {
+BallRun run_ball(const std::string& file, const std::string& end_time, int threads) {
   const std::string example = std::string(SHARD_SOURCE_DIR) + "/examples/plate_perforation/";
   std::string text = testing::read_file(example + file);
   for (const auto& [from, to] : {std::pair<std::string, std::string>{"end_time: 15 us", "end_time: " + end_time},
@@ -41,7 +41,7 @@ BallRun run_ball(const std::string& file, const std::string& end_time) {
     if (c == ' ') c = '_';
   const auto dir = testing::fresh_dir(label);
   std::ofstream(dir / "ball.yaml") << text;
-  const auto r = testing::run_shard("run " + (dir / "ball.yaml").string() + " --quiet --threads 2 -o " + (dir / "out").string());
+  const auto r = testing::run_shard("run " + (dir / "ball.yaml").string() + " --quiet --threads " + std::to_string(threads) + " -o " + (dir / "out").string());
   EXPECT_EQ(r.status, 0) << r.output;
   BallRun out;
   out.history = testing::read_history(dir / "out" / "history.csv");
@@ -64,22 +64,32 @@ BallRun run_ball(const std::string& file, const std::string& end_time) {
   return out;
 }
 
-TEST(BallPerforation, DebrisKeepsTheMassAndTheBalanceAgainstPlainErosion) {
-  const BallRun start = run_ball("ball_perforation_3d.yaml", "1 ns");
-  const BallRun particles = run_ball("ball_perforation_3d.yaml", "5 us");
-  const BallRun deleted = run_ball("ball_perforation_3d_delete.yaml", "5 us");
+TEST(BallPerforation, DebrisKeepsTheMassAndTheBalance) {
+  const BallRun start = run_ball("ball_perforation_3d.yaml", "1 ns", 1);
+  const BallRun particles = run_ball("ball_perforation_3d.yaml", "5 us", 1);
   const auto last = [](const BallRun& b, const char* column) { return b.history.at(b.history.rows.size() - 1, column); };
   std::printf("3D ball at 5 us: %zu debris spheres, mass of pieces + debris %.15e kg against %.15e kg at the start "
-              "(%.1e relative); worst balance %.3f %% (delete %.3f %%); eroded %.4g J with particles, %.4g J deleted\n",
+              "(%.1e relative); worst balance %.3f %%\n",
               particles.debris, particles.total_mass, start.total_mass,
-              (particles.total_mass - start.total_mass) / start.total_mass, 100 * particles.worst, 100 * deleted.worst,
-              last(particles, "eroded"), last(deleted, "eroded"));
+              (particles.total_mass - start.total_mass) / start.total_mass, 100 * particles.worst);
   EXPECT_GT(particles.debris, 50u);
   EXPECT_NEAR(particles.total_mass, start.total_mass, 1e-12 * start.total_mass);
   EXPECT_LT(particles.worst, 0.02);
-  EXPECT_LT(deleted.worst, 0.02);
   EXPECT_EQ(last(particles, "eroded"), 0.0);
   EXPECT_GT(last(particles, "conversion_elastic"), 0.0);
+}
+
+// The same against plain erosion (two runs of the 3D ball on two threads: about 3 minutes on two
+// cores, so label validation).
+TEST(BallPerforationValidation, DebrisAgainstPlainErosion) {
+  const BallRun particles = run_ball("ball_perforation_3d.yaml", "5 us", 2);
+  const BallRun deleted = run_ball("ball_perforation_3d_delete.yaml", "5 us", 2);
+  const auto last = [](const BallRun& b, const char* column) { return b.history.at(b.history.rows.size() - 1, column); };
+  std::printf("3D ball at 5 us: worst balance %.3f %% with debris, %.3f %% deleted; eroded %.4g J with particles, "
+              "%.4g J deleted\n",
+              100 * particles.worst, 100 * deleted.worst, last(particles, "eroded"), last(deleted, "eroded"));
+  EXPECT_LT(deleted.worst, 0.02);
+  EXPECT_EQ(last(particles, "eroded"), 0.0);
   EXPECT_GT(last(deleted, "eroded"), 0.0);
 }
 
