@@ -295,6 +295,16 @@ TEST(GmshImport, PhysicalNameOfDimensionFourIsRefusedBeforeGmshReadsIt) {
   EXPECT_TRUE(contains(message, "dimension (0 to 3)")) << message;
 }
 
+// Also found by fuzz_mesh: Gmsh 4.8 crashes on an element naming a node $Nodes does not list,
+// The file is read in a child process first; its crash is an InputError here.
+TEST(GmshImport, AFileThatCrashesGmshIsAnInputErrorNotACrash) {
+  // The second crashes Gmsh when it lets the model go (a $Nodes header run into its first line).
+  for (const char* name : {"element_naming_a_node_not_listed.msh", "gmsh_frees_a_bad_nodes_header_twice.msh"}) {
+    const std::string message = load_error(std::string(SHARD_SOURCE_DIR) + "/fuzz/regressions/fuzz_mesh/" + name);
+    EXPECT_TRUE(contains(message, "Gmsh crashed reading this file")) << name << ": " << message;
+  }
+}
+
 TEST(GmshImport, ScaleMultipliesCoordinates) {
   GmshOptions options;
   options.scale = 0.5;
