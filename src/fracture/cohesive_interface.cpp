@@ -24,29 +24,109 @@ std::vector<std::int32_t> index_of_ids(const std::vector<std::int64_t>& ids, std
   return index;
 }
 
-/// The unit normal of an interface element's mid-surface, from side A into side B (the faces are
-/// stored in the order whose right-hand normal points out of side A).
-void mid_surface_normal(const Model& model, const std::int32_t* a, const std::int32_t* b, int corners, double n[3]) {
-  const int dim = model.dim();
+/// An interface element's mid-surface: its corners (halfway between the two faces), the two
+/// edge vectors whose cross product N = u × v is its normal (2D: N = (s_y, −s_x) of the segment
+/// s = u), |N| and the unit normal from side A into side B (the faces are stored in the order
+/// whose right-hand normal points out of side A).
+struct MidSurface {
+  int corners = 0, dim = 0;
+  double u[3] = {}, v[3] = {}, length = 0, n[3] = {};
+};
+
+MidSurface mid_surface(const Model& model, const std::int32_t* a, const std::int32_t* b, int corners) {
+  MidSurface s;
+  s.corners = corners;
+  s.dim = model.dim();
   const double* X = model.nodes.x.data();
   double m[4][3] = {};
   for (int c = 0; c < corners; ++c)
-    for (int k = 0; k < dim; ++k) m[c][k] = 0.5 * (X[dim * a[c] + k] + X[dim * b[c] + k]);
+    for (int k = 0; k < s.dim; ++k) m[c][k] = 0.5 * (X[s.dim * a[c] + k] + X[s.dim * b[c] + k]);
+  double N[3];
   if (corners == 2) {  // 2D segment: (dy, −dx)
-    n[0] = m[1][1] - m[0][1];
-    n[1] = -(m[1][0] - m[0][0]);
-    n[2] = 0;
+    for (int k = 0; k < 3; ++k) s.u[k] = m[1][k] - m[0][k];
+    N[0] = s.u[1];
+    N[1] = -s.u[0];
+    N[2] = 0;
   } else {
-    const int p = corners == 4 ? 2 : 1, q = corners == 4 ? 3 : 2, o = corners == 4 ? 1 : 0;
     // quad: (m2 − m0) × (m3 − m1); triangle: (m1 − m0) × (m2 − m0)
-    const double u[3] = {m[p][0] - m[0][0], m[p][1] - m[0][1], m[p][2] - m[0][2]};
-    const double v[3] = {m[q][0] - m[o][0], m[q][1] - m[o][1], m[q][2] - m[o][2]};
-    n[0] = u[1] * v[2] - u[2] * v[1];
-    n[1] = u[2] * v[0] - u[0] * v[2];
-    n[2] = u[0] * v[1] - u[1] * v[0];
+    const int p = corners == 4 ? 2 : 1, q = corners == 4 ? 3 : 2, o = corners == 4 ? 1 : 0;
+    for (int k = 0; k < 3; ++k) {
+      s.u[k] = m[p][k] - m[0][k];
+      s.v[k] = m[q][k] - m[o][k];
+    }
+    N[0] = s.u[1] * s.v[2] - s.u[2] * s.v[1];
+    N[1] = s.u[2] * s.v[0] - s.u[0] * s.v[2];
+    N[2] = s.u[0] * s.v[1] - s.u[1] * s.v[0];
   }
-  const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-  for (int k = 0; k < 3; ++k) n[k] = len > 0 ? n[k] / len : 0.0;
+  s.length = std::sqrt(N[0] * N[0] + N[1] * N[1] + N[2] * N[2]);
+  for (int k = 0; k < 3; ++k) s.n[k] = s.length > 0 ? N[k] / s.length : 0.0;
+  return s;
+}
+
+/// Normal and tangential opening of the pair (a, b) across the mid-surface: Δ = x_b − x_a,
+/// Δn = Δ·n, and the shear vector Δ − Δn n (its length Δs).
+struct PairOpening {
+  double dn = 0, ds = 0, shear[3] = {};
+};
+
+PairOpening pair_opening(const Model& model, std::int32_t a, std::int32_t b, const double n[3]) {
+  const int dim = model.dim();
+  const double* X = model.nodes.x.data();
+  double delta[3] = {0, 0, 0};
+  for (int j = 0; j < dim; ++j) delta[j] = X[dim * b + j] - X[dim * a + j];
+  PairOpening o;
+  o.dn = delta[0] * n[0] + delta[1] * n[1] + delta[2] * n[2];
+  for (int j = 0; j < 3; ++j) o.shear[j] = delta[j] - o.dn * n[j];
+  o.ds = std::sqrt(o.shear[0] * o.shear[0] + o.shear[1] * o.shear[1] + o.shear[2] * o.shear[2]);
+  return o;
+}
+
+/// The forces of the mid-surface's turning. The interface energy W = Σ w φ(Δn, Δs) depends on
+/// the nodes also through the normal: δW = G·δn with G = Σ w (t_n Δs − t_s Δn) t (t the shear
+/// direction). Where the traction is not along the opening (damage in shear under compression, a
+/// failed point bearing while its faces slide), the pair forces alone have a moment, and a
+/// turning interface would take or give work it does not store. These forces, −∂(G·n)/∂x at
+/// the corners (δn = (I − n nᵀ) δN / |N|), make the element's forces the gradient of W: no
+/// moment, no work in a rigid turn.
+void add_turning_forces(const MidSurface& s, const double G[3], const std::int32_t* a, const std::int32_t* b,
+                        double* F) {
+  if (!(s.length > 0)) return;
+  double dm[4][3] = {};  // ∂W/∂m_c
+  if (s.corners == 2) {
+    // δN = (δu_y, −δu_x): ∂W/∂u = (−G_y, G_x)/|N|
+    const double gu[3] = {-G[1] / s.length, G[0] / s.length, 0};
+    for (int k = 0; k < 3; ++k) {
+      dm[1][k] = gu[k];
+      dm[0][k] = -gu[k];
+    }
+  } else {
+    // G·(δu × v + u × δv) = δu·(v × G) + δv·(G × u)
+    double gu[3], gv[3];
+    gu[0] = (s.v[1] * G[2] - s.v[2] * G[1]) / s.length;
+    gu[1] = (s.v[2] * G[0] - s.v[0] * G[2]) / s.length;
+    gu[2] = (s.v[0] * G[1] - s.v[1] * G[0]) / s.length;
+    gv[0] = (G[1] * s.u[2] - G[2] * s.u[1]) / s.length;
+    gv[1] = (G[2] * s.u[0] - G[0] * s.u[2]) / s.length;
+    gv[2] = (G[0] * s.u[1] - G[1] * s.u[0]) / s.length;
+    for (int k = 0; k < 3; ++k) {
+      if (s.corners == 4) {  // u = m2 − m0, v = m3 − m1
+        dm[2][k] = gu[k];
+        dm[0][k] = -gu[k];
+        dm[3][k] = gv[k];
+        dm[1][k] = -gv[k];
+      } else {  // u = m1 − m0, v = m2 − m0
+        dm[1][k] = gu[k];
+        dm[2][k] = gv[k];
+        dm[0][k] = -gu[k] - gv[k];
+      }
+    }
+  }
+  // m_c = ½ (x_a + x_b): each node of the corner gets half.
+  for (int c = 0; c < s.corners; ++c)
+    for (int k = 0; k < s.dim; ++k) {
+      F[s.dim * a[c] + k] -= 0.5 * dm[c][k];
+      F[s.dim * b[c] + k] -= 0.5 * dm[c][k];
+    }
 }
 
 }  // namespace
@@ -121,26 +201,25 @@ void CohesiveInterfaces::rebuild(Model& model, Work& work) {
   }
 }
 
-// Work on the interface point p over the increment to the separation Δ with the traction T,
-// trapezoid in the tractions (as the stress work); what it stores is ½ T·Δ, the rest damage
-// released. Keeps Δ and T for the next increment.
-void CohesiveInterfaces::book_increment(CohesiveElements& c, std::size_t p, const double* delta, const double* T,
-                                        Work& work) {
+// Work on the interface point p over the increment to the openings (Δn, Δs) with the tractions
+// (t_n, t_s), trapezoid (as the stress work); what it stores is ½ (t_n Δn + t_s Δs), the rest
+// damage released. In these scalars, which a rigid turn leaves as they are, the work is
+// objective; t_s lies along the shear, so ∫ T·dΔ = ∫ t_n dΔn + t_s dΔs. Keeps them for the next
+// increment (separation and traction hold Δn, Δs, 0 and t_n, t_s, 0).
+void CohesiveInterfaces::book_increment(CohesiveElements& c, std::size_t p, double dn, double ds, double tn,
+                                        double ts, Work& work) {
   const double w = c.weight[p];
   double* T_old = &c.traction[3 * p];
   double* d_old = &c.separation[3 * p];
-  double inc = 0, stored_old = 0, stored = 0;
-  for (int j = 0; j < 3; ++j) {
-    inc += 0.5 * (T_old[j] + T[j]) * (delta[j] - d_old[j]);
-    stored_old += 0.5 * T_old[j] * d_old[j];
-    stored += 0.5 * T[j] * delta[j];
-  }
+  const double inc = 0.5 * (T_old[0] + tn) * (dn - d_old[0]) + 0.5 * (T_old[1] + ts) * (ds - d_old[1]);
+  const double stored_old = 0.5 * (T_old[0] * d_old[0] + T_old[1] * d_old[1]);
+  const double stored = 0.5 * (tn * dn + ts * ds);
   work.work += inc * w;
   work.released += (inc - (stored - stored_old)) * w;
-  for (int j = 0; j < 3; ++j) {
-    T_old[j] = T[j];
-    d_old[j] = delta[j];
-  }
+  T_old[0] = tn;
+  T_old[1] = ts;
+  d_old[0] = dn;
+  d_old[1] = ds;
 }
 
 // An open element's last increment: the traction of the step it opened in acted over the half
@@ -148,16 +227,14 @@ void CohesiveInterfaces::book_increment(CohesiveElements& c, std::size_t p, cons
 // points stored. Later calls find zero tractions and do nothing.
 void CohesiveInterfaces::close_open_element(Model& model, std::size_t e, Work& work) {
   CohesiveElements& c = model.cohesive;
-  const int dim = model.dim(), k = c.nodes_per_face;
-  const double* X = model.nodes.x.data();
+  const int k = c.nodes_per_face;
+  const MidSurface surface = mid_surface(model, &node_a_[k * e], &node_b_[k * e], k);
   for (int q = 0; q < k; ++q) {
     const std::size_t p = k * e + q;
     const double* T_old = &c.traction[3 * p];
-    if (T_old[0] == 0 && T_old[1] == 0 && T_old[2] == 0) continue;
-    double delta[3] = {0, 0, 0};
-    const double zero[3] = {0, 0, 0};
-    for (int j = 0; j < dim; ++j) delta[j] = X[dim * node_b_[p] + j] - X[dim * node_a_[p] + j];
-    book_increment(c, p, delta, zero, work);
+    if (T_old[0] == 0 && T_old[1] == 0) continue;
+    const PairOpening o = pair_opening(model, node_a_[p], node_b_[p], surface.n);
+    book_increment(c, p, o.dn, o.ds, 0.0, 0.0, work);
   }
 }
 
@@ -175,31 +252,28 @@ void CohesiveInterfaces::element_forces(Model& model, std::size_t e, Work& work)
     ++open_;
     return;
   }
-  const double* X = model.nodes.x.data();
   double* F = model.nodes.force.data();
   const CohesiveLaw& law = laws_[static_cast<std::size_t>(c.law[e])];
   const double zeta = law.size_factor(c.size[e]);
-  double n[3];
-  mid_surface_normal(model, &node_a_[k * e], &node_b_[k * e], k, n);
+  const MidSurface surface = mid_surface(model, &node_a_[k * e], &node_b_[k * e], k);
+  const double* n = surface.n;
+  double G[3] = {0, 0, 0};  // ∂W/∂n (add_turning_forces)
   bool all_failed = true;
   for (int q = 0; q < k; ++q) {
     const std::size_t p = k * e + q;
     const std::int32_t a = node_a_[p], b = node_b_[p];
-    double delta[3] = {0, 0, 0};
-    for (int j = 0; j < dim; ++j) delta[j] = X[dim * b + j] - X[dim * a + j];
-    const double dn = delta[0] * n[0] + delta[1] * n[1] + delta[2] * n[2];
-    double shear[3];
-    for (int j = 0; j < 3; ++j) shear[j] = delta[j] - dn * n[j];
-    const double ds = std::sqrt(shear[0] * shear[0] + shear[1] * shear[1] + shear[2] * shear[2]);
+    const PairOpening o = pair_opening(model, a, b, n);
     CohesiveHistory h{c.max_separation[p], c.damage[p]};
     double tn = 0, ts = 0;
-    cohesive_traction(law, zeta, dn, ds, h, tn, ts);
+    cohesive_traction(law, zeta, o.dn, o.ds, h, tn, ts);
     c.max_separation[p] = h.max_separation;
     c.damage[p] = h.damage;
-    double T[3];
-    for (int j = 0; j < 3; ++j) T[j] = tn * n[j] + (ds > 0 ? ts * shear[j] / ds : 0.0);
-    book_increment(c, p, delta, T, work);
+    book_increment(c, p, o.dn, o.ds, tn, ts, work);
     const double w = c.weight[p];
+    double T[3];
+    for (int j = 0; j < 3; ++j) T[j] = tn * n[j] + (o.ds > 0 ? ts * o.shear[j] / o.ds : 0.0);
+    if (o.ds > 0)
+      for (int j = 0; j < 3; ++j) G[j] += w * (tn - ts * o.dn / o.ds) * o.shear[j];
     for (int j = 0; j < dim; ++j) {
       F[dim * b + j] -= T[j] * w;
       F[dim * a + j] += T[j] * w;
@@ -210,6 +284,7 @@ void CohesiveInterfaces::element_forces(Model& model, std::size_t e, Work& work)
     row_[a] += spring;
     row_[b] += spring;
   }
+  add_turning_forces(surface, G, &node_a_[k * e], &node_b_[k * e], F);
   c.open[e] = all_failed ? 1 : 0;
   for (int q = 0; q < k; ++q) (c.damage[k * e + q] >= 1.0 ? failed_ : intact_) += 1;
 }

@@ -3,8 +3,10 @@
 // the tractions of a stiff penalty free of the oscillations Gauss points give: Schellekens & de
 // Borst 1993, Int. J. Numer. Meth. Eng. 36), with the traction–separation law of
 // src/fracture/cohesive_law.hpp along the current normal of the element's mid-surface.
-// Energy: the work the nodes do on the interfaces (∫ T·dΔ A, trapezoid, like the stress work)
-// and the part of it released by damage; an element whose neighbour leaves the model (erosion,
+// The forces are the gradient of the interface energy, including its dependence on the normal,
+// so that a turning interface neither takes nor gives work (add_turning_forces).
+// Energy: the work the nodes do on the interfaces (∫ t_n dΔn + t_s dΔs A, trapezoid, like the
+// stress work) and the part of it released by damage; an element whose neighbour leaves the model (erosion,
 // conversion) releases what it stored. Theory note: docs/theory/cohesive_interfaces.md.
 #pragma once
 
@@ -52,7 +54,8 @@ class CohesiveInterfaces final : public TopologyListener {
   void drop_elements(Model& model, const std::vector<std::uint8_t>& keep, Work& work);
   void element_forces(Model& model, std::size_t e, Work& work);
   void close_open_element(Model& model, std::size_t e, Work& work);
-  static void book_increment(CohesiveElements& c, std::size_t p, const double* delta, const double* T, Work& work);
+  static void book_increment(CohesiveElements& c, std::size_t p, double dn, double ds, double tn, double ts,
+                             Work& work);
 
   std::vector<CohesiveLaw> laws_;
   bool stale_ = true;

@@ -32,6 +32,7 @@
 #include <clocale>
 #include <cmath>
 #include <cstddef>
+#include <exception>
 #include <fstream>
 #include <iomanip>
 #include <limits>
@@ -220,6 +221,10 @@ void call_gmsh(const fs::path& file, const std::string& what, Call&& call) {
     threw = true;
   } catch (const char* error) {
     thrown = error ? error : "";
+    threw = true;
+  } catch (const std::exception& error) {
+    // A malformed count can make Gmsh's reader ask for an impossible array (found by fuzz_mesh).
+    thrown = std::string("the file's sizes are not possible (") + error.what() + ")";
     threw = true;
   }
   std::vector<std::string> errors = logged_errors();

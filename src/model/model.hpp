@@ -218,8 +218,8 @@ struct CohesiveElements {
   std::vector<double> weight;                      ///< per point: the area it stands for (m²)
   std::vector<double> max_separation;              ///< per point: the largest equivalent opening (history)
   std::vector<double> damage;                      ///< per point: 0 … 1 (1: failed: bears in compression only)
-  std::vector<double> separation;                  ///< 3 per point: x_b − x_a at the last step
-  std::vector<double> traction;                    ///< 3 per point: the traction on side B at the last step
+  std::vector<double> separation;                  ///< 3 per point: Δn, Δs, 0 (normal and shear opening) at the last step
+  std::vector<double> traction;                    ///< 3 per point: t_n, t_s, 0 (normal and shear traction on side B) at the last step
 
   std::size_t element_count() const { return law.size(); }
   std::size_t point_count() const { return weight.size(); }

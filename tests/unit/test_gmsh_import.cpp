@@ -303,6 +303,10 @@ TEST(GmshImport, AFileThatCrashesGmshIsAnInputErrorNotACrash) {
     const std::string message = load_error(std::string(SHARD_SOURCE_DIR) + "/fuzz/regressions/fuzz_mesh/" + name);
     EXPECT_TRUE(contains(message, "Gmsh crashed reading this file")) << name << ": " << message;
   }
+  // A third makes Gmsh's reader throw std::bad_array_new_length: an InputError too.
+  const std::string message = load_error(std::string(SHARD_SOURCE_DIR) +
+                                         "/fuzz/regressions/fuzz_mesh/node_count_gmsh_cannot_allocate.msh");
+  EXPECT_TRUE(contains(message, "sizes are not possible")) << message;
 }
 
 TEST(GmshImport, ScaleMultipliesCoordinates) {
