@@ -64,10 +64,11 @@ BallRun run_ball(const std::string& file, const std::string& end_time, int threa
   return out;
 }
 
+double last(const BallRun& b, const char* column) { return b.history.at(b.history.rows.size() - 1, column); }
+
 TEST(BallPerforation, DebrisKeepsTheMassAndTheBalance) {
   const BallRun start = run_ball("ball_perforation_3d.yaml", "1 ns", 1);
   const BallRun particles = run_ball("ball_perforation_3d.yaml", "5 us", 1);
-  const auto last = [](const BallRun& b, const char* column) { return b.history.at(b.history.rows.size() - 1, column); };
   std::printf("3D ball at 5 us: %zu debris spheres, mass of pieces + debris %.15e kg against %.15e kg at the start "
               "(%.1e relative); worst balance %.3f %%\n",
               particles.debris, particles.total_mass, start.total_mass,
@@ -84,7 +85,6 @@ TEST(BallPerforation, DebrisKeepsTheMassAndTheBalance) {
 TEST(BallPerforationValidation, DebrisAgainstPlainErosion) {
   const BallRun particles = run_ball("ball_perforation_3d.yaml", "5 us", 2);
   const BallRun deleted = run_ball("ball_perforation_3d_delete.yaml", "5 us", 2);
-  const auto last = [](const BallRun& b, const char* column) { return b.history.at(b.history.rows.size() - 1, column); };
   std::printf("3D ball at 5 us: worst balance %.3f %% with debris, %.3f %% deleted; eroded %.4g J with particles, "
               "%.4g J deleted\n",
               100 * particles.worst, 100 * deleted.worst, last(particles, "eroded"), last(deleted, "eroded"));

@@ -86,6 +86,20 @@ struct TiedCubes {
     layout.law_of[{0, 1}] = 0;
     split = insert_cohesive_interfaces(model, layout);
   }
+  /// The reference positions with the upper cube moved by (dx, 0, dz).
+  std::vector<double> upper_moved(double dx, double dz) const {
+    const Model& model = run.model;
+    std::vector<double> x = model.nodes.x0;
+    const Part& part = model.parts[0];
+    for (std::size_t e = 0; e < 2; ++e)
+      if (group[e] == 1)
+        for (int a = 0; a < 8; ++a) {
+          const std::int32_t n = part.connectivity[8 * e + a];
+          x[3 * n] = model.nodes.x0[3 * n] + dx;
+          x[3 * n + 2] = model.nodes.x0[3 * n + 2] + dz;
+        }
+    return x;
+  }
   static BoxMesh box() {
     BoxMesh b;
     b.element = "hex8";
@@ -158,9 +172,7 @@ TEST(CohesiveInterface, AnElementLeavesWithItsErodedNeighbourAndReleasesWhatItSt
   model.nodes.mass.assign(model.nodes.count(), 1e-6);
   // The upper block lifted by 30 nm, below the onset opening σ/K = 50 nm: elastic.
   Part& part = model.parts[0];
-  for (std::size_t e = 0; e < 2; ++e)
-    if (group[e] == 1)
-      for (int a = 0; a < 8; ++a) model.nodes.x[3 * part.connectivity[8 * e + a] + 2] = model.nodes.x0[3 * part.connectivity[8 * e + a] + 2] + 30e-9;
+  model.nodes.x = cubes.upper_moved(0, 30e-9);
   CohesiveInterfaces interfaces({table3()});
   const CohesiveInterfaces::Work first = interfaces.add_forces(model);
   const double stored = 0.5 * 1e15 * 30e-9 * 30e-9 * 1e-6;
@@ -182,18 +194,8 @@ TEST(CohesiveInterface, AnElementLeavesWithItsErodedNeighbourAndReleasesWhatItSt
 TEST(CohesiveInterface, AnElementFailedEverywhereOpensToTheContactAndReleasesWhatItBore) {
   TiedCubes cubes;
   Model& model = cubes.run.model;
-  const std::vector<int>& group = cubes.group;
   model.nodes.mass.assign(model.nodes.count(), 1e-6);
-  Part& part = model.parts[0];
-  auto place_upper = [&](double dx, double dz) {
-    for (std::size_t e = 0; e < 2; ++e)
-      if (group[e] == 1)
-        for (int a = 0; a < 8; ++a) {
-          const std::int32_t n = part.connectivity[8 * e + a];
-          model.nodes.x[3 * n] = model.nodes.x0[3 * n] + dx;
-          model.nodes.x[3 * n + 2] = model.nodes.x0[3 * n + 2] + dz;
-        }
-  };
+  auto place_upper = [&](double dx, double dz) { model.nodes.x = cubes.upper_moved(dx, dz); };
   place_upper(0.1e-3, -30e-9);
   CohesiveInterfaces interfaces({table3()});
   const CohesiveInterfaces::Work first = interfaces.add_forces(model);
@@ -232,17 +234,8 @@ TEST(CohesiveInterface, AnElementFailedEverywhereOpensToTheContactAndReleasesWha
 TEST(CohesiveInterface, ATurningDamagedInterfaceTakesNoWorkAndHasNoMoment) {
   TiedCubes cubes;
   Model& model = cubes.run.model;
-  const std::vector<int>& group = cubes.group;
   model.nodes.mass.assign(model.nodes.count(), 1e-6);
-  Part& part = model.parts[0];
-  std::vector<double> placed = model.nodes.x0;  // the slid and pressed state, before turning
-  for (std::size_t e = 0; e < 2; ++e)
-    if (group[e] == 1)
-      for (int a = 0; a < 8; ++a) {
-        const std::int32_t n = part.connectivity[8 * e + a];
-        placed[3 * n] = model.nodes.x0[3 * n] + 10e-6;
-        placed[3 * n + 2] = model.nodes.x0[3 * n + 2] - 30e-9;
-      }
+  const std::vector<double> placed = cubes.upper_moved(10e-6, -30e-9);  // slid and pressed, before turning
   CohesiveInterfaces interfaces({table3()});
   const double centre[3] = {0.5e-3, 0.5e-3, 1e-3};
   double work = 0, released = 0, worst_moment = 0, stored = 0;
