@@ -5,11 +5,15 @@ Part A, porosity: virtual compression of samples with empty pores of 2 µm (one 
 removed) or about 6 µm (an automaton and its six neighbours), explicit porosity C2 = 0.05, 0.11,
 0.17: effective modulus, Poisson's ratio, strength. Scenarios: porous_D{2,6}_C{05,11,17}.yaml.
 
-Part B, the "pore–matrix interface" model: the same pore layouts (the sample builder's random
-draws are replayed here, so each pore sits where Part A removed an automaton), the pores filled
-with a soft gel, and the automata lining each pore given a modified Young's modulus (E_local =
-0.5 E0 or 2 E0) or strength (σ_local = 0.6 σ0 or 1.4 σ0). Each is normalised by the same layout
-with unmodified lining (E_local = E0, σ_local = σ0). Scenarios are generated into OUT/scenarios.
+Part B, the "pore–matrix interface" model: the same pore layouts, the pores filled with a soft
+gel, and the automata lining each pore given a modified Young's modulus (E_local = 0.5 E0 or
+2 E0) or strength (σ_local = 0.6 σ0 or 1.4 σ0). Each is normalised by the same layout with
+unmodified lining (E_local = E0, σ_local = σ0). The pores come from the samples shard exports
+(particles_sample_sample.csv, docs/outputs.md "Particle samples"): a 1 ns run of the Part A
+scenario and one of it without its `pores:` line give Part A's automata and the full lattice;
+the automata missing from the first are gel, those of the first within 1.05 d of a gel automaton
+lining. That sample is written per layout to OUT/scenarios/gel_D*_C*_sample.csv, and the
+generated scenarios (OUT/scenarios) read it with `sample:`.
 
 Run from anywhere:
     examples/mca_porous_zirconia/run_study.py                 # everything (~17 min, 1 thread)
@@ -20,8 +24,8 @@ Writes OUT/study.md (tables), OUT/study.json, OUT/study.png (default OUT: out/mc
 
 import argparse
 import json
-import math
 import os
+import shutil
 import subprocess
 import sys
 
@@ -50,61 +54,8 @@ PAPER = {
 }
 
 
-# ---- the sample builder's pores, replayed ---------------------------------------------------------
-
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tools"))
-from mca_replay import MT19937_64, hexagonal_sites  # noqa: E402  (the builder's draws and sites)
 from study_run import run_case  # noqa: E402
-
-
-def pore_layout(sites, d, porosity, with_neighbours, seed):
-    """(removed flags, pore centres): add_pores() of the sample builder, draw for draw."""
-    rng = MT19937_64(seed)
-    n = len(sites)
-    removed = [False] * n
-    target = math.ceil(porosity * n)
-    count, centres = 0, []
-    cells = {}
-    for k, (x, y) in enumerate(sites):
-        cells.setdefault((math.floor(x / d), math.floor(y / d)), []).append(k)
-    tries = 0
-    while count < target and tries < 100 * n:
-        tries += 1
-        c = min(n - 1, int(rng.uniform01() * n))
-        if removed[c]:
-            continue
-        centres.append(c)
-        removed[c] = True
-        count += 1
-        if with_neighbours:
-            cx, cy = sites[c]
-            gx, gy = math.floor(cx / d), math.floor(cy / d)
-            reach2 = (1.1 * d) ** 2
-            for dx in (-2, -1, 0, 1, 2):
-                for dy in (-2, -1, 0, 1, 2):
-                    for i in cells.get((gx + dx, gy + dy), ()):
-                        if not removed[i] and (sites[i][0] - cx) ** 2 + (sites[i][1] - cy) ** 2 <= reach2:
-                            removed[i] = True
-                            count += 1
-    return removed, centres
-
-
-def check_replay(folder, diameter, porosity):
-    """Stops if the replayed pores differ from those the builder made in the Part A run in
-    `folder` (first frame), when that run exists."""
-    frame = os.path.join(folder, "particles_sample_00000.vtu")
-    if not os.path.isfile(frame):
-        return
-    import meshio
-    import numpy as np
-
-    sites = hexagonal_sites(SIZE, SIZE, AUTOMATON)
-    removed, _ = pore_layout(sites, AUTOMATON, porosity, diameter == 6, SEED)
-    kept = np.asarray([p for p, r in zip(sites, removed) if not r])
-    points = meshio.read(frame).points[:, :2]
-    if len(points) != len(kept) or not np.allclose(points, kept, rtol=0, atol=1e-12):
-        raise SystemExit(f"the replayed pores differ from {frame}: has the sample builder "
-                         "changed? Part B needs the pores of Part A")
 
 
 # ---- scenarios ------------------------------------------------------------------------------------
@@ -118,15 +69,20 @@ analysis:
 """
 
 
-def common_tail(pores_block, regions_block):
-    return f"""particles:
-  sample:
-    lattice: hexagonal
+def builder_keys(pores_block):
+    """The keys of the particle part `sample` that have the builder make it."""
+    return f"""    lattice: hexagonal
     automaton_size: {AUTOMATON * 1e6:g} um
     min: [0, 0]
     max: [{SIZE * 1e6:g} um, {SIZE * 1e6:g} um]
     material: zro2
-{pores_block}{regions_block}particle_boundary_conditions:
+{pores_block}"""
+
+
+def common_tail(part_block):
+    return f"""particles:
+  sample:
+{part_block}particle_boundary_conditions:
   # Bottom row on rollers, top row pushed down at 1 m/s after a 0.1 µs ramp (strain rate
   # 6.7e3 /s, about 25 wave transits to the peak); the lateral faces are monitors for ν.
   - {{name: bottom, part: sample, region: {{side: y_min}}, fix: [y]}}
@@ -156,26 +112,86 @@ def part_a_scenario(diameter, porosity):
     return (f"# Porous zirconia, empty pores of D = {diameter} µm, explicit porosity C2 = {porosity:g}"
             " (MCA paper, section 4).\n# Written by run_study.py --write-scenarios; see README.md.\n"
             + header(f"porous ZrO2, D = {diameter} um, C2 = {porosity:g}, empty pores", "1.1 us")
-            + "materials:\n" + CERAMIC + "bonds:\n" + CERAMIC_BOND + common_tail(pores, ""))
+            + "materials:\n" + CERAMIC + "bonds:\n" + CERAMIC_BOND + common_tail(builder_keys(pores)))
 
 
-def um(value):
-    return f"{value * 1e6:.6f}".rstrip("0").rstrip(".") + " um"
+# ---- Part B's sample: the pores of Part A, from shard's own exports -----------------------------------
+
+def export_sample(shard, scenario, folder):
+    """The sample of part `sample` as the builder makes it for `scenario`: (comment lines, rows
+    [id, x, y, radius, material] as text), from a run of 1 ns that writes particles_sample_sample.csv
+    (docs/outputs.md, "Particle samples"). Run in the scenario's folder, so that the file's first
+    line names the scenario by its file name only."""
+    command = [os.path.abspath(shutil.which(shard) or shard), "run", os.path.basename(scenario),
+               "--until", "1ns", "-o", os.path.abspath(folder), "--quiet", "--threads", "1"]
+    subprocess.run(command, check=True, stdout=subprocess.DEVNULL,
+                   cwd=os.path.dirname(os.path.abspath(scenario)))
+    comments, rows = [], []
+    with open(os.path.join(folder, "particles_sample_sample.csv")) as stream:
+        for line in stream:
+            line = line.rstrip("\n")
+            if line.startswith("#"):
+                comments.append(line)
+            elif line and not line.startswith("id,"):
+                rows.append(line.split(","))
+    return comments, rows
 
 
-def part_b_scenario(diameter, porosity, variant):
-    name, e_factor, s_factor = variant
+def part_b_sample(shard, diameter, porosity, out, path):
+    """Writes to `path` the Part B sample of a layout and returns (gel, lining) counts: the full
+    lattice (the Part A scenario without its `pores:` line, written to OUT/scenarios), its automata
+    that Part A removes made `gel`, those of Part A within 1.05 d of a gel automaton (the shell
+    around each pore) `lining`, the rest `zro2`. The two exports run in OUT/samples."""
+    tag = f"D{diameter}_C{round(porosity * 100):02d}"
+    with open(part_a_path(diameter, porosity)) as stream:
+        lines = stream.read().splitlines(keepends=True)
+    full = [line for line in lines if not line.lstrip().startswith("pores:")]
+    if len(lines) - len(full) != 1:
+        raise SystemExit(f"{part_a_path(diameter, porosity)}: expected one 'pores:' line")
+    full_scenario = os.path.join(out, "scenarios", f"porous_{tag}_without_pores.yaml")
+    os.makedirs(os.path.dirname(full_scenario), exist_ok=True)
+    with open(full_scenario, "w") as stream:
+        stream.write("".join(full))
+    _, porous = export_sample(shard, part_a_path(diameter, porosity),
+                              os.path.join(out, "samples", f"{tag}_pores"))
+    comments, rows = export_sample(shard, full_scenario, os.path.join(out, "samples", f"{tag}_full"))
+    kept = {row[0]: row for row in porous}
+    full_ids = {row[0]: row for row in rows}  # the same lattice: Part A's automata are among them
+    if any(i not in full_ids or full_ids[i][1:4] != row[1:4] for i, row in kept.items()):
+        raise SystemExit(f"{tag}: the sample without pores is not Part A's lattice")
+    gel = [row for row in rows if row[0] not in kept]
     d = AUTOMATON
-    sites = hexagonal_sites(SIZE, SIZE, d)
-    _, centres = pore_layout(sites, d, porosity, diameter == 6, SEED)
-    pore_radius = (1.05 if diameter == 6 else 0.45) * d
-    lining_radius = pore_radius + d  # the next shell out: the automata lining the pore
-    rings = "".join(f"      - {{material: lining, centre: [{um(sites[c][0])}, {um(sites[c][1])}], "
-                    f"radius: {um(lining_radius)}}}\n" for c in centres)
-    cores = "".join(f"      - {{material: gel, centre: [{um(sites[c][0])}, {um(sites[c][1])}], "
-                    f"radius: {um(pore_radius)}}}\n" for c in centres)
-    regions = ("    # Pore linings first, then the pores (a later region overrides an earlier one).\n"
-               "    regions:\n" + rings + cores)
+    reach2 = (1.05 * d) ** 2
+    cells = {}
+    for row in gel:
+        x, y = float(row[1]), float(row[2])
+        cells.setdefault((int(x // d), int(y // d)), []).append((x, y))
+    lining = 0
+    for row in rows:
+        if row[0] not in kept:
+            row[4] = "gel"
+            continue
+        x, y = float(row[1]), float(row[2])
+        gx, gy = int(x // d), int(y // d)
+        near = any((x - u) ** 2 + (y - v) ** 2 <= reach2
+                   for dx in (-2, -1, 0, 1, 2) for dy in (-2, -1, 0, 1, 2)
+                   for u, v in cells.get((gx + dx, gy + dy), ()))
+        row[4] = "lining" if near else "zro2"
+        lining += near
+    with open(path, "w") as stream:
+        stream.write("\n".join(comments) + "\n")
+        stream.write(f"# Part B of examples/mca_porous_zirconia/run_study.py: the automata of the line "
+                     f"above, those porous_{tag}.yaml removes made gel, the ceramic within 1.05 d of "
+                     "them lining\n")
+        stream.write("id,x,y,radius,material\n")
+        stream.write("".join(",".join(row) + "\n" for row in rows))
+    return len(gel), lining
+
+
+def part_b_scenario(diameter, porosity, variant, sample_file):
+    """The Part B scenario of a layout and variant, reading its sample from `sample_file` (a path
+    relative to the scenario), as part_b_sample() writes it."""
+    name, e_factor, s_factor = variant
     materials = ("materials:\n" + CERAMIC
                  + f"  # The automata lining the pores: E_local = {e_factor:g} E0.\n"
                  f"  lining: {{model: automaton, density: 5400 kg/m^3, young: {98 * e_factor:g} GPa, "
@@ -194,24 +210,29 @@ def part_b_scenario(diameter, porosity, variant):
             "17-19). Generated by run_study.py: the pores are where the\n# scenario "
             f"porous_D{diameter}_C{round(porosity * 100):02d}.yaml removes automata.\n"
             + header(f"porous ZrO2 with gel, D = {diameter} um, C2 = {porosity:g}, {name}", "1.1 us")
-            + materials + bonds + common_tail("", regions))
+            + materials + bonds + common_tail(
+                f"    # The automata of porous_D{diameter}_C{round(porosity * 100):02d}.yaml's lattice "
+                "without its pores: those it\n    # removes are gel, the ceramic next to them lining "
+                f"(run_study.py, part_b_sample()).\n    sample: {sample_file}\n"))
 
 
 def part_a_path(diameter, porosity):
     return os.path.join(HERE, f"porous_D{diameter}_C{round(porosity * 100):02d}.yaml")
 
 
-def write_scenarios():
+def write_scenarios(shard, out):
     for diameter in PORE_SIZES:
         for porosity in POROSITIES:
             path = part_a_path(diameter, porosity)
             with open(path, "w") as stream:
                 stream.write(part_a_scenario(diameter, porosity))
             print(f"wrote {os.path.relpath(path)}")
+    sample = os.path.join(HERE, "gel_D6_C05_sample.csv")
+    part_b_sample(shard, 6, 0.05, out, sample)
     example = os.path.join(HERE, "gel_D6_C05_E2.yaml")
     with open(example, "w") as stream:
-        stream.write(part_b_scenario(6, 0.05, VARIANTS[2]))
-    print(f"wrote {os.path.relpath(example)}")
+        stream.write(part_b_scenario(6, 0.05, VARIANTS[2], os.path.basename(sample)))
+    print(f"wrote {os.path.relpath(sample)}, {os.path.relpath(example)}")
 
 
 # ---- running and collecting -------------------------------------------------------------------------
@@ -246,10 +267,11 @@ def main():
     parser.add_argument("--collect", action="store_true", help="no runs: tables from earlier runs")
     parser.add_argument("--force", action="store_true", help="rerun cases that completed before")
     parser.add_argument("--write-scenarios", action="store_true",
-                        help="rewrite the committed scenarios of this folder and stop")
+                        help="rewrite the committed scenarios of this folder (and the Part B example's "
+                        "sample, from two 1 ns runs in OUT) and stop")
     args = parser.parse_args()
     if args.write_scenarios:
-        write_scenarios()
+        write_scenarios(args.shard, args.out)
         return 0
     part_a, part_b = cases(args.quick)
     os.makedirs(os.path.join(args.out, "scenarios"), exist_ok=True)
@@ -260,12 +282,15 @@ def main():
                 args.force)
         print("Part B: gel-filled pores, modified lining")
         for d, c in part_b:
-            check_replay(os.path.join(args.out, f"D{d}_C{round(c * 100):02d}"), d, c)
+            layout = f"gel_D{d}_C{round(c * 100):02d}"
+            sample = os.path.join(args.out, "scenarios", layout + "_sample.csv")
+            gel, lining = part_b_sample(args.shard, d, c, args.out, sample)
+            print(f"  {os.path.relpath(sample)}: {gel} gel, {lining} lining automata")
             for variant in VARIANTS:
-                tag = f"gel_D{d}_C{round(c * 100):02d}_{variant[0]}"
+                tag = f"{layout}_{variant[0]}"
                 scenario = os.path.join(args.out, "scenarios", tag + ".yaml")
                 with open(scenario, "w") as stream:
-                    stream.write(part_b_scenario(d, c, variant))
+                    stream.write(part_b_scenario(d, c, variant, os.path.basename(sample)))
                 run(args.shard, scenario, os.path.join(args.out, tag), args.force)
     collect(args.out, part_a, part_b)
     return 0
