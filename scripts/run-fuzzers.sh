@@ -2,8 +2,8 @@
 # Builds the libFuzzer targets (clang, AddressSanitizer and UndefinedBehaviorSanitizer) in
 # build-sanitize/, replays every input kept in fuzz/regressions/ (each must pass), then fuzzes each
 # target for SECONDS (default 60; as many targets at once as there are cores) from a seed corpus of the examples, tests/bad_input and the test
-# meshes. A crash stops with status 1 and leaves the input in fuzz/regressions/<target>/: commit it
-# with the fix. Usage: bash scripts/run-fuzzers.sh [SECONDS]
+# meshes. A failure stops with status 1 and copies the input to fuzz/regressions/<target>/: commit
+# it with the fix. Usage: bash scripts/run-fuzzers.sh [SECONDS]
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds="${1:-60}"
@@ -40,11 +40,18 @@ done
 
 # Each target fuzzes on one core; as many side by side as there are cores.
 fuzz() {
-  local target=$1 kept="fuzz/regressions/$1"
+  local target=$1 kept="fuzz/regressions/$1" found="build-sanitize/artifacts/$1"
+  rm -rf "$found"
+  mkdir -p "$found"
   if ! build-sanitize/fuzz/$target -max_total_time="$seconds" -seed="$seed" -timeout=20 -rss_limit_mb=2048 -max_len=65536 \
-      -artifact_prefix="$kept/" -print_final_stats=1 "$corpus/$target" > "build-sanitize/$target.log" 2>&1; then
+      -artifact_prefix="$found/" -print_final_stats=1 "$corpus/$target" > "build-sanitize/$target.log" 2>&1; then
     tail -60 "build-sanitize/$target.log"
-    echo "$target found a crash: the input is in $kept/"
+    # Only the input the fuzzer itself names is kept: the mesh reader's child processes (which
+    # inherit the fuzzer's handlers) may leave files of inputs the parent handled.
+    local input
+    input=$(grep -o "Test unit written to .*" "build-sanitize/$target.log" | tail -1 | sed 's/Test unit written to //')
+    if [ -n "$input" ] && [ -f "$input" ]; then cp "$input" "$kept/"; fi
+    echo "$target found a failure: the input is in $kept/$(basename "${input:-none}")"
     return 1
   fi
   echo "== $target: $seconds s, $(grep -E "stat::number_of_executed_units|stat::peak_rss_mb" "build-sanitize/$target.log" | tr '\n' ' ')"
