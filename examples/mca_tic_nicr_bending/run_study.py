@@ -6,10 +6,13 @@ Part A, strength of the TiC particles: σ_t(TiC) = 700 ... 2000 MPa with the "na
 Part B, wide interphases (σ_t(TiC) = 1500 MPa): around each particle a transition zone of width
 w = 0.8 or 1.6 µm whose elastic constants and bond strengths σ_t, σ_c grade linearly from TiC to
 NiCr, and whose yield stress either grades from σ_t(TiC) to NiCr's ("graded yield") or stays
-NiCr's ("binder yield"). The particles are where Part A puts them (the sample builder's random
-draws are replayed here, and checked against the Part A run) and the graded automata are
-assigned by regions; these scenarios are generated into OUT/scenarios. One more run uses the
-sample builder's own `interphase` key for comparison.
+NiCr's ("binder yield"). The particles are those of Part A, taken from the sample shard exports
+(particles_sample_sample.csv, docs/outputs.md "Particle samples"): a 1 ns run of the Part A
+scenario at σ_t(TiC) = 1500 MPa writes its automata as built, the `material` column telling the
+TiC ones. The binder automata in the transition zone get graded materials in that sample's
+`material` column; it is written per seed and width to OUT/scenarios/st1500_w*_sample.csv, and the
+generated scenarios (OUT/scenarios) read it with `sample:`. No random draw is replayed. One more
+run uses the sample builder's own `interphase` key for comparison.
 
 For each run: peak force, mandrel deflection at the peak, where the force first falls below half
 the peak, and at failure (the smoothed force falls below 25 % of its peak for good), work of
@@ -28,6 +31,7 @@ import argparse
 import json
 import math
 import os
+import shutil
 import subprocess
 import sys
 
@@ -52,55 +56,30 @@ NICR = {"young": 210.0, "poisson": 0.30, "density": 8400.0, "yield": 350.0, "har
 FAILURE_LEVEL, SMOOTH = 0.25, 10
 
 
-# ---- the sample builder's inclusions, replayed ----------------------------------------------------
-
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tools"))
-from mca_replay import MT19937_64, hexagonal_sites  # noqa: E402  (the builder's draws and sites)
 from study_run import run_case  # noqa: E402
 
 
-def inclusion_layout(sites, diameter, fraction, seed):
-    """Flags of the automata add_inclusions() makes TiC, draw for draw."""
-    rng = MT19937_64(seed)
-    lo = [min(s[k] for s in sites) for k in range(2)]
-    hi = [max(s[k] for s in sites) for k in range(2)]
-    n = len(sites)
-    target = math.ceil(fraction * n)
-    inclusion = [False] * n
-    marked, centres, tries = 0, [], 0
-    radius2 = (0.5 * diameter) ** 2
-    while marked < target and tries < 100000:
-        tries += 1
-        c = [lo[k] + rng.uniform01() * (hi[k] - lo[k]) for k in range(2)]
-        if any((o[0] - c[0]) ** 2 + (o[1] - c[1]) ** 2 < diameter * diameter for o in centres):
-            continue
-        centres.append(c)
-        for i, s in enumerate(sites):
-            d2 = 0.0
-            d2 += (s[0] - c[0]) * (s[0] - c[0])
-            d2 += (s[1] - c[1]) * (s[1] - c[1])
-            if not inclusion[i] and d2 <= radius2:
-                inclusion[i] = True
-                marked += 1
-    return inclusion
+# ---- Part B's sample: the particles of Part A, from shard's own export ----------------------------
 
-
-def check_replay(folder, sites, inclusion):
-    """Stops if the replayed particles differ from those of the run in `folder` (first frame),
-    when that run exists: the regions of Part B would then miss the particles."""
-    frame = os.path.join(folder, "particles_sample_00000.vtu")
-    if not os.path.isfile(frame):
-        return
-    import meshio
-    import numpy as np
-
-    mesh = meshio.read(frame)
-    same_sites = len(mesh.points) == len(sites) and np.allclose(
-        mesh.points[:, :2], np.asarray(sites), rtol=0, atol=1e-12)
-    tic = np.asarray(mesh.point_data["material"]).astype(int) == 1
-    if not same_sites or not np.array_equal(tic, np.asarray(inclusion)):
-        raise SystemExit(f"the replayed particles differ from {frame}: has the sample builder "
-                         "changed? Part B needs the same particles as Part A")
+def export_sample(shard, scenario_path, folder):
+    """The sample of part `sample` as the builder makes it for `scenario_path`: (comment lines,
+    rows [id, x, y, radius, material] as text), from a run of 1 ns that writes
+    particles_sample_sample.csv (docs/outputs.md, "Particle samples"). Run in the scenario's
+    folder, so that the file's first line names the scenario by its file name only."""
+    command = [os.path.abspath(shutil.which(shard) or shard), "run", os.path.basename(scenario_path),
+               "--until", "1ns", "-o", os.path.abspath(folder), "--quiet", "--threads", "1"]
+    subprocess.run(command, check=True, stdout=subprocess.DEVNULL,
+                   cwd=os.path.dirname(os.path.abspath(scenario_path)))
+    comments, rows = [], []
+    with open(os.path.join(folder, "particles_sample_sample.csv")) as stream:
+        for line in stream:
+            line = line.rstrip("\n")
+            if line.startswith("#"):
+                comments.append(line)
+            elif line and not line.startswith("id,"):
+                rows.append(line.split(","))
+    return comments, rows
 
 
 def graded_fraction(distance, d, width):
@@ -117,8 +96,9 @@ def graded_fraction(distance, d, width):
 
 
 def interphase_layout(sites, inclusion, d, width):
-    """{site index: t} for the binder automata in the transition zone (t < 0.98), t rounded to
-    0.01 so that automata of one shell share a material."""
+    """{index: t} for the binder automata in the transition zone (t < 0.98), t rounded to 0.01 so
+    that automata of one shell share a material; `sites` are the automata's centres and
+    `inclusion` their TiC flags, in the order of the exported sample's rows."""
     tic = [sites[i] for i in range(len(sites)) if inclusion[i]]
     graded = {}
     for i, (x, y) in enumerate(sites):
@@ -133,6 +113,33 @@ def interphase_layout(sites, inclusion, d, width):
     return graded
 
 
+def level_name(t):
+    """The material of the transition zone at binder share t."""
+    return f"ip{round(t * 100):02d}"
+
+
+def part_b_sample(rows, comments, width, path, source):
+    """Writes to `path` the Part B sample of one width and returns its graded layout {index: t}:
+    the rows of the Part A export (`rows`, `comments` as export_sample() returns them, `source`
+    the scenario they come from), the binder automata of the transition zone given the material
+    of their level (level_name()), the rest as exported."""
+    sites = [(float(row[1]), float(row[2])) for row in rows]
+    inclusion = [row[4] == "tic" for row in rows]
+    if not any(inclusion):
+        raise SystemExit(f"{source}: the exported sample has no tic automaton")
+    graded = interphase_layout(sites, inclusion, AUTOMATON, width * 1e-6)
+    with open(path, "w") as stream:
+        stream.write("\n".join(comments) + "\n")
+        stream.write(f"# Part B of examples/mca_tic_nicr_bending/run_study.py: the automata of the line "
+                     f"above, the binder within the {width:g} um transition zone given graded materials "
+                     "ipNN (binder share NN %)\n")
+        stream.write("id,x,y,radius,material\n")
+        for i, row in enumerate(rows):
+            material = level_name(graded[i]) if i in graded else row[4]
+            stream.write(",".join(row[:4] + [material]) + "\n")
+    return graded
+
+
 # ---- scenarios ------------------------------------------------------------------------------------
 
 def bond_line(a, b, sigma_t, sigma_c, brittle):
@@ -143,12 +150,16 @@ def bond_line(a, b, sigma_t, sigma_c, brittle):
 
 
 def scenario(sigma_t, seed=1, graded=None, width=None, builder_interphase=None, end_time="4.5 us",
-             ductile=False):
-    """The bending scenario; `graded` {site: t} adds transition-zone materials by region, whose
-    yield stress grades from σ_t(TiC) to NiCr's, or stays NiCr's if `ductile`."""
+             ductile=False, sample_file=None):
+    """The bending scenario; with `graded` {index: t} (part_b_sample()) it defines the
+    transition-zone materials, whose yield stress grades from σ_t(TiC) to NiCr's, or stays
+    NiCr's if `ductile`, and reads its sample from `sample_file` (a path relative to the
+    scenario, as part_b_sample() writes it) instead of having the builder make it."""
     graded = graded or {}
+    if graded and not sample_file:
+        raise ValueError("graded materials need the sample file that names them")
     levels = sorted(set(graded.values()))
-    names = {t: f"ip{round(t * 100):02d}" for t in levels}
+    names = {t: level_name(t) for t in levels}
     what = (f"wide interphase w = {width:g} um" + (", binder yield" if ductile else "") if width else
             f"sample builder interphase w = {builder_interphase:g} um" if builder_interphase else
             "narrow interface")
@@ -198,7 +209,15 @@ materials:
                 continue  # each pair of graded materials once
             st, sc = strength(max(t, u))
             text += bond_line(names[t], other, st, sc, False)
-    text += f"""particles:
+    if sample_file:
+        text += f"""particles:
+  sample:
+    # The automata of Part A's sample (seed {seed}) as built, the binder in the transition
+    # zone given the graded materials (run_study.py, part_b_sample()).
+    sample: {sample_file}
+"""
+    else:
+        text += f"""particles:
   sample:
     lattice: hexagonal
     automaton_size: {AUTOMATON * 1e6:g} um     # a 3 um particle is 3 to 7 automata
@@ -209,14 +228,6 @@ materials:
 """
     if builder_interphase:
         text += f"    interphase: {{width: {builder_interphase:g} um, levels: 2}}\n"
-    if graded:
-        sites = hexagonal_sites(LENGTH, DEPTH, AUTOMATON)
-        text += "    # The transition-zone automata, one small disc each (computed by run_study.py).\n"
-        text += "    regions:\n"
-        for i in sorted(graded):
-            x, y = sites[i]
-            text += (f"      - {{material: {names[graded[i]]}, centre: [{x * 1e6:.4f} um, {y * 1e6:.4f} um], "
-                     f"radius: {0.3 * AUTOMATON * 1e6:g} um}}\n")
     text += """particle_boundary_conditions:
   # Our simplification of the paper's set-up (Fig. 7): the mandrel and the two supports are
   # regions of the sample's own automata with prescribed velocities, not separate bodies.
@@ -313,16 +324,29 @@ def main():
                 cases.append(("B", 0.0, seed, f"st{s:04d}{tag}",
                               series_path(s) if seed == 1 else None,
                               None if seed == 1 else scenario(s, seed)))
-            sites = hexagonal_sites(LENGTH, DEPTH, AUTOMATON)
-            inclusion = inclusion_layout(sites, INCLUSION_DIAMETER, VOLUME_FRACTION, seed)
-            check_replay(os.path.join(args.out, f"st{s:04d}{tag}"), sites, inclusion)
+            # Part A's sample of this seed, from a 1 ns run of its σ_t = 1500 MPa scenario (not
+            # with --collect, which needs the names of the runs only).
+            source = series_path(s) if seed == 1 else os.path.join(scenarios, f"st{s:04d}{tag}.yaml")
+            if not args.collect:
+                if seed != 1:
+                    with open(source, "w") as stream:
+                        stream.write(scenario(s, seed))
+                comments, rows = export_sample(args.shard, source,
+                                               os.path.join(args.out, "samples", f"st{s:04d}{tag}"))
             for w in WIDTHS:
-                graded = interphase_layout(sites, inclusion, AUTOMATON, w * 1e-6)
-                cases.append(("B", w, seed, f"st{s:04d}_w{w:g}{tag}", None,
-                              scenario(s, seed, graded=graded, width=w, end_time="6 us")))
-                cases.append(("B", w, seed, f"st{s:04d}_w{w:g}_ductile{tag}", None,
-                              scenario(s, seed, graded=graded, width=w, end_time="10 us",
-                                       ductile=True)))
+                sample = f"st{s:04d}_w{w:g}{tag}_sample.csv"
+                texts = (None, None)
+                if not args.collect:
+                    graded = part_b_sample(rows, comments, w, os.path.join(scenarios, sample),
+                                           os.path.relpath(source))
+                    print(f"  {os.path.relpath(os.path.join(scenarios, sample))}: {len(graded)} "
+                          f"graded automata, {len(set(graded.values()))} levels")
+                    texts = (scenario(s, seed, graded=graded, width=w, end_time="6 us",
+                                      sample_file=sample),
+                             scenario(s, seed, graded=graded, width=w, end_time="10 us",
+                                      ductile=True, sample_file=sample))
+                cases.append(("B", w, seed, f"st{s:04d}_w{w:g}{tag}", None, texts[0]))
+                cases.append(("B", w, seed, f"st{s:04d}_w{w:g}_ductile{tag}", None, texts[1]))
             if seed == 1:
                 cases.append(("B", -1.6, seed, f"st{s:04d}_builder_w1.6", None,
                               scenario(s, seed, builder_interphase=1.6, end_time="2 us")))
