@@ -1,8 +1,10 @@
 """One run of a parameter study through the shard command, kept if it already completed; its
-wall and CPU time go to FOLDER/run_time.json. Used by the examples' run_study.py scripts."""
+wall and CPU time go to FOLDER/run_time.json; and the particle sample a scenario builds, from a
+run of 1 ns. Used by the examples' run_study.py scripts."""
 import json
 import os
 import resource
+import shutil
 import subprocess
 import time
 
@@ -20,3 +22,23 @@ def run_case(shard, scenario, folder, force):
     with open(os.path.join(folder, "run_time.json"), "w") as stream:
         json.dump({"wall_s": wall, "cpu_s": cpu}, stream)
     print(f"  {os.path.relpath(folder)}: {wall:.0f} s wall, {cpu:.0f} s CPU", flush=True)
+
+
+def export_sample(shard, scenario, folder):
+    """The sample of part `sample` as the builder makes it for `scenario`: (comment lines, rows
+    [id, x, y, radius, material] as text), from a run of 1 ns that writes particles_sample_sample.csv
+    (docs/outputs.md, "Particle samples"). Run in the scenario's folder, so that the file's first
+    line names the scenario by its file name only."""
+    command = [os.path.abspath(shutil.which(shard) or shard), "run", os.path.basename(scenario),
+               "--until", "1ns", "-o", os.path.abspath(folder), "--quiet", "--threads", "1"]
+    subprocess.run(command, check=True, stdout=subprocess.DEVNULL,
+                   cwd=os.path.dirname(os.path.abspath(scenario)))
+    comments, rows = [], []
+    with open(os.path.join(folder, "particles_sample_sample.csv")) as stream:
+        for line in stream:
+            line = line.rstrip("\n")
+            if line.startswith("#"):
+                comments.append(line)
+            elif line and not line.startswith("id,"):
+                rows.append(line.split(","))
+    return comments, rows

@@ -25,7 +25,6 @@ Writes OUT/study.md (tables), OUT/study.json, OUT/study.png (default OUT: out/mc
 import argparse
 import json
 import os
-import shutil
 import subprocess
 import sys
 
@@ -55,7 +54,7 @@ PAPER = {
 
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tools"))
-from study_run import run_case  # noqa: E402
+from study_run import export_sample, run_case  # noqa: E402
 
 
 # ---- scenarios ------------------------------------------------------------------------------------
@@ -116,26 +115,6 @@ def part_a_scenario(diameter, porosity):
 
 
 # ---- Part B's sample: the pores of Part A, from shard's own exports -----------------------------------
-
-def export_sample(shard, scenario, folder):
-    """The sample of part `sample` as the builder makes it for `scenario`: (comment lines, rows
-    [id, x, y, radius, material] as text), from a run of 1 ns that writes particles_sample_sample.csv
-    (docs/outputs.md, "Particle samples"). Run in the scenario's folder, so that the file's first
-    line names the scenario by its file name only."""
-    command = [os.path.abspath(shutil.which(shard) or shard), "run", os.path.basename(scenario),
-               "--until", "1ns", "-o", os.path.abspath(folder), "--quiet", "--threads", "1"]
-    subprocess.run(command, check=True, stdout=subprocess.DEVNULL,
-                   cwd=os.path.dirname(os.path.abspath(scenario)))
-    comments, rows = [], []
-    with open(os.path.join(folder, "particles_sample_sample.csv")) as stream:
-        for line in stream:
-            line = line.rstrip("\n")
-            if line.startswith("#"):
-                comments.append(line)
-            elif line and not line.startswith("id,"):
-                rows.append(line.split(","))
-    return comments, rows
-
 
 def part_b_sample(shard, diameter, porosity, out, path):
     """Writes to `path` the Part B sample of a layout and returns (gel, lining) counts: the full

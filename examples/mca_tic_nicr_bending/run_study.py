@@ -31,7 +31,6 @@ import argparse
 import json
 import math
 import os
-import shutil
 import subprocess
 import sys
 
@@ -57,30 +56,10 @@ FAILURE_LEVEL, SMOOTH = 0.25, 10
 
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tools"))
-from study_run import run_case  # noqa: E402
+from study_run import export_sample, run_case  # noqa: E402
 
 
 # ---- Part B's sample: the particles of Part A, from shard's own export ----------------------------
-
-def export_sample(shard, scenario_path, folder):
-    """The sample of part `sample` as the builder makes it for `scenario_path`: (comment lines,
-    rows [id, x, y, radius, material] as text), from a run of 1 ns that writes
-    particles_sample_sample.csv (docs/outputs.md, "Particle samples"). Run in the scenario's
-    folder, so that the file's first line names the scenario by its file name only."""
-    command = [os.path.abspath(shutil.which(shard) or shard), "run", os.path.basename(scenario_path),
-               "--until", "1ns", "-o", os.path.abspath(folder), "--quiet", "--threads", "1"]
-    subprocess.run(command, check=True, stdout=subprocess.DEVNULL,
-                   cwd=os.path.dirname(os.path.abspath(scenario_path)))
-    comments, rows = [], []
-    with open(os.path.join(folder, "particles_sample_sample.csv")) as stream:
-        for line in stream:
-            line = line.rstrip("\n")
-            if line.startswith("#"):
-                comments.append(line)
-            elif line and not line.startswith("id,"):
-                rows.append(line.split(","))
-    return comments, rows
-
 
 def graded_fraction(distance, d, width):
     """Binder share t (0: TiC, 1: NiCr) of an automaton whose centre is `distance` from the centre
