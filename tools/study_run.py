@@ -42,3 +42,13 @@ def export_sample(shard, scenario, folder):
             elif line and not line.startswith("id,"):
                 rows.append(line.split(","))
     return comments, rows
+
+
+def write_sample(path, comments, note, rows):
+    """A sample file shard reads with `sample:`: the exported comment lines, one line saying how
+    the study changed it, the header and the rows [id, x, y, radius, material]."""
+    with open(path, "w") as stream:
+        stream.write("\n".join(comments) + "\n")
+        stream.write(f"# {note}\n")
+        stream.write("id,x,y,radius,material\n")
+        stream.write("".join(",".join(row) + "\n" for row in rows))

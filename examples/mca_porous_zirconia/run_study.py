@@ -54,7 +54,7 @@ PAPER = {
 
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tools"))
-from study_run import export_sample, run_case  # noqa: E402
+from study_run import export_sample, run_case, write_sample  # noqa: E402
 
 
 # ---- scenarios ------------------------------------------------------------------------------------
@@ -157,13 +157,9 @@ def part_b_sample(shard, diameter, porosity, out, path):
                    for u, v in cells.get((gx + dx, gy + dy), ()))
         row[4] = "lining" if near else "zro2"
         lining += near
-    with open(path, "w") as stream:
-        stream.write("\n".join(comments) + "\n")
-        stream.write(f"# Part B of examples/mca_porous_zirconia/run_study.py: the automata of the line "
-                     f"above, those porous_{tag}.yaml removes made gel, the ceramic within 1.05 d of "
-                     "them lining\n")
-        stream.write("id,x,y,radius,material\n")
-        stream.write("".join(",".join(row) + "\n" for row in rows))
+    write_sample(path, comments, "Part B of examples/mca_porous_zirconia/run_study.py: the automata of the line "
+                 f"above, those porous_{tag}.yaml removes made gel, the ceramic within 1.05 d of them lining",
+                 rows)
     return len(gel), lining
 
 

@@ -56,7 +56,7 @@ FAILURE_LEVEL, SMOOTH = 0.25, 10
 
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tools"))
-from study_run import export_sample, run_case  # noqa: E402
+from study_run import export_sample, run_case, write_sample  # noqa: E402
 
 
 # ---- Part B's sample: the particles of Part A, from shard's own export ----------------------------
@@ -107,15 +107,10 @@ def part_b_sample(rows, comments, width, path, source):
     if not any(inclusion):
         raise SystemExit(f"{source}: the exported sample has no tic automaton")
     graded = interphase_layout(sites, inclusion, AUTOMATON, width * 1e-6)
-    with open(path, "w") as stream:
-        stream.write("\n".join(comments) + "\n")
-        stream.write(f"# Part B of examples/mca_tic_nicr_bending/run_study.py: the automata of the line "
-                     f"above, the binder within the {width:g} um transition zone given graded materials "
-                     "ipNN (binder share NN %)\n")
-        stream.write("id,x,y,radius,material\n")
-        for i, row in enumerate(rows):
-            material = level_name(graded[i]) if i in graded else row[4]
-            stream.write(",".join(row[:4] + [material]) + "\n")
+    write_sample(path, comments, "Part B of examples/mca_tic_nicr_bending/run_study.py: the automata of the line "
+                 f"above, the binder within the {width:g} um transition zone given graded materials ipNN "
+                 "(binder share NN %)",
+                 [row[:4] + [level_name(graded[i]) if i in graded else row[4]] for i, row in enumerate(rows)])
     return graded
 
 

@@ -228,6 +228,9 @@ void CohesiveInterfaces::book_increment(CohesiveElements& c, std::size_t p, doub
 void CohesiveInterfaces::close_open_element(Model& model, std::size_t e, Work& work) {
   CohesiveElements& c = model.cohesive;
   const int k = c.nodes_per_face;
+  bool bearing = false;  // an element opened earlier has nothing left to book: no geometry needed
+  for (int q = 0; q < k; ++q) bearing = bearing || c.traction[3 * (k * e + q)] != 0 || c.traction[3 * (k * e + q) + 1] != 0;
+  if (!bearing) return;
   const MidSurface surface = mid_surface(model, &node_a_[k * e], &node_b_[k * e], k);
   for (int q = 0; q < k; ++q) {
     const std::size_t p = k * e + q;
