@@ -247,7 +247,7 @@ KeyList wall_keys() {
   k.quantity("friction", dim::none, "Coulomb coefficient (static)").at_least(0).defaults_to("0");
   k.quantity("dynamic_friction", dim::none, "sliding coefficient").at_least(0).defaults_to("friction");
   k.add("velocity", ValueKind::section, "wall velocity per component: {y: -1 m/s} or time tables");
-  k.add("parts", ValueKind::list, "the parts it acts on (default: all)").defaults_to("all");
+  k.add("parts", ValueKind::list, "the mesh parts it acts on (default: all); particles meet every wall").defaults_to("all");
   return k;
 }
 

@@ -4,7 +4,8 @@
 // + 9 faces: 120 points between plies, 16 under the carriage), interface elements opening to the
 // contact, the energy balance within 1 %, the
 // same history and frames for one and two threads and across a restart, and crash.csv's absorbed energy equal to
-// ∫ F ds of the history's raw columns (1 %). Theory: docs/theory/composite_damage.md,
+// ∫ F ds of the history's raw columns (1 %); debris kept in a plane-strain slice by walls on
+// its symmetry faces. Theory: docs/theory/composite_damage.md,
 // docs/theory/cohesive_interfaces.md, docs/outputs.md.
 #include <gtest/gtest.h>
 
@@ -14,6 +15,7 @@
 #include <fstream>
 
 #include "support/cli.hpp"
+#include "support/scenario_run.hpp"
 
 namespace shard {
 namespace {
@@ -99,6 +101,44 @@ TEST(CompositeScenarios, LaminateCrushWithInterfacesAndCrashOutputs) {
   std::printf("[laminate] crash impulse (scaled): %.6e N s from 0.1 us rows, %.6e N s from 0.5 us rows\n", fine_impulse,
               coarse_impulse);
   EXPECT_NEAR(coarse_impulse, fine_impulse, 2e-3 * fine_impulse);
+  std::filesystem::remove_all(dir);
+}
+
+// The slice's mesh faces are held in z; the debris is not. Without the rate term the tip converts
+// to particles within 20 µs (examples/cfrp_wedge_crush/README.md); two frictionless walls on the
+// symmetry faces keep every particle centre in the slice, and without them some leave it.
+TEST(CompositeScenarios, FaceWallsKeepTheDebrisInThePlaneStrainSlice) {
+  const auto dir = testing::fresh_dir("laminate_debris");
+  std::filesystem::copy_file(std::filesystem::path(kScenario).parent_path() / "small_wedge.msh", dir / "small_wedge.msh");
+  std::string text = testing::read_file(kScenario);
+  const auto replace = [&](const std::string& from, const std::string& to) {
+    ASSERT_NE(text.find(from), std::string::npos) << from;
+    text.replace(text.find(from), from.size(), to);
+  };
+  replace("rate_coefficient: 4.7", "rate_coefficient: 0");
+  replace("end_time: 30 us", "end_time: 40 us");
+  { std::ofstream(dir / "free.yaml") << text; }
+  replace("particle_contact:", "  - {name: back_face, point: [0, 0, 0], normal: [0, 0, 1], parts: [carriage]}\n"
+                               "  - {name: front_face, point: [0, 0, 0.27 mm], normal: [0, 0, -1], parts: [carriage]}\n"
+                               "particle_contact:");
+  { std::ofstream(dir / "faces.yaml") << text; }
+  const auto furthest_out = [](const std::filesystem::path& file, std::size_t& count) {
+    testing::ScenarioRun run(file.string());
+    while (!run.solver->finished()) run.step();
+    const ParticlePart& debris = run.sim.model.particle_parts.at(0);
+    double out = 0;  // how far a centre is beyond a face (m)
+    for (std::size_t i = 0; i < debris.mass.size(); ++i)
+      out = std::max({out, -debris.x[3 * i + 2], debris.x[3 * i + 2] - 0.27e-3});
+    count = debris.mass.size();
+    return out;
+  };
+  std::size_t with_faces = 0, without = 0;
+  const double out_with = furthest_out(dir / "faces.yaml", with_faces), out_without = furthest_out(dir / "free.yaml", without);
+  std::printf("[laminate] debris at 40 us: %zu particles, furthest centre %.3f mm out of the slice with the face walls; "
+              "%zu particles, %.3f mm out without\n", with_faces, 1e3 * out_with, without, 1e3 * out_without);
+  EXPECT_GT(with_faces, 40u);
+  EXPECT_EQ(out_with, 0.0);
+  EXPECT_GT(out_without, 0.02e-3);
   std::filesystem::remove_all(dir);
 }
 
