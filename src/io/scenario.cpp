@@ -601,6 +601,8 @@ class ScenarioReader {
       if (spec.name == "model" || spec.name == "erosion") continue;
       if (spec.kind == ValueKind::number) {
         if (s.has(spec.name) || spec.default_text) mat.values.numbers[spec.name] = s.number(spec.name);
+      } else if (spec.kind == ValueKind::choice) {
+        if (const auto c = s.choice(spec.name)) mat.values.texts[spec.name] = *c;
       } else if (s.has(spec.name)) {
         mat.values.texts[spec.name] = s.text(spec.name);
       }

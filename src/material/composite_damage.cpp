@@ -89,7 +89,7 @@ std::array<std::array<double, 5>, 6> coupling_matrix(const std::string& name) {
   if (name == "d5_without_r5") return kCouplingD5WithoutR5;
   if (name == "model_3") return kCouplingModel3;
   if (name == "model_4") return kCouplingModel4;
-  throw std::invalid_argument("coupling: expected eq12, d5_without_r5, model_3 or model_4, not '" + name + "'");
+  throw ParameterError("coupling", "expected eq12, d5_without_r5, model_3 or model_4, not '" + name + "'");
 }
 
 std::array<std::array<double, 3>, 3> OrthotropicConstants::normal_compliance() const {

@@ -416,7 +416,7 @@ TEST(CompositeDamage, CouplingVariantsOfThePaperSpareTheModuliTheyName) {
     EXPECT_EQ(model4_out[i], 0.0) << "d" << i + 1;
   }
   EXPECT_GT(model4_out[3], 0.9);  // φ5 still damages G12 (d4)
-  EXPECT_THROW(coupling_matrix("model_5"), std::invalid_argument);
+  EXPECT_THROW(coupling_matrix("model_5"), ParameterError);
 }
 
 // ---------------------------------------------------------------------------------------------
