@@ -17,8 +17,9 @@ namespace {
 // criterion) and the particles' ring length; 5 the cohesive elements; 6 their open flag and
 // the crash force's running mean; 7 the automata's many-body share, the running means of the
 // history's force columns, the node groups' reactions and work, and the pending half step of the
-// contact dashpots' work; 8 the stored energy of each element part.
-constexpr char kMagic[8] = {'S', 'H', 'A', 'R', 'D', 'C', 'K', '8'};
+// contact dashpots' work; 8 the stored energy of each element part;
+// 9 the elements' reference shape (adaptive remeshing).
+constexpr char kMagic[8] = {'S', 'H', 'A', 'R', 'D', 'C', 'K', '9'};
 
 /// Scalars of SolverState and OutputCursor in one fixed order, for both directions.
 template <class F>

@@ -44,6 +44,7 @@
 #include <vector>
 
 #include "core/error.hpp"
+#include "core/gmsh_session.hpp"
 #include "core/text.hpp"
 
 namespace shard {
@@ -90,59 +91,6 @@ bool from_gmsh_type(int gmsh_type, CellType& type) {
 [[noreturn]] void fail(const fs::path& file, const std::string& reason) {
   throw InputError(file.string(), 0, "mesh", reason);
 }
-
-// Gmsh keeps global state and is not reentrant: one import at a time in the whole process.
-std::mutex& gmsh_mutex() {
-  static std::mutex mutex;
-  return mutex;
-}
-
-// Initialises Gmsh for one import and finalises it on every exit path, so options, models and the
-// logger never carry over from one call to the next.
-class GmshSession {
- public:
-  explicit GmshSession(bool quiet) {
-    // Gmsh 4.8 calls setlocale(LC_ALL, "") (keeping LC_NUMERIC "C"); put the process's locale
-    // back afterwards so importing a mesh changes nothing outside this call.
-    if (const char* locale = std::setlocale(LC_ALL, nullptr)) saved_locale_ = locale;
-    // Gmsh also sets the process's OpenMP thread count to its General.NumThreads (1 by default):
-    // the run's count is put back afterwards, or every run with a mesh would go on one thread.
-#ifdef _OPENMP
-    saved_threads_ = omp_get_max_threads();
-#endif
-    // Gmsh parses argv like its command line; only the program name, and no gmshrc or
-    // gmsh-options files, so a user's Gmsh configuration cannot change what shard reads.
-    static char program[] = "shard";
-    char* argv[] = {program, nullptr};
-    gmsh::initialize(1, argv, false);
-    gmsh::option::setNumber("General.Terminal", quiet ? 0 : 1);
-    // The API sets AbortOnError = 2 (throw on error), but Gmsh 4.8 meshes surfaces inside an
-    // OpenMP parallel region and an exception cannot leave one: a failed surface mesh would call
-    // std::terminate. With 0, errors are only logged, and call_gmsh turns the log into an
-    // InputError.
-    gmsh::option::setNumber("General.AbortOnError", 0);
-    gmsh::logger::start();
-  }
-  ~GmshSession() {
-    try {
-      gmsh::logger::stop();
-      gmsh::finalize();
-    } catch (...) {
-      // Nothing sensible to report from a destructor; the import itself already succeeded or
-      // is already throwing.
-    }
-    if (!saved_locale_.empty()) std::setlocale(LC_ALL, saved_locale_.c_str());
-#ifdef _OPENMP
-    omp_set_num_threads(saved_threads_);
-#endif
-  }
-  GmshSession(const GmshSession&) = delete;
-  GmshSession& operator=(const GmshSession&) = delete;
-
- private:
-  std::string saved_locale_;
-  int saved_threads_ = 1;
-};
 
 // Gmsh 4.8 crashes on some malformed .msh files (fuzz_mesh found an element naming a node the
 // $Nodes section does not hold): a .msh file is first opened in a child process, and if Gmsh dies
@@ -196,22 +144,10 @@ void check_gmsh_survives(const fs::path& file) {
                    "$Elements sections disagree); write it again from Gmsh");
 }
 
-// Error lines Gmsh logged since the session started, without their "Error: " prefix.
-std::vector<std::string> logged_errors() {
-  std::vector<std::string> log;
-  gmsh::logger::get(log);
-  std::vector<std::string> errors;
-  const std::string prefix = "Error: ";
-  for (const std::string& line : log) {
-    if (line.rfind(prefix, 0) == 0) errors.push_back(line.substr(prefix.size()));
-  }
-  return errors;
-}
-
 // Runs a Gmsh call and fails with Gmsh's own error text if it logged errors (AbortOnError = 0) or
 // threw (Gmsh 4.8 throws its last error as a std::string where it still throws).
 template <class Call>
-void call_gmsh(const fs::path& file, const std::string& what, Call&& call) {
+void call_gmsh(const GmshSession& session, const fs::path& file, const std::string& what, Call&& call) {
   std::string thrown;
   bool threw = false;
   try {
@@ -227,7 +163,7 @@ void call_gmsh(const fs::path& file, const std::string& what, Call&& call) {
     thrown = std::string("the file's sizes are not possible (") + error.what() + ")";
     threw = true;
   }
-  std::vector<std::string> errors = logged_errors();
+  std::vector<std::string> errors = session.logged_errors();
   if (threw && !thrown.empty() &&
       std::find(errors.begin(), errors.end(), thrown) == errors.end()) {
     errors.push_back(thrown);
@@ -569,7 +505,7 @@ void refuse_oversized_mesh(const fs::path& file, const GmshOptions& options, int
 }
 
 // A geometry file (.geo, CAD) without a mesh of this dimension is meshed here.
-void mesh_if_needed(const fs::path& file, const GmshOptions& options, int mesh_dim) {
+void mesh_if_needed(const GmshSession& session, const fs::path& file, const GmshOptions& options, int mesh_dim) {
   if (lower_extension(file) == ".msh") return;
   std::vector<int> existing;
   gmsh::model::mesh::getElementTypes(existing, mesh_dim, -1);
@@ -581,7 +517,7 @@ void mesh_if_needed(const fs::path& file, const GmshOptions& options, int mesh_d
     gmsh::option::setNumber("Mesh.MeshSizeMax", options.mesh_size);
     gmsh::option::setNumber("Mesh.MeshSizeMin", 0);
   }
-  call_gmsh(file, "mesh '" + file.string() + "' in " + std::to_string(mesh_dim) + "D",
+  call_gmsh(session, file, "mesh '" + file.string() + "' in " + std::to_string(mesh_dim) + "D",
             [&] { gmsh::model::mesh::generate(mesh_dim); });
 }
 
@@ -757,10 +693,10 @@ MeshData load_gmsh_mesh(const fs::path& file, const GmshOptions& options) {
   std::lock_guard lock(gmsh_mutex());
   GmshSession session(options.quiet);
   check_gmsh_survives(file);
-  call_gmsh(file, "read '" + file.string() + "'", [&] { gmsh::open(file.string()); });
+  call_gmsh(session, file, "read '" + file.string() + "'", [&] { gmsh::open(file.string()); });
   int mesh_dim = 0;
   const gmsh::vectorpair physical = physical_groups(file, options, mesh_dim);
-  mesh_if_needed(file, options, mesh_dim);
+  mesh_if_needed(session, file, options, mesh_dim);
 
   std::vector<RawGroup> raw_groups;
   raw_groups.reserve(physical.size());

@@ -88,6 +88,12 @@ class CompositeDamage final : public Material {
   int failure_state_index() const override { return p_.erosion == CompositeErosion::none ? -1 : failed; }
   int stored_energy_index() const override { return energy_density; }
   int material_axes_index() const override { return axis1_x; }
+  /// The material axes come from the nearest old point (a mean of directions is no direction).
+  std::vector<Transfer> state_transfer() const override {
+    std::vector<Transfer> rule(state_size());
+    for (int k = 0; k < 6; ++k) rule[static_cast<std::size_t>(axis1_x + k)].rule = Transfer::nearest;
+    return rule;
+  }
   void update(MaterialPointBatch& batch) const override;
 
   const CompositeDamageParameters& parameters_in_use() const { return p_; }

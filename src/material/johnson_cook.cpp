@@ -65,6 +65,23 @@ double JohnsonCook::eos_pressure(double vol, double energy) const {
   return cold + coefficient * energy;
 }
 
+void JohnsonCook::after_transfer(MaterialPointBatch& batch) const {
+  for (std::size_t q = 0; q < batch.count; ++q) {
+    double* s = batch.stress + kTensorSize * q;
+    const double* hs = batch.state + slot_count * q;
+    const double mean = (s[xx] + s[yy] + s[zz]) / 3.0;
+    double dev[kTensorSize];
+    for (int k = 0; k < kTensorSize; ++k) dev[k] = s[k] - (k < 3 ? mean : 0.0);
+    const double j2 = 0.5 * (dev[xx] * dev[xx] + dev[yy] * dev[yy] + dev[zz] * dev[zz]) +
+                      dev[xy] * dev[xy] + dev[yz] * dev[yz] + dev[zx] * dev[zx];
+    const double equivalent = std::sqrt(3.0 * j2);
+    const double yield = flow_stress(hs[plastic_strain], hs[plastic_strain_rate], batch.temperature[q]);
+    if (!(equivalent > yield)) continue;
+    const double scale = yield / equivalent;
+    for (int k = 0; k < kTensorSize; ++k) s[k] = scale * dev[k] + (k < 3 ? mean : 0.0);
+  }
+}
+
 void JohnsonCook::update(MaterialPointBatch& batch) const {
   const double G = p_.moduli.shear;
   const double two_g = 2.0 * G, three_g = 3.0 * G;

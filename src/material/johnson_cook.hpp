@@ -48,6 +48,16 @@ class JohnsonCook final : public Material {
   std::vector<std::string> state_names() const override;
   int failure_state_index() const override { return p_.damage ? damage : -1; }
   void update(MaterialPointBatch& batch) const override;
+  /// A carried stress outside the yield surface of its carried plastic strain is returned to it
+  /// radially (at fixed strain: no plastic work is booked; the remesh measures the energy).
+  void after_transfer(MaterialPointBatch& batch) const override;
+  std::vector<Transfer> state_transfer() const override {
+    std::vector<Transfer> rule(slot_count);
+    rule[plastic_strain].min = rule[plastic_strain_rate].min = rule[damage].min = 0.0;
+    rule[damage].max = 1.0;
+    return rule;
+  }
+  int inelastic_strain_index() const override { return plastic_strain; }
 
   const JohnsonCookParameters& parameters_in_use() const { return p_; }
 

@@ -5,7 +5,9 @@
 // control and plane stress). Nothing more: the element kernels own kinematics and rotation.
 #pragma once
 
+#include <cstdint>
 #include <functional>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
@@ -96,6 +98,27 @@ class Material {
   virtual int material_axes_index() const { return -1; }
   /// σ_n+1 from σ_n and the strain increment, for every point of the batch.
   virtual void update(MaterialPointBatch& batch) const = 0;
+
+  /// How each history variable follows a remesh (src/adapt/remesh.hpp), which carries the state
+  /// of the old integration points to new ones: interpolated like the stress (and kept within the
+  /// range of the old values it is made of), or taken from the old point nearest to the new one
+  /// (a direction, a flag, anything a weighted mean would make meaningless).
+  /// An interpolated variable is then clipped to [min, max] (least squares can overshoot near a
+  /// peak: a damage must stay within 0 … 1, a plastic strain above 0).
+  struct Transfer {
+    enum Rule : std::uint8_t { interpolate, nearest } rule = interpolate;
+    double min = -std::numeric_limits<double>::infinity();
+    double max = std::numeric_limits<double>::infinity();
+  };
+  virtual std::vector<Transfer> state_transfer() const { return std::vector<Transfer>(state_size()); }
+  /// After a remesh carried stress and state to new points: makes each point of the batch
+  /// consistent again (a stress on the yield surface, quantities that depend on the element's
+  /// size), with no strain increment (strain_increment may be null). Energies it changes are not
+  /// booked here: the remesh measures the stored energy before and after. Nothing by default.
+  virtual void after_transfer(MaterialPointBatch& batch) const { (void)batch; }
+  /// The history variable that holds the equivalent inelastic (plastic or cracking) strain, for
+  /// mesh sizes read from a table of it (−1: none).
+  virtual int inelastic_strain_index() const { return -1; }
 
   double density() const { return density_; }
   /// Dilatational (P-wave) speed sqrt((K + 4G/3)/ρ), for the stable time step.

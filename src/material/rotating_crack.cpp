@@ -366,6 +366,48 @@ void RotatingCrack::update(MaterialPointBatch& batch) const {
   }
 }
 
+std::vector<Material::Transfer> RotatingCrack::state_transfer() const {
+  std::vector<Transfer> rule(slot_count);
+  for (const int slot : {crack_normal_x, crack_normal_y, crack_normal_z, crack_angle, band_width})
+    rule[slot].rule = Transfer::nearest;
+  for (const int slot : {max_crack_strain, failure_factor, nonlocal_failure_factor, energy_density, point_volume})
+    rule[slot].min = 0.0;
+  return rule;
+}
+
+// A remesh carries the failure factor F = κ/ε_c(h) (the fraction of the softening branch used);
+// the crack band takes the new element's size h' and κ = F ε_c(h'), so that a crack keeps its
+// place on the softening curve and what it has dissipated (booked already) is not changed. Ψ is
+// measured again from the carried stress, with each open crack on its secant.
+void RotatingCrack::after_transfer(MaterialPointBatch& batch) const {
+  const double two_g = 2.0 * p_.moduli.shear, nu_ratio = p_.moduli.lame() / (3.0 * p_.moduli.bulk);
+  for (std::size_t q = 0; q < batch.count; ++q) {
+    double* s = batch.stress + kTensorSize * q;
+    double* hs = batch.state + slot_count * q;
+    const double h = batch.characteristic_length ? batch.characteristic_length[q] : hs[band_width];
+    const double F = hs[failure_factor];
+    const double tr = s[xx] + s[yy] + s[zz];
+    const double ss = s[xx] * s[xx] + s[yy] * s[yy] + s[zz] * s[zz] + 2.0 * (s[xy] * s[xy] + s[yz] * s[yz] + s[zx] * s[zx]);
+    double energy = (ss - nu_ratio * tr * tr) / (2.0 * two_g);
+    if (F > 0.0 && h > 0.0) {
+      const double end = critical_crack_strain(h);
+      const Curve curve{p_.softening, p_.tensile_strength, end, end / std::log(1.0 / kExponentialEnd)};
+      hs[band_width] = h;
+      hs[max_crack_strain] = F * end;
+      double sv[3], sd[3][3];
+      principal(s, sv, sd);
+      const double k = curve.secant(hs[max_crack_strain]);
+      for (const double v : sv)
+        if (v > 0.0) energy += 0.5 * v * v / k;
+    } else {
+      hs[max_crack_strain] = 0.0;
+      hs[failure_factor] = 0.0;
+    }
+    hs[energy_density] = energy;
+    hs[point_volume] = batch.volume[q];
+  }
+}
+
 KeyList RotatingCrack::parameters() {
   KeyList keys = LinearElastic::parameters();
   keys.quantity("tensile_strength", dim::pressure, "f_t: the major principal stress at which a crack opens")

@@ -57,6 +57,9 @@ class RotatingCrack final : public Material, public NonlocalAveraging {
   int failure_state_index() const override { return -1; }
   std::optional<FailureMapSlots> failure_map_slots() const override;
   void update(MaterialPointBatch& batch) const override;
+  std::vector<Transfer> state_transfer() const override;
+  void after_transfer(MaterialPointBatch& batch) const override;
+  int inelastic_strain_index() const override { return max_crack_strain; }
   NonlocalSpec nonlocal_spec() const override {
     return {p_.nonlocal_length, failure_factor, nonlocal_failure_factor};
   }

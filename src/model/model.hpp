@@ -51,9 +51,9 @@ struct NodeArrays {
   void visit_fields(F&& f) {
     const auto d = dim;
     f(field("id", Location::node, 1, Follow::stable_id), id);
-    f(field("x0", Location::node, d), x0);
-    f(field("x", Location::node, d), x);
-    f(field("v", Location::node, d), v);
+    f(field("x0", Location::node, d, Follow::interpolate), x0);
+    f(field("x", Location::node, d, Follow::interpolate), x);
+    f(field("v", Location::node, d, Follow::interpolate), v);
     f(field("force", Location::node, d, Follow::share), force);
     f(field("mass", Location::node, 1, Follow::share), mass);
     f(field("origin", Location::node, 1), origin);
@@ -121,6 +121,10 @@ struct Part {
   /// The characteristic length of each element at its first step (0: not yet measured), for the
   /// distortion criterion of the erosion rule.
   std::vector<double> reference_length;
+  /// Per element of a remeshed part of triangles, the shape its distortion is measured against
+  /// (area and three corner angles at its birth or the last remesh; src/adapt/planar_mesh.hpp);
+  /// empty when the part is not remeshed. A new element measures its own.
+  std::vector<double> shape_reference;
 
   std::size_t element_count() const { return connectivity.size() / static_cast<std::size_t>(type->nodes); }
   std::size_t point_count() const { return element_count() * static_cast<std::size_t>(type->points); }
@@ -133,15 +137,16 @@ struct Part {
     f(field("connectivity", Location::element, type->nodes, Follow::node_index), connectivity);
     f(field("colour", Location::element, 1), colour);
     f(field("colour_begin", Location::model, 0), colour_begin);
-    f(field("stress", Location::element, kTensorSize * points), stress);
-    f(field("strain", Location::element, kTensorSize * points), strain);
-    f(field("state", Location::element, state_size * points), state);
-    f(field("temperature", Location::element, points), temperature);
+    f(field("stress", Location::element, kTensorSize * points, Follow::interpolate), stress);
+    f(field("strain", Location::element, kTensorSize * points, Follow::interpolate), strain);
+    f(field("state", Location::element, state_size * points, Follow::interpolate), state);
+    f(field("temperature", Location::element, points, Follow::interpolate), temperature);
     f(field("volume", Location::element, 1), volume);
-    f(field("bulk_viscosity", Location::element, 1), bulk_viscosity);
+    f(field("bulk_viscosity", Location::element, 1, Follow::interpolate), bulk_viscosity);
     f(field("kernel_state", Location::element, type->kernel_state), kernel_state);
     f(field("eroded", Location::element, 1), eroded);
-    f(field("reference_length", Location::element, 1), reference_length);
+    f(field("reference_length", Location::element, 1, Follow::fresh), reference_length);
+    f(field("shape_reference", Location::element, 0, Follow::fresh), shape_reference);
   }
 };
 

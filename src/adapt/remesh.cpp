@@ -1,0 +1,817 @@
+#include "adapt/remesh.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <numeric>
+#include <set>
+#include <unordered_map>
+
+#include "adapt/planar_mesh.hpp"
+#include "fem/internal_forces.hpp"
+
+namespace shard {
+
+namespace {
+
+/// Shifts of the crack lips apart, as fractions of the adjacent segments, tried in turn with the
+/// algorithms (Gmsh cannot mesh two coincident lips): a failed mesh is tried again further apart
+/// and with the other algorithm.
+struct Attempt {
+  MeshAlgorithm algorithm;
+  double shift;
+};
+
+/// A point of the new boundary: an old node that stays (node ≥ 0), or a new one on the old
+/// segment a → b at a + t (b − a). `segment` is an old boundary segment whose facet sets the new
+/// segment that starts here has.
+struct BoundaryPoint {
+  std::int32_t node = -1;
+  std::int32_t a = -1, b = -1;
+  double t = 0;
+  std::pair<std::int32_t, std::int32_t> segment{-1, -1};
+};
+
+/// A mesh whose smallest angle is at least this is taken at once; otherwise the other attempts
+/// are made and the best kept.
+constexpr double kAcceptedAngle = 10.0 * M_PI / 180.0;
+
+std::uint64_t pair_key(std::int32_t a, std::int32_t b) {
+  if (a > b) std::swap(a, b);
+  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) | static_cast<std::uint32_t>(b);
+}
+
+/// What the old part is: its bodies and their boundary loops, what each node carries (node sets,
+/// prescribed motion) and which boundary segments carry facet sets.
+struct OldPart {
+  std::vector<std::vector<std::int32_t>> bodies;
+  std::vector<BoundaryLoop> loops;
+  std::vector<std::int32_t> loop_body;
+  std::vector<std::int32_t> body_of_node;         ///< −1: not the part's
+  std::vector<char> on_boundary;
+  std::vector<std::vector<std::int32_t>> sets_of;  ///< per node, the node sets it is in
+  std::unordered_map<std::uint64_t, std::vector<std::int32_t>> facet_sets_of;  ///< per segment
+  std::vector<char> area_set;  ///< per node set: it holds interior nodes of the part
+};
+
+OldPart read_old_part(const Model& model, std::size_t p) {
+  const Part& part = model.parts[p];
+  OldPart old;
+  old.bodies = bodies_of(part);
+  const std::size_t nn = model.nodes.count();
+  old.body_of_node.assign(nn, -1);
+  old.on_boundary.assign(nn, 0);
+  for (std::size_t b = 0; b < old.bodies.size(); ++b) {
+    for (const std::int32_t e : old.bodies[b])
+      for (int k = 0; k < 3; ++k) old.body_of_node[part.connectivity[3 * e + k]] = static_cast<std::int32_t>(b);
+    for (BoundaryLoop& loop : boundary_loops(part, old.bodies[b], model.nodes)) {
+      for (const std::int32_t n : loop.nodes) old.on_boundary[n] = 1;
+      old.loops.push_back(std::move(loop));
+      old.loop_body.push_back(static_cast<std::int32_t>(b));
+    }
+  }
+  old.sets_of.resize(nn);
+  old.area_set.assign(model.node_sets.size(), 0);
+  for (std::size_t s = 0; s < model.node_sets.size(); ++s)
+    for (const std::int32_t n : model.node_sets[s].nodes) {
+      old.sets_of[n].push_back(static_cast<std::int32_t>(s));
+      if (old.body_of_node[n] >= 0 && !old.on_boundary[n]) old.area_set[s] = 1;
+    }
+  for (std::size_t f = 0; f < model.facet_sets.size(); ++f) {
+    const FacetSet& set = model.facet_sets[f];
+    if (set.nodes_per_facet != 2) continue;
+    for (std::size_t k = 0; k < set.facet_count(); ++k)
+      old.facet_sets_of[pair_key(set.nodes[2 * k], set.nodes[2 * k + 1])].push_back(static_cast<std::int32_t>(f));
+  }
+  return old;
+}
+
+bool same_labels(const Model& model, const OldPart& old, std::int32_t a, std::int32_t b) {
+  const int dim = model.dim();
+  for (int k = 0; k < dim; ++k)
+    if (model.nodes.prescribed[dim * a + k] != model.nodes.prescribed[dim * b + k]) return false;
+  return old.sets_of[a] == old.sets_of[b];
+}
+
+const std::vector<std::int32_t>& facet_sets_at(const OldPart& old, std::int32_t a, std::int32_t b) {
+  static const std::vector<std::int32_t> none;
+  const auto it = old.facet_sets_of.find(pair_key(a, b));
+  return it == old.facet_sets_of.end() ? none : it->second;
+}
+
+/// The signed angle the boundary turns by at q, coming from p and going to r.
+double turning(const double* p, const double* q, const double* r) {
+  const double ux = q[0] - p[0], uy = q[1] - p[1], vx = r[0] - q[0], vy = r[1] - q[1];
+  return std::atan2(ux * vy - uy * vx, ux * vx + uy * vy);
+}
+
+/// The nodes of a loop that the new boundary must keep: crack faces, corners, pinches, probes,
+/// and where node sets, prescribed motion or facet sets change.
+std::vector<char> fixed_points(const Model& model, const OldPart& old, const BoundaryLoop& loop,
+                               const std::vector<char>& crack_face, const std::set<std::int32_t>& kept,
+                               const std::vector<int>& visits, double feature_angle) {
+  const std::size_t n = loop.nodes.size();
+  std::vector<char> fixed(n, 0);
+  const double* X = model.nodes.x.data();
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::int32_t p = loop.nodes[(i + n - 1) % n], q = loop.nodes[i], r = loop.nodes[(i + 1) % n];
+    fixed[i] = crack_face[q] || kept.count(q) || visits[q] > 1 ||
+               std::abs(turning(&X[2 * p], &X[2 * q], &X[2 * r])) > feature_angle || !same_labels(model, old, p, q) ||
+               !same_labels(model, old, q, r) || facet_sets_at(old, p, q) != facet_sets_at(old, q, r);
+  }
+  if (std::find(fixed.begin(), fixed.end(), 1) == fixed.end()) {
+    fixed[0] = 1;
+    fixed[n / 2] = 1;
+  }
+  return fixed;
+}
+
+/// The distance of point x from the chord a–b.
+double chord_distance(const double* a, const double* b, const double* x) {
+  const double ex = b[0] - a[0], ey = b[1] - a[1], len = std::hypot(ex, ey);
+  return len > 0 ? std::abs(ex * (x[1] - a[1]) - ey * (x[0] - a[0])) / len : std::hypot(x[0] - a[0], x[1] - a[1]);
+}
+
+/// New points on the old segment a → b where the size field asks for more: equal steps of
+/// ∫ ds/h with h linear along it.
+void subdivide(const double* X, const std::vector<double>& size, std::int32_t a, std::int32_t b,
+               std::vector<BoundaryPoint>& out) {
+  const double L = std::hypot(X[2 * b] - X[2 * a], X[2 * b + 1] - X[2 * a + 1]);
+  const double ha = size[a], hb = size[b];
+  if (!(ha > 0 && hb > 0)) return;
+  const double dh = hb - ha;
+  const double total = std::abs(dh) > 1e-12 * ha ? L * std::log(hb / ha) / dh : L / ha;
+  const long pieces = std::lround(total);
+  for (long k = 1; k < pieces; ++k) {
+    const double frac = static_cast<double>(k) / static_cast<double>(pieces);
+    const double t = std::abs(dh) > 1e-12 * ha ? ha / dh * (std::pow(hb / ha, frac) - 1.0) : frac;
+    BoundaryPoint bp;
+    bp.a = a;
+    bp.b = b;
+    bp.t = t;
+    bp.segment = {a, b};
+    out.push_back(bp);
+  }
+}
+
+/// The new boundary of one loop: the fixed nodes, the old nodes between them that the size
+/// field does not let go, and new points on the old segments it wants finer.
+std::vector<BoundaryPoint> resample_loop(const Model& model, const BoundaryLoop& loop, const std::vector<char>& fixed,
+                                         const std::vector<char>& crack_face, const std::vector<double>& size,
+                                         double chord_tolerance) {
+  const double* X = model.nodes.x.data();
+  const std::size_t n = loop.nodes.size();
+  std::size_t start = 0;
+  while (!fixed[start]) ++start;
+  std::vector<BoundaryPoint> out;
+  std::size_t i = start;
+  do {
+    // The run from fixed node i to the next fixed one.
+    std::size_t j = (i + 1) % n;
+    while (!fixed[j]) j = (j + 1) % n;
+    std::vector<std::int32_t> run{loop.nodes[i]};
+    for (std::size_t k = (i + 1) % n; k != j; k = (k + 1) % n) run.push_back(loop.nodes[k]);
+    run.push_back(loop.nodes[j]);
+    // Coarsen: drop a node when the chord from the last kept one past it stays within the size
+    // and the dropped nodes stay near the chord.
+    std::vector<std::size_t> keep{0};
+    for (std::size_t k = 1; k + 1 < run.size(); ++k) {
+      const std::int32_t from = run[keep.back()], to = run[k + 1];
+      const double chord = std::hypot(X[2 * to] - X[2 * from], X[2 * to + 1] - X[2 * from + 1]);
+      bool droppable = chord <= 1.2 * std::min(size[from], size[to]);
+      for (std::size_t m = keep.back() + 1; m <= k && droppable; ++m)
+        droppable = chord_distance(&X[2 * from], &X[2 * to], &X[2 * run[m]]) <= chord_tolerance * chord;
+      if (!droppable) keep.push_back(k);
+    }
+    keep.push_back(run.size() - 1);
+    for (std::size_t k = 0; k + 1 < keep.size(); ++k) {
+      const std::int32_t a = run[keep[k]], b = run[keep[k + 1]];
+      BoundaryPoint kept_point;
+      kept_point.node = a;
+      kept_point.segment = {run[keep[k]], run[keep[k] + 1]};
+      out.push_back(kept_point);
+      // Only an old segment is refined (a chord is within the size already); a crack's lips stay
+      // as they are, so that they stay paired node for node.
+      if (keep[k + 1] == keep[k] + 1 && !crack_face[a] && !crack_face[b]) subdivide(X, size, a, b, out);
+    }
+    i = j;
+  } while (i != start);
+  return out;
+}
+
+/// The domain for Gmsh: the new boundary of every loop, the old interior nodes that must stay
+/// (embedded), with the crack lips moved apart by `shift` of their adjacent segments.
+struct Domain {
+  PlanarDomain planar;
+  std::vector<BoundaryPoint> points;        ///< per domain point
+  std::vector<std::int32_t> loop_body;      ///< per domain loop
+  std::vector<std::vector<std::int32_t>> loop_points;
+};
+
+void point_position(const double* X, const BoundaryPoint& bp, double* out) {
+  for (int d = 0; d < 2; ++d)
+    out[d] = bp.node >= 0 ? X[2 * bp.node + d] : (1.0 - bp.t) * X[2 * bp.a + d] + bp.t * X[2 * bp.b + d];
+}
+
+void shift_lips(const std::vector<char>& crack_face, Domain& dom, double shift) {
+  std::vector<double> moved = dom.planar.xy;
+  for (const auto& loop : dom.loop_points) {
+    const std::size_t n = loop.size();
+    for (std::size_t i = 0; i < n; ++i) {
+      const BoundaryPoint& bp = dom.points[loop[i]];
+      if (bp.node < 0 || !crack_face[bp.node]) continue;
+      const double* p = &dom.planar.xy[2 * loop[(i + n - 1) % n]];
+      const double* q = &dom.planar.xy[2 * loop[i]];
+      const double* r = &dom.planar.xy[2 * loop[(i + 1) % n]];
+      const double l1 = std::hypot(q[0] - p[0], q[1] - p[1]), l2 = std::hypot(r[0] - q[0], r[1] - q[1]);
+      // The body is on the left of the loop: the inward normals of the two segments.
+      double nx = -(q[1] - p[1]) / l1 - (r[1] - q[1]) / l2, ny = (q[0] - p[0]) / l1 + (r[0] - q[0]) / l2;
+      const double len = std::hypot(nx, ny);
+      if (!(len > 0)) continue;
+      moved[2 * loop[i]] += shift * std::min(l1, l2) * nx / len;
+      moved[2 * loop[i] + 1] += shift * std::min(l1, l2) * ny / len;
+    }
+  }
+  dom.planar.xy = std::move(moved);
+}
+
+/// Old interior nodes that carry a label (node set, prescribed motion) a neighbour does not, or
+/// that a probe follows: they stay, as points embedded in the new mesh.
+std::vector<std::int32_t> embedded_nodes(const Model& model, const Part& part, const OldPart& old,
+                                         const std::set<std::int32_t>& kept) {
+  std::vector<char> embed(model.nodes.count(), 0);
+  for (std::size_t e = 0; e < part.element_count(); ++e)
+    for (int k = 0; k < 3; ++k) {
+      const std::int32_t a = part.connectivity[3 * e + k], b = part.connectivity[3 * e + (k + 1) % 3];
+      if (old.body_of_node[a] < 0) continue;
+      if (!same_labels(model, old, a, b)) {
+        if (!old.on_boundary[a]) embed[a] = 1;
+        if (!old.on_boundary[b]) embed[b] = 1;
+      }
+    }
+  std::vector<std::int32_t> out;
+  for (std::size_t n = 0; n < embed.size(); ++n)
+    if (old.body_of_node[n] >= 0 && !old.on_boundary[n] && (embed[n] || kept.count(static_cast<std::int32_t>(n))))
+      out.push_back(static_cast<std::int32_t>(n));
+  return out;
+}
+
+Domain build_domain(const Model& model, const Part& part, const OldPart& old, const std::vector<char>& crack_face,
+                    const std::set<std::int32_t>& kept, const std::vector<double>& size, const RemeshSettings& s) {
+  Domain dom;
+  std::vector<int> visits(model.nodes.count(), 0);
+  for (const BoundaryLoop& loop : old.loops)
+    for (const std::int32_t n : loop.nodes) visits[n]++;
+  // One domain point per kept old node (a pinch node is one point in both its loops).
+  std::unordered_map<std::int32_t, std::int32_t> point_of_node;
+  auto add_point = [&](const BoundaryPoint& bp) {
+    if (bp.node >= 0)
+      if (const auto it = point_of_node.find(bp.node); it != point_of_node.end()) return it->second;
+    const std::int32_t index = static_cast<std::int32_t>(dom.points.size());
+    dom.points.push_back(bp);
+    double x[2];
+    point_position(model.nodes.x.data(), bp, x);
+    dom.planar.xy.push_back(x[0]);
+    dom.planar.xy.push_back(x[1]);
+    if (bp.node >= 0) point_of_node.emplace(bp.node, index);
+    return index;
+  };
+  for (std::size_t l = 0; l < old.loops.size(); ++l) {
+    const auto fixed = fixed_points(model, old, old.loops[l], crack_face, kept, visits, s.feature_angle);
+    std::vector<std::int32_t> loop;
+    for (const BoundaryPoint& bp : resample_loop(model, old.loops[l], fixed, crack_face, size, s.chord_tolerance))
+      loop.push_back(add_point(bp));
+    dom.planar.loops.push_back(loop);
+    dom.loop_points.push_back(loop);
+    dom.loop_body.push_back(old.loop_body[l]);
+  }
+  for (const std::int32_t n : embedded_nodes(model, part, old, kept)) {
+    BoundaryPoint bp;
+    bp.node = n;
+    dom.planar.embedded.push_back(add_point(bp));
+  }
+  return dom;
+}
+
+/// The positions the new mesh's nodes will have: the domain's points where they really are
+/// (not shifted), Gmsh's interior nodes where Gmsh put them.
+std::vector<double> final_positions(const Model& model, const Domain& dom, const Triangulation& mesh) {
+  std::vector<double> xy = mesh.xy;
+  for (std::size_t i = 0; i < dom.points.size(); ++i) point_position(model.nodes.x.data(), dom.points[i], &xy[2 * i]);
+  return xy;
+}
+
+/// Meshes the domain, trying the lips further apart and the other algorithms when Gmsh fails or
+/// a triangle turns over once the lips are put back. Returns the first good mesh (empty and the
+/// reason if none).
+Triangulation mesh_domain(const Model& model, const std::vector<char>& crack_face, const Domain& dom,
+                          const SizeField& field, const RemeshSettings& s, RemeshOutcome& outcome) {
+  const MeshAlgorithm first = s.algorithm;
+  const MeshAlgorithm other = first == MeshAlgorithm::delaunay ? MeshAlgorithm::frontal_delaunay : MeshAlgorithm::delaunay;
+  const Attempt attempts[] = {{first, 1e-3}, {other, 1e-3}, {first, 1e-2}, {other, 1e-2}, {MeshAlgorithm::mesh_adapt, 3e-2}};
+  auto size = [&field](double x, double y) {
+    const double p[2] = {x, y};
+    return field.at(p);
+  };
+  Triangulation best;
+  best.failure = "no attempt";
+  std::string reasons;
+  for (const Attempt& a : attempts) {
+    ++outcome.attempts;
+    Domain shifted = dom;
+    shift_lips(crack_face, shifted, a.shift);
+    Triangulation mesh = triangulate(shifted.planar, size, a.algorithm);
+    if (mesh.ok()) {
+      const std::vector<double> xy = final_positions(model, dom, mesh);
+      double smallest = M_PI;
+      for (std::size_t t = 0; t < mesh.triangles.size() / 3 && mesh.ok(); ++t) {
+        const std::int32_t* c = &mesh.triangles[3 * t];
+        if (!(twice_area(&xy[2 * c[0]], &xy[2 * c[1]], &xy[2 * c[2]]) > 0))
+          mesh.failure = "a triangle at a crack lip turns over when the lips are put back";
+        for (const double angle : triangle_angles(&xy[2 * c[0]], &xy[2 * c[1]], &xy[2 * c[2]]))
+          smallest = std::min(smallest, angle);
+      }
+      mesh.min_angle = smallest;
+      mesh.xy = xy;
+    }
+    if (mesh.ok() && mesh.min_angle >= kAcceptedAngle) {
+      outcome.algorithm = a.algorithm;
+      return mesh;
+    }
+    if (mesh.ok() && (!best.ok() || mesh.min_angle > best.min_angle)) {
+      best = std::move(mesh);
+      outcome.algorithm = a.algorithm;
+      continue;
+    }
+    reasons += (reasons.empty() ? "" : "; ") + std::string(name_of(a.algorithm)) + ": " + mesh.failure;
+  }
+  if (!best.ok()) best.failure = reasons;
+  return best;
+}
+
+}  // namespace
+
+double stored_energy(const Part& part, const Material& material, const NodeArrays& nodes, Formulation formulation,
+                     double thickness) {
+  const int index = material.stored_energy_index();
+  const ElasticModuli moduli = material.elastic();
+  const std::size_t npts = static_cast<std::size_t>(part.type->points), size = static_cast<std::size_t>(part.state_size);
+  double total = 0;
+  for (std::size_t e = 0; e < part.element_count(); ++e) {
+    if (!part.eroded.empty() && part.eroded[e]) continue;
+    const double volume = std::abs(element_measure(part, nodes, e, formulation, thickness)) / static_cast<double>(npts);
+    for (std::size_t q = 0; q < npts; ++q) {
+      const std::size_t point = npts * e + q;
+      total += (index >= 0 ? part.state[size * point + static_cast<std::size_t>(index)]
+                           : moduli.energy_density(&part.stress[kTensorSize * point])) *
+               volume;
+    }
+  }
+  return total;
+}
+
+}  // namespace shard
+
+namespace shard {
+
+namespace {
+
+/// A node the new mesh adds, with the old nodes it is made of.
+struct BornNode {
+  std::array<std::int32_t, 3> parent{-1, -1, -1};
+  std::array<double, 3> weight{0, 0, 0};
+  int parents = 0;
+  double x[2] = {0, 0};
+  bool boundary = false;  ///< on the new boundary, between parent[0] and parent[1]
+  std::int32_t body = -1;
+};
+
+/// The new mesh in old terms: per Gmsh node its node after the first remap (an old index, or
+/// old count + k for the k-th born node), the born nodes, each new triangle's body and parents.
+struct NewMesh {
+  std::vector<std::int32_t> node;
+  std::vector<BornNode> born;
+  std::vector<std::int32_t> body;  ///< per new triangle
+  WeightedParents elements;        ///< per new triangle, old elements of the part
+  std::vector<std::int32_t> holder;  ///< per new triangle, the old element that holds its centroid
+};
+
+/// The old triangles of one body, to locate in.
+std::vector<std::int32_t> body_triangles(const Part& part, const std::vector<std::int32_t>& elements) {
+  std::vector<std::int32_t> t;
+  t.reserve(3 * elements.size());
+  for (const std::int32_t e : elements)
+    for (int k = 0; k < 3; ++k) t.push_back(part.connectivity[3 * e + k]);
+  return t;
+}
+
+NewMesh map_new_mesh(const Model& model, const Part& part, const OldPart& old, const Domain& dom,
+                     const Triangulation& mesh, PointTransfer method) {
+  NewMesh nm;
+  const std::int32_t nn = static_cast<std::int32_t>(model.nodes.count());
+  const std::size_t n_mesh = mesh.xy.size() / 2, n_tri = mesh.triangles.size() / 3;
+  nm.body.resize(n_tri);
+  std::vector<std::int32_t> body_of_mesh_node(n_mesh, -1);
+  for (std::size_t t = 0; t < n_tri; ++t) {
+    nm.body[t] = dom.loop_body[mesh.outer_loop[t]];
+    for (int k = 0; k < 3; ++k) body_of_mesh_node[mesh.triangles[3 * t + k]] = nm.body[t];
+  }
+  std::vector<TriangleLocator> locators;
+  for (const auto& elements : old.bodies) locators.emplace_back(model.nodes.x, body_triangles(part, elements));
+  nm.node.assign(n_mesh, -1);
+  for (std::size_t i = 0; i < n_mesh; ++i) {
+    if (body_of_mesh_node[i] < 0) continue;  // a domain point no triangle uses
+    BornNode born;
+    born.body = body_of_mesh_node[i];
+    born.x[0] = mesh.xy[2 * i];
+    born.x[1] = mesh.xy[2 * i + 1];
+    if (i < dom.points.size()) {
+      const BoundaryPoint& bp = dom.points[i];
+      if (bp.node >= 0) {
+        nm.node[i] = bp.node;
+        continue;
+      }
+      born.boundary = true;
+      born.parents = 2;
+      born.parent = {bp.a, bp.b, -1};
+      born.weight = {1.0 - bp.t, bp.t, 0.0};
+    } else {
+      const TriangleLocator& loc = locators[born.body];
+      const TriangleLocator::Hit hit = loc.locate(born.x);
+      born.parents = 3;
+      for (int k = 0; k < 3; ++k) {
+        born.parent[k] = loc.corners(hit.triangle)[k];
+        born.weight[k] = hit.weight[k];
+      }
+    }
+    nm.node[i] = nn + static_cast<std::int32_t>(nm.born.size());
+    nm.born.push_back(born);
+  }
+  // Integration points, body by body: the new triangles' centroids among the old ones.
+  std::vector<std::vector<std::int32_t>> of_body(old.bodies.size());
+  for (std::size_t t = 0; t < n_tri; ++t) of_body[nm.body[t]].push_back(static_cast<std::int32_t>(t));
+  std::vector<WeightedParents> per_body(old.bodies.size());
+  for (std::size_t b = 0; b < old.bodies.size(); ++b) {
+    std::vector<double> centroids;
+    for (const std::int32_t t : of_body[b])
+      for (int d = 0; d < 2; ++d) {
+        double c = 0;
+        for (int k = 0; k < 3; ++k) c += mesh.xy[2 * mesh.triangles[3 * t + k] + d];
+        centroids.push_back(c / 3.0);
+      }
+    per_body[b] = point_parents(locators[b], centroids, method);
+  }
+  std::vector<std::size_t> next(old.bodies.size(), 0);
+  nm.holder.resize(n_tri);
+  for (std::size_t t = 0; t < n_tri; ++t) {
+    const std::size_t b = static_cast<std::size_t>(nm.body[t]);
+    const WeightedParents& wp = per_body[b];
+    const std::size_t i = next[b]++;
+    for (std::int32_t q = wp.begin[i]; q < wp.begin[i + 1]; ++q) nm.elements.add(old.bodies[b][wp.index[q]], wp.weight[q]);
+    nm.elements.close();
+    nm.holder[t] = old.bodies[b][wp.holder[i]];
+  }
+  return nm;
+}
+
+/// The first of the two remaps: the born nodes appended (every old node stays for now, so the
+/// old indices the fix-ups use still hold), the part's elements replaced by the new ones, whose
+/// corners are then set.
+Remap first_remap(const Model& model, std::size_t p, const Triangulation& mesh, const NewMesh& nm) {
+  Remap r;
+  EntityRemap nodes = EntityRemap::identity(model.nodes.count());
+  nodes.parent_begin.assign(nodes.new_count() + 1, 0);
+  for (const BornNode& b : nm.born) {
+    nodes.source.push_back(-1);
+    nodes.born.push_back(1);
+    for (int k = 0; k < b.parents; ++k) {
+      nodes.parents.push_back(b.parent[k]);
+      nodes.parent_weight.push_back(b.weight[k]);
+    }
+    nodes.parent_begin.push_back(static_cast<std::int32_t>(nodes.parents.size()));
+  }
+  r.nodes = std::move(nodes);
+  EntityRemap elements;
+  elements.old_count = model.parts[p].element_count();
+  const std::size_t n_tri = mesh.triangles.size() / 3;
+  elements.source.assign(n_tri, -1);
+  elements.born.assign(n_tri, 1);
+  elements.parent_begin = nm.elements.begin;
+  elements.parents = nm.elements.index;
+  elements.parent_weight = nm.elements.weight;
+  r.elements.emplace(static_cast<int>(p), std::move(elements));
+  for (std::size_t t = 0; t < n_tri; ++t)
+    for (int k = 0; k < 3; ++k)
+      r.corners.push_back(CornerMove{static_cast<std::int32_t>(p), static_cast<std::int32_t>(t), k,
+                                     nm.node[mesh.triangles[3 * t + k]]});
+  return r;
+}
+
+}  // namespace
+
+}  // namespace shard
+
+namespace shard {
+
+namespace {
+
+/// What the remap's rules cannot give the born nodes, set while their parents still have their
+/// old indices: exact positions, their own lineage, prescribed motion and node sets shared by
+/// all their parents (on the boundary: both ends of the old segment; inside: the three corners,
+/// for sets that cover an area), and on the boundary the contact history of their segment.
+void fix_born_nodes(Model& model, const OldPart& old, const NewMesh& nm, std::size_t old_count) {
+  NodeArrays& nodes = model.nodes;
+  const int dim = model.dim();
+  ContactState& contact = model.contact;
+  std::vector<std::vector<std::int32_t>> joins(model.node_sets.size());
+  for (std::size_t k = 0; k < nm.born.size(); ++k) {
+    const BornNode& b = nm.born[k];
+    const std::size_t n = old_count + k;
+    for (int d = 0; d < dim; ++d) nodes.x[dim * n + d] = b.x[d];
+    nodes.origin[n] = nodes.id[n];
+    for (int d = 0; d < dim; ++d) {
+      std::int32_t common = nodes.prescribed[dim * b.parent[0] + d];
+      for (int q = 1; q < b.parents; ++q)
+        if (nodes.prescribed[dim * b.parent[q] + d] != common) common = -1;
+      nodes.prescribed[dim * n + d] = common;
+    }
+    for (const std::int32_t s : old.sets_of[b.parent[0]]) {
+      if (!b.boundary && !old.area_set[s]) continue;
+      bool all = true;
+      for (int q = 1; q < b.parents; ++q) {
+        const auto& sets = old.sets_of[b.parent[q]];
+        all = all && std::binary_search(sets.begin(), sets.end(), s);
+      }
+      if (all) joins[s].push_back(static_cast<std::int32_t>(n));
+    }
+    if (!b.boundary) continue;
+    const std::int32_t a = b.parent[0], c = b.parent[1];
+    const double wa = b.weight[0], wc = b.weight[1];
+    if (n < contact.touching.size()) contact.touching[n] = contact.touching[a] && contact.touching[c];
+    auto blend = [&](std::vector<double>& field) {
+      if (field.empty()) return;
+      const std::size_t comps = field.size() / nodes.count();
+      for (std::size_t q = 0; q < comps; ++q) field[comps * n + q] = wa * field[comps * a + q] + wc * field[comps * c + q];
+    };
+    blend(contact.penetration_offset);
+    blend(contact.loaded_gap);
+    blend(contact.tangential);
+    blend(contact.wall_tangential);
+  }
+  for (std::size_t s = 0; s < joins.size(); ++s) {
+    auto& members = model.node_sets[s].nodes;
+    members.insert(members.end(), joins[s].begin(), joins[s].end());
+    std::sort(members.begin(), members.end());
+  }
+}
+
+/// The facets of the new boundary that lie on old facets of a set join it, owned by the new
+/// element they bound (`position` gives each new triangle's index in the part after the remap).
+void rebuild_facets(Model& model, std::size_t p, const OldPart& old, const Domain& dom, const Triangulation& mesh,
+                    const NewMesh& nm, const std::vector<std::int32_t>& position) {
+  std::unordered_map<std::uint64_t, std::pair<std::int32_t, std::int8_t>> owner;  // directed edge → (triangle, corner)
+  for (std::size_t t = 0; t < mesh.triangles.size() / 3; ++t)
+    for (int k = 0; k < 3; ++k) {
+      const std::int32_t a = mesh.triangles[3 * t + k], b = mesh.triangles[3 * t + (k + 1) % 3];
+      owner[(static_cast<std::uint64_t>(a) << 32) | static_cast<std::uint32_t>(b)] = {static_cast<std::int32_t>(t),
+                                                                                    static_cast<std::int8_t>(k)};
+    }
+  for (const auto& loop : dom.loop_points)
+    for (std::size_t i = 0; i < loop.size(); ++i) {
+      const std::int32_t a = loop[i], b = loop[(i + 1) % loop.size()];
+      const auto seg = dom.points[a].segment;
+      if (seg.first < 0) continue;
+      const auto& sets = facet_sets_at(old, seg.first, seg.second);
+      if (sets.empty()) continue;
+      const auto it = owner.find((static_cast<std::uint64_t>(a) << 32) | static_cast<std::uint32_t>(b));
+      if (it == owner.end()) continue;
+      const auto [t, corner] = it->second;
+      for (const std::int32_t f : sets) {
+        FacetSet& set = model.facet_sets[f];
+        set.nodes.push_back(nm.node[a]);
+        set.nodes.push_back(nm.node[b]);
+        if (set.owner_part.size() + 1 == set.facet_count()) {
+          set.owner_part.push_back(static_cast<std::int32_t>(p));
+          set.owner_element.push_back(position[t]);
+          set.owner_corner.push_back(corner);
+          set.owner_corner.push_back(static_cast<std::int8_t>((corner + 1) % 3));
+        }
+      }
+    }
+}
+
+/// Per body of the old part: mass and linear momentum of its nodes, and the body each node is in.
+struct BodySums {
+  std::vector<double> mass;
+  std::vector<std::array<double, 2>> momentum;
+};
+
+BodySums body_sums(const Model& model, const std::vector<std::int32_t>& body_of_node, std::size_t bodies) {
+  BodySums s{std::vector<double>(bodies, 0.0), std::vector<std::array<double, 2>>(bodies, {0.0, 0.0})};
+  for (std::size_t n = 0; n < body_of_node.size(); ++n) {
+    const std::int32_t b = body_of_node[n];
+    if (b < 0) continue;
+    s.mass[b] += model.nodes.mass[n];
+    for (int d = 0; d < 2; ++d) s.momentum[b][d] += model.nodes.mass[n] * model.nodes.v[2 * n + d];
+  }
+  return s;
+}
+
+double kinetic_energy(const Model& model, const std::vector<std::int32_t>& body_of_node) {
+  double k = 0;
+  for (std::size_t n = 0; n < body_of_node.size(); ++n)
+    if (body_of_node[n] >= 0)
+      k += 0.5 * model.nodes.mass[n] * (model.nodes.v[2 * n] * model.nodes.v[2 * n] + model.nodes.v[2 * n + 1] * model.nodes.v[2 * n + 1]);
+  return k;
+}
+
+/// Lumped masses of the new mesh, scaled per body to the old body's mass, and the velocities of
+/// the free components shifted per body so its linear momentum is the old one.
+void restore_mass_and_momentum(Model& model, std::size_t p, const Material& material,
+                               const std::vector<std::int32_t>& body_of_node, const BodySums& before) {
+  NodeArrays& nodes = model.nodes;
+  for (std::size_t n = 0; n < body_of_node.size(); ++n)
+    if (body_of_node[n] >= 0) nodes.mass[n] = 0.0;
+  add_lumped_masses(model.parts[p], nodes, material.density(), model.formulation, model.thickness, nodes.mass);
+  const BodySums now = body_sums(model, body_of_node, before.mass.size());
+  std::vector<std::array<double, 2>> free_mass(before.mass.size(), {0.0, 0.0});
+  for (std::size_t n = 0; n < body_of_node.size(); ++n) {
+    const std::int32_t b = body_of_node[n];
+    if (b < 0) continue;
+    if (now.mass[b] > 0) nodes.mass[n] *= before.mass[b] / now.mass[b];
+    for (int d = 0; d < 2; ++d)
+      if (nodes.prescribed[2 * n + d] < 0) free_mass[b][d] += nodes.mass[n];
+  }
+  const BodySums scaled = body_sums(model, body_of_node, before.mass.size());
+  for (std::size_t n = 0; n < body_of_node.size(); ++n) {
+    const std::int32_t b = body_of_node[n];
+    if (b < 0) continue;
+    for (int d = 0; d < 2; ++d)
+      if (nodes.prescribed[2 * n + d] < 0 && free_mass[b][d] > 0)
+        nodes.v[2 * n + d] += (before.momentum[b][d] - scaled.momentum[b][d]) / free_mass[b][d];
+  }
+}
+
+/// The part's new points: size, reference shape, the state that comes from the nearest old point,
+/// bounds, and the material's own consistency.
+void finish_points(Model& model, std::size_t p, const Material& material, const std::vector<double>& holder_state,
+                   const std::vector<std::int32_t>& position) {
+  Part& part = model.parts[p];
+  const std::size_t ne = part.element_count(), size = static_cast<std::size_t>(part.state_size);
+  std::vector<double> length(ne);
+  for (std::size_t e = 0; e < ne; ++e) {
+    part.volume[e] = element_measure(part, model.nodes, e, model.formulation, model.thickness);
+    const double* a = &model.nodes.x[2 * part.connectivity[3 * e]];
+    const double* b = &model.nodes.x[2 * part.connectivity[3 * e + 1]];
+    const double* c = &model.nodes.x[2 * part.connectivity[3 * e + 2]];
+    length[e] = std::sqrt(std::abs(twice_area(a, b, c)));
+  }
+  measure_reference_shape(part, model.nodes, part.shape_reference);
+  const auto rules = material.state_transfer();
+  for (std::size_t t = 0; t < position.size() && size > 0; ++t) {
+    double* state = &part.state[size * position[t]];
+    for (std::size_t k = 0; k < size; ++k) {
+      if (rules[k].rule == Material::Transfer::nearest) state[k] = holder_state[size * t + k];
+      state[k] = std::clamp(state[k], rules[k].min, rules[k].max);
+    }
+  }
+  MaterialPointBatch batch;
+  batch.count = ne;
+  batch.stress = part.stress.data();
+  batch.state = part.state.data();
+  batch.temperature = part.temperature.data();
+  batch.volume = part.volume.data();
+  batch.characteristic_length = length.data();
+  material.after_transfer(batch);
+}
+
+double part_area(const Part& part, const NodeArrays& nodes) {
+  double a = 0;
+  for (std::size_t e = 0; e < part.element_count(); ++e)
+    a += 0.5 * twice_area(&nodes.x[2 * part.connectivity[3 * e]], &nodes.x[2 * part.connectivity[3 * e + 1]],
+                          &nodes.x[2 * part.connectivity[3 * e + 2]]);
+  return a;
+}
+
+}  // namespace
+
+}  // namespace shard
+
+namespace shard {
+
+namespace {
+
+/// Each element's index in the part, by its stable id (a topology change may reorder them).
+std::vector<std::int32_t> positions_of(const Part& part, std::int64_t first_id, std::size_t count) {
+  std::vector<std::int32_t> position(count, -1);
+  for (std::size_t e = 0; e < part.element_count(); ++e) {
+    const std::int64_t t = part.id[e] - first_id;
+    if (t >= 0 && t < static_cast<std::int64_t>(count)) position[static_cast<std::size_t>(t)] = static_cast<std::int32_t>(e);
+  }
+  return position;
+}
+
+std::string refusal(const Model& model, std::size_t p) {
+  const Part& part = model.parts[p];
+  if (!part.type->is_triangle()) return "only parts of triangles are remeshed";
+  for (const auto flag : part.eroded)
+    if (flag) return "elements eroded in this step are still in the part";
+  if (part.element_count() == 0) return "the part has no elements";
+  std::vector<char> mine(model.nodes.count(), 0);
+  for (const auto n : part.connectivity) mine[n] = 1;
+  for (std::size_t q = 0; q < model.parts.size(); ++q)
+    if (q != p)
+      for (const auto n : model.parts[q].connectivity)
+        if (mine[n]) return "it shares nodes with part '" + model.parts[q].name + "'";
+  if (model.cohesive.element_count() > 0) return "the model has cohesive interfaces";
+  return {};
+}
+
+}  // namespace
+
+RemeshOutcome remesh_part(Model& model, std::size_t p, const Material& material, const RemeshSettings& s,
+                          const std::vector<std::int64_t>& kept_nodes) {
+  RemeshOutcome out;
+  out.skipped = refusal(model, p);
+  if (!out.skipped.empty()) return out;
+  const OldPart old = read_old_part(model, p);
+  const std::vector<char> crack_face = model.crack_face_nodes();
+  std::set<std::int32_t> kept;
+  {
+    std::set<std::int64_t> ids(kept_nodes.begin(), kept_nodes.end());
+    for (std::size_t n = 0; n < model.nodes.count(); ++n)
+      if (old.body_of_node[n] >= 0 && ids.count(model.nodes.id[n])) kept.insert(static_cast<std::int32_t>(n));
+  }
+  Part& part = model.parts[p];
+  std::vector<std::int32_t> elements;
+  for (const auto& body : old.bodies) elements.insert(elements.end(), body.begin(), body.end());
+  std::sort(elements.begin(), elements.end());
+  const ElementSizes sizes = element_target_sizes(part, elements, model.nodes, material, model.formulation, s.size);
+  const std::vector<double> nodal = nodal_sizes(part, elements, model.nodes, sizes, s.size, model.formulation);
+  const TriangleLocator old_mesh(model.nodes.x, body_triangles(part, elements));
+  const SizeField field(old_mesh, nodal);
+  const Domain dom = build_domain(model, part, old, crack_face, kept, nodal, s);
+  const Triangulation mesh = mesh_domain(model, crack_face, dom, field, s, out);
+  if (!mesh.ok()) {
+    out.skipped = "Gmsh could not mesh the part's new boundary (" + mesh.failure + ")";
+    return out;
+  }
+  // The state before, and what the new mesh is made of.
+  const std::size_t nn = model.nodes.count();
+  const BodySums before = body_sums(model, old.body_of_node, old.bodies.size());
+  out.bodies = old.bodies.size();
+  out.elements_before = part.element_count();
+  out.area_before = part_area(part, model.nodes);
+  out.kinetic_before = kinetic_energy(model, old.body_of_node);
+  out.stored_before = stored_energy(part, material, model.nodes, model.formulation, model.thickness);
+  for (std::size_t b = 0; b < out.bodies; ++b) {
+    out.mass_before += before.mass[b];
+    for (int d = 0; d < 2; ++d) out.momentum_before[d] += before.momentum[b][d];
+  }
+  for (std::size_t n = 0; n < nn; ++n) out.nodes_before += old.body_of_node[n] >= 0;
+  const NewMesh nm = map_new_mesh(model, part, old, dom, mesh, s.transfer);
+  const std::size_t size = static_cast<std::size_t>(part.state_size), n_tri = mesh.triangles.size() / 3;
+  std::vector<double> holder_state(size * n_tri);
+  for (std::size_t t = 0; t < n_tri && size > 0; ++t)
+    std::copy_n(&part.state[size * nm.holder[t]], size, &holder_state[size * t]);
+
+  // Remap one: born nodes appended, the part's elements replaced.
+  const std::int64_t first_id = model.next_element_id;
+  apply_remap(model, first_remap(model, p, mesh, nm));
+  fix_born_nodes(model, old, nm, nn);
+  rebuild_facets(model, p, old, dom, mesh, nm, positions_of(model.parts[p], first_id, n_tri));
+  // Remap two: the old nodes the new mesh does not use leave.
+  std::vector<std::uint8_t> keep(model.nodes.count(), 1);
+  for (std::size_t n = 0; n < nn; ++n) keep[n] = old.body_of_node[n] < 0;
+  for (const std::int32_t n : nm.node)
+    if (n >= 0) keep[n] = 1;
+  Remap second;
+  second.nodes = EntityRemap::keeping(keep);
+  const std::vector<std::int32_t> new_of_old = second.nodes->new_of_old();
+  apply_remap(model, second);
+  colour_elements(model, p);
+
+  std::vector<std::int32_t> body_of_node(model.nodes.count(), -1);
+  for (std::size_t n = 0; n < nn; ++n)
+    if (new_of_old[n] >= 0) body_of_node[new_of_old[n]] = old.body_of_node[n];
+  for (std::size_t k = 0; k < nm.born.size(); ++k) body_of_node[new_of_old[nn + k]] = nm.born[k].body;
+  restore_mass_and_momentum(model, p, material, body_of_node, before);
+  finish_points(model, p, material, holder_state, positions_of(model.parts[p], first_id, n_tri));
+
+  const BodySums after = body_sums(model, body_of_node, old.bodies.size());
+  const Part& now = model.parts[p];
+  out.remeshed = true;
+  out.elements_after = now.element_count();
+  for (const std::int32_t b : body_of_node) out.nodes_after += b >= 0;
+  out.area_after = part_area(now, model.nodes);
+  out.kinetic_after = kinetic_energy(model, body_of_node);
+  out.stored_after = stored_energy(now, material, model.nodes, model.formulation, model.thickness);
+  for (std::size_t b = 0; b < out.bodies; ++b) {
+    out.mass_after += after.mass[b];
+    for (int d = 0; d < 2; ++d) out.momentum_after[d] += after.momentum[b][d];
+  }
+  out.min_angle = mesh.min_angle;
+  return out;
+}
+
+}  // namespace shard

@@ -1,0 +1,66 @@
+// A remesh of one part of triangles: the largest topology change there is. The part's current
+// boundary (crack lips included) is resampled to the size field and meshed again by Gmsh, and
+// every field of the old mesh is carried to the new one through the remap
+// (src/model/remap.hpp): velocities and reference positions by barycentric weights,
+// integration-point state by moving least squares (src/adapt/transfer.hpp). What the remap's
+// generic rules cannot know is then set here: positions, crack lineage, prescribed motion and
+// node sets on the new boundary, facet sets, contact history, lumped masses restored per body,
+// linear momentum restored per body, and each material's own consistency (after_transfer).
+// Theory and the rules: docs/theory/adaptive_remeshing.md.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "adapt/size_field.hpp"
+#include "adapt/transfer.hpp"
+#include "adapt/triangulate.hpp"
+#include "material/material.hpp"
+#include "model/model.hpp"
+#include "model/remap.hpp"
+
+namespace shard {
+
+struct RemeshSettings {
+  SizeRule size;
+  PointTransfer transfer = PointTransfer::least_squares;
+  MeshAlgorithm algorithm = MeshAlgorithm::frontal_delaunay;
+  /// A boundary node where the boundary turns by more than this (radians) is kept as a corner.
+  double feature_angle = 0.5235987755982988;  // 30°
+  /// A boundary node is dropped (coarsening) only if the nodes dropped between two kept ones lie
+  /// within this fraction of the chord from it (keeps the area of curved boundaries).
+  double chord_tolerance = 0.002;
+};
+
+/// What a remesh did (or why it did not).
+struct RemeshOutcome {
+  bool remeshed = false;
+  std::string skipped;  ///< why the part was left as it was (remeshed false)
+  std::size_t elements_before = 0, elements_after = 0, nodes_before = 0, nodes_after = 0;
+  std::size_t bodies = 0;
+  double area_before = 0, area_after = 0;      ///< of the part (m²)
+  double mass_before = 0, mass_after = 0;      ///< of the part's nodes (kg)
+  std::array<double, 2> momentum_before{0, 0}, momentum_after{0, 0};
+  double kinetic_before = 0, kinetic_after = 0;  ///< ½ m v² of the part's nodes at the half step
+  double stored_before = 0, stored_after = 0;    ///< Σ ψ V of its points
+  double min_angle = 0;                          ///< smallest corner angle of the new mesh (rad)
+  MeshAlgorithm algorithm = MeshAlgorithm::frontal_delaunay;  ///< the one that succeeded
+  int attempts = 0;
+};
+
+/// Remeshes part `part` (triangles; its elements must not be eroded, and it must not share nodes
+/// with another part) and applies the change to every field of the model. Nodes whose ids are in
+/// `kept_nodes` (probes) stay. On success `remap` is the change for the topology listeners (an
+/// empty Remap: everything may have changed); on failure the model is unchanged and the outcome
+/// says why.
+RemeshOutcome remesh_part(Model& model, std::size_t part, const Material& material, const RemeshSettings& settings,
+                          const std::vector<std::int64_t>& kept_nodes);
+
+/// The elastic energy the points of a part store, Σ ψ V (ψ the material's stored energy per unit
+/// volume, or p²/2K + s:s/4G of the stress).
+double stored_energy(const Part& part, const Material& material, const NodeArrays& nodes, Formulation formulation,
+                     double thickness);
+
+}  // namespace shard

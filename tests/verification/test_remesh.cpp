@@ -1,0 +1,208 @@
+// A remesh of a part of triangles (src/adapt/remesh.hpp): what it must keep exactly (mass and
+// linear momentum per body, the area, node and facet sets, crack lips paired node for node, the
+// holes and cracks), the quality of the meshes Gmsh makes, and that the same state remeshes to
+// the same bits.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <numbers>
+#include <set>
+
+#include "adapt/planar_mesh.hpp"
+#include "adapt/remesh.hpp"
+#include "fracture/crack_insertion.hpp"
+#include "fracture/fragments.hpp"
+#include "support/model_runner.hpp"
+
+namespace shard {
+namespace {
+
+constexpr double kRho = 3000, kE = 200e9, kNu = 0.25;
+
+/// A plate L × H of nx × ny cells of triangles, elastic, with lumped masses.
+testing::ElasticRun plate(int nx, int ny, double L, double H, double distortion) {
+  BoxMesh box;
+  box.element = "tri3";
+  box.cells = {nx, ny, 1};
+  box.size = {L, H, 1};
+  box.distortion = distortion;
+  Model model = make_box_model(Formulation::plane_strain, box);
+  model.thickness = 0.01;
+  for (FacetSet& set : model.facet_sets) orient_facets_outward(model, set);
+  testing::ElasticRun run(std::move(model), kRho, kE, kNu);
+  lump_masses(run.model, run.materials);
+  return run;
+}
+
+/// Splits the nodes listed (an edge crack along y = const) as a failure map would.
+void insert_crack(testing::ElasticRun& run, const std::vector<std::int32_t>& nodes) {
+  std::vector<double> factor(run.model.nodes.count(), 0.0), normal(2 * run.model.nodes.count(), 0.0);
+  for (const auto n : nodes) {
+    factor[n] = 1.0;
+    normal[2 * n + 1] = 1.0;
+  }
+  CrackingPart part;
+  part.cracks = true;
+  part.density = kRho;
+  part.moduli = run.materials[0]->elastic();
+  const std::vector<CrackingPart> parts{part};
+  insert_cracks(run.model, parts, factor, normal);
+}
+
+struct Totals {
+  double mass = 0, px = 0, py = 0, p_scale = 0, area = 0;
+};
+
+Totals totals(const Model& model) {
+  Totals t;
+  for (std::size_t i = 0; i < model.nodes.count(); ++i) {
+    const double m = model.nodes.mass[i], *v = &model.nodes.v[2 * i];
+    t.mass += m;
+    t.px += m * v[0];
+    t.py += m * v[1];
+    t.p_scale += m * std::hypot(v[0], v[1]);
+  }
+  const Part& part = model.parts[0];
+  for (std::size_t e = 0; e < part.element_count(); ++e)
+    t.area += 0.5 * twice_area(&model.nodes.x[2 * part.connectivity[3 * e]], &model.nodes.x[2 * part.connectivity[3 * e + 1]],
+                               &model.nodes.x[2 * part.connectivity[3 * e + 2]]);
+  return t;
+}
+
+/// The shape of the part's boundary: outer loops, holes, crack-face nodes, and how many of those
+/// have a sibling (a node of the same origin) at the same place.
+struct Shape {
+  int outer = 0, holes = 0;
+  std::size_t crack_nodes = 0, paired = 0;
+};
+
+Shape shape_of(const Model& model) {
+  Shape s;
+  const Part& part = model.parts[0];
+  for (const auto& body : bodies_of(part))
+    for (const auto& loop : boundary_loops(part, body, model.nodes)) (loop.outer() ? s.outer : s.holes)++;
+  const auto face = model.crack_face_nodes();
+  std::map<std::int64_t, std::vector<std::size_t>> family;
+  for (std::size_t n = 0; n < model.nodes.count(); ++n)
+    if (face[n]) family[model.nodes.origin[n]].push_back(n);
+  for (const auto& [origin, members] : family) {
+    s.crack_nodes += members.size();
+    for (const std::size_t a : members)
+      for (const std::size_t b : members)
+        if (a != b && model.nodes.x[2 * a] == model.nodes.x[2 * b] && model.nodes.x[2 * a + 1] == model.nodes.x[2 * b + 1]) {
+          ++s.paired;
+          break;
+        }
+  }
+  return s;
+}
+
+/// Every node on the line x = at (within tol) is in the set, and every member is on it.
+void expect_set_on_line(const Model& model, const std::string& name, int axis, double at, double tol) {
+  const NodeSet* set = model.find_node_set(name);
+  ASSERT_NE(set, nullptr);
+  std::set<std::int32_t> members(set->nodes.begin(), set->nodes.end());
+  std::vector<char> used(model.nodes.count(), 0);
+  for (const auto n : model.parts[0].connectivity) used[n] = 1;
+  std::size_t on_line = 0;
+  for (std::size_t n = 0; n < model.nodes.count(); ++n) {
+    const bool on = used[n] && std::abs(model.nodes.x[2 * n + axis] - at) < tol;
+    on_line += on;
+    EXPECT_EQ(on, members.count(static_cast<std::int32_t>(n)) == 1) << "node " << n << " and set " << name;
+  }
+  EXPECT_GT(on_line, 2u);
+}
+
+double facet_length(const Model& model, const std::string& name) {
+  const FacetSet* set = model.find_facet_set(name);
+  double L = 0;
+  for (std::size_t f = 0; f < set->facet_count(); ++f) {
+    const double* a = &model.nodes.x[2 * set->nodes[2 * f]];
+    const double* b = &model.nodes.x[2 * set->nodes[2 * f + 1]];
+    L += std::hypot(b[0] - a[0], b[1] - a[1]);
+  }
+  return L;
+}
+
+RemeshSettings uniform(double h) {
+  RemeshSettings s;
+  s.size.measure = SizeMeasure::uniform;
+  s.size.uniform_size = h;
+  s.size.max_refinement = 10;
+  s.size.max_coarsening = 10;
+  return s;
+}
+
+/// A cracked plate in rigid motion and in an arbitrary one, remeshed finer and coarser.
+void check_remesh_keeps_what_it_must(bool rigid, double h) {
+  const int nx = 24, ny = 12;
+  const double L = 0.024, H = 0.012;
+  auto run = plate(nx, ny, L, H, 0.2);
+  Model& model = run.model;
+  // An edge crack along y = 6 mm from the left edge, five nodes deep.
+  std::vector<std::int32_t> crack;
+  for (int i = 0; i < 5; ++i) crack.push_back(6 * (nx + 1) + i);
+  insert_crack(run, crack);
+  for (std::size_t i = 0; i < model.nodes.count(); ++i) {
+    const double x = model.nodes.x[2 * i] - 0.5 * L, y = model.nodes.x[2 * i + 1] - 0.5 * H;
+    model.nodes.v[2 * i] = 40.0 - 2000.0 * y + (rigid ? 0.0 : 3e5 * x * y + 50.0 * std::sin(300.0 * x));
+    model.nodes.v[2 * i + 1] = -15.0 + 2000.0 * x + (rigid ? 0.0 : 2e4 * x * x - 80.0 * std::cos(500.0 * y));
+  }
+  const Totals before = totals(model);
+  const Shape shape_before = shape_of(model);
+  const double xmax_length = facet_length(model, "xmax"), ymin_length = facet_length(model, "ymin");
+  const RemeshOutcome out = remesh_part(model, 0, *run.materials[0], uniform(h), {});
+  ASSERT_TRUE(out.remeshed) << out.skipped;
+  const Totals after = totals(model);
+  const Shape shape_after = shape_of(model);
+  std::printf("[remesh %s, h = %.2f mm] %zu -> %zu elements, min angle %.1f deg; mass %.1e, momentum %.1e %.1e, "
+              "area %.1e; crack nodes %zu -> %zu (paired %zu), holes %d -> %d\n",
+              rigid ? "rigid" : "arbitrary", h * 1e3, out.elements_before, out.elements_after,
+              out.min_angle * 180 / std::numbers::pi, std::abs(after.mass - before.mass) / before.mass,
+              std::abs(after.px - before.px) / before.p_scale, std::abs(after.py - before.py) / before.p_scale,
+              std::abs(after.area - before.area) / before.area, shape_before.crack_nodes, shape_after.crack_nodes,
+              shape_after.paired, shape_before.holes, shape_after.holes);
+  EXPECT_LE(std::abs(after.mass - before.mass), 1e-13 * before.mass);
+  EXPECT_LE(std::abs(after.px - before.px), 1e-13 * before.p_scale);
+  EXPECT_LE(std::abs(after.py - before.py), 1e-13 * before.p_scale);
+  EXPECT_LE(std::abs(after.area - before.area), 1e-5 * before.area);
+  EXPECT_EQ(shape_after.outer, shape_before.outer);
+  EXPECT_EQ(shape_after.holes, shape_before.holes);
+  EXPECT_EQ(shape_after.crack_nodes, shape_before.crack_nodes);
+  EXPECT_EQ(shape_after.paired, shape_before.paired);
+  EXPECT_GT(shape_after.crack_nodes, 0u);
+  EXPECT_NE(out.elements_after, out.elements_before);
+  expect_set_on_line(model, "xmax", 0, L, 1e-12);
+  expect_set_on_line(model, "ymin", 1, 0.0, 1e-12);
+  EXPECT_NEAR(facet_length(model, "xmax"), xmax_length, 1e-12 * L);
+  EXPECT_NEAR(facet_length(model, "ymin"), ymin_length, 1e-12 * L);
+  EXPECT_GE(out.min_angle, 20.0 * std::numbers::pi / 180.0);
+}
+
+TEST(Remesh, CrackedBodyInRigidMotionKeepsMassMomentumAreaSetsAndLips) {
+  check_remesh_keeps_what_it_must(true, 0.6e-3);
+  check_remesh_keeps_what_it_must(true, 1.6e-3);
+}
+
+TEST(Remesh, CrackedBodyInArbitraryMotionKeepsMassMomentumAreaSetsAndLips) {
+  check_remesh_keeps_what_it_must(false, 0.6e-3);
+  check_remesh_keeps_what_it_must(false, 1.6e-3);
+}
+
+TEST(Remesh, TheSameStateRemeshesToTheSameBits) {
+  auto a = plate(16, 8, 0.016, 0.008, 0.25);
+  auto b = plate(16, 8, 0.016, 0.008, 0.25);
+  for (auto* run : {&a, &b})
+    for (std::size_t i = 0; i < run->model.nodes.count(); ++i) run->model.nodes.v[2 * i] = run->model.nodes.x[2 * i + 1];
+  ASSERT_TRUE(remesh_part(a.model, 0, *a.materials[0], uniform(0.45e-3), {}).remeshed);
+  ASSERT_TRUE(remesh_part(b.model, 0, *b.materials[0], uniform(0.45e-3), {}).remeshed);
+  EXPECT_EQ(a.model.nodes.x, b.model.nodes.x);
+  EXPECT_EQ(a.model.nodes.v, b.model.nodes.v);
+  EXPECT_EQ(a.model.nodes.mass, b.model.nodes.mass);
+  EXPECT_EQ(a.model.parts[0].connectivity, b.model.parts[0].connectivity);
+}
+
+}  // namespace
+}  // namespace shard
