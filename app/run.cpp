@@ -300,7 +300,7 @@ class RunDriver {
  public:
   RunDriver(const std::filesystem::path& file, const RunOptions& options)
       : options_(options), p_(prepare(file, options.overrides)), sc_(p_.scenario), sim_(p_.sim), solver_ptr_(make_solver(sim_)),
-        solver_(*solver_ptr_), contact_(solver_.contact()), cracks_(sim_.crack_growth()),
+        solver_(*solver_ptr_), contact_(solver_.contact()), cracks_(sim_.crack_growth()), remesher_(sim_.remeshing()),
         fingerprint_(fingerprint_of(sc_)), dir_(options.output_dir), history_path_(dir_ / "history.csv"),
         dim_(sim_.model.dim()), pvd_(dir_ / "frames.pvd"), probes_(sim_.probes, dir_, dim_),
         progress_(options.quiet, sc_.output.log_interval, sc_.end_time) {
@@ -418,6 +418,12 @@ class RunDriver {
       for (const Part& part : sim_.model.parts) columns.push_back("fragments_" + part.name);
       for (const Part& part : sim_.model.parts) columns.push_back("largest_fragment_" + part.name);
     }
+    // Per remeshed part: how many times it was remeshed and its elements now.
+    if (remesher_)
+      for (const RemeshedPart& r : remesher_->parts()) {
+        columns.push_back("remeshes_" + sim_.model.parts[r.part].name);
+        columns.push_back("elements_" + sim_.model.parts[r.part].name);
+      }
     if (sim_.cohesive) {
       columns.push_back("interface_points_intact");
       columns.push_back("interface_points_failed");
@@ -556,6 +562,7 @@ class RunDriver {
       const bool row = final || due(t, cursor_.next_history, out.history_interval);
       if (row) part_sums_ = part_sums();  // with the velocities the frames show, before they move on
       solver_.advance();
+      take_remesh_notes();
       book_reactions(dt_n);
       if (row) {
         write_history_row(t, step, dt_used);
@@ -608,6 +615,7 @@ class RunDriver {
     }
     std::vector<std::vector<double>> particle_fragment;
     add_fragment_fields(frame, particle_fragment);
+    add_remeshing_fields(frame);
     if (!sim_.model.parts.empty()) {
       write_vtu(dir_ / name, frame, frame_options());
       pvd_.add(t, name);
@@ -622,6 +630,31 @@ class RunDriver {
         particles.point_fields.push_back({"fragment", 1, std::move(particle_fragment[p])});
       write_vtu(dir_ / pname, particles, frame_options());
       particle_pvd_[p].add(t, pname);
+    }
+  }
+
+  /// With remeshing: each element's distortion since it was made and the size the rule asks for
+  /// there (0 in parts not remeshed), from the first frame on.
+  void add_remeshing_fields(VtuGrid& frame) const {
+    if (!remesher_) return;
+    VtuField distortion{"distortion", 1, {}}, size{"target_size", 1, {}};
+    for (std::size_t p = 0; p < sim_.model.parts.size(); ++p) {
+      std::vector<double> d = remesher_->distortion(sim_.model, p), h = remesher_->target_size(sim_.model, p);
+      d.resize(sim_.model.parts[p].element_count(), 0.0);
+      h.resize(sim_.model.parts[p].element_count(), 0.0);
+      distortion.values.insert(distortion.values.end(), d.begin(), d.end());
+      size.values.insert(size.values.end(), h.begin(), h.end());
+    }
+    frame.cell_fields.push_back(std::move(distortion));
+    frame.cell_fields.push_back(std::move(size));
+  }
+
+  /// Remeshes skipped since the last step, to the log and the summary.
+  void take_remesh_notes() {
+    if (!remesher_) return;
+    for (auto& note : remesher_->take_notes()) {
+      notes_.push_back(std::move(note));
+      if (!options_.quiet) std::cerr << "note: " << notes_.back() << "\n";
     }
   }
 
@@ -779,6 +812,11 @@ class RunDriver {
       history_ << ',' << linked;
     }
     if (cracks_) write_fragment_counts();
+    if (remesher_)
+      for (const RemeshedPart& r : remesher_->parts()) {
+        const auto& count = sim_.model.remesh_count;
+        history_ << ',' << (r.part < count.size() ? count[r.part] : 0) << ',' << sim_.model.parts[r.part].element_count();
+      }
     if (sim_.cohesive)
       history_ << ',' << sim_.cohesive->intact_points() << ',' << sim_.cohesive->failed_points() << ','
                << sim_.cohesive->open_elements();
@@ -926,7 +964,7 @@ class RunDriver {
       << ",\n  \"element_steps_per_second\": " << (wall > 0 ? steps * elements / wall : 0.0)
       << ",\n  \"particle_steps_per_second\": "
       << (wall > 0 ? steps * static_cast<double>(particles_) / wall : 0.0)
-      << ",\n  \"eroded_elements\": " << s.eroded_elements
+      << ",\n  \"eroded_elements\": " << s.eroded_elements << remesh_summary()
       << ",\n  \"notes\": [" << notes_json() << "]"
       << crash_summary()
       << ",\n  \"energy_balance_error\": " << s.energy.relative_error() << ",\n  \"energy\": {";
@@ -937,6 +975,23 @@ class RunDriver {
     write_particle_groups(j);
     j << ",\n  \"peak_memory_mb\": " << peak_memory_mb() << "\n}\n";
     write_text_atomically(dir_ / "summary.json", j.str());
+  }
+
+  /// Per remeshed part: its remeshes and the wall-clock time they took (not in the history,
+  /// which must be the same bits on every run).
+  std::string remesh_summary() const {
+    if (!remesher_) return {};
+    std::ostringstream j;
+    j << ",\n  \"remeshing\": {";
+    for (std::size_t i = 0; i < remesher_->parts().size(); ++i) {
+      const std::size_t p = remesher_->parts()[i].part;
+      const auto& count = sim_.model.remesh_count;
+      j << (i ? ", " : "") << json_string(sim_.model.parts[p].name) << ": {\"remeshes\": "
+        << (p < count.size() ? count[p] : 0) << ", \"elements\": " << sim_.model.parts[p].element_count()
+        << ", \"seconds\": " << remesher_->seconds()[i] << "}";
+    }
+    j << "}";
+    return j.str();
   }
 
   /// Where each region of automata started: gauge lengths for strains from its displacement.
@@ -967,6 +1022,7 @@ class RunDriver {
   ExplicitSolver& solver_;
   const ContactSystem* contact_;
   const CrackGrowth* cracks_;
+  RemeshEvent* remesher_ = nullptr;  ///< adaptive remeshing (null without)
   const std::string fingerprint_;
   const std::filesystem::path dir_, history_path_;
   const int dim_;

@@ -30,6 +30,12 @@ std::string shown_path(const std::filesystem::path& file) {
   return full;
 }
 
+RemeshEvent* Simulation::remeshing() {
+  for (auto& e : events)
+    if (auto* r = dynamic_cast<RemeshEvent*>(e.get())) return r;
+  return nullptr;
+}
+
 CrackGrowth* Simulation::crack_growth() {
   for (auto& e : events)
     if (auto* c = dynamic_cast<CrackGrowth*>(e.get())) return c;
@@ -845,6 +851,41 @@ void build_particle_contact(const Scenario& sc, Simulation& sim) {
   sim.particle_contact = std::make_unique<ParticleContact>(std::move(s));
 }
 
+// Adaptive remeshing (remeshing:): each part named must be of triangles, own its nodes, and
+// have no cohesive interface; the probes' nodes stay through every remesh.
+void build_remeshing(const Scenario& sc, Simulation& sim) {
+  if (!sc.remeshing) return;
+  const std::string file = shown_path(sc.file);
+  const Model& model = sim.model;
+  std::vector<RemeshedPart> parts;
+  for (std::size_t i = 0; i < sc.remeshing->parts.size(); ++i) {
+    const RemeshedPartInput& in = sc.remeshing->parts[i];
+    const std::string key = "remeshing.parts[" + std::to_string(i + 1) + "].part";
+    const std::size_t p = static_cast<std::size_t>(part_index(model, in.part));
+    const Part& part = model.parts[p];
+    if (!part.type->is_triangle() || model.formulation == Formulation::three_d)
+      throw InputError(file, in.line, key,
+                       "part '" + in.part + "' is made of " + part.type->name +
+                           " elements: remeshing meshes parts of triangles (tri3) in 2D");
+    std::vector<char> mine(model.nodes.count(), 0);
+    for (const auto n : part.connectivity) mine[n] = 1;
+    for (const Part& other : model.parts)
+      if (&other != &part)
+        for (const auto n : other.connectivity)
+          if (mine[n])
+            throw InputError(file, in.line, key,
+                             "part '" + in.part + "' shares nodes with part '" + other.name +
+                                 "' (one conforming mesh): a remeshed part must be a body of its own, in "
+                                 "contact with the others");
+    if (sim.cohesive)
+      throw InputError(file, in.line, key, "remeshing does not carry cohesive interfaces: remove `interfaces` or `remeshing`");
+    parts.push_back(RemeshedPart{p, in.settings});
+  }
+  std::vector<std::int64_t> kept;
+  for (const auto& probe : sim.probes) kept.insert(kept.end(), probe.nodes.begin(), probe.nodes.end());
+  sim.events.push_back(std::make_unique<RemeshEvent>(sim.materials, std::move(parts), sc.remeshing->triggers, std::move(kept)));
+}
+
 void solver_settings(const Scenario& sc, SolverSettings& s) {
   s.gravity = sc.gravity;
   s.end_time = sc.end_time;
@@ -887,6 +928,7 @@ Simulation build_simulation(Scenario& sc, const MeshData& mesh) {
     sim.contact_system.emplace(sim.model, *sim.contact, sim.part_materials(),
                                static_cast<int>(sim.materials.size()));
   if (sim.cracking) sim.events.push_back(std::make_unique<CrackGrowth>(sim.model, sim.materials, *sim.cracking));
+  build_remeshing(sc, sim);
   return sim;
 }
 

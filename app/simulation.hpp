@@ -7,6 +7,7 @@
 #include <optional>
 #include <vector>
 
+#include "adapt/remesh_event.hpp"
 #include "contact/contact.hpp"
 #include "io/gmsh_import.hpp"
 #include "io/particle_sample.hpp"
@@ -49,6 +50,8 @@ struct Simulation {
   std::vector<int> part_materials() const;
   /// The crack growth event, if the scenario has one.
   CrackGrowth* crack_growth();
+  /// The remeshing event, if the scenario has one.
+  RemeshEvent* remeshing();
 };
 
 /// The solver of a simulation, with its contact and events attached.

@@ -6,7 +6,6 @@
 #include <cmath>
 #include <cstdlib>
 #include <exception>
-#include <map>
 #include <numbers>
 
 #include "adapt/planar_mesh.hpp"
@@ -110,20 +109,24 @@ std::vector<int> build_geometry(const PlanarDomain& d) {
 /// point p − 1), new nodes follow.
 std::string read_mesh(const PlanarDomain& d, const std::vector<int>& surfaces, Triangulation& out) {
   out.xy = d.xy;
-  std::map<std::size_t, std::int32_t> index;  // Gmsh node tag → our node
+  std::vector<std::int32_t> index;  // Gmsh node tag → our node (tags are dense from 1)
+  auto set_index = [&index](std::size_t tag, std::int32_t node) {
+    if (tag >= index.size()) index.resize(2 * tag + 1, -1);
+    index[tag] = node;
+  };
   std::vector<std::size_t> tags;
   std::vector<double> coords, parametric;
   gmsh::vectorpair points;
   gmsh::model::getEntities(points, 0);
   for (const auto& [dim, tag] : points) {
     gmsh::model::mesh::getNodes(tags, coords, parametric, 0, tag, false, false);
-    if (tags.size() == 1) index[tags[0]] = tag - 1;
+    if (tags.size() == 1) set_index(tags[0], tag - 1);
   }
   gmsh::model::mesh::getNodes(tags, coords, parametric, 1, -1, false, false);
   if (!tags.empty()) return "Gmsh put " + std::to_string(tags.size()) + " nodes on boundary segments";
   gmsh::model::mesh::getNodes(tags, coords, parametric, 2, -1, false, false);
   for (std::size_t i = 0; i < tags.size(); ++i) {
-    index[tags[i]] = static_cast<std::int32_t>(out.xy.size() / 2);
+    set_index(tags[i], static_cast<std::int32_t>(out.xy.size() / 2));
     out.xy.push_back(coords[3 * i]);
     out.xy.push_back(coords[3 * i + 1]);
   }
@@ -132,9 +135,8 @@ std::string read_mesh(const PlanarDomain& d, const std::vector<int>& surfaces, T
   for (std::size_t s = 0; s < surfaces.size(); ++s) {
     gmsh::model::mesh::getElementsByType(2, elements, nodes, surfaces[s]);
     for (const std::size_t tag : nodes) {
-      const auto it = index.find(tag);
-      if (it == index.end()) return "a triangle names a node Gmsh did not list";
-      out.triangles.push_back(it->second);
+      if (tag >= index.size() || index[tag] < 0) return "a triangle names a node Gmsh did not list";
+      out.triangles.push_back(index[tag]);
     }
     out.outer_loop.insert(out.outer_loop.end(), elements.size(), static_cast<std::int32_t>(groups[s][0]));
   }
@@ -206,6 +208,9 @@ Triangulation triangulate(const PlanarDomain& domain, const std::function<double
     gmsh::option::setNumber("Mesh.MeshSizeExtendFromBoundary", 0);
     gmsh::option::setNumber("Mesh.MeshSizeFromCurvature", 0);
     gmsh::option::setNumber("Mesh.ElementOrder", 1);
+    // No Laplacian smoothing: it took a third of the meshing time for no gain in the smallest
+    // angle (28° either way on bench/bench_remesh).
+    gmsh::option::setNumber("Mesh.Smoothing", 0);
     gmsh::model::mesh::setSizeCallback([&size](int, int, double x, double y, double) { return size(x, y); });
     const std::vector<int> surfaces = build_geometry(domain);
     std::srand(1);

@@ -17,6 +17,7 @@
 #include "core/text.hpp"
 #include "core/units.hpp"
 #include "io/scenario_interfaces.hpp"
+#include "io/scenario_remeshing.hpp"
 #include "io/scenario_particles.hpp"
 #include "io/scenario_section.hpp"
 #include "material/laminate.hpp"
@@ -71,6 +72,9 @@ KeyList top_keys() {
         "the contact law particles touch each other and the walls with (docs/theory/particle_contact.md)");
   k.add("cracking", ValueKind::section,
         "discrete crack insertion in tri3 parts of a cracking material (docs/theory/crack_insertion.md)");
+  k.add("remeshing", ValueKind::section,
+        "adaptive remeshing of parts of triangles: when, to what sizes, how the state is carried "
+        "(docs/theory/adaptive_remeshing.md)");
   k.add("probes", ValueKind::list,
         "point histories: position, velocity, acceleration and stress at a point or a group, at their own "
         "interval, in probe_<name>.csv")
@@ -466,6 +470,7 @@ class ScenarioReader {
     scenario_detail::read_interfaces(top, sc);
     particle_contact();
     cracking();
+    scenario_detail::read_remeshing(top, sc);
     scenario_detail::read_particle_sections(top, sc);
     initial_conditions();  // after the particle parts, which it may name
     scenario_detail::read_crash(top, sc);
@@ -1268,6 +1273,8 @@ std::vector<SchemaSection> scenario_schema() {
           {"parts.<name>.orientation", "material axes of the whole part", orientation_keys(false)},
           {"parts.<name>.laminate", "material axes ply by ply through the part", orientation_keys(true)},
           {"cracking", "discrete crack insertion", cracking_keys()},
+          {"remeshing", "adaptive remeshing (docs/theory/adaptive_remeshing.md)", scenario_detail::remeshing_keys()},
+          {"remeshing.parts[]", "a remeshed part and its size rule", scenario_detail::remeshed_part_keys()},
           {"crash", "crash outputs of a crush test", scenario_detail::crash_keys()},
           {"probes[]", "a point history (probe_<name>.csv)", scenario_detail::probe_keys()},
           {"output", "what is written to the output folder", output_keys()}};

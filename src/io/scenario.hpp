@@ -12,6 +12,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include "adapt/remesh_event.hpp"
 #include "core/parameters.hpp"
 #include "core/time_table.hpp"
 #include "fracture/cohesive_law.hpp"
@@ -252,6 +253,18 @@ struct CrackingInput {
   int line = 0;
 };
 
+/// remeshing: adaptive remeshing of parts of triangles (docs/theory/adaptive_remeshing.md).
+struct RemeshedPartInput {
+  std::string part;
+  RemeshSettings settings;
+  int line = 0;
+};
+struct RemeshingInput {
+  RemeshTriggers triggers;
+  std::vector<RemeshedPartInput> parts;
+  int line = 0;
+};
+
 struct Scenario {
   std::filesystem::path file;
   std::string title;
@@ -290,6 +303,7 @@ struct Scenario {
   std::vector<PressureInput> pressures;
   std::optional<ContactInput> contact;
   std::optional<CrackingInput> cracking;
+  std::optional<RemeshingInput> remeshing;
   std::vector<WallInput> walls;
   std::vector<InterfaceInput> interfaces;
   std::optional<ParticleContactInput> particle_contact;

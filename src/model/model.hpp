@@ -259,6 +259,9 @@ struct Model {
   /// history (src/contact/particle_contact.hpp sizes it for its law).
   InteractionList particle_contacts;
   CohesiveElements cohesive;
+  /// Per part, how many times it has been remeshed and the step of its last remesh (empty when
+  /// no part is remeshed; src/adapt/remesh_event.hpp).
+  std::vector<std::int64_t> remesh_count, remesh_step;
   /// The next stable id of a node, an element and a particle (ids are never reused).
   std::int64_t next_node_id = 0, next_element_id = 0, next_particle_id = 0;
 
@@ -306,6 +309,8 @@ struct Model {
     }
     particle_contacts.visit_fields(as("particle_contacts."));
     cohesive.visit_fields([&f](const std::string& name, const FieldInfo& info, auto& a) { f("cohesive." + name, info, a); });
+    f("remesh.count", field("count", Location::model, 0), remesh_count);
+    f("remesh.step", field("step", Location::model, 0), remesh_step);
     for (auto& p : parts) p.visit_fields(as("part." + p.name + "."));
     for (auto& pp : particle_parts) {
       pp.visit_all_fields(as("particles." + pp.name + "."));

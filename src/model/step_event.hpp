@@ -38,6 +38,8 @@ class StepEvent {
   virtual const char* name() const = 0;
   virtual Phase phase() const = 0;
   virtual void run(Model& model, EventContext& context) = 0;
+  /// The ledger terms the event books (registered when the event is added to the solver).
+  virtual std::vector<EnergyTerm> energy_terms() const { return {}; }
 };
 
 }  // namespace shard

@@ -103,7 +103,10 @@ class ExplicitSolver : private TopologyListener {
   double element_stable_time_step() const { return element_dt_; }
   double cohesive_stable_time_step() const { return cohesive_dt_; }
   /// Adds an event to the registered list (not owned); events of one phase run in the order added.
-  void add_event(StepEvent& event) { events_.push_back(&event); }
+  void add_event(StepEvent& event) {
+    events_.push_back(&event);
+    for (auto& t : event.energy_terms()) state_.energy.add(std::move(t));
+  }
   void remove_event(const StepEvent& event);
   /// The hook through which every topology change goes (listeners may be added).
   Topology& topology() { return topology_; }

@@ -52,6 +52,7 @@ struct ElasticRun {
     ExplicitSolver solver(model, materials, loads, settings);
     if (cohesive) solver.attach_cohesive(cohesive);
     if (contact) solver.attach_contact(contact);
+    for (StepEvent* e : events) solver.add_event(*e);
     solver.initialise();
     while (true) {
       solver.compute_forces();
@@ -67,6 +68,7 @@ struct ElasticRun {
 
   CohesiveInterfaces* cohesive = nullptr;  ///< attached to the solver when set
   ContactSystem* contact = nullptr;        ///< attached to the solver when set
+  std::vector<StepEvent*> events;          ///< added to the solver (not owned)
   EnergyLedger energy;
   std::int64_t steps = 0;
   double max_error = 0;

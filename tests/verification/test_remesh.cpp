@@ -12,6 +12,7 @@
 
 #include "adapt/planar_mesh.hpp"
 #include "adapt/remesh.hpp"
+#include "adapt/remesh_event.hpp"
 #include "fracture/crack_insertion.hpp"
 #include "fracture/fragments.hpp"
 #include "support/model_runner.hpp"
@@ -202,6 +203,64 @@ TEST(Remesh, TheSameStateRemeshesToTheSameBits) {
   EXPECT_EQ(a.model.nodes.v, b.model.nodes.v);
   EXPECT_EQ(a.model.nodes.mass, b.model.nodes.mass);
   EXPECT_EQ(a.model.parts[0].connectivity, b.model.parts[0].connectivity);
+}
+
+}  // namespace
+}  // namespace shard
+
+namespace shard {
+namespace {
+
+/// A free–free bar vibrating in its first longitudinal mode (wavelength 2L), resolved by
+/// `per_wavelength` elements, remeshed every `every` steps by the event to the size given (and
+/// to alternating sizes around it with `alternate`).
+struct WaveRun {
+  double worst_jump = 0;     ///< largest |remesh energy| of one remesh / the energy in play
+  double worst_balance = 0;  ///< largest |balance error| over the run
+  std::int64_t remeshes = 0;
+};
+
+WaveRun wave_with_remeshing(int per_wavelength, std::int64_t every) {
+  const double L = 0.04, H = 0.01, V = 2.0;
+  const double h = 2 * L / per_wavelength;
+  auto run = plate(static_cast<int>(std::lround(L / h)), static_cast<int>(std::lround(H / h)), L, H, 0.0);
+  for (std::size_t i = 0; i < run.model.nodes.count(); ++i)
+    run.model.nodes.v[2 * i] = V * std::cos(std::numbers::pi * run.model.nodes.x[2 * i] / L);
+  RemeshTriggers triggers;
+  triggers.check_interval = every;
+  triggers.max_interval = every;
+  RemeshedPart part{0, uniform(h)};
+  RemeshEvent event(run.materials, {part}, triggers, {});
+  run.events.push_back(&event);
+  const double c = std::sqrt(kE / kRho);
+  run.settings.end_time = 2 * (2 * L / c);  // two periods of the mode
+  WaveRun out;
+  double last_remesh = 0;
+  run.run({}, [&](const ExplicitSolver& solver) {
+    const EnergyLedger& E = solver.state().energy;
+    const double remesh = E.value("remesh_elastic") + E.value("remesh_kinetic");
+    if (remesh != last_remesh && std::getenv("SHARD_TEST_VERBOSE"))
+      std::printf("  step %lld: jump %.4f %% (elastic %.3e kinetic %.3e) of %.3e\n", (long long)solver.state().step,
+                  100 * (remesh - last_remesh) / E.value("initial"), E.value("remesh_elastic"), E.value("remesh_kinetic"),
+                  E.value("initial"));
+    out.worst_jump = std::max(out.worst_jump, std::abs(remesh - last_remesh) / E.value("initial"));
+    last_remesh = remesh;
+    out.worst_balance = std::max(out.worst_balance, std::abs(E.relative_error()));
+  });
+  out.remeshes = run.model.remesh_count.at(0);
+  return out;
+}
+
+TEST(Remesh, WaveResolvedByThirtyTwoElementsLosesUnderHalfAPercentPerRemesh) {
+  for (const int per_wavelength : {32, 64}) {
+    const WaveRun r = wave_with_remeshing(per_wavelength, 25);
+    std::printf("[remesh, wave of %d elements per wavelength] %lld remeshes: largest jump %.3f %% of the energy, "
+                "balance within %.3f %%\n",
+                per_wavelength, static_cast<long long>(r.remeshes), 100 * r.worst_jump, 100 * r.worst_balance);
+    EXPECT_GE(r.remeshes, 5);
+    EXPECT_LE(r.worst_jump, 0.005);
+    EXPECT_LE(r.worst_balance, 0.01);
+  }
 }
 
 }  // namespace

@@ -1,0 +1,146 @@
+#include "adapt/remesh_event.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+
+#include "adapt/planar_mesh.hpp"
+#include "adapt/size_field.hpp"
+
+namespace shard {
+
+namespace {
+
+std::string format(const char* pattern, double a, double b = 0) {
+  char buffer[160];
+  std::snprintf(buffer, sizeof buffer, pattern, a, b);
+  return buffer;
+}
+
+std::vector<std::int32_t> all_elements(const Part& part) {
+  std::vector<std::int32_t> e(part.element_count());
+  for (std::size_t i = 0; i < e.size(); ++i) e[i] = static_cast<std::int32_t>(i);
+  return e;
+}
+
+}  // namespace
+
+RemeshEvent::RemeshEvent(const std::vector<std::unique_ptr<Material>>& materials, std::vector<RemeshedPart> parts,
+                         RemeshTriggers triggers, std::vector<std::int64_t> kept_nodes)
+    : parts_(std::move(parts)),
+      triggers_(triggers),
+      kept_nodes_(std::move(kept_nodes)),
+      seconds_(parts_.size(), 0.0) {
+  for (const auto& m : materials) materials_.push_back(m.get());
+}
+
+std::vector<EnergyTerm> RemeshEvent::energy_terms() const {
+  using G = EnergyGroup;
+  return {{"remesh_elastic",
+           "stored energy a remesh took from the elements (the carried stresses store less; negative: more)",
+           energy_rank::eroded + 5, {{G::internal, -1}, {G::dissipated, +1}}, "remesh"},
+          {"remesh_kinetic", "kinetic energy a remesh took from the nodes (the carried velocities on the new masses)",
+           energy_rank::eroded + 6, {{G::dissipated, +1}}, "remesh"}};
+}
+
+std::string RemeshEvent::due(const Model& model, std::size_t i, std::int64_t step) const {
+  const std::size_t p = parts_[i].part;
+  const Part& part = model.parts[p];
+  if (triggers_.max_interval > 0 && step - model.remesh_step[p] >= triggers_.max_interval)
+    return format("%.0f steps since the last remesh", static_cast<double>(step - model.remesh_step[p]));
+  double worst = 0, smallest = std::numbers::pi, largest = 0;
+  for (std::size_t e = 0; e < part.element_count(); ++e) {
+    worst = std::max(worst, element_distortion(part, model.nodes, e).value());
+    const std::int32_t* c = &part.connectivity[3 * e];
+    for (const double a : triangle_angles(&model.nodes.x[2 * c[0]], &model.nodes.x[2 * c[1]], &model.nodes.x[2 * c[2]])) {
+      smallest = std::min(smallest, a);
+      largest = std::max(largest, a);
+    }
+  }
+  const double degree = std::numbers::pi / 180.0;
+  if (triggers_.distortion > 0 && worst > triggers_.distortion)
+    return format("an element distorted by %.2f %% (allowed %.2f %%)", 100 * worst, 100 * triggers_.distortion);
+  if (triggers_.min_angle > 0 && smallest < triggers_.min_angle)
+    return format("an angle of %.1f deg (below %.1f)", smallest / degree, triggers_.min_angle / degree);
+  if (triggers_.max_angle > 0 && largest > triggers_.max_angle)
+    return format("an angle of %.1f deg (above %.1f)", largest / degree, triggers_.max_angle / degree);
+  if (triggers_.size_mismatch > 0) {
+    const ElementSizes sizes = element_target_sizes(part, all_elements(part), model.nodes, *materials_[part.material],
+                                                    model.formulation, parts_[i].settings.size);
+    for (std::size_t e = 0; e < sizes.target.size(); ++e) {
+      const double ratio = sizes.current[e] / sizes.target[e];
+      if (ratio > triggers_.size_mismatch || ratio < 1.0 / triggers_.size_mismatch)
+        return format("an element %.2f times the size asked for (allowed %.2f)", ratio, triggers_.size_mismatch);
+    }
+  }
+  return {};
+}
+
+void RemeshEvent::run(Model& model, EventContext& context) {
+  model.remesh_count.resize(model.parts.size(), 0);
+  model.remesh_step.resize(model.parts.size(), 0);
+  for (std::size_t i = 0; i < parts_.size(); ++i) {
+    Part& part = model.parts[parts_[i].part];
+    // Elements made since the last look (the first step) are measured now.
+    if (part.shape_reference.size() != 4 * part.element_count())
+      measure_reference_shape(part, model.nodes, part.shape_reference);
+  }
+  if (triggers_.check_interval <= 0 || context.step % triggers_.check_interval != 0) return;
+  bool changed = false;
+  for (std::size_t i = 0; i < parts_.size(); ++i) {
+    const std::size_t p = parts_[i].part;
+    // Elements eroded in this step leave at its end (the solver's compaction, after this event):
+    // the part is assessed at the next check.
+    const auto& eroded = model.parts[p].eroded;
+    if (std::find(eroded.begin(), eroded.end(), 1) != eroded.end()) continue;
+    const std::string why = due(model, i, context.step);
+    if (why.empty()) continue;
+    const Material& material = *materials_[model.parts[p].material];
+    const auto start = std::chrono::steady_clock::now();
+    const RemeshOutcome out = remesh_part(model, p, material, parts_[i].settings, kept_nodes_);
+    seconds_[i] += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (!out.remeshed) {
+      notes_.push_back("part '" + model.parts[p].name + "' not remeshed at step " + std::to_string(context.step) +
+                       " (t = " + format("%.6g s", context.time) + "), due to " + why + ": " + out.skipped);
+      continue;
+    }
+    changed = true;
+    model.remesh_count[p]++;
+    model.remesh_step[p] = context.step;
+    const double elastic = out.stored_before - out.stored_after;
+    context.energy.at("remesh_elastic") += elastic;
+    context.energy.at("remesh_kinetic") += out.kinetic_before - out.kinetic_after;
+    if (context.part_stored && p < context.part_stored->size()) (*context.part_stored)[p] -= elastic;
+  }
+  if (changed) context.topology.changed(model, Remap{});
+}
+
+std::vector<std::string> RemeshEvent::take_notes() {
+  std::vector<std::string> out;
+  out.swap(notes_);
+  return out;
+}
+
+std::vector<double> RemeshEvent::distortion(const Model& model, std::size_t part) const {
+  std::vector<double> out;
+  for (const RemeshedPart& r : parts_)
+    if (r.part == part)
+      for (std::size_t e = 0; e < model.parts[part].element_count(); ++e)
+        out.push_back(element_distortion(model.parts[part], model.nodes, e).value());
+  return out;
+}
+
+std::vector<double> RemeshEvent::target_size(const Model& model, std::size_t part) const {
+  for (const RemeshedPart& r : parts_)
+    if (r.part == part) {
+      const Part& p = model.parts[part];
+      return element_target_sizes(p, all_elements(p), model.nodes, *materials_[p.material], model.formulation,
+                                  r.settings.size)
+          .target;
+    }
+  return {};
+}
+
+}  // namespace shard

@@ -1,0 +1,78 @@
+// Adaptive remeshing as a step event (after the advance, like erosion): every `check_interval`
+// steps each remeshed part is assessed — the distortion of its elements since they were made
+// (eqs. 1–2 of Cottrell, Yu, Wei & Owen 2003, Eng. Computations 20), absolute limits on its
+// angles, how far its element sizes are from what the size rule asks, and a longest interval —
+// and remeshed when one of them says so (src/adapt/remesh.hpp). The energy a remesh changes
+// (stored and kinetic) is booked as the `remesh` terms, so the balance still closes; a remesh that
+// fails is skipped and noted, never the end of the run. Theory: docs/theory/adaptive_remeshing.md.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "adapt/remesh.hpp"
+#include "core/energy_ledger.hpp"
+#include "material/material.hpp"
+#include "model/step_event.hpp"
+
+namespace shard {
+
+/// When a part is remeshed.
+struct RemeshTriggers {
+  std::int64_t check_interval = 50;  ///< steps between assessments (the paper's f)
+  double distortion = 0;    ///< allowable relative change of area or corner angle (0: not used)
+  double min_angle = 0;     ///< remesh when an angle falls below this (rad; 0: not used)
+  double max_angle = 0;     ///< … or rises above this (rad; 0: not used)
+  /// Remesh when an element is this many times larger than the size rule asks, or smaller than
+  /// its reciprocal (0: not used).
+  double size_mismatch = 0;
+  std::int64_t max_interval = 0;  ///< remesh at least every this many steps (0: not used)
+};
+
+/// A part to remesh and how.
+struct RemeshedPart {
+  std::size_t part = 0;
+  RemeshSettings settings;
+};
+
+class RemeshEvent final : public StepEvent {
+ public:
+  RemeshEvent(const std::vector<std::unique_ptr<Material>>& materials, std::vector<RemeshedPart> parts,
+              RemeshTriggers triggers, std::vector<std::int64_t> kept_nodes);
+
+  const char* name() const override { return "remesh"; }
+  Phase phase() const override { return Phase::after_advance; }
+  void run(Model& model, EventContext& context) override;
+
+  /// The ledger terms a remesh books: what it changed of the stored and the kinetic energy
+  /// (reported together in the `remesh` column).
+  std::vector<EnergyTerm> energy_terms() const override;
+
+  const std::vector<RemeshedPart>& parts() const { return parts_; }
+  /// Wall-clock seconds spent remeshing each remeshed part (not in the history: it would differ
+  /// from run to run).
+  const std::vector<double>& seconds() const { return seconds_; }
+  /// Notes for the run's log and summary (remeshes skipped, and why), taken once.
+  std::vector<std::string> take_notes();
+
+  /// What the frames show of a remeshed part, per element: its distortion since it was made
+  /// and the size the rule asks for there (m). Empty for a part not remeshed.
+  std::vector<double> distortion(const Model& model, std::size_t part) const;
+  std::vector<double> target_size(const Model& model, std::size_t part) const;
+
+ private:
+  /// Why part i is due (empty: it is not).
+  std::string due(const Model& model, std::size_t i, std::int64_t step) const;
+
+  /// Each part's material (the objects, not the run's vector, which moves with the simulation).
+  std::vector<const Material*> materials_;
+  std::vector<RemeshedPart> parts_;
+  RemeshTriggers triggers_;
+  std::vector<std::int64_t> kept_nodes_;
+  std::vector<double> seconds_;
+  std::vector<std::string> notes_;
+};
+
+}  // namespace shard
