@@ -535,7 +535,8 @@ void apply_initial_particle_velocities(const Scenario& sc, Model& model) {
 // Boundary conditions: one constraint per (node, component); a later entry overrides, and its
 // group then reports the node's reaction.
 void apply_boundary_conditions(const Scenario& sc, const MeshData& mesh, Simulation& sim, GroupNodeSets& sets) {
-  std::map<std::pair<std::int32_t, int>, std::pair<int, int>> constraint_table;  // -> (table, group)
+  // (node, component) -> (table, group, rotation)
+  std::map<std::pair<std::int32_t, int>, std::array<int, 3>> constraint_table;
   auto& groups = sim.loads.node_groups;
   for (std::size_t i = 0; i < sc.boundary_conditions.size(); ++i) {
     const auto& bc = sc.boundary_conditions[i];
@@ -545,15 +546,20 @@ void apply_boundary_conditions(const Scenario& sc, const MeshData& mesh, Simulat
     const auto named = std::find(groups.begin(), groups.end(), bc.group);
     const int group = static_cast<int>(named - groups.begin());
     if (named == groups.end()) groups.push_back(bc.group);
+    int rotation = -1;
+    if (bc.rotation) {
+      sim.loads.rotations.push_back(Rotation{bc.rotation->centre, bc.rotation->axis});
+      rotation = static_cast<int>(sim.loads.rotations.size()) - 1;
+      sim.loads.tables.push_back(bc.rotation->rate);
+    }
     for (int k = 0; k < sc.dim(); ++k) {
-      if (!bc.velocity[k]) continue;
-      sim.loads.tables.push_back(*bc.velocity[k]);
+      if (!bc.velocity[k] && rotation < 0) continue;
+      if (rotation < 0) sim.loads.tables.push_back(*bc.velocity[k]);
       const int table = static_cast<int>(sim.loads.tables.size()) - 1;
-      for (auto n : set.nodes) constraint_table[{n, k}] = {table, group};
+      for (auto n : set.nodes) constraint_table[{n, k}] = {table, group, rotation};
     }
   }
-  for (const auto& [dof, prescription] : constraint_table)
-    prescribe_node(sim.model, sim.loads, dof.first, dof.second, prescription.first, prescription.second);
+  for (const auto& [dof, p] : constraint_table) prescribe_node(sim.model, sim.loads, dof.first, dof.second, p[0], p[1], p[2]);
 }
 
 // Pressure loads on boundary facets.

@@ -321,7 +321,7 @@ Triangulation mesh_domain(const Model& model, const std::vector<char>& crack_fac
     ++outcome.attempts;
     Domain shifted = dom;
     shift_lips(crack_face, shifted, a.shift);
-    Triangulation mesh = triangulate(shifted.planar, size, a.algorithm);
+    Triangulation mesh = triangulate(shifted.planar, size, a.algorithm, s.smoothing);
     if (mesh.ok()) {
       const std::vector<double> xy = final_positions(model, dom, mesh);
       double smallest = M_PI;
@@ -645,12 +645,19 @@ void fix_born_nodes(Model& model, const OldPart& old, const NewMesh& nm, std::si
 /// element they bound (`position` gives each new triangle's index in the part after the remap).
 void rebuild_facets(Model& model, std::size_t p, const OldPart& old, const Domain& dom, const Triangulation& mesh,
                     const NewMesh& nm, const std::vector<std::int32_t>& position) {
-  std::unordered_map<std::uint64_t, std::pair<std::int32_t, std::int8_t>> owner;  // directed edge → (triangle, corner)
+  // The new boundary's directed edges (the domain points' loops), then the triangle of each.
+  std::unordered_map<std::uint64_t, std::pair<std::int32_t, std::int8_t>> owner;  // edge → (triangle, corner)
+  auto key = [](std::int32_t a, std::int32_t b) {
+    return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) | static_cast<std::uint32_t>(b);
+  };
+  for (const auto& loop : dom.loop_points)
+    for (std::size_t i = 0; i < loop.size(); ++i) owner.emplace(key(loop[i], loop[(i + 1) % loop.size()]), std::make_pair(-1, 0));
   for (std::size_t t = 0; t < mesh.triangles.size() / 3; ++t)
     for (int k = 0; k < 3; ++k) {
       const std::int32_t a = mesh.triangles[3 * t + k], b = mesh.triangles[3 * t + (k + 1) % 3];
-      owner[(static_cast<std::uint64_t>(a) << 32) | static_cast<std::uint32_t>(b)] = {static_cast<std::int32_t>(t),
-                                                                                    static_cast<std::int8_t>(k)};
+      if (a >= static_cast<std::int32_t>(dom.points.size()) || b >= static_cast<std::int32_t>(dom.points.size())) continue;
+      if (const auto it = owner.find(key(a, b)); it != owner.end())
+        it->second = {static_cast<std::int32_t>(t), static_cast<std::int8_t>(k)};
     }
   for (const auto& loop : dom.loop_points)
     for (std::size_t i = 0; i < loop.size(); ++i) {
@@ -659,8 +666,8 @@ void rebuild_facets(Model& model, std::size_t p, const OldPart& old, const Domai
       if (seg.first < 0) continue;
       const auto& sets = facet_sets_at(old, seg.first, seg.second);
       if (sets.empty()) continue;
-      const auto it = owner.find((static_cast<std::uint64_t>(a) << 32) | static_cast<std::uint32_t>(b));
-      if (it == owner.end()) continue;
+      const auto it = owner.find(key(a, b));
+      if (it == owner.end() || it->second.first < 0) continue;
       const auto [t, corner] = it->second;
       for (const std::int32_t f : sets) {
         FacetSet& set = model.facet_sets[f];

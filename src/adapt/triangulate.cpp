@@ -193,7 +193,7 @@ double loop_twice_area(const PlanarDomain& domain, const std::vector<std::int32_
 }
 
 Triangulation triangulate(const PlanarDomain& domain, const std::function<double(double, double)>& size,
-                          MeshAlgorithm algorithm) {
+                          MeshAlgorithm algorithm, int smoothing) {
   Triangulation out;
   std::lock_guard lock(gmsh_mutex());
   GmshSession session(true);
@@ -208,9 +208,7 @@ Triangulation triangulate(const PlanarDomain& domain, const std::function<double
     gmsh::option::setNumber("Mesh.MeshSizeExtendFromBoundary", 0);
     gmsh::option::setNumber("Mesh.MeshSizeFromCurvature", 0);
     gmsh::option::setNumber("Mesh.ElementOrder", 1);
-    // No Laplacian smoothing: it took a third of the meshing time for no gain in the smallest
-    // angle (28° either way on bench/bench_remesh).
-    gmsh::option::setNumber("Mesh.Smoothing", 0);
+    gmsh::option::setNumber("Mesh.Smoothing", smoothing);
     gmsh::model::mesh::setSizeCallback([&size](int, int, double x, double y, double) { return size(x, y); });
     const std::vector<int> surfaces = build_geometry(domain);
     std::srand(1);

@@ -35,10 +35,11 @@ struct Triangulation {
   bool ok() const { return failure.empty(); }
 };
 
-/// Meshes the domain with elements of about size(x, y) (the length of an edge). The result has
-/// no triangle of non-positive area and covers the domain's area to round-off, or says why not.
+/// Meshes the domain with elements of about size(x, y) (the length of an edge), then moves its
+/// interior nodes by `smoothing` Laplacian passes. The result has no triangle of non-positive
+/// area and covers the domain's area to round-off, or says why not.
 Triangulation triangulate(const PlanarDomain& domain, const std::function<double(double, double)>& size,
-                          MeshAlgorithm algorithm);
+                          MeshAlgorithm algorithm, int smoothing = 0);
 
 /// Twice the signed area of a loop of the domain.
 double loop_twice_area(const PlanarDomain& domain, const std::vector<std::int32_t>& loop);

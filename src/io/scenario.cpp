@@ -351,6 +351,23 @@ KeyList boundary_condition_keys() {
            "symmetry plane normal to this axis (its normal velocity is zero)");
   k.add("velocity", ValueKind::section,
         "prescribed velocity per component: {x: 10 m/s} or {y: [[0, 0], [1 us, -5 m/s]]}");
+  k.add("rotation", ValueKind::section,
+        "a rigid rotation of the group: {centre: [0, 0], rate: 100 rad/s} (3D: also axis: [0, 0, 1]); each node "
+        "moves along the chord of its circle, so a turn of any size keeps it on the circle");
+  return k;
+}
+
+KeyList rotation_keys() {
+  KeyList k;
+  KeySpec& c = k.add("centre", ValueKind::vector, "a point of the axis, e.g. [0, 0]");
+  c.dimension = dim::length;
+  c.must_be_given();
+  KeySpec& r = k.add("rate", ValueKind::table, "angular velocity (counter-clockwise about the axis), or a time table");
+  r.dimension = dim::rate;
+  r.must_be_given();
+  KeySpec& a = k.add("axis", ValueKind::vector, "the axis direction (3D; 2D turns about z)");
+  a.dimension = dim::none;
+  a.defaults_to("[0, 0, 1]");
   return k;
 }
 
@@ -811,9 +828,28 @@ class ScenarioReader {
         }
       any = true;
     }
+    if (s.has("rotation")) {
+      if (any) s.fail("rotation", "a rotation holds every component of the group: give it alone (no fix, symmetry or velocity)");
+      static const KeyList r_keys = rotation_keys();
+      Section r(s.value("rotation"), file, path + ".rotation", r_keys, entry_out["rotation"], s.line("rotation"));
+      BoundaryConditionInput::Rotation rot;
+      const auto centre = r.vector("centre", dim);
+      std::copy(centre.begin(), centre.end(), rot.centre.begin());
+      rot.rate = r.table("rate");
+      if (dim == 3 && r.has("axis")) {
+        const auto axis = r.vector("axis", 3);
+        const double norm = std::hypot(axis[0], axis[1], axis[2]);
+        if (!(norm > 0)) r.fail("axis", "the axis needs a direction (not [0, 0, 0])");
+        for (int k = 0; k < 3; ++k) rot.axis[k] = axis[k] / norm;
+      } else if (r.has("axis")) {
+        r.fail("axis", "a 2D model turns about z: give no axis");
+      }
+      bc.rotation = rot;
+      any = true;
+    }
     if (!any)
       throw InputError(file, s.line(), path,
-                       "a boundary condition needs 'fix', 'symmetry' or 'velocity' (e.g. {group: " +
+                       "a boundary condition needs 'fix', 'symmetry', 'velocity' or 'rotation' (e.g. {group: " +
                            bc.group + ", fix: [x, y]})");
     sc.boundary_conditions.push_back(bc);
     bc_out.push_back(entry_out);
@@ -1259,6 +1295,7 @@ std::vector<SchemaSection> scenario_schema() {
           {"initial_conditions[]", "a list entry", initial_condition_keys()},
           {"boundary_conditions[]", "a list entry", boundary_condition_keys()},
           {"boundary_conditions[].velocity", "prescribed velocity components", velocity_component_keys()},
+          {"boundary_conditions[].rotation", "a rigid rotation of the group", rotation_keys()},
           {"loads[]", "a list entry", load_keys()},
           {"contact", "contact between parts", contact_keys()},
           {"contact.material_friction[]", "friction of a pair of materials", material_friction_keys()},

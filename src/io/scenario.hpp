@@ -108,6 +108,13 @@ struct InitialVelocityInput {
 struct BoundaryConditionInput {
   std::string group;
   std::array<std::optional<TimeTable>, 3> velocity;  ///< prescribed (fixed = constant 0)
+  /// A rigid rotation of the group about an axis through `centre` at `rate` (rad/s).
+  struct Rotation {
+    std::array<double, 3> centre{0, 0, 0};
+    std::array<double, 3> axis{0, 0, 1};
+    TimeTable rate;
+  };
+  std::optional<Rotation> rotation;
   int line = 0;
 };
 

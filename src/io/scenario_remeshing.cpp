@@ -20,14 +20,14 @@ KeyList remeshing_keys() {
              "hard materials); 0: not used")
       .at_least(0)
       .defaults_to("0");
-  k.quantity("min_angle", dim::none, "remesh when a corner angle falls below this (degrees); 0: not used")
+  k.quantity("min_angle", dim::none, "remesh when a corner angle falls below this (e.g. 15 deg; a plain number is in radians); 0: not used")
       .at_least(0)
-      .below(60)
-      .defaults_to("15");
-  k.quantity("max_angle", dim::none, "remesh when a corner angle rises above this (degrees); 0: not used")
+      .below(std::numbers::pi / 3)
+      .defaults_to("15 deg");
+  k.quantity("max_angle", dim::none, "remesh when a corner angle rises above this (e.g. 160 deg); 0: not used")
       .at_least(0)
-      .below(180)
-      .defaults_to("160");
+      .below(std::numbers::pi)
+      .defaults_to("160 deg");
   k.quantity("size_mismatch", dim::none,
              "remesh when an element is this many times larger than the size rule asks for, or smaller than its "
              "reciprocal; 0: not used")
@@ -74,6 +74,12 @@ KeyList remeshed_part_keys() {
            "Gmsh's 2D algorithm tried first (the other is tried next): delaunay is faster, frontal_delaunay makes "
            "more regular triangles")
       .defaults_to("delaunay");
+  k.add("smoothing", ValueKind::integer,
+        "Laplacian smoothing passes of the new mesh: fewer small triangles (a longer stable step), slower remeshes "
+        "and a transfer over a mesh further from the old one")
+      .at_least(0)
+      .at_most(10)
+      .defaults_to("0");
   return k;
 }
 
@@ -148,6 +154,7 @@ RemeshedPartInput read_part(Section& s, const Scenario& sc) {
       s.choice("transfer").value_or("least_squares") == "projection" ? PointTransfer::projection : PointTransfer::least_squares;
   in.settings.algorithm =
       s.choice("algorithm").value_or("delaunay") == "frontal_delaunay" ? MeshAlgorithm::frontal_delaunay : MeshAlgorithm::delaunay;
+  in.settings.smoothing = static_cast<int>(s.integer("smoothing"));
   return in;
 }
 
@@ -161,11 +168,10 @@ void read_remeshing(Section& top, Scenario& sc) {
   Section r(top.value("remeshing"), top.file(), "remeshing", keys, resolved, top.line("remeshing"));
   RemeshingInput in;
   in.line = top.line("remeshing");
-  const double degree = std::numbers::pi / 180.0;
   in.triggers.check_interval = r.integer("check_interval");
   in.triggers.distortion = r.number("distortion");
-  in.triggers.min_angle = r.number("min_angle") * degree;
-  in.triggers.max_angle = r.number("max_angle") * degree;
+  in.triggers.min_angle = r.number("min_angle");
+  in.triggers.max_angle = r.number("max_angle");
   in.triggers.size_mismatch = r.number("size_mismatch");
   if (in.triggers.size_mismatch > 0 && in.triggers.size_mismatch <= 1)
     r.fail("size_mismatch", "a mismatch factor is above 1 (e.g. 1.5), or 0 for none");

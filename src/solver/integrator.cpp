@@ -38,6 +38,20 @@ MovingPoints moving_points(ParticlePart& part) {
   return p;
 }
 
+double chord_velocity(const Rotation& rotation, double rate, const double* x, int dim, double dt, int component) {
+  // r' = R(Δθ) r about the axis (Rodrigues), Δθ = ω Δt: the point moves along the chord.
+  const double angle = rate * dt;
+  if (!(dt > 0)) return 0.0;
+  double r[3] = {0, 0, 0};
+  for (int k = 0; k < dim; ++k) r[k] = x[k] - rotation.centre[k];
+  const double* n = rotation.axis.data();
+  const double c = std::cos(angle), s = std::sin(angle), dot = n[0] * r[0] + n[1] * r[1] + n[2] * r[2];
+  const double cross[3] = {n[1] * r[2] - n[2] * r[1], n[2] * r[0] - n[0] * r[2], n[0] * r[1] - n[1] * r[0]};
+  const int k = component;
+  const double turned = r[k] * c + cross[k] * s + n[k] * dot * (1 - c);
+  return (turned - r[k]) / dt;
+}
+
 DofRef dof_of(const MovingPoints& p, const PrescribedDof& d) {
   const bool rot = d.component >= p.dim;
   const std::size_t i = static_cast<std::size_t>(d.point);
@@ -56,7 +70,10 @@ void apply_prescribed(const MovingPoints& p, const std::vector<PrescribedDof>& d
   for (const auto& d : dofs) {
     const DofRef dof = dof_of(p, d);
     const Prescription& pr = loads.prescriptions[d.prescription];
-    const double vp = loads.tables[pr.table].at(time_half);
+    const double vp = pr.rotation < 0 ? loads.tables[pr.table].at(time_half)
+                                      : chord_velocity(loads.rotations[pr.rotation], loads.tables[pr.table].at(time_half),
+                                                       &p.x[static_cast<std::size_t>(p.dim) * d.point], p.dim,
+                                                       c.dt_next, d.component);
     const double f_needed = dof.inertia * (vp / c.d2 - c.d1 * dof.velocity) / c.dt_n;
     const double reaction = f_needed - dof.force;
     const double back = reaction * c.back * dof.velocity, ahead = reaction * c.ahead * vp;

@@ -13,18 +13,20 @@ int Loads::constant_table(double value) {
   return static_cast<int>(tables.size()) - 1;
 }
 
-int Loads::prescription(int table, int group) {
+int Loads::prescription(int table, int group, int rotation) {
   for (std::size_t i = 0; i < prescriptions.size(); ++i)
-    if (prescriptions[i].table == table && prescriptions[i].group == group) return static_cast<int>(i);
-  prescriptions.push_back({table, group});
+    if (prescriptions[i].table == table && prescriptions[i].group == group && prescriptions[i].rotation == rotation)
+      return static_cast<int>(i);
+  prescriptions.push_back({table, group, rotation});
   return static_cast<int>(prescriptions.size()) - 1;
 }
 
-void prescribe_node(Model& model, Loads& loads, std::int32_t node, int component, int table, int group) {
+void prescribe_node(Model& model, Loads& loads, std::int32_t node, int component, int table, int group,
+                    int rotation) {
   const int dim = model.dim();
   if (model.nodes.prescribed.size() != model.nodes.count() * dim)
     model.nodes.prescribed.assign(model.nodes.count() * dim, -1);
-  model.nodes.prescribed[static_cast<std::size_t>(dim) * node + component] = loads.prescription(table, group);
+  model.nodes.prescribed[static_cast<std::size_t>(dim) * node + component] = loads.prescription(table, group, rotation);
 }
 
 namespace {

@@ -3,6 +3,7 @@
 // or a set the Model keeps (facet sets), so that conditions follow every topology change.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -18,6 +19,16 @@ struct Prescription {
   int table = 0;   ///< index into Loads::tables
   int group = -1;  ///< index into Loads::particle_groups (particles) or Loads::node_groups (nodes),
                    ///< for the reported reaction; -1: none
+  /// ≥ 0: the component follows a rigid rotation (index into Loads::rotations) whose angular
+  /// velocity is the table; −1: the table is the component's velocity.
+  int rotation = -1;
+};
+
+/// A rigid rotation of the points it holds about an axis through a centre: each point moves along
+/// the chord of its circle over the step, so that it stays on the circle however large the turn.
+struct Rotation {
+  std::array<double, 3> centre{0, 0, 0};
+  std::array<double, 3> axis{0, 0, 1};  ///< unit (2D: z)
 };
 
 /// A pressure on a facet set, positive pushing into the body (follows the current geometry).
@@ -36,6 +47,7 @@ struct ParticleGroup {
 struct Loads {
   std::vector<TimeTable> tables;
   std::vector<Prescription> prescriptions;
+  std::vector<Rotation> rotations;
   std::vector<PressureLoad> pressures;
   std::vector<ParticleGroup> particle_groups;
   /// The groups of the nodes' boundary conditions, whose reactions and work are reported.
@@ -43,13 +55,15 @@ struct Loads {
 
   /// A table holding a constant value; returns its index.
   int constant_table(double value);
-  /// The prescription for a table (and particle group), added if new; returns its index.
-  int prescription(int table, int group = -1);
+  /// The prescription for a table (and particle group, and rotation), added if new; returns its
+  /// index.
+  int prescription(int table, int group = -1, int rotation = -1);
 };
 
 /// Prescribes velocity component `component` of node `node` to follow table `table` (a later
 /// call for the same component replaces the earlier one).
-void prescribe_node(Model& model, Loads& loads, std::int32_t node, int component, int table, int group = -1);
+void prescribe_node(Model& model, Loads& loads, std::int32_t node, int component, int table, int group = -1,
+                    int rotation = -1);
 
 /// A degree of freedom whose velocity is prescribed: a point (node or particle), a component
 /// (particles: translation 0..dim−1, then rotation), and its Prescription.
