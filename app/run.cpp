@@ -448,9 +448,14 @@ class RunDriver {
         for (int k = 0; k < dim_; ++k) columns.push_back("wall_" + w.name + "_particle_force_" + axes[k]);
     // The reaction of each boundary condition's node group and the work done through it: the
     // load-displacement curve of a notched bar, the base force of a crush test.
-    for (const auto& g : sim_.loads.node_groups) {
+    for (std::size_t i = 0; i < sim_.loads.node_groups.size(); ++i) {
+      const std::string& g = sim_.loads.node_groups[i];
       for (int k = 0; k < dim_; ++k) columns.push_back("reaction_" + g + "_" + axes[k]);
       columns.push_back("work_" + g);
+      if (rotating_group(i)) {
+        if (dim_ == 2) columns.push_back("moment_" + g);
+        else for (int k = 0; k < 3; ++k) columns.push_back("moment_" + g + "_" + axes[k]);
+      }
     }
     // Per part: what a projectile keeps (its residual velocity) without digging in the frames.
     std::vector<std::string> parts;
@@ -761,8 +766,22 @@ class RunDriver {
                          : (i < r.size() ? r[i] : 0.0));
       }
       write_number(2 * g < cursor_.reaction_work.size() ? cursor_.reaction_work[2 * g] : 0.0);
+      if (!rotating_group(g)) continue;
+      for (int k = dim_ == 2 ? 2 : 0; k < 3; ++k) {
+        const std::size_t i = 6 * g + 3 + static_cast<std::size_t>(k);
+        write_number(cursor_.row_span > 0 && i < cursor_.reaction_impulse.size()
+                         ? cursor_.reaction_impulse[i] / cursor_.row_span
+                         : (i < r.size() ? r[i] : 0.0));
+      }
     }
     std::fill(cursor_.reaction_impulse.begin(), cursor_.reaction_impulse.end(), 0.0);
+  }
+
+  /// Whether node group g is held by a rotation (its reaction moment is reported).
+  bool rotating_group(std::size_t g) const {
+    for (const Prescription& p : sim_.loads.prescriptions)
+      if (p.rotation >= 0 && p.group == static_cast<int>(g)) return true;
+    return false;
   }
 
   /// The mean of force column i since the last row (the force of the step if none was booked).

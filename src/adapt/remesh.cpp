@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <map>
+#include <numbers>
 #include <numeric>
 #include <set>
 #include <unordered_map>
@@ -35,7 +36,7 @@ struct BoundaryPoint {
 
 /// A mesh whose smallest angle is at least this is taken at once; otherwise the other attempts
 /// are made and the best kept.
-constexpr double kAcceptedAngle = 10.0 * M_PI / 180.0;
+constexpr double kAcceptedAngle = 10.0 * std::numbers::pi / 180.0;
 
 std::uint64_t pair_key(std::int32_t a, std::int32_t b) {
   if (a > b) std::swap(a, b);
@@ -236,19 +237,25 @@ void shift_lips(const std::vector<char>& crack_face, Domain& dom, double shift) 
   dom.planar.xy = std::move(moved);
 }
 
+bool labelled(const Model& model, const OldPart& old, std::int32_t n) {
+  const int dim = model.dim();
+  for (int k = 0; k < dim; ++k)
+    if (model.nodes.prescribed[dim * n + k] >= 0) return true;
+  return !old.sets_of[n].empty();
+}
+
 /// Old interior nodes that carry a label (node set, prescribed motion) a neighbour does not, or
-/// that a probe follows: they stay, as points embedded in the new mesh.
+/// that a probe follows: they stay, as points embedded in the new mesh. (A node without a label
+/// next to a labelled boundary is not one: it moves with the new mesh.)
 std::vector<std::int32_t> embedded_nodes(const Model& model, const Part& part, const OldPart& old,
                                          const std::set<std::int32_t>& kept) {
   std::vector<char> embed(model.nodes.count(), 0);
   for (std::size_t e = 0; e < part.element_count(); ++e)
     for (int k = 0; k < 3; ++k) {
       const std::int32_t a = part.connectivity[3 * e + k], b = part.connectivity[3 * e + (k + 1) % 3];
-      if (old.body_of_node[a] < 0) continue;
-      if (!same_labels(model, old, a, b)) {
-        if (!old.on_boundary[a]) embed[a] = 1;
-        if (!old.on_boundary[b]) embed[b] = 1;
-      }
+      if (old.body_of_node[a] < 0 || same_labels(model, old, a, b)) continue;
+      for (const std::int32_t n : {a, b})
+        if (!old.on_boundary[n] && labelled(model, old, n)) embed[n] = 1;
     }
   std::vector<std::int32_t> out;
   for (std::size_t n = 0; n < embed.size(); ++n)
@@ -324,7 +331,7 @@ Triangulation mesh_domain(const Model& model, const std::vector<char>& crack_fac
     Triangulation mesh = triangulate(shifted.planar, size, a.algorithm, s.smoothing);
     if (mesh.ok()) {
       const std::vector<double> xy = final_positions(model, dom, mesh);
-      double smallest = M_PI;
+      double smallest = std::numbers::pi;
       for (std::size_t t = 0; t < mesh.triangles.size() / 3 && mesh.ok(); ++t) {
         const std::int32_t* c = &mesh.triangles[3 * t];
         if (!(twice_area(&xy[2 * c[0]], &xy[2 * c[1]], &xy[2 * c[2]]) > 0))

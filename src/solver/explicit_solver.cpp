@@ -162,9 +162,13 @@ void ExplicitSolver::initialise() {
   const int dim = model_.dim();
   // Prescribed velocities hold from t = 0: they are part of the initial state, so the initial
   // kinetic energy includes them and no impulsive jump happens in the first step.
-  for (const auto& c : node_dofs_)
-    model_.nodes.v[static_cast<std::size_t>(dim) * c.point + c.component] =
-        loads_.tables[loads_.prescriptions[c.prescription].table].at(0.0);
+  for (const auto& c : node_dofs_) {
+    const Prescription& p = loads_.prescriptions[c.prescription];
+    const double value = loads_.tables[p.table].at(0.0);
+    const std::size_t slot = static_cast<std::size_t>(dim) * c.point + c.component;
+    model_.nodes.v[slot] =
+        p.rotation < 0 ? value : rigid_velocity(loads_.rotations[p.rotation], value, &model_.nodes.x[slot - c.component], dim, c.component);
+  }
   for (std::size_t i = 0; i < model_.nodes.count(); ++i) {
     const double m = model_.nodes.mass[i];
     if (!(m > 0)) {

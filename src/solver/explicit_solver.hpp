@@ -121,7 +121,8 @@ class ExplicitSolver : private TopologyListener {
   /// per group (translation components, then rotation components), N or N m.
   const std::vector<double>& particle_group_reactions() const { return particle_reactions_; }
   /// The same for the node groups of the boundary conditions (Loads::node_groups, 6 slots per
-  /// group), and the work of each group's reaction over the last step (2 per group: the halves
+  /// group: the force, then for a group held by a rotation its moment about the rotation's
+  /// centre), and the work of each group's reaction over the last step (2 per group: the halves
   /// before and after t_n).
   const std::vector<double>& node_group_reactions() const { return node_reactions_; }
   const std::vector<double>& node_group_work() const { return node_work_; }

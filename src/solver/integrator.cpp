@@ -52,6 +52,14 @@ double chord_velocity(const Rotation& rotation, double rate, const double* x, in
   return (turned - r[k]) / dt;
 }
 
+double rigid_velocity(const Rotation& rotation, double rate, const double* x, int dim, int component) {
+  double r[3] = {0, 0, 0};
+  for (int k = 0; k < dim; ++k) r[k] = x[k] - rotation.centre[k];
+  const double* n = rotation.axis.data();
+  const double w[3] = {rate * (n[1] * r[2] - n[2] * r[1]), rate * (n[2] * r[0] - n[0] * r[2]), rate * (n[0] * r[1] - n[1] * r[0])};
+  return w[component];
+}
+
 DofRef dof_of(const MovingPoints& p, const PrescribedDof& d) {
   const bool rot = d.component >= p.dim;
   const std::size_t i = static_cast<std::size_t>(d.point);
@@ -80,7 +88,20 @@ void apply_prescribed(const MovingPoints& p, const std::vector<PrescribedDof>& d
     external_back += back;
     external_ahead += ahead;
     dof.force = f_needed;
-    if (group_reactions && pr.group >= 0) (*group_reactions)[6 * pr.group + d.component] += reaction;
+    if (group_reactions && pr.group >= 0) {
+      double* slot = &(*group_reactions)[6 * pr.group];
+      slot[d.component] += reaction;
+      // A rotating group's reaction moment about its centre, in the slots after the forces:
+      // (r × e_k) f for the component k = x, y, z.
+      if (pr.rotation >= 0 && d.component < p.dim) {
+        const Rotation& rot = loads.rotations[pr.rotation];
+        double r[3] = {0, 0, 0};
+        for (int k = 0; k < p.dim; ++k) r[k] = p.x[static_cast<std::size_t>(p.dim) * d.point + k] - rot.centre[k];
+        const int k = d.component, k1 = (k + 1) % 3, k2 = (k + 2) % 3;
+        slot[3 + k1] += r[k2] * reaction;
+        slot[3 + k2] -= r[k1] * reaction;
+      }
+    }
     if (group_work && pr.group >= 0) {
       (*group_work)[2 * pr.group] += back;
       (*group_work)[2 * pr.group + 1] += ahead;

@@ -57,6 +57,9 @@ DofRef dof_of(const MovingPoints& p, const PrescribedDof& d);
 /// The velocity component that carries point x (dim coordinates) along the chord of its turn by
 /// rate·dt about the rotation's axis over a step dt.
 double chord_velocity(const Rotation& rotation, double rate, const double* x, int dim, double dt, int component);
+/// The velocity component of point x turning at `rate` (ω n × r): the rotation's velocity at
+/// t = 0, where there is no step yet.
+double rigid_velocity(const Rotation& rotation, double rate, const double* x, int dim, int component);
 
 /// Replaces the force of each prescribed degree of freedom by the one that gives it its
 /// prescribed velocity at t_n+1/2 (`time_half`); adds the work of the reactions to

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <array>
+#include <functional>
 #include <memory>
 #include <string>
 
@@ -18,7 +19,9 @@ struct ScenarioRun {
   CrackGrowth* cracks = nullptr;     ///< the simulation's crack insertion, if it has one
   std::unique_ptr<ExplicitSolver> solver;
 
-  explicit ScenarioRun(const std::string& file) : scenario(read_scenario(file)) {
+  explicit ScenarioRun(const std::string& file, const std::function<void(Scenario&)>& adjust = {})
+      : scenario(read_scenario(file)) {
+    if (adjust) adjust(scenario);
     sim = build_simulation(scenario, load_scenario_mesh(scenario));
     solver = make_solver(sim);
     contact = sim.contact_system ? &*sim.contact_system : nullptr;

@@ -1,0 +1,19 @@
+// Plane-strain annulus, inner radius a = 5 mm, outer b = 15 mm (in mm), triangles of about h.
+a = 5;
+b = 15;
+h = 0.5;
+Point(1) = {0, 0, 0};
+Point(2) = {a, 0, 0, h};
+Point(3) = {-a, 0, 0, h};
+Point(4) = {b, 0, 0, h};
+Point(5) = {-b, 0, 0, h};
+Circle(1) = {2, 1, 3};
+Circle(2) = {3, 1, 2};
+Circle(3) = {4, 1, 5};
+Circle(4) = {5, 1, 4};
+Curve Loop(1) = {3, 4};
+Curve Loop(2) = {1, 2};
+Plane Surface(1) = {1, 2};
+Physical Surface("annulus") = {1};
+Physical Curve("inner") = {1, 2};
+Physical Curve("outer") = {3, 4};

@@ -1,0 +1,230 @@
+// Adaptive remeshing in whole runs (src/adapt/remesh_event.hpp, docs/theory/adaptive_remeshing.md):
+//   - the 4340 Taylor bar of examples/taylor_bar remeshed every 25 … 200 steps ends with the
+//     length and footprint of the run without remeshing (0.5 % and 1 %), and so does the
+//     example that sizes its mesh by the plastic strain;
+//   - large shear with an exact answer: a plane-strain annulus of elastic, perfectly plastic
+//     material whose inner rim is turned: without remeshing its triangles flatten and the step
+//     falls tenfold before a quarter turn; with remeshing it goes round at a steady step, at a
+//     torque that converges to the limit 2 pi a^2 k as the elements at the rim get smaller;
+//   - the same bits for one and two threads, and across a restart between remeshes.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+
+#include "core/error.hpp"
+#include "support/cli.hpp"
+#include "support/scenario_run.hpp"
+
+namespace shard {
+namespace {
+
+const std::string kTaylor = std::string(SHARD_SOURCE_DIR) + "/examples/taylor_bar/steel_4340_axisymmetric.yaml";
+const std::string kTaylorRemeshed =
+    std::string(SHARD_SOURCE_DIR) + "/examples/taylor_bar/steel_4340_axisymmetric_remeshing.yaml";
+const std::string kAnnulus = std::string(SHARD_TEST_DATA_DIR) + "/remesh/annulus_shear.yaml";
+
+struct Shape {
+  double length = 0, diameter = 0, worst_error = 0;
+  std::int64_t remeshes = 0;
+};
+
+/// The Taylor bar run to its end: length, footprint diameter, the worst balance error.
+Shape taylor(const std::string& file, const std::function<void(Scenario&)>& adjust = {}) {
+  testing::ScenarioRun run(file, adjust);
+  Shape s;
+  while (!run.solver->finished()) {
+    run.step();
+    s.worst_error = std::max(s.worst_error, std::abs(run.solver->state().energy.relative_error()));
+  }
+  const Model& m = run.sim.model;
+  double top = -1e30, bottom = 1e30;
+  for (std::size_t i = 0; i < m.nodes.count(); ++i) {
+    top = std::max(top, m.nodes.x[2 * i + 1]);
+    bottom = std::min(bottom, m.nodes.x[2 * i + 1]);
+    s.diameter = std::max(s.diameter, 2 * m.nodes.x[2 * i]);
+  }
+  s.length = top - bottom;
+  s.remeshes = m.remesh_count.empty() ? 0 : m.remesh_count[0];
+  return s;
+}
+
+/// The example's scenario remeshed to its own size, every `every` steps and at no other time.
+std::function<void(Scenario&)> remeshed_every(std::int64_t every) {
+  return [every](Scenario& sc) {
+    RemeshingInput in;
+    in.triggers.check_interval = every;
+    in.triggers.max_interval = every;
+    in.triggers.min_angle = in.triggers.max_angle = 0;
+    RemeshedPartInput part;
+    part.part = "bar";
+    part.settings.size.uniform_size = 0.254e-3;
+    in.parts.push_back(part);
+    sc.remeshing = in;
+  };
+}
+
+void expect_same_shape(const Shape& reference, const std::vector<std::int64_t>& intervals) {
+  for (const std::int64_t every : intervals) {
+    const Shape s = taylor(kTaylor, remeshed_every(every));
+    std::printf("[taylor, remeshed every %lld steps] %lld remeshes: length %.4f mm (%+.3f %%), footprint %.4f mm "
+                "(%+.3f %%), balance within %.3f %%\n",
+                static_cast<long long>(every), static_cast<long long>(s.remeshes), s.length * 1e3,
+                100 * (s.length / reference.length - 1), s.diameter * 1e3, 100 * (s.diameter / reference.diameter - 1),
+                100 * s.worst_error);
+    EXPECT_GT(s.remeshes, 2000 / every);
+    EXPECT_NEAR(s.length / reference.length, 1.0, 0.005);
+    EXPECT_NEAR(s.diameter / reference.diameter, 1.0, 0.01);
+    EXPECT_LT(s.worst_error, 0.01);
+  }
+}
+
+TEST(RemeshScenarios, TaylorBarRemeshedEvery100StepsEndsAsWithoutRemeshing) {
+  const Shape reference = taylor(kTaylor);
+  std::printf("[taylor, no remeshing] length %.4f mm, footprint %.4f mm\n", reference.length * 1e3,
+              reference.diameter * 1e3);
+  expect_same_shape(reference, {100});
+}
+
+TEST(RemeshValidation, TaylorBarRemeshedEvery25To200StepsEndsAsWithoutRemeshing) {
+  expect_same_shape(taylor(kTaylor), {25, 50, 100, 200});
+}
+
+TEST(RemeshScenarios, TaylorBarSizedByPlasticStrainMatchesTheTest) {
+  const Shape s = taylor(kTaylorRemeshed);
+  const Shape reference = taylor(kTaylor);
+  std::printf("[taylor, sized by plastic strain] %lld remeshes: length %.4f mm, footprint %.4f mm (test 22.48, 11.1; "
+              "without remeshing %.4f, %.4f)\n",
+              static_cast<long long>(s.remeshes), s.length * 1e3, s.diameter * 1e3, reference.length * 1e3,
+              reference.diameter * 1e3);
+  EXPECT_GE(s.remeshes, 5);
+  EXPECT_NEAR(s.length / 22.48e-3, 1.0, 0.05);
+  EXPECT_NEAR(s.diameter / 11.1e-3, 1.0, 0.05);
+  EXPECT_NEAR(s.length / reference.length, 1.0, 0.005);
+  EXPECT_NEAR(s.diameter / reference.diameter, 1.0, 0.01);
+  EXPECT_LT(s.worst_error, 0.01);
+}
+
+/// The annulus turned until `angle` (rad) or the end: the angle reached, the mean torque over
+/// the second half of the turn (per the scenario's thickness), the smallest step against the
+/// first, the worst balance error over the second half.
+struct Turn {
+  double angle = 0, torque = 0, worst_error = 0, step_ratio = 1;
+  std::string failure;
+};
+
+Turn turn_annulus(const std::function<void(Scenario&)>& adjust, double stop_angle, double stop_step_ratio = 0) {
+  testing::ScenarioRun run(kAnnulus, adjust);
+  Turn t;
+  const Loads& loads = run.sim.loads;
+  const std::size_t inner = static_cast<std::size_t>(
+      std::find(loads.node_groups.begin(), loads.node_groups.end(), "inner") - loads.node_groups.begin());
+  // The rim's angular velocity: the table of its rotation's prescriptions.
+  const TimeTable* rate = nullptr;
+  for (const Prescription& p : loads.prescriptions)
+    if (p.rotation >= 0) rate = &loads.tables[p.table];
+  EXPECT_NE(rate, nullptr);
+  double moment_impulse = 0, span = 0, first = 0;
+  try {
+    while (!run.solver->finished() && t.angle < stop_angle && t.step_ratio >= stop_step_ratio) {
+      run.step();
+      const double dt = run.solver->state().dt_half, time = run.solver->state().time;
+      if (first == 0) first = dt;
+      if (!run.solver->finished()) t.step_ratio = std::min(t.step_ratio, dt / first);
+      t.angle += rate->at(time - 0.5 * dt) * dt;
+      // (Everything starts at rest, and the ramp's first microseconds hold millijoules: the
+      // balance is measured over the second half of the turn, where the remeshes are.)
+      if (t.angle > 0.5 * stop_angle) {
+        t.worst_error = std::max(t.worst_error, std::abs(run.solver->state().energy.relative_error()));
+        moment_impulse += run.solver->node_group_reactions()[6 * inner + 5] * dt;
+        span += dt;
+      }
+    }
+  } catch (const std::exception& e) {
+    t.failure = e.what();
+  }
+  t.torque = span > 0 ? moment_impulse / span : 0.0;
+  return t;
+}
+
+double limit_torque() {
+  const double a = 5e-3, k = 300e6 / std::sqrt(3.0), thickness = 1e-3;
+  return 2 * std::numbers::pi * a * a * k * thickness;
+}
+
+TEST(RemeshScenarios, AnnulusWithoutRemeshingLosesItsTimeStepBeforeAQuarterTurn) {
+  const Turn t = turn_annulus([](Scenario& sc) { sc.remeshing.reset(); }, 0.5 * std::numbers::pi, 0.1);
+  std::printf("[annulus, no remeshing] at %.1f deg the step is %.3f of the first\n", t.angle * 180 / std::numbers::pi,
+              t.step_ratio);
+  EXPECT_TRUE(t.failure.empty()) << t.failure;
+  EXPECT_LT(t.step_ratio, 0.1);
+  EXPECT_LT(t.angle, 0.5 * std::numbers::pi);
+}
+
+TEST(RemeshScenarios, AnnulusRemeshedTurnsFullyAtASteadyStep) {
+  const Turn t = turn_annulus({}, 2 * std::numbers::pi);
+  std::printf("[annulus, remeshed to 0.2 mm] %.1f deg, smallest step %.3f of the first; torque over the second half "
+              "%.3f N m against 2 pi a^2 k = %.3f N m (%+.2f %%); balance within %.4f %%\n",
+              t.angle * 180 / std::numbers::pi, t.step_ratio, t.torque, limit_torque(),
+              100 * (t.torque / limit_torque() - 1), 100 * t.worst_error);
+  EXPECT_TRUE(t.failure.empty()) << t.failure;
+  EXPECT_GE(t.angle, 2 * std::numbers::pi);
+  EXPECT_GT(t.step_ratio, 0.2);
+  // The yield moves out by about one element from the rim (first order in the element size:
+  // RemeshValidation.AnnulusTorqueConvergesToTheLimit).
+  EXPECT_NEAR(t.torque / limit_torque(), 1.0, 0.12);
+  EXPECT_LT(t.worst_error, 0.01);
+}
+
+TEST(RemeshValidation, AnnulusTorqueConvergesToTheLimit) {
+  std::vector<double> error;
+  for (const double h : {0.2e-3, 0.1e-3, 0.05e-3}) {
+    const Turn t = turn_annulus(
+        [h](Scenario& sc) {
+          RemeshedPartInput& part = sc.remeshing->parts.at(0);
+          part.settings.size.table.back()[1] = h;
+          part.settings.size.h_min = h;
+        },
+        0.4 * std::numbers::pi);
+    error.push_back(t.torque / limit_torque() - 1);
+    std::printf("[annulus, remeshed to %.2f mm] torque %.3f N m, %+.2f %% of the limit; balance within %.4f %%\n",
+                h * 1e3, t.torque, 100 * error.back(), 100 * t.worst_error);
+    EXPECT_TRUE(t.failure.empty()) << t.failure;
+    EXPECT_LT(t.worst_error, 0.01);
+  }
+  // First order in the size of the elements at the rim: each halving at least 40 % closer, and the
+  // extrapolation to size zero within 2 % of 2 pi a^2 k.
+  for (std::size_t i = 1; i < error.size(); ++i) EXPECT_LT(error[i], 0.6 * error[i - 1]);
+  const double extrapolated = 2 * error.back() - error[error.size() - 2];
+  std::printf("[annulus] extrapolated to size 0: %+.2f %%\n", 100 * extrapolated);
+  EXPECT_LT(std::abs(extrapolated), 0.02);
+}
+
+TEST(RemeshScenarios, SameBitsForOneAndTwoThreadsAndAcrossARestart) {
+  const auto dir = testing::fresh_dir("remesh_bits");
+  const std::string run = "run " + kTaylorRemeshed + " --quiet --set analysis.end_time=16us --set output.frame_interval=1us ";
+  const auto one = testing::run_shard(run + "--threads 1 -o " + (dir / "one").string());
+  const auto two = testing::run_shard(run + "--threads 2 -o " + (dir / "two").string());
+  ASSERT_EQ(one.status, 0) << one.output;
+  ASSERT_EQ(two.status, 0) << two.output;
+  const std::string h1 = testing::read_file(dir / "one" / "history.csv");
+  EXPECT_EQ(h1, testing::read_file(dir / "two" / "history.csv"));
+  const testing::History history = testing::read_history(dir / "one" / "history.csv");
+  EXPECT_GE(history.at(history.rows.size() - 1, "remeshes_bar"), 3);  // at 8.0, 12.0 and 15.5 µs
+  const std::string frame = testing::read_file(dir / "one" / "frame_00015.vtu");  // after the third remesh
+  EXPECT_GT(frame.size(), 10000u);
+  EXPECT_EQ(frame, testing::read_file(dir / "two" / "frame_00015.vtu"));
+  // Stopped between remeshes and restarted: the same history and last frame.
+  const auto first = testing::run_shard(run + "--until 10us -o " + (dir / "pieces").string());
+  ASSERT_EQ(first.status, 0) << first.output;
+  const auto second = testing::run_shard(run + "-o " + (dir / "pieces").string() + " --restart " +
+                                         (dir / "pieces" / "checkpoint.bin").string());
+  ASSERT_EQ(second.status, 0) << second.output;
+  EXPECT_EQ(h1, testing::read_file(dir / "pieces" / "history.csv"));
+  EXPECT_EQ(frame, testing::read_file(dir / "pieces" / "frame_00015.vtu"));
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace shard
