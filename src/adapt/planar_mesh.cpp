@@ -34,6 +34,19 @@ std::array<double, 3> triangle_angles(const double* a, const double* b, const do
 
 double equilateral_size(double area) { return std::sqrt(4.0 * std::abs(area) / std::sqrt(3.0)); }
 
+bool first_row_of_inverse(const double M[3][3], double row[3], double tolerance) {
+  // The cofactors of M's first column over det M (M symmetric).
+  const double c0 = M[1][1] * M[2][2] - M[1][2] * M[2][1];
+  const double c1 = M[0][2] * M[2][1] - M[0][1] * M[2][2];
+  const double c2 = M[0][1] * M[1][2] - M[0][2] * M[1][1];
+  const double det = M[0][0] * c0 + M[1][0] * c1 + M[2][0] * c2;
+  if (!(std::abs(det) > tolerance * M[0][0] * M[0][0] * M[0][0])) return false;
+  row[0] = c0 / det;
+  row[1] = c1 / det;
+  row[2] = c2 / det;
+  return true;
+}
+
 std::vector<std::vector<std::int32_t>> bodies_of(const Part& part) {
   const std::size_t ne = part.element_count();
   const int npe = part.type->nodes;

@@ -56,4 +56,9 @@ ElementDistortion element_distortion(const Part& part, const NodeArrays& nodes, 
 /// The equilateral edge length of a triangle of area A: the size a mesher aims at, sqrt(4A/√3).
 double equilateral_size(double area);
 
+/// The first row of the inverse of a symmetric 3 × 3 matrix (the normal equations of a linear fit
+/// a + b x + c y: the row that gives a), or false where M is singular to within `tolerance` of
+/// M00³ (the points of the fit on a line).
+bool first_row_of_inverse(const double M[3][3], double row[3], double tolerance);
+
 }  // namespace shard

@@ -203,11 +203,20 @@ std::vector<BoundaryPoint> resample_loop(const Model& model, const BoundaryLoop&
 
 /// The domain for Gmsh: the new boundary of every loop, the old interior nodes that must stay
 /// (embedded), with the crack lips moved apart by `shift` of their adjacent segments.
+/// A closed crack collapsed into a line the mesh follows: `line` runs along one lip from where
+/// the lips part (or the far tip) to the tip, `twin[i]` is the other lip's point at line[i]
+/// (−1 at a tip, which is one node), and the triangles on the right of the line, going to the
+/// tip, take the twins (src/adapt/remesh.cpp, split_slits).
+struct Slit {
+  std::vector<std::int32_t> line, twin;
+};
+
 struct Domain {
   PlanarDomain planar;
   std::vector<BoundaryPoint> points;        ///< per domain point
   std::vector<std::int32_t> loop_body;      ///< per domain loop
   std::vector<std::vector<std::int32_t>> loop_points;
+  std::vector<Slit> slits;
 };
 
 void point_position(const double* X, const BoundaryPoint& bp, double* out) {
@@ -264,6 +273,60 @@ std::vector<std::int32_t> embedded_nodes(const Model& model, const Part& part, c
   return out;
 }
 
+/// Whether domain points a and b are the two lips of a closed crack at one place: copies of one
+/// node (the same crack origin) no further apart than 2 % of the shorter segment beside a.
+bool closed_pair(const Model& model, const Domain& dom, std::int32_t a, std::int32_t b, double reach) {
+  const std::int32_t na = dom.points[a].node, nb = dom.points[b].node;
+  if (a == b || na < 0 || nb < 0 || model.nodes.origin[na] != model.nodes.origin[nb]) return false;
+  const double* x = dom.planar.xy.data();
+  return std::hypot(x[2 * a] - x[2 * b], x[2 * a + 1] - x[2 * b + 1]) <= reach;
+}
+
+/// Finds the closed cracks of a loop, a tip with the two lips running from it node for node as
+/// near-coincident copies, and collapses each into a Slit: the loop keeps the one lip's point
+/// where the lips part and drops the rest (a crack inside the body, running between two tips,
+/// leaves no loop at all). Gmsh meshes the line; the lips are given back to the triangles after.
+void collapse_closed_cracks(const Model& model, Domain& dom, std::vector<std::int32_t>& loop) {
+  const double* x = dom.planar.xy.data();
+  auto segment = [&](std::int32_t a, std::int32_t b) {
+    return std::hypot(x[2 * a] - x[2 * b], x[2 * a + 1] - x[2 * b + 1]);
+  };
+  for (bool found = true; found && loop.size() >= 3;) {
+    found = false;
+    const std::size_t n = loop.size();
+    auto at = [&](std::ptrdiff_t i) { return loop[static_cast<std::size_t>(((i % static_cast<std::ptrdiff_t>(n)) + n) % n)]; };
+    auto pair = [&](std::ptrdiff_t i, std::ptrdiff_t j) {
+      const double reach = 0.02 * std::min(segment(at(i), at(i - 1)), segment(at(i), at(i + 1)));
+      return closed_pair(model, dom, at(i), at(j), reach);
+    };
+    for (std::ptrdiff_t c = 0; c < static_cast<std::ptrdiff_t>(n) && !found; ++c) {
+      if (!pair(c - 1, c + 1)) continue;
+      std::ptrdiff_t K = 1;
+      while (2 * K + 2 < static_cast<std::ptrdiff_t>(n) && pair(c - K - 1, c + K + 1)) ++K;
+      Slit slit;
+      const bool inside = 2 * K + 2 == static_cast<std::ptrdiff_t>(n) && at(c - K - 1) == at(c + K + 1);
+      if (inside) {
+        slit.line.push_back(at(c - K - 1));
+        slit.twin.push_back(-1);
+      }
+      for (std::ptrdiff_t k = K; k >= 1; --k) {
+        slit.line.push_back(at(c - k));
+        slit.twin.push_back(at(c + k));
+      }
+      slit.line.push_back(at(c));
+      slit.twin.push_back(-1);
+      std::vector<std::int32_t> rest;
+      if (!inside)
+        for (std::ptrdiff_t i = c + K + 1; i <= c + static_cast<std::ptrdiff_t>(n) - K; ++i) rest.push_back(at(i));
+      loop = std::move(rest);
+      dom.planar.lines.push_back(slit.line);
+      dom.slits.push_back(std::move(slit));
+      found = true;
+    }
+  }
+  if (loop.size() < 3) loop.clear();
+}
+
 Domain build_domain(const Model& model, const Part& part, const OldPart& old, const std::vector<char>& crack_face,
                     const std::set<std::int32_t>& kept, const std::vector<double>& size, const RemeshSettings& s) {
   Domain dom;
@@ -289,6 +352,7 @@ Domain build_domain(const Model& model, const Part& part, const OldPart& old, co
     std::vector<std::int32_t> loop;
     for (const BoundaryPoint& bp : resample_loop(model, old.loops[l], fixed, crack_face, size, s.chord_tolerance))
       loop.push_back(add_point(bp));
+    collapse_closed_cracks(model, dom, loop);
     dom.planar.loops.push_back(loop);
     dom.loop_points.push_back(loop);
     dom.loop_body.push_back(old.loop_body[l]);
@@ -398,6 +462,9 @@ struct BornNode {
 /// old count + k for the k-th born node), the born nodes, each new triangle's body and parents.
 struct NewMesh {
   std::vector<std::int32_t> node;
+  /// Per new triangle, its three nodes after the first remap: node[] of its Gmsh nodes, but the
+  /// other lip's node on the far side of a closed crack (split_slits).
+  std::vector<std::int32_t> corner;
   std::vector<BornNode> born;
   std::vector<std::int32_t> body;  ///< per new triangle
   WeightedParents elements;        ///< per new triangle, old elements of the part
@@ -482,6 +549,50 @@ NewMesh map_new_mesh(const Model& model, const Part& part, const OldPart& old, c
   return nm;
 }
 
+/// Gives the triangles on the right of each closed crack's line (going to its tip) the other
+/// lip's nodes: at each point of the line the triangles around it are split by the line's two
+/// segments (the one towards the tip, and the one back, where there is one) into the left and the
+/// right sector. Returns false if a triangle would then turn over.
+bool split_slits(const Model& model, const Domain& dom, const Triangulation& mesh, NewMesh& nm) {
+  const std::size_t n_tri = mesh.triangles.size() / 3;
+  nm.corner.resize(3 * n_tri);
+  for (std::size_t c = 0; c < 3 * n_tri; ++c) nm.corner[c] = nm.node[mesh.triangles[c]];
+  if (dom.slits.empty()) return true;
+  std::unordered_map<std::int32_t, std::vector<std::size_t>> around;  // slit point → corners there
+  for (const Slit& slit : dom.slits)
+    for (const std::int32_t p : slit.line) around[p];
+  for (std::size_t c = 0; c < 3 * n_tri; ++c)
+    if (const auto it = around.find(mesh.triangles[c]); it != around.end()) it->second.push_back(c);
+  const double* x = mesh.xy.data();
+  auto angle = [&](std::int32_t from, const double* to) { return std::atan2(to[1] - x[2 * from + 1], to[0] - x[2 * from]); };
+  const double two_pi = 2 * std::numbers::pi;
+  for (const Slit& slit : dom.slits)
+    for (std::size_t i = 0; i + 1 < slit.line.size(); ++i) {
+      if (slit.twin[i] < 0) continue;
+      const std::int32_t q = slit.line[i];
+      const double forward = angle(q, &x[2 * slit.line[i + 1]]);
+      const double back = i > 0 ? angle(q, &x[2 * slit.line[i - 1]]) : forward + std::numbers::pi;
+      const double left_span = std::fmod(back - forward + 2 * two_pi, two_pi);
+      for (const std::size_t c : around[q]) {
+        const std::size_t t = c / 3;
+        double centroid[2] = {0, 0};
+        for (int k = 0; k < 3; ++k)
+          for (int d = 0; d < 2; ++d) centroid[d] += x[2 * mesh.triangles[3 * t + k] + d] / 3.0;
+        const double turn = std::fmod(angle(q, centroid) - forward + 2 * two_pi, two_pi);
+        if (turn > left_span) nm.corner[c] = dom.points[slit.twin[i]].node;
+      }
+    }
+  for (std::size_t t = 0; t < n_tri; ++t) {
+    const std::int32_t* c = &nm.corner[3 * t];
+    auto position = [&](std::size_t k) {
+      return c[k] < static_cast<std::int32_t>(model.nodes.count()) ? &model.nodes.x[2 * c[k]]
+                                                                 : &mesh.xy[2 * mesh.triangles[3 * t + k]];
+    };
+    if (!(twice_area(position(0), position(1), position(2)) > 0)) return false;
+  }
+  return true;
+}
+
 /// The first of the two remaps: the born nodes appended (every old node stays for now, so the
 /// old indices the fix-ups use still hold), the part's elements replaced by the new ones, whose
 /// corners are then set.
@@ -511,7 +622,7 @@ Remap first_remap(const Model& model, std::size_t p, const Triangulation& mesh, 
   for (std::size_t t = 0; t < n_tri; ++t)
     for (int k = 0; k < 3; ++k)
       r.corners.push_back(CornerMove{static_cast<std::int32_t>(p), static_cast<std::int32_t>(t), k,
-                                     nm.node[mesh.triangles[3 * t + k]]});
+                                     nm.corner[3 * t + k]});
   return r;
 }
 
@@ -566,12 +677,9 @@ std::vector<double> nodal_velocity_gradients(const Model& model, const Part& par
       total += area[e];
       for (int q = 0; q < 4; ++q) mean[q] += area[e] * g[4 * e + q];
     }
-    const double c00 = M[1][1] * M[2][2] - M[1][2] * M[2][1];
-    const double c01 = M[0][2] * M[2][1] - M[0][1] * M[2][2];
-    const double c02 = M[0][1] * M[1][2] - M[0][2] * M[1][1];
-    const double det = M[0][0] * c00 + M[1][0] * c01 + M[2][0] * c02;
-    const bool fit = around[n].size() >= 4 && std::abs(det) > 1e-6 * M[0][0] * M[0][0] * M[0][0];
-    for (int q = 0; q < 4; ++q) out[4 * n + q] = fit ? (c00 * r[q][0] + c01 * r[q][1] + c02 * r[q][2]) / det : mean[q] / total;
+    double row[3];
+    const bool fit = around[n].size() >= 4 && first_row_of_inverse(M, row, 1e-6);
+    for (int q = 0; q < 4; ++q) out[4 * n + q] = fit ? row[0] * r[q][0] + row[1] * r[q][1] + row[2] * r[q][2] : mean[q] / total;
   }
   return out;
 }
@@ -866,7 +974,11 @@ RemeshOutcome remesh_part(Model& model, std::size_t p, const Material& material,
     for (int d = 0; d < 2; ++d) out.momentum_before[d] += before.momentum[b][d];
   }
   for (std::size_t n = 0; n < nn; ++n) out.nodes_before += old.body_of_node[n] >= 0;
-  const NewMesh nm = map_new_mesh(model, part, old, dom, mesh, s.transfer);
+  NewMesh nm = map_new_mesh(model, part, old, dom, mesh, s.transfer);
+  if (!split_slits(model, dom, mesh, nm)) {
+    out.skipped = "a triangle at a closed crack turns over when its lips are given back";
+    return out;
+  }
   const std::size_t size = static_cast<std::size_t>(part.state_size), n_tri = mesh.triangles.size() / 3;
   std::vector<double> holder_state(size * n_tri);
   for (std::size_t t = 0; t < n_tri && size > 0; ++t)
@@ -883,8 +995,7 @@ RemeshOutcome remesh_part(Model& model, std::size_t p, const Material& material,
   // Remap two: the old nodes the new mesh does not use leave.
   std::vector<std::uint8_t> keep(model.nodes.count(), 1);
   for (std::size_t n = 0; n < nn; ++n) keep[n] = old.body_of_node[n] < 0;
-  for (const std::int32_t n : nm.node)
-    if (n >= 0) keep[n] = 1;
+  for (const std::int32_t n : nm.corner) keep[n] = 1;
   Remap second;
   second.nodes = EntityRemap::keeping(keep);
   const std::vector<std::int32_t> new_of_old = second.nodes->new_of_old();

@@ -34,12 +34,9 @@ bool patch_fit(const std::vector<std::array<double, 2>>& at, const std::vector<c
       for (int c = 0; c < 3; ++c) M[a][c] += b[a] * b[c];
     }
   }
-  const double c00 = M[1][1] * M[2][2] - M[1][2] * M[2][1];
-  const double c01 = M[0][2] * M[2][1] - M[0][1] * M[2][2];
-  const double c02 = M[0][1] * M[1][2] - M[0][2] * M[1][1];
-  const double det = M[0][0] * c00 + M[1][0] * c01 + M[2][0] * c02;
-  if (!(std::abs(det) > 1e-8 * M[0][0] * M[0][0] * M[0][0])) return false;
-  value = (c00 * r[0] + c01 * r[1] + c02 * r[2]) / det;
+  double row[3];
+  if (!first_row_of_inverse(M, row, 1e-8)) return false;
+  value = row[0] * r[0] + row[1] * r[1] + row[2] * r[2];
   return true;
 }
 

@@ -6,6 +6,8 @@
 #include <map>
 #include <unordered_map>
 
+#include "adapt/planar_mesh.hpp"
+
 namespace shard {
 
 namespace {
@@ -84,21 +86,17 @@ void least_squares_weights(const double* p, const std::vector<std::int32_t>& poi
     for (int r = 0; r < 3; ++r)
       for (int s = 0; s < 3; ++s) M[r][s] += w[i] * b[r] * b[s];
   }
-  // First row of M⁻¹ (M is symmetric): the cofactors of its first column over det M.
-  const double c00 = M[1][1] * M[2][2] - M[1][2] * M[2][1];
-  const double c10 = M[0][2] * M[2][1] - M[0][1] * M[2][2];
-  const double c20 = M[0][1] * M[1][2] - M[0][2] * M[1][1];
-  const double det = M[0][0] * c00 + M[1][0] * c10 + M[2][0] * c20;
   c.assign(points.size(), 0.0);
-  double wsum = 0;
-  for (const double wi : w) wsum += wi;
-  if (!(std::abs(det) > 1e-10 * M[0][0] * M[0][0] * M[0][0])) {
+  double row[3];
+  if (!first_row_of_inverse(M, row, 1e-10)) {
+    double wsum = 0;
+    for (const double wi : w) wsum += wi;
     for (std::size_t i = 0; i < points.size(); ++i) c[i] = w[i] / wsum;
     return;
   }
   for (std::size_t i = 0; i < points.size(); ++i) {
     const double dx = (xy[2 * points[i]] - p[0]) / h, dy = (xy[2 * points[i] + 1] - p[1]) / h;
-    c[i] = w[i] * (c00 + c10 * dx + c20 * dy) / det;
+    c[i] = w[i] * (row[0] + row[1] * dx + row[2] * dy);
   }
 }
 

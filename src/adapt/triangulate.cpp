@@ -41,12 +41,12 @@ std::vector<std::vector<std::size_t>> surfaces_of(const PlanarDomain& d) {
   std::vector<std::vector<std::size_t>> surfaces;
   std::vector<std::size_t> outer;
   for (std::size_t l = 0; l < d.loops.size(); ++l)
-    if (loop_twice_area(d, d.loops[l]) > 0) {
+    if (d.loops[l].size() >= 3 && loop_twice_area(d, d.loops[l]) > 0) {
       outer.push_back(l);
       surfaces.push_back({l});
     }
   for (std::size_t l = 0; l < d.loops.size(); ++l) {
-    if (loop_twice_area(d, d.loops[l]) > 0) continue;
+    if (d.loops[l].size() < 3 || loop_twice_area(d, d.loops[l]) > 0) continue;
     std::size_t best = outer.size();
     double best_area = 0;
     for (std::size_t o = 0; o < outer.size(); ++o) {
@@ -61,6 +61,17 @@ std::vector<std::vector<std::size_t>> surfaces_of(const PlanarDomain& d) {
   return surfaces;
 }
 
+/// The surface (index into surfaces_of) whose region holds point p: inside its outer loop and
+/// none of its holes (−1: none).
+int surface_holding(const PlanarDomain& d, const std::vector<std::vector<std::size_t>>& groups, const double* p) {
+  for (std::size_t s = 0; s < groups.size(); ++s) {
+    bool in = point_in_loop(d, d.loops[groups[s][0]], p);
+    for (std::size_t h = 1; h < groups[s].size() && in; ++h) in = !point_in_loop(d, d.loops[groups[s][h]], p);
+    if (in) return static_cast<int>(s);
+  }
+  return -1;
+}
+
 /// Builds the geometry in Gmsh's built-in kernel: a point per domain point, a line per loop
 /// segment meshed as one element, a plane surface per outer loop with its holes. Returns the
 /// surfaces' tags (in the order of surfaces_of); point tags are the domain indices + 1.
@@ -69,18 +80,28 @@ std::vector<int> build_geometry(const PlanarDomain& d) {
   for (const auto& loop : d.loops)
     for (const std::int32_t p : loop) used[p] = 1;
   for (const std::int32_t p : d.embedded) used[p] = 1;
+  for (const auto& line : d.lines)
+    for (const std::int32_t p : line) used[p] = 1;
   for (std::size_t p = 0; p < used.size(); ++p)
     if (used[p]) gmsh::model::geo::addPoint(d.xy[2 * p], d.xy[2 * p + 1], 0.0, 0.0, static_cast<int>(p) + 1);
-  std::vector<int> loop_tags, lines;
-  for (const auto& loop : d.loops) {
+  std::vector<int> loop_tags(d.loops.size(), -1), lines;
+  for (std::size_t l = 0; l < d.loops.size(); ++l) {
+    const auto& loop = d.loops[l];
+    if (loop.size() < 3) continue;
     std::vector<int> curve;
     for (std::size_t i = 0; i < loop.size(); ++i) {
       const int line = gmsh::model::geo::addLine(loop[i] + 1, loop[(i + 1) % loop.size()] + 1);
       curve.push_back(line);
       lines.push_back(line);
     }
-    loop_tags.push_back(gmsh::model::geo::addCurveLoop(curve, -1, false));
+    loop_tags[l] = gmsh::model::geo::addCurveLoop(curve, -1, false);
   }
+  std::vector<std::vector<int>> embedded_lines(d.lines.size());
+  for (std::size_t k = 0; k < d.lines.size(); ++k)
+    for (std::size_t i = 0; i + 1 < d.lines[k].size(); ++i) {
+      embedded_lines[k].push_back(gmsh::model::geo::addLine(d.lines[k][i] + 1, d.lines[k][i + 1] + 1));
+      lines.push_back(embedded_lines[k].back());
+    }
   std::vector<int> surfaces;
   for (const auto& surface : surfaces_of(d)) {
     std::vector<int> wires;
@@ -89,18 +110,22 @@ std::vector<int> build_geometry(const PlanarDomain& d) {
   }
   gmsh::model::geo::synchronize();
   for (const int line : lines) gmsh::model::mesh::setTransfiniteCurve(line, 2);
+  const auto groups = surfaces_of(d);
+  for (std::size_t k = 0; k < d.lines.size(); ++k) {
+    // The region a line lies in: that of the middle of its last segment (never on a loop).
+    const std::size_t n = d.lines[k].size();
+    const double mid[2] = {0.5 * (d.xy[2 * d.lines[k][n - 2]] + d.xy[2 * d.lines[k][n - 1]]),
+                           0.5 * (d.xy[2 * d.lines[k][n - 2] + 1] + d.xy[2 * d.lines[k][n - 1] + 1])};
+    const int s = surface_holding(d, groups, mid);
+    if (s >= 0) gmsh::model::mesh::embed(1, embedded_lines[k], 2, surfaces[s]);
+  }
   if (!d.embedded.empty()) {
     // An embedded point belongs to the surface whose outer loop holds it and no hole of it does.
-    const auto groups = surfaces_of(d);
-    for (std::size_t s = 0; s < groups.size(); ++s) {
-      std::vector<int> points;
-      for (const std::int32_t p : d.embedded) {
-        bool in = point_in_loop(d, d.loops[groups[s][0]], &d.xy[2 * p]);
-        for (std::size_t h = 1; h < groups[s].size() && in; ++h) in = !point_in_loop(d, d.loops[groups[s][h]], &d.xy[2 * p]);
-        if (in) points.push_back(p + 1);
-      }
-      if (!points.empty()) gmsh::model::mesh::embed(0, points, 2, surfaces[s]);
-    }
+    std::vector<std::vector<int>> points(groups.size());
+    for (const std::int32_t p : d.embedded)
+      if (const int s = surface_holding(d, groups, &d.xy[2 * p]); s >= 0) points[s].push_back(p + 1);
+    for (std::size_t s = 0; s < groups.size(); ++s)
+      if (!points[s].empty()) gmsh::model::mesh::embed(0, points[s], 2, surfaces[s]);
   }
   return surfaces;
 }
@@ -133,7 +158,18 @@ std::string read_mesh(const PlanarDomain& d, const std::vector<int>& surfaces, T
   std::vector<std::size_t> elements, nodes;
   const auto groups = surfaces_of(d);
   for (std::size_t s = 0; s < surfaces.size(); ++s) {
-    gmsh::model::mesh::getElementsByType(2, elements, nodes, surfaces[s]);
+    // Per entity through getElements: Gmsh 4.8's getElementsByType with a tag returns, for any
+    // surface but the first, arrays sized for all of them (found meshing fragments).
+    std::vector<int> types;
+    std::vector<std::vector<std::size_t>> element_tags, node_tags;
+    gmsh::model::mesh::getElements(types, element_tags, node_tags, 2, surfaces[s]);
+    elements.clear();
+    nodes.clear();
+    for (std::size_t k = 0; k < types.size(); ++k) {
+      if (types[k] != 2) return "Gmsh made elements other than triangles";
+      elements = element_tags[k];
+      nodes = node_tags[k];
+    }
     for (const std::size_t tag : nodes) {
       if (tag >= index.size() || index[tag] < 0) return "a triangle names a node Gmsh did not list";
       out.triangles.push_back(index[tag]);
@@ -199,6 +235,9 @@ Triangulation triangulate(const PlanarDomain& domain, const std::function<double
   GmshSession session(true);
   try {
     gmsh::model::add("remesh");
+    // Points of two lips or two fragments may sit at one place: they stay apart (the built-in
+    // kernel would otherwise merge them, and the surfaces on both sides with them).
+    gmsh::option::setNumber("Geometry.AutoCoherence", 0);
     // One thread, and Gmsh's pseudo-random perturbations from the same seed every time: the
     // same domain gives the same mesh, bit for bit.
     gmsh::option::setNumber("General.NumThreads", 1);

@@ -15,8 +15,12 @@ namespace shard {
 /// boundaries, clockwise holes) and points inside that the mesh must have as nodes.
 struct PlanarDomain {
   std::vector<double> xy;  ///< two per point
+  /// Loops of fewer than three points are no loops (a closed crack collapsed into a line).
   std::vector<std::vector<std::int32_t>> loops;
   std::vector<std::int32_t> embedded;
+  /// Polylines inside the domain (each segment one element edge) that the mesh must follow: a
+  /// closed crack, whose two lips the caller gives the triangles on either side.
+  std::vector<std::vector<std::int32_t>> lines;
 };
 
 enum class MeshAlgorithm : std::uint8_t { frontal_delaunay, delaunay, mesh_adapt };

@@ -8,6 +8,8 @@
 #include <cstdio>
 #include <map>
 #include <numbers>
+#include <algorithm>
+#include <array>
 #include <set>
 
 #include "adapt/planar_mesh.hpp"
@@ -190,6 +192,63 @@ TEST(Remesh, CrackedBodyInRigidMotionKeepsMassMomentumAreaSetsAndLips) {
 TEST(Remesh, CrackedBodyInArbitraryMotionKeepsMassMomentumAreaSetsAndLips) {
   check_remesh_keeps_what_it_must(false, 0.6e-3);
   check_remesh_keeps_what_it_must(false, 1.6e-3);
+}
+
+/// Per body of the part: its mass and momentum, in the order of its first element.
+std::vector<std::array<double, 3>> body_sums(const Model& model) {
+  std::vector<std::array<double, 3>> out;
+  const Part& part = model.parts[0];
+  for (const auto& body : bodies_of(part)) {
+    std::set<std::int32_t> nodes;
+    for (const auto e : body)
+      for (int k = 0; k < 3; ++k) nodes.insert(part.connectivity[3 * e + k]);
+    std::array<double, 3> s{0, 0, 0};
+    for (const auto n : nodes) {
+      s[0] += model.nodes.mass[n];
+      s[1] += model.nodes.mass[n] * model.nodes.v[2 * n];
+      s[2] += model.nodes.mass[n] * model.nodes.v[2 * n + 1];
+    }
+    out.push_back(s);
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+TEST(Remesh, PiecesCutApartAndAClosedCrackInsideEachKeepTheirMassAndMomentum) {
+  const int nx = 24, ny = 12;
+  auto run = plate(nx, ny, 0.024, 0.012, 0.2);
+  // A crack across the whole plate at y = 4 mm (two pieces), and one inside the upper piece,
+  // between two tips, along y = 8 mm.
+  std::vector<std::int32_t> nodes;
+  for (int i = 0; i <= nx; ++i) nodes.push_back(4 * (nx + 1) + i);
+  for (int i = 8; i <= 14; ++i) nodes.push_back(8 * (nx + 1) + i);
+  insert_crack(run, nodes);
+  Model& model = run.model;
+  for (std::size_t i = 0; i < model.nodes.count(); ++i) {
+    model.nodes.v[2 * i] = 30.0 + 2000.0 * model.nodes.x[2 * i + 1];
+    model.nodes.v[2 * i + 1] = (model.nodes.x[2 * i + 1] > 0.004 ? 10.0 : -10.0) * std::cos(200.0 * model.nodes.x[2 * i]);
+  }
+  const auto before = body_sums(model);
+  const Shape shape_before = shape_of(model);
+  ASSERT_EQ(before.size(), 2u);
+  const RemeshOutcome out = remesh_part(model, 0, *run.materials[0], uniform(0.5e-3), {});
+  ASSERT_TRUE(out.remeshed) << out.skipped;
+  const auto after = body_sums(model);
+  const Shape shape_after = shape_of(model);
+  std::printf("[remesh, two pieces and an inner crack] %zu -> %zu elements, %zu bodies; crack nodes %zu -> %zu (paired "
+              "%zu)\n",
+              out.elements_before, out.elements_after, after.size(), shape_before.crack_nodes, shape_after.crack_nodes,
+              shape_after.paired);
+  ASSERT_EQ(after.size(), 2u);
+  for (std::size_t b = 0; b < 2; ++b) {
+    EXPECT_NEAR(after[b][0], before[b][0], 1e-13 * before[b][0]);
+    EXPECT_NEAR(after[b][1], before[b][1], 1e-13 * std::abs(before[b][1]) + 1e-13 * before[b][0]);
+    EXPECT_NEAR(after[b][2], before[b][2], 1e-13 * std::abs(before[b][2]) + 1e-13 * before[b][0]);
+  }
+  EXPECT_EQ(shape_after.crack_nodes, shape_before.crack_nodes);
+  EXPECT_EQ(shape_after.paired, shape_before.paired);
+  EXPECT_EQ(shape_after.holes, shape_before.holes);
+  EXPECT_EQ(shape_after.outer, shape_before.outer);
 }
 
 TEST(Remesh, TheSameStateRemeshesToTheSameBits) {
