@@ -109,9 +109,19 @@ void RemeshEvent::run(Model& model, EventContext& context) {
     changed = true;
     model.remesh_count[p]++;
     model.remesh_step[p] = context.step;
-    const double elastic = out.stored_before - out.stored_after;
+    const double elastic = out.stored_before - out.stored_after, kinetic = out.kinetic_before - out.kinetic_after;
     context.energy.at("remesh_elastic") += elastic;
-    context.energy.at("remesh_kinetic") += out.kinetic_before - out.kinetic_after;
+    context.energy.at("remesh_kinetic") += kinetic;
+    // Booked, the balance closes whatever a remesh changed; a change of more than 1 % of the
+    // energy in play is a transfer gone wrong, and the log says so.
+    const EnergyLedger& E = context.energy;
+    const double scale = std::max({std::abs(E.initial()), std::abs(E.external()),
+                                   E.kinetic() + std::abs(E.internal()) + E.dissipated()});
+    if (std::abs(elastic + kinetic) > 0.01 * scale)
+      notes_.push_back("the remesh of part '" + model.parts[p].name + "' at step " + std::to_string(context.step) +
+                       format(" changed the stored and kinetic energy by %.4g J (%.3g %% of the energy in play)",
+                              -(elastic + kinetic), 100 * std::abs(elastic + kinetic) / scale) +
+                       ": booked as remesh, but look at the frames around it");
     if (context.part_stored && p < context.part_stored->size()) (*context.part_stored)[p] -= elastic;
   }
   if (changed) context.topology.changed(model, Remap{});

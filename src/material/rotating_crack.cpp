@@ -377,8 +377,11 @@ std::vector<Material::Transfer> RotatingCrack::state_transfer() const {
 
 // A remesh carries the failure factor F = κ/ε_c(h) (the fraction of the softening branch used);
 // the crack band takes the new element's size h' and κ = F ε_c(h'), so that a crack keeps its
-// place on the softening curve and what it has dissipated (booked already) is not changed. Ψ is
-// measured again from the carried stress, with each open crack on its secant.
+// place on the softening curve and what it has dissipated (booked already) is not changed. A
+// carried tension above what the crack carries at κ, s(κ) (a fully softened point next to intact
+// ones takes some of their stress), is brought down to it at fixed strain, as the Johnson–Cook
+// stress is returned to its yield surface. Ψ is measured again from the stress, with each open
+// crack on its secant.
 void RotatingCrack::after_transfer(MaterialPointBatch& batch) const {
   const double two_g = 2.0 * p_.moduli.shear, nu_ratio = p_.moduli.lame() / (3.0 * p_.moduli.bulk);
   for (std::size_t q = 0; q < batch.count; ++q) {
@@ -386,9 +389,7 @@ void RotatingCrack::after_transfer(MaterialPointBatch& batch) const {
     double* hs = batch.state + slot_count * q;
     const double h = batch.characteristic_length ? batch.characteristic_length[q] : hs[band_width];
     const double F = hs[failure_factor];
-    const double tr = s[xx] + s[yy] + s[zz];
-    const double ss = s[xx] * s[xx] + s[yy] * s[yy] + s[zz] * s[zz] + 2.0 * (s[xy] * s[xy] + s[yz] * s[yz] + s[zx] * s[zx]);
-    double energy = (ss - nu_ratio * tr * tr) / (2.0 * two_g);
+    double crack_energy = 0.0;
     if (F > 0.0 && h > 0.0) {
       const double end = critical_crack_strain(h);
       const Curve curve{p_.softening, p_.tensile_strength, end, end / std::log(1.0 / kExponentialEnd)};
@@ -396,14 +397,34 @@ void RotatingCrack::after_transfer(MaterialPointBatch& batch) const {
       hs[max_crack_strain] = F * end;
       double sv[3], sd[3][3];
       principal(s, sv, sd);
-      const double k = curve.secant(hs[max_crack_strain]);
+      const double limit = curve.stress(hs[max_crack_strain]), k = curve.secant(hs[max_crack_strain]);
+      bool capped = false;
+      for (double& v : sv)
+        if (v > limit) {
+          v = limit;
+          capped = true;
+        }
+      if (capped) {
+        for (int c = 0; c < kTensorSize; ++c) s[c] = 0.0;
+        for (int i = 0; i < 3; ++i) {
+          const double* n = sd[i];
+          s[xx] += sv[i] * n[0] * n[0];
+          s[yy] += sv[i] * n[1] * n[1];
+          s[zz] += sv[i] * n[2] * n[2];
+          s[xy] += sv[i] * n[0] * n[1];
+          s[yz] += sv[i] * n[1] * n[2];
+          s[zx] += sv[i] * n[2] * n[0];
+        }
+      }
       for (const double v : sv)
-        if (v > 0.0) energy += 0.5 * v * v / k;
+        if (v > 0.0) crack_energy += 0.5 * v * v / k;
     } else {
       hs[max_crack_strain] = 0.0;
       hs[failure_factor] = 0.0;
     }
-    hs[energy_density] = energy;
+    const double tr = s[xx] + s[yy] + s[zz];
+    const double ss = s[xx] * s[xx] + s[yy] * s[yy] + s[zz] * s[zz] + 2.0 * (s[xy] * s[xy] + s[yz] * s[yz] + s[zx] * s[zx]);
+    hs[energy_density] = (ss - nu_ratio * tr * tr) / (2.0 * two_g) + crack_energy;
     hs[point_volume] = batch.volume[q];
   }
 }

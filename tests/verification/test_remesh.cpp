@@ -15,6 +15,8 @@
 #include "adapt/planar_mesh.hpp"
 #include "adapt/remesh.hpp"
 #include "adapt/remesh_event.hpp"
+#include "material/johnson_cook.hpp"
+#include "material/rotating_crack.hpp"
 #include "fracture/crack_insertion.hpp"
 #include "fracture/fragments.hpp"
 #include "support/model_runner.hpp"
@@ -320,6 +322,63 @@ TEST(Remesh, WaveResolvedByThirtyTwoElementsLosesUnderHalfAPercentPerRemesh) {
     EXPECT_LE(r.worst_jump, 0.005);
     EXPECT_LE(r.worst_balance, 0.01);
   }
+}
+
+}  // namespace
+}  // namespace shard
+
+namespace shard {
+namespace {
+
+/// What the materials do with a state a remesh carried (Material::after_transfer).
+TEST(Remesh, CarriedStatesAreMadeConsistentByTheirMaterials) {
+  // Rotating crack: a point softened to F = 0.8 that took 300 MPa of tension from intact
+  // neighbours carries no more than its curve's s(κ) across the crack, κ = F ε_c(h) for the new
+  // element's size, and Ψ is the stress's elastic energy plus the crack's ½ s²/k.
+  RotatingCrackParameters rc;
+  rc.moduli = {192e9, 175e9};
+  rc.tensile_strength = 370e6;
+  rc.fracture_energy = 24.7;
+  const RotatingCrack crack("sic", 3150, rc);
+  std::vector<double> stress = {300e6, -50e6, 0, 0, 0, 0}, state(RotatingCrack::slot_count, 0.0);
+  state[RotatingCrack::failure_factor] = 0.8;
+  double temperature = 293, volume = 1e-9, length = 0.5e-3;
+  MaterialPointBatch batch;
+  batch.count = 1;
+  batch.stress = stress.data();
+  batch.state = state.data();
+  batch.temperature = &temperature;
+  batch.volume = &volume;
+  batch.characteristic_length = &length;
+  crack.after_transfer(batch);
+  const double kappa = 0.8 * crack.critical_crack_strain(length), s = crack.softening_stress(kappa, length);
+  EXPECT_NEAR(state[RotatingCrack::max_crack_strain], kappa, 1e-15);
+  EXPECT_NEAR(state[RotatingCrack::band_width], length, 1e-18);
+  EXPECT_NEAR(stress[xx], s, 1e-9 * rc.tensile_strength);
+  EXPECT_NEAR(stress[xx], 0.2 * rc.tensile_strength, 1e-9 * rc.tensile_strength);  // linear: f_t (1 − F)
+  EXPECT_DOUBLE_EQ(stress[yy], -50e6);
+  const ElasticModuli m = rc.moduli;
+  EXPECT_NEAR(state[RotatingCrack::energy_density], m.energy_density(stress.data()) + 0.5 * s * kappa,
+              1e-9 * state[RotatingCrack::energy_density]);
+  // Johnson–Cook: a carried stress beyond the yield surface of the carried plastic strain is
+  // returned to it radially (the deviator scaled, the pressure kept).
+  JohnsonCookParameters jc;
+  jc.moduli = {159e9, 81.8e9};
+  jc.A = 792e6;
+  jc.B = 510e6;
+  jc.n = 0.26;
+  const JohnsonCook steel("rha", 7830, jc);
+  std::vector<double> sj = {1500e6, -200e6, 100e6, 300e6, 0, 0}, hs(JohnsonCook::slot_count, 0.0);
+  hs[JohnsonCook::plastic_strain] = 0.1;
+  batch.stress = sj.data();
+  batch.state = hs.data();
+  const double pressure = -(sj[0] + sj[1] + sj[2]) / 3;
+  steel.after_transfer(batch);
+  const double p = -(sj[0] + sj[1] + sj[2]) / 3;
+  const double dev[6] = {sj[0] + p, sj[1] + p, sj[2] + p, sj[3], sj[4], sj[5]};
+  const double vm = std::sqrt(1.5 * (dev[0] * dev[0] + dev[1] * dev[1] + dev[2] * dev[2]) + 3 * dev[3] * dev[3]);
+  EXPECT_NEAR(vm, steel.flow_stress(0.1, 0, 293), 1e-9 * vm);
+  EXPECT_NEAR(p, pressure, 1e-6);
 }
 
 }  // namespace
