@@ -34,6 +34,13 @@ struct BoundaryPoint {
   std::pair<std::int32_t, std::int32_t> segment{-1, -1};
 };
 
+/// Two copies of a crack node no further apart than this fraction of the shorter boundary segment
+/// beside them count as a closed crack, meshed as one line (collapse_closed_cracks); lips further
+/// apart are pushed apart and meshed as boundary. Gmsh cannot recover the edges of lips a few
+/// percent of a segment apart, and a lip node a quarter of a segment off the line only moves a
+/// corner of the triangles beside it.
+constexpr double kClosedLips = 0.25;
+
 /// A mesh whose smallest angle is at least this is taken at once; otherwise the other attempts
 /// are made and the best kept.
 constexpr double kAcceptedAngle = 10.0 * std::numbers::pi / 180.0;
@@ -274,7 +281,7 @@ std::vector<std::int32_t> embedded_nodes(const Model& model, const Part& part, c
 }
 
 /// Whether domain points a and b are the two lips of a closed crack at one place: copies of one
-/// node (the same crack origin) no further apart than 2 % of the shorter segment beside a.
+/// node (the same crack origin) no further apart than `reach`.
 bool closed_pair(const Model& model, const Domain& dom, std::int32_t a, std::int32_t b, double reach) {
   const std::int32_t na = dom.points[a].node, nb = dom.points[b].node;
   if (a == b || na < 0 || nb < 0 || model.nodes.origin[na] != model.nodes.origin[nb]) return false;
@@ -296,7 +303,7 @@ void collapse_closed_cracks(const Model& model, Domain& dom, std::vector<std::in
     const std::size_t n = loop.size();
     auto at = [&](std::ptrdiff_t i) { return loop[static_cast<std::size_t>(((i % static_cast<std::ptrdiff_t>(n)) + n) % n)]; };
     auto pair = [&](std::ptrdiff_t i, std::ptrdiff_t j) {
-      const double reach = 0.02 * std::min(segment(at(i), at(i - 1)), segment(at(i), at(i + 1)));
+      const double reach = kClosedLips * std::min(segment(at(i), at(i - 1)), segment(at(i), at(i + 1)));
       return closed_pair(model, dom, at(i), at(j), reach);
     };
     for (std::ptrdiff_t c = 0; c < static_cast<std::ptrdiff_t>(n) && !found; ++c) {
