@@ -28,6 +28,7 @@ RUNS = [  # scenario, --until, label
     ("examples/taylor_bar/steel_4340_axisymmetric.yaml", "0.3us", "taylor"),
     ("examples/mca_virtual_tests/tension_2d.yaml", "0.05us", "automata"),
     ("examples/granular_column/settle.yaml", "0.2ms", "grains"),
+    ("tests/data/remesh/annulus_shear.yaml", "20us", "remeshing"),  # a rotating rim, remeshed
 ]
 STRUCTURE = {"Points", "connectivity", "offsets", "types", "TimeValue"}
 
