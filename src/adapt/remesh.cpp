@@ -38,8 +38,9 @@ struct BoundaryPoint {
 /// beside them count as a closed crack, meshed as one line (collapse_closed_cracks); lips further
 /// apart are pushed apart and meshed as boundary. Gmsh cannot recover the edges of lips a few
 /// percent of a segment apart, and a lip node a quarter of a segment off the line only moves a
-/// corner of the triangles beside it.
-constexpr double kClosedLips = 0.25;
+/// corner of the triangles beside it; where that turns a small triangle over, the part is meshed
+/// again with only the lips 2 % apart taken as closed.
+constexpr double kClosedLips[] = {0.25, 0.02};
 
 /// A mesh whose smallest angle is at least this is taken at once; otherwise the other attempts
 /// are made and the best kept.
@@ -293,7 +294,7 @@ bool closed_pair(const Model& model, const Domain& dom, std::int32_t a, std::int
 /// near-coincident copies, and collapses each into a Slit: the loop keeps the one lip's point
 /// where the lips part and drops the rest (a crack inside the body, running between two tips,
 /// leaves no loop at all). Gmsh meshes the line; the lips are given back to the triangles after.
-void collapse_closed_cracks(const Model& model, Domain& dom, std::vector<std::int32_t>& loop) {
+void collapse_closed_cracks(const Model& model, Domain& dom, std::vector<std::int32_t>& loop, double closed_lips) {
   const double* x = dom.planar.xy.data();
   auto segment = [&](std::int32_t a, std::int32_t b) {
     return std::hypot(x[2 * a] - x[2 * b], x[2 * a + 1] - x[2 * b + 1]);
@@ -303,7 +304,7 @@ void collapse_closed_cracks(const Model& model, Domain& dom, std::vector<std::in
     const std::size_t n = loop.size();
     auto at = [&](std::ptrdiff_t i) { return loop[static_cast<std::size_t>(((i % static_cast<std::ptrdiff_t>(n)) + n) % n)]; };
     auto pair = [&](std::ptrdiff_t i, std::ptrdiff_t j) {
-      const double reach = kClosedLips * std::min(segment(at(i), at(i - 1)), segment(at(i), at(i + 1)));
+      const double reach = closed_lips * std::min(segment(at(i), at(i - 1)), segment(at(i), at(i + 1)));
       return closed_pair(model, dom, at(i), at(j), reach);
     };
     for (std::ptrdiff_t c = 0; c < static_cast<std::ptrdiff_t>(n) && !found; ++c) {
@@ -335,7 +336,8 @@ void collapse_closed_cracks(const Model& model, Domain& dom, std::vector<std::in
 }
 
 Domain build_domain(const Model& model, const Part& part, const OldPart& old, const std::vector<char>& crack_face,
-                    const std::set<std::int32_t>& kept, const std::vector<double>& size, const RemeshSettings& s) {
+                    const std::set<std::int32_t>& kept, const std::vector<double>& size, const RemeshSettings& s,
+                    double closed_lips) {
   Domain dom;
   std::vector<int> visits(model.nodes.count(), 0);
   for (const BoundaryLoop& loop : old.loops)
@@ -359,7 +361,7 @@ Domain build_domain(const Model& model, const Part& part, const OldPart& old, co
     std::vector<std::int32_t> loop;
     for (const BoundaryPoint& bp : resample_loop(model, old.loops[l], fixed, crack_face, size, s.chord_tolerance))
       loop.push_back(add_point(bp));
-    collapse_closed_cracks(model, dom, loop);
+    collapse_closed_cracks(model, dom, loop, closed_lips);
     dom.planar.loops.push_back(loop);
     dom.loop_points.push_back(loop);
     dom.loop_body.push_back(old.loop_body[l]);
@@ -906,6 +908,44 @@ namespace shard {
 
 namespace {
 
+/// The new mesh of the part and what it is made of, tried with the closed-crack reaches of
+/// kClosedLips in turn (empty `failure`: made).
+struct NewPartMesh {
+  Domain dom;
+  Triangulation mesh;
+  NewMesh nm;
+  std::string failure;
+};
+
+NewPartMesh make_new_mesh(const Model& model, const Part& part, const OldPart& old, const std::vector<char>& crack_face,
+                          const std::set<std::int32_t>& kept, const std::vector<double>& nodal, const SizeField& field,
+                          const RemeshSettings& s, RemeshOutcome& out) {
+  using Clock = std::chrono::steady_clock;
+  auto since = [](Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); };
+  NewPartMesh m;
+  for (const double closed_lips : kClosedLips) {
+    auto t0 = Clock::now();
+    m.dom = build_domain(model, part, old, crack_face, kept, nodal, s, closed_lips);
+    out.seconds_boundary += since(t0);
+    t0 = Clock::now();
+    m.mesh = mesh_domain(model, crack_face, m.dom, field, s, out);
+    out.seconds_gmsh += since(t0);
+    if (!m.mesh.ok()) {
+      m.failure = "Gmsh could not mesh the part's new boundary (" + m.mesh.failure + ")";
+      continue;
+    }
+    t0 = Clock::now();
+    m.nm = map_new_mesh(model, part, old, m.dom, m.mesh, s.transfer);
+    out.seconds_transfer += since(t0);
+    if (split_slits(model, m.dom, m.mesh, m.nm)) {
+      m.failure.clear();
+      return m;
+    }
+    m.failure = "a triangle at a closed crack turns over when its lips are given back";
+  }
+  return m;
+}
+
 /// Each element's index in the part, by its stable id (a topology change may reorder them).
 std::vector<std::int32_t> positions_of(const Part& part, std::int64_t first_id, std::size_t count) {
   std::vector<std::int32_t> position(count, -1);
@@ -958,16 +998,16 @@ RemeshOutcome remesh_part(Model& model, std::size_t p, const Material& material,
   const std::vector<double> nodal = nodal_sizes(part, elements, model.nodes, sizes, s.size, model.formulation);
   const TriangleLocator old_mesh(model.nodes.x, body_triangles(part, elements));
   const SizeField field(old_mesh, nodal);
-  const Domain dom = build_domain(model, part, old, crack_face, kept, nodal, s);
   out.seconds_boundary = since(t0);
+  const NewPartMesh made = make_new_mesh(model, part, old, crack_face, kept, nodal, field, s, out);
   t0 = Clock::now();
-  const Triangulation mesh = mesh_domain(model, crack_face, dom, field, s, out);
-  out.seconds_gmsh = since(t0);
-  t0 = Clock::now();
-  if (!mesh.ok()) {
-    out.skipped = "Gmsh could not mesh the part's new boundary (" + mesh.failure + ")";
+  if (!made.failure.empty()) {
+    out.skipped = made.failure;
     return out;
   }
+  const Domain& dom = made.dom;
+  const Triangulation& mesh = made.mesh;
+  const NewMesh& nm = made.nm;
   // The state before, and what the new mesh is made of.
   const std::size_t nn = model.nodes.count();
   const BodySums before = body_sums(model, old.body_of_node, old.bodies.size());
@@ -981,17 +1021,12 @@ RemeshOutcome remesh_part(Model& model, std::size_t p, const Material& material,
     for (int d = 0; d < 2; ++d) out.momentum_before[d] += before.momentum[b][d];
   }
   for (std::size_t n = 0; n < nn; ++n) out.nodes_before += old.body_of_node[n] >= 0;
-  NewMesh nm = map_new_mesh(model, part, old, dom, mesh, s.transfer);
-  if (!split_slits(model, dom, mesh, nm)) {
-    out.skipped = "a triangle at a closed crack turns over when its lips are given back";
-    return out;
-  }
   const std::size_t size = static_cast<std::size_t>(part.state_size), n_tri = mesh.triangles.size() / 3;
   std::vector<double> holder_state(size * n_tri);
   for (std::size_t t = 0; t < n_tri && size > 0; ++t)
     std::copy_n(&part.state[size * nm.holder[t]], size, &holder_state[size * t]);
 
-  out.seconds_transfer = since(t0);
+  out.seconds_transfer += since(t0);
   t0 = Clock::now();
   const std::vector<double> velocity_gradient = nodal_velocity_gradients(model, part, old);
   // Remap one: born nodes appended, the part's elements replaced.
