@@ -46,6 +46,20 @@ struct Curve {
   }
 };
 
+/// The symmetric tensor (Voigt storage) with principal values `value` along the unit `vector`s.
+void from_principal(const double value[3], const double vector[3][3], double* t) {
+  for (int k = 0; k < kTensorSize; ++k) t[k] = 0.0;
+  for (int i = 0; i < 3; ++i) {
+    const double* n = vector[i];
+    t[xx] += value[i] * n[0] * n[0];
+    t[yy] += value[i] * n[1] * n[1];
+    t[zz] += value[i] * n[2] * n[2];
+    t[xy] += value[i] * n[0] * n[1];
+    t[yz] += value[i] * n[1] * n[2];
+    t[zx] += value[i] * n[2] * n[0];
+  }
+}
+
 /// Eigenvalues (descending) and unit eigenvectors (rows) of a symmetric tensor in Voigt storage.
 /// In-plane closed form when the yz and zx components vanish (every 2D point), cyclic Jacobi
 /// otherwise.
@@ -319,18 +333,9 @@ void RotatingCrack::update(MaterialPointBatch& batch) const {
     const double sum = e[0] + e[1] + e[2];
     double sigma[3];
     for (int i = 0; i < 3; ++i) sigma[i] = problem.a[i] - lambda * sum - two_g * e[i];
-    for (int k = 0; k < kTensorSize; ++k) s[k] = 0.0;
+    from_principal(sigma, axis, s);
     double crack_energy = 0.0;
-    for (int i = 0; i < 3; ++i) {
-      const double* n = axis[i];
-      s[xx] += sigma[i] * n[0] * n[0];
-      s[yy] += sigma[i] * n[1] * n[1];
-      s[zz] += sigma[i] * n[2] * n[2];
-      s[xy] += sigma[i] * n[0] * n[1];
-      s[yz] += sigma[i] * n[1] * n[2];
-      s[zx] += sigma[i] * n[2] * n[0];
-      crack_energy += 0.5 * sigma[i] * e[i];
-    }
+    for (int i = 0; i < 3; ++i) crack_energy += 0.5 * sigma[i] * e[i];
 
     // Dissipation = stress work − change of the recoverable energy (elastic + open cracks), the
     // stress work as the kernel books it, ½(σ_n + σ_n+1) : Δε V_n+1. The energy is Ψ V with the
@@ -404,18 +409,7 @@ void RotatingCrack::after_transfer(MaterialPointBatch& batch) const {
           v = limit;
           capped = true;
         }
-      if (capped) {
-        for (int c = 0; c < kTensorSize; ++c) s[c] = 0.0;
-        for (int i = 0; i < 3; ++i) {
-          const double* n = sd[i];
-          s[xx] += sv[i] * n[0] * n[0];
-          s[yy] += sv[i] * n[1] * n[1];
-          s[zz] += sv[i] * n[2] * n[2];
-          s[xy] += sv[i] * n[0] * n[1];
-          s[yz] += sv[i] * n[1] * n[2];
-          s[zx] += sv[i] * n[2] * n[0];
-        }
-      }
+      if (capped) from_principal(sv, sd, s);
       for (const double v : sv)
         if (v > 0.0) crack_energy += 0.5 * v * v / k;
     } else {
