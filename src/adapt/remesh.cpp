@@ -995,7 +995,7 @@ RemeshOutcome remesh_part(Model& model, std::size_t p, const Material& material,
   for (const auto& body : old.bodies) elements.insert(elements.end(), body.begin(), body.end());
   std::sort(elements.begin(), elements.end());
   const ElementSizes sizes = element_target_sizes(part, elements, model.nodes, material, model.formulation, s.size);
-  const std::vector<double> nodal = nodal_sizes(part, elements, model.nodes, sizes, s.size, model.formulation);
+  const std::vector<double> nodal = nodal_sizes(part, elements, model.nodes, sizes, s.size);
   const TriangleLocator old_mesh(model.nodes.x, body_triangles(part, elements));
   const SizeField field(old_mesh, nodal);
   out.seconds_boundary = since(t0);

@@ -198,7 +198,7 @@ ElementSizes element_target_sizes(const Part& part, const std::vector<std::int32
 }
 
 std::vector<double> nodal_sizes(const Part& part, const std::vector<std::int32_t>& elements, const NodeArrays& nodes,
-                                const ElementSizes& sizes, const SizeRule& rule, Formulation /*formulation*/) {
+                                const ElementSizes& sizes, const SizeRule& rule) {
   const double inf = std::numeric_limits<double>::infinity();
   std::vector<double> h(nodes.count(), inf);
   std::vector<std::vector<std::int32_t>> neighbours(nodes.count());

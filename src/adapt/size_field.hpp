@@ -68,7 +68,7 @@ EnergyNormError energy_norm_error(const Part& part, const std::vector<std::int32
 /// The size at each node of the listed elements (indexed by model node; 0 elsewhere): the
 /// smallest target of the elements around it, graded across edges, within the element budget.
 std::vector<double> nodal_sizes(const Part& part, const std::vector<std::int32_t>& elements, const NodeArrays& nodes,
-                                const ElementSizes& sizes, const SizeRule& rule, Formulation formulation);
+                                const ElementSizes& sizes, const SizeRule& rule);
 
 /// The size field of an old mesh at any point: its nodal sizes interpolated in the triangle that
 /// holds the point (or the nearest).

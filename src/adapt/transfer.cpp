@@ -166,7 +166,6 @@ TriangleLocator::Hit TriangleLocator::locate(const double* p) const {
     for (double& w : best.weight) w = std::max(w, 0.0);
     const double s = best.weight[0] + best.weight[1] + best.weight[2];
     for (double& w : best.weight) w /= s;
-    best.inside = true;
     return best;
   }
   return nearest(p);

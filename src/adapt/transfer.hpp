@@ -28,7 +28,6 @@ class TriangleLocator {
   struct Hit {
     std::int32_t triangle = -1;           ///< index into the list of triangles
     std::array<double, 3> weight{0, 0, 0};  ///< barycentric weights (≥ 0, summing to 1)
-    bool inside = false;                  ///< the point is in the triangle (to round-off)
   };
   /// The triangle that holds p (the one where p is deepest where several touch it, the lowest
   /// index on a tie), or the nearest, with p's barycentric weights clamped to its closest point.

@@ -61,9 +61,4 @@ std::vector<std::string> GmshSession::logged_errors() const {
   return errors;
 }
 
-void GmshSession::clear_log() const {
-  gmsh::logger::stop();
-  gmsh::logger::start();
-}
-
 }  // namespace shard

@@ -22,10 +22,8 @@ class GmshSession {
   GmshSession(const GmshSession&) = delete;
   GmshSession& operator=(const GmshSession&) = delete;
 
-  /// The error lines Gmsh logged since the session started (or since the last clear_log), without
-  /// their "Error: " prefix.
+  /// The error lines Gmsh logged since the session started, without their "Error: " prefix.
   std::vector<std::string> logged_errors() const;
-  void clear_log() const;
 
  private:
   std::string saved_locale_;

@@ -1,10 +1,6 @@
 // Mesh import through the Gmsh C++ API (tested with Gmsh 4.8).
 #include "io/gmsh_import.hpp"
 
-#ifdef _OPENMP
-#include <omp.h>
-#endif
-
 #include <fcntl.h>
 #if defined(__has_feature)
 #if __has_feature(address_sanitizer)
@@ -29,7 +25,6 @@
 #include <cctype>
 #include <cerrno>
 #include <csignal>
-#include <clocale>
 #include <cmath>
 #include <cstddef>
 #include <exception>

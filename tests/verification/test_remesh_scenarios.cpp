@@ -13,7 +13,6 @@
 #include <cstdio>
 #include <numbers>
 
-#include "core/error.hpp"
 #include "support/cli.hpp"
 #include "support/scenario_run.hpp"
 
