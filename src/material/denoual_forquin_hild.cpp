@@ -1,0 +1,216 @@
+#include "material/denoual_forquin_hild.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "core/principal.hpp"
+#include "core/tensor_ops.hpp"
+#include "core/voigt.hpp"
+#include "material/linear_elastic.hpp"
+
+namespace shard {
+
+namespace {
+
+/// The principal stresses of the damaged material: a tensile effective value σ̃_i carries
+/// (1 − D_i) of itself, a compressive one all of it (the flaws close).
+void damaged_principal(const double effective[3], const double* state, double out[3]) {
+  for (int i = 0; i < 3; ++i) {
+    const double d = state[DenoualForquinHild::first_direction + i * DenoualForquinHild::direction_slots +
+                           DenoualForquinHild::damage];
+    out[i] = effective[i] > 0.0 ? (1.0 - d) * effective[i] : effective[i];
+  }
+}
+
+}  // namespace
+
+std::vector<std::string> DenoualForquinHild::state_names() const {
+  std::vector<std::string> names = {"effective_stress_xx", "effective_stress_yy", "effective_stress_zz",
+                                    "effective_stress_xy", "effective_stress_yz", "effective_stress_zx"};
+  for (int i = 1; i <= 3; ++i) {
+    const std::string s = std::to_string(i);
+    for (const char* base : {"peak_stress_", "flaw_moment_0_", "flaw_moment_1_", "flaw_moment_2_", "flaw_moment_3_",
+                             "crack_density_", "damage_"})
+      names.push_back(base + s);
+  }
+  names.insert(names.end(), {"damage", "energy_density", "point_volume"});
+  return names;
+}
+
+double DenoualForquinHild::activated_flaws(double stress) const {
+  return stress > 0.0 ? p_.flaw_density * std::pow(stress / p_.weibull_stress, p_.weibull_modulus) : 0.0;
+}
+
+double DenoualForquinHild::characteristic_time(double stress_rate) const {
+  const double m = p_.weibull_modulus, c = p_.crack_speed;
+  const double scale = std::pow(p_.weibull_stress / stress_rate, m) / (p_.flaw_density * p_.shape_factor * c * c * c);
+  return std::pow(scale, 1.0 / (m + 3.0));
+}
+
+namespace {
+
+/// Advances one direction's flaw moments A_j = ∫ (t − T)^j dλ_t(T) over a time τ in which the
+/// activated flaw density grew by Δλ at a uniform rate:
+///   A_j(t + τ) = Σ_k C(j,k) τ^(j−k) A_k(t) + Δλ τ^j/(j + 1),
+/// the binomial shift of the old flaws plus the integral over the step. Every term is positive,
+/// so nothing cancels however long the history.
+void shift_moments(double* a, double tau, double added) {
+  const double t2 = tau * tau, t3 = t2 * tau;
+  const double a0 = a[0], a1 = a[1], a2 = a[2], a3 = a[3];
+  a[0] = a0 + added;
+  a[1] = a1 + tau * a0 + 0.5 * added * tau;
+  a[2] = a2 + 2.0 * tau * a1 + t2 * a0 + added * t2 / 3.0;
+  a[3] = a3 + 3.0 * tau * a2 + 3.0 * t2 * a1 + t3 * a0 + 0.25 * added * t3;
+}
+
+}  // namespace
+
+void DenoualForquinHild::update(MaterialPointBatch& batch) const {
+  const double lambda = p_.moduli.lame(), two_g = 2.0 * p_.moduli.shear;
+  const double nu_ratio = lambda / (3.0 * p_.moduli.bulk);  // ε = (σ − (λ/3K) tr σ I)/2G
+  const double obscuring = p_.shape_factor * p_.crack_speed * p_.crack_speed * p_.crack_speed;
+  for (std::size_t q = 0; q < batch.count; ++q) {
+    if (batch.volume && !(batch.volume[q] > 0.0)) continue;  // an eroded element: nothing acts
+    double* hs = batch.state + slot_count * q;
+    double* sig = batch.stress + kTensorSize * q;
+    const double* de = batch.strain_increment + kTensorSize * q;
+    // 1. The effective stress turns with the material as the kernel turned σ, then takes the
+    //    elastic increment.
+    double* eff = hs + effective_stress;
+    if (batch.spin) {
+      const double* w = batch.spin + 3 * q;
+      double R[3][3];
+      hughes_winget_rotation(w[0], w[1], w[2], 0.5 * batch.dt, R);
+      rotate_symmetric(R, eff);
+    }
+    const double tr = de[xx] + de[yy] + de[zz];
+    for (int k = 0; k < kTensorSize; ++k) eff[k] += two_g * de[k] + (k < 3 ? lambda * tr : 0.0);
+    double value[3], axis[3][3];
+    principal(eff, value, axis);
+
+    // 2. Flaws activated by each principal direction's new peak; their zones grow while it is
+    //    in tension (a closed crack does not run).
+    double largest = 0.0;
+    for (int i = 0; i < 3; ++i) {
+      double* d = hs + first_direction + i * direction_slots;
+      double added = 0.0;
+      if (value[i] > d[peak_stress]) {
+        added = activated_flaws(value[i]) - activated_flaws(d[peak_stress]);
+        d[peak_stress] = value[i];
+      }
+      shift_moments(d + moment_0, value[i] > 0.0 ? batch.dt : 0.0, added);
+      const double before = d[damage];
+      d[damage] = -std::expm1(-obscuring * d[moment_3]);
+      // Only a flaw outside every obscured zone starts a crack: dN = (1 − D) dλ_t (trapezoid).
+      d[cracks] += added * (1.0 - 0.5 * (before + d[damage]));
+      largest = std::max(largest, d[damage]);
+    }
+    hs[largest_damage] = largest;
+
+    // 3. The damaged stress, its recoverable energy ½ Σ σ_i ε_i (ε_i the elastic strains of σ̃,
+    //    same axes), and the fracture work as the work done less the change of that energy.
+    double old[kTensorSize];
+    std::copy(sig, sig + kTensorSize, old);
+    double carried[3];
+    damaged_principal(value, hs, carried);
+    from_principal(carried, axis, sig);
+    const double tr_eff = value[0] + value[1] + value[2];
+    double energy = 0.0;
+    for (int i = 0; i < 3; ++i) energy += 0.5 * carried[i] * (value[i] - nu_ratio * tr_eff) / two_g;
+    double work = 0.0;
+    for (int k = 0; k < kTensorSize; ++k) work += (k < 3 ? 0.5 : 1.0) * (old[k] + sig[k]) * de[k];
+    const double v = batch.volume ? batch.volume[q] : 0.0;
+    batch.fracture_work += work * v - (energy * v - hs[energy_density] * hs[point_volume]);
+    hs[energy_density] = energy;
+    hs[point_volume] = v;
+  }
+}
+
+std::vector<Material::Transfer> DenoualForquinHild::state_transfer() const {
+  std::vector<Transfer> rule(slot_count);
+  for (int i = 0; i < 3; ++i) {
+    const int base = first_direction + i * direction_slots;
+    for (int k = peak_stress; k < direction_slots; ++k) rule[base + k].min = 0.0;
+    rule[base + damage].max = 1.0;
+  }
+  rule[largest_damage] = {Transfer::interpolate, 0.0, 1.0};
+  rule[energy_density].min = 0.0;
+  rule[point_volume].min = 0.0;
+  return rule;
+}
+
+// A remesh interpolates σ̃ and the moments; the damage is made the obscuration of the carried
+// A_3 again and the stress is rebuilt from σ̃, so that σ, D and Ψ agree at every new point.
+void DenoualForquinHild::after_transfer(MaterialPointBatch& batch) const {
+  const double two_g = 2.0 * p_.moduli.shear;
+  const double nu_ratio = p_.moduli.lame() / (3.0 * p_.moduli.bulk);
+  const double obscuring = p_.shape_factor * p_.crack_speed * p_.crack_speed * p_.crack_speed;
+  for (std::size_t q = 0; q < batch.count; ++q) {
+    double* hs = batch.state + slot_count * q;
+    double largest = 0.0;
+    for (int i = 0; i < 3; ++i) {
+      double* d = hs + first_direction + i * direction_slots;
+      d[damage] = -std::expm1(-obscuring * d[moment_3]);
+      largest = std::max(largest, d[damage]);
+    }
+    hs[largest_damage] = largest;
+    double value[3], axis[3][3], carried[3];
+    principal(hs + effective_stress, value, axis);
+    damaged_principal(value, hs, carried);
+    from_principal(carried, axis, batch.stress + kTensorSize * q);
+    const double tr_eff = value[0] + value[1] + value[2];
+    double energy = 0.0;
+    for (int i = 0; i < 3; ++i) energy += 0.5 * carried[i] * (value[i] - nu_ratio * tr_eff) / two_g;
+    hs[energy_density] = energy;
+    hs[point_volume] = batch.volume[q];
+  }
+}
+
+KeyList DenoualForquinHild::parameters() {
+  constexpr Dimension per_volume = dim::none / dim::volume;
+  KeyList keys = LinearElastic::parameters();
+  keys.quantity("weibull_modulus", dim::none, "m: Weibull modulus of the flaw strengths").above(0).must_be_given();
+  keys.quantity("weibull_stress", dim::pressure, "σ0: the stress at which flaw_density flaws are active")
+      .above(0)
+      .must_be_given();
+  keys.quantity("flaw_density", per_volume, "λ0: flaws per unit volume active at weibull_stress (e.g. '1e12 1/m^3')")
+      .above(0)
+      .must_be_given();
+  keys.quantity("crack_speed_ratio", dim::none, "k: crack speed over the bar wave speed C0 = sqrt(E/ρ)")
+      .above(0)
+      .at_most(1)
+      .defaults_to("0.38");
+  keys.quantity("crack_speed", dim::velocity, "kC0 given directly (instead of crack_speed_ratio)").above(0);
+  keys.quantity("shape_factor", dim::none, "S: an obscured zone is S (kC0 t)^3 (4π/3: a sphere)")
+      .above(0)
+      .defaults_to("4.1887902047863905");
+  return keys;
+}
+
+FragmentationParameters DenoualForquinHild::from(const ParameterValues& v) {
+  FragmentationParameters p;
+  p.moduli = LinearElastic::moduli_from(v);
+  p.weibull_modulus = v.number("weibull_modulus");
+  p.weibull_stress = v.number("weibull_stress");
+  p.flaw_density = v.number("flaw_density");
+  p.shape_factor = v.number("shape_factor");
+  const double bulk = p.moduli.bulk, shear = p.moduli.shear;
+  const double young = 9.0 * bulk * shear / (3.0 * bulk + shear);
+  p.crack_speed = v.has("crack_speed") ? v.number("crack_speed")
+                                       : v.number("crack_speed_ratio") * std::sqrt(young / v.number("density"));
+  return p;
+}
+
+namespace {
+const bool registered = MaterialRegistry::add(
+    {"denoual_forquin_hild",
+     "probabilistic fragmentation damage of brittle solids: Weibull flaws activated by the principal "
+     "tensile stresses, each obscuring a zone that grows at the crack speed; damage per principal direction",
+     "docs/theory/fragmentation_damage.md", &DenoualForquinHild::parameters,
+     [](const std::string& name, const ParameterValues& v) -> std::unique_ptr<Material> {
+       return std::make_unique<DenoualForquinHild>(name, v.number("density"), DenoualForquinHild::from(v));
+     }});
+}  // namespace
+
+}  // namespace shard

@@ -1,0 +1,79 @@
+// Probabilistic fragmentation damage of brittle solids under dynamic tension, after Denoual &
+// Hild (2000, Comput. Methods Appl. Mech. Eng. 183) and Forquin & Hild (2010, Adv. Appl. Mech. 44):
+//   - a Weibull population of flaws, λ_t(σ) = λ0 (σ/σ0)^m per unit volume, is activated by the
+//     largest tensile stress a principal direction has seen;
+//   - each crack that starts in an unobscured zone unloads a zone around it that grows as
+//     S (kC0 (t − T))ⁿ (n = 3: a sphere of radius kC0 (t − T) when S = 4π/3);
+//   - the damage of a principal direction is the probability that a point is obscured,
+//     D = 1 − exp(−Z), Z(t) = S (kC0)ⁿ ∫ (t − T)ⁿ dλ_t(T);
+//   - the stress is the effective (undamaged) stress with each tensile principal value scaled
+//     by (1 − D) of its direction; compression is carried whole.
+// The integral is carried as four moments about the current time (exact for a flaw density that
+// grows linearly within a step), so no flaw history is stored. Theory note:
+// docs/theory/fragmentation_damage.md.
+#pragma once
+
+#include "material/material.hpp"
+
+namespace shard {
+
+struct FragmentationParameters {
+  ElasticModuli moduli;
+  double weibull_modulus = 0;  ///< m
+  double weibull_stress = 0;   ///< σ0 (Pa): the stress at which λ_t = λ0
+  double flaw_density = 0;     ///< λ0 (1/m³): flaws per unit volume active at σ0
+  double crack_speed = 0;      ///< kC0 (m/s): the speed at which an obscured zone grows
+  double shape_factor = 0;     ///< S: the obscured volume is S (kC0 t)³
+};
+
+class DenoualForquinHild final : public Material {
+ public:
+  /// The state of one principal direction (the i-th largest effective principal stress).
+  enum DirectionSlot : int {
+    peak_stress = 0,  ///< the largest tensile effective stress reached (Pa)
+    moment_0,         ///< A_j = ∫ (t − T)^j dλ_t(T), j = 0..3 (1/m³ · s^j)
+    moment_1,
+    moment_2,
+    moment_3,
+    cracks,           ///< N: cracks started per unit volume (in zones not yet obscured)
+    damage,           ///< D = 1 − exp(−S (kC0)³ A_3)
+    direction_slots
+  };
+  /// Slots of the per-point history variables.
+  enum Slot : int {
+    effective_stress = 0,                                ///< σ̃: 6 components
+    first_direction = effective_stress + kTensorSize,    ///< 3 × direction_slots
+    largest_damage = first_direction + 3 * direction_slots,  ///< max_i D_i, for plots
+    energy_density,  ///< Ψ = ½ σ : C⁻¹σ̃, the recoverable energy per unit volume
+    point_volume,    ///< V at the last update (for the energy change Ψ_n+1 V_n+1 − Ψ_n V_n)
+    slot_count
+  };
+
+  DenoualForquinHild(std::string name, double density, FragmentationParameters p)
+      : Material(std::move(name), density), p_(p) {}
+
+  std::string_view model() const override { return "denoual_forquin_hild"; }
+  ElasticModuli elastic() const override { return p_.moduli; }
+  std::vector<std::string> state_names() const override;
+  int stored_energy_index() const override { return energy_density; }
+  void update(MaterialPointBatch& batch) const override;
+  std::vector<Transfer> state_transfer() const override;
+  void after_transfer(MaterialPointBatch& batch) const override;
+
+  const FragmentationParameters& parameters_in_use() const { return p_; }
+  /// λ_t(σ) = λ0 (σ/σ0)^m for σ > 0 (flaws per unit volume).
+  double activated_flaws(double stress) const;
+  /// The characteristic time t_c at a constant stress rate σ̇: the time at which
+  /// λ_t(σ̇ t) S (kC0 t)³ = 1, i.e. t_c = [(σ0/σ̇)^m / (λ0 S (kC0)³)]^(1/(m+3)).
+  double characteristic_time(double stress_rate) const;
+
+  static KeyList parameters();
+  static FragmentationParameters from(const ParameterValues& values);
+
+ private:
+  void stress_from_effective(const double* effective, const double* state, double* stress, double& energy) const;
+
+  FragmentationParameters p_;
+};
+
+}  // namespace shard
