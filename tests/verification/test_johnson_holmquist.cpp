@@ -10,6 +10,8 @@
 // 6. Uniaxial strain to 5 % and back with the 1994 constants, against the rate form of the model
 //    integrated here with 1e-7 strain steps (the published figure's numbers are not available to
 //    us: this is a derived curve, not the figure). Limit 5 % (the issue's), measured far below.
+//    The same path through the solver in one hex8_reduced element (uniaxial strain, smooth
+//    ε(t) = 0.05 sin²(πt/T)), against the same derived curve: 5 %.
 // 7. Loading checks P_HEL against the equation of state and A (1 + T*)^N = 1, naming the key.
 //
 // Data: the ceramic of Johnson & Holmquist (1994), AIP Conf. Proc. 309, 981–984: ρ 3700 kg/m³,
@@ -23,6 +25,7 @@
 #include <string>
 
 #include "material/johnson_holmquist.hpp"
+#include "support/model_runner.hpp"
 
 namespace shard {
 namespace {
@@ -301,6 +304,69 @@ TEST(JohnsonHolmquist, UniaxialStrainLoadingAndUnloadingAgainstTheRateForm) {
     if (i % 1000 == 0) compare("unloading");
   }
   std::printf("largest relative difference %.2e (limit 5e-2)\n", worst);
+  EXPECT_LT(worst, 0.05);
+}
+
+/// The rate form's axial stress and pressure every 1e-4 of strain along a branch from `from` to `to`.
+std::vector<std::pair<double, double>> branch(RateForm& ref, double from, double to) {
+  std::vector<std::pair<double, double>> out;
+  const int n = static_cast<int>(std::lround(std::abs(to - from) / 1e-4));
+  const double d = (to - from) / n / 1000;
+  out.emplace_back(ref.axial(), ref.pressure());
+  for (int i = 0; i < n; ++i) {
+    for (int j = 0; j < 1000; ++j) ref.advance(d);
+    out.emplace_back(ref.axial(), ref.pressure());
+  }
+  return out;
+}
+
+TEST(JohnsonHolmquist, OneElementUniaxialStrainThroughTheSolver) {
+  const JohnsonHolmquistParameters p = ceramic_1994();
+  BoxMesh box;
+  box.element = "hex8_reduced";
+  box.cells = {1, 1, 1};
+  box.size = {1e-3, 1e-3, 1e-3};
+  testing::ElasticRun run(make_box_model(Formulation::three_d, box), std::make_unique<JohnsonHolmquist>("ceramic", 3700, p));
+  run.prescribe("xmin", 0, 0.0);
+  for (const char* side : {"ymin", "ymax"}) run.prescribe(side, 1, 0.0);
+  for (const char* side : {"zmin", "zmax"}) run.prescribe(side, 2, 0.0);
+  // Log strain ε(t) = 0.05 sin²(πt/T), compressive: x = L e^−ε, v = −L ε' e^−ε (smooth at the
+  // start, the peak and the end, so inertia adds little at T = 40 µs, 300 wave transits).
+  const double L = 1e-3, T = 40e-6, peak = 0.05;
+  TimeTable pull;
+  for (int i = 0; i <= 800; ++i) {
+    const double t = T * i / 800.0, e = peak * std::pow(std::sin(std::numbers::pi * t / T), 2);
+    pull.times.push_back(t);
+    pull.values.push_back(-L * peak * std::numbers::pi / T * std::sin(2 * std::numbers::pi * t / T) * std::exp(-e));
+  }
+  run.loads.tables.push_back(pull);
+  for (auto n : run.model.find_node_set("xmax")->nodes)
+    prescribe_node(run.model, run.loads, n, 0, static_cast<int>(run.loads.tables.size()) - 1);
+  run.settings.end_time = T;
+
+  RateForm ref{p};
+  const auto loading = branch(ref, 0.0, peak), unloading = branch(ref, peak, 0.0);
+  const Part& part = run.model.parts[0];
+  const auto xmax = run.model.find_node_set("xmax")->nodes[0];
+  double worst = 0, largest = 0;
+  int compared = 0;
+  run.run([&](const ExplicitSolver& solver) {
+    const double e = -std::log(run.model.nodes.x[3 * xmax] / L);
+    if (e < 0.01) return;  // the onset of flow is a kink in σ(ε): compare past it
+    const bool down = solver.state().time > T / 2;
+    const auto& curve = down ? unloading : loading;
+    const double at = down ? (peak - e) / 1e-4 : e / 1e-4;
+    const std::size_t i = std::min(static_cast<std::size_t>(std::max(at, 0.0)), curve.size() - 2);
+    const double w = std::clamp(at - static_cast<double>(i), 0.0, 1.0);
+    const double axial = (1 - w) * curve[i].first + w * curve[i + 1].first;
+    const double err = std::abs(-part.stress[xx] - axial) / std::max(std::abs(axial), 0.05 * p.hel);
+    worst = std::max(worst, err);
+    largest = std::max(largest, -part.stress[xx]);
+    ++compared;
+  });
+  std::printf("%d steps compared; largest sigma_x %.4f GPa; largest difference from the rate form %.2e; energy balance at the end %.2e\n",
+              compared, largest * 1e-9, worst, run.energy.relative_error());
+  EXPECT_GT(compared, 100);
   EXPECT_LT(worst, 0.05);
 }
 
