@@ -8,6 +8,7 @@
 #include <tuple>
 #include <sstream>
 
+#include "app/crack_band_check.hpp"
 #include "core/error.hpp"
 #include "model/assembly.hpp"
 #include "particle/mca_contact_update.hpp"
@@ -935,6 +936,7 @@ Simulation build_simulation(Scenario& sc, const MeshData& mesh) {
                                static_cast<int>(sim.materials.size()));
   if (sim.cracking) sim.events.push_back(std::make_unique<CrackGrowth>(sim.model, sim.materials, *sim.cracking));
   build_remeshing(sc, sim);
+  for (auto& w : crack_band_warnings(sc, sim)) sc.warnings.push_back(std::move(w));
   return sim;
 }
 

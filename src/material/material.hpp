@@ -119,6 +119,10 @@ class Material {
   /// The history variable that holds the equivalent inelastic (plastic or cracking) strain, for
   /// mesh sizes read from a table of it (−1: none).
   virtual int inelastic_strain_index() const { return -1; }
+  /// The largest crack-band width (element size across a crack) for which the model's softening
+  /// dissipates its fracture energy: in a larger element the softening branch would snap back, and
+  /// the model acts as a strength criterion instead (+∞: a model without a regularised softening).
+  virtual double crack_band_limit() const { return std::numeric_limits<double>::infinity(); }
 
   double density() const { return density_; }
   /// Dilatational (P-wave) speed sqrt((K + 4G/3)/ρ), for the stable time step.

@@ -151,6 +151,17 @@ double RotatingCrack::softening_stress(double opening, double h) const {
   return curve.stress(opening);
 }
 
+double RotatingCrack::crack_band_limit() const {
+  const double K = p_.moduli.bulk, G = p_.moduli.shear;
+  const double young = 9.0 * K * G / (3.0 * K + G), ft = p_.tensile_strength;
+  // Linear: s falls from f_t to 0 over ε_c = 2G_f/(f_t h); the band's total strain keeps rising
+  // while ε_c ≥ f_t/E. Exponential: the steepest slope is the first, −(f_t/ε_s)(1 + r/ln(1/r)),
+  // with ε_s = G_f/(f_t h a), a = kExponentialArea.
+  const double limit = young * p_.fracture_energy / (ft * ft);
+  if (p_.softening == SofteningCurve::linear) return 2.0 * limit;
+  return limit / (kExponentialArea * (1.0 + kExponentialEnd / std::log(1.0 / kExponentialEnd)));
+}
+
 void RotatingCrack::update(MaterialPointBatch& batch) const {
   if (batch.count > 0 && batch.characteristic_length == nullptr)
     throw std::logic_error("rotating_crack: the element kernel gave no characteristic_length");

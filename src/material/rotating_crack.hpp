@@ -60,6 +60,9 @@ class RotatingCrack final : public Material, public NonlocalAveraging {
   std::vector<Transfer> state_transfer() const override;
   void after_transfer(MaterialPointBatch& batch) const override;
   int inelastic_strain_index() const override { return max_crack_strain; }
+  /// 2 E G_f / f_t² for linear softening, E G_f / f_t² for exponential (twice as steep at the
+  /// start): the band widths for which the softening slope in strain is no steeper than −E.
+  double crack_band_limit() const override;
   NonlocalSpec nonlocal_spec() const override {
     return {p_.nonlocal_length, failure_factor, nonlocal_failure_factor};
   }

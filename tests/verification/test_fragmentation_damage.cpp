@@ -80,7 +80,7 @@ struct PointDriver {
   }
   double damage() const { return state[DenoualForquinHild::largest_damage]; }
   double cracks() const {
-    return state[DenoualForquinHild::first_direction + DenoualForquinHild::cracks];
+    return state[DenoualForquinHild::first_direction + int{DenoualForquinHild::cracks}];
   }
 };
 

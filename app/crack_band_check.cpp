@@ -1,0 +1,50 @@
+#include "app/crack_band_check.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "core/error.hpp"
+#include "fem/internal_forces.hpp"
+
+namespace shard {
+
+double crack_band_width(const Part& part, const NodeArrays& nodes, std::size_t e) {
+  if (part.type->dim == 2) {
+    const double area = element_measure(part, nodes, e, Formulation::plane_strain, 1.0);
+    return std::sqrt(2.0 * std::abs(area));
+  }
+  const double volume = std::abs(element_measure(part, nodes, e, Formulation::three_d, 1.0));
+  return std::cbrt(part.type->nodes == 4 ? 6.0 * volume : volume);
+}
+
+std::vector<std::string> crack_band_warnings(const Scenario& scenario, const Simulation& sim) {
+  std::vector<std::string> warnings;
+  for (const Part& part : sim.model.parts) {
+    const Material& material = *sim.materials[part.material];
+    const double limit = material.crack_band_limit();
+    if (!std::isfinite(limit)) continue;
+    std::size_t larger = 0;
+    double largest = 0.0;
+    for (std::size_t e = 0; e < part.element_count(); ++e) {
+      const double h = crack_band_width(part, sim.model.nodes, e);
+      largest = std::max(largest, h);
+      if (h > limit) ++larger;
+    }
+    if (larger == 0) continue;
+    const auto& input = scenario.materials[part.material];
+    char text[640];
+    std::snprintf(text, sizeof text,
+                  "part '%s': %zu of %zu elements are wider than the crack-band limit of material '%s' "
+                  "(%s), %.3g mm (the largest %.3g mm across): in them the softening would snap back, so "
+                  "the model acts as a strength criterion (a point fails when its stress reaches the "
+                  "tensile strength, with less than the fracture energy dissipated). Elements of %.3g mm "
+                  "or less across make it a regularised crack band",
+                  part.name.c_str(), larger, part.element_count(), material.name().c_str(),
+                  std::string(material.model()).c_str(), 1e3 * limit, 1e3 * largest, 1e3 * limit);
+    warnings.push_back(InputError(shown_path(scenario.file), input.line, "materials." + input.name, text).what());
+  }
+  return warnings;
+}
+
+}  // namespace shard

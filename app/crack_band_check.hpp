@@ -1,0 +1,22 @@
+// Set-up checks of the mesh against the materials' regularisation: a softening law normalised by
+// a fracture energy over the crack band only dissipates that energy in elements smaller than its
+// crack-band limit (Material::crack_band_limit); in larger ones it snaps back and the model acts
+// as a strength criterion. docs/theory/rotating_crack.md, "Admissible element size".
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "app/simulation.hpp"
+
+namespace shard {
+
+/// The crack-band width of element e of a part, as the element kernels measure it: tri3
+/// sqrt(2A), tet4 (6V)^(1/3), hexahedra V^(1/3), in the current configuration.
+double crack_band_width(const Part& part, const NodeArrays& nodes, std::size_t e);
+
+/// One warning per part whose elements are larger than its material's crack-band limit: how
+/// many, the largest, the limit and what it comes from, and the mesh size that would be needed.
+std::vector<std::string> crack_band_warnings(const Scenario& scenario, const Simulation& sim);
+
+}  // namespace shard

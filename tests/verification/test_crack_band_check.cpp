@@ -1,0 +1,74 @@
+// The crack-band limit of the rotating crack and the set-up warning built on it.
+//
+// 1. The limit is where the band's softening would snap back: along the band, the total strain
+//    ε = s(e)/E + e of a crack opening e must not fall as e grows. For band widths 1 % below the
+//    limit it never falls; 1 % above, it does (linear and exponential softening).
+// 2. The limits of the ceramics paper's materials (Cottrell, Yu, Wei & Owen 2003, Eng. Comput.
+//    20(1), tables II and VI): 2EG_f/f_t² = 0.145 mm for SiC and 0.0707 mm for Sintox alumina.
+// 3. `shard check` warns, naming the material's line, for a plate of 0.4 mm elements whose limit
+//    is 0.329 mm; with a fracture energy that puts the limit above every element, it does not.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "app/run.hpp"
+#include "material/rotating_crack.hpp"
+
+namespace shard {
+namespace {
+
+RotatingCrackParameters ceramic(double K, double G, double ft, double gf, SofteningCurve curve) {
+  RotatingCrackParameters p;
+  p.moduli = {K, G};
+  p.tensile_strength = ft;
+  p.fracture_energy = gf;
+  p.softening = curve;
+  return p;
+}
+
+double young(const ElasticModuli& m) { return 9 * m.bulk * m.shear / (3 * m.bulk + m.shear); }
+
+/// Whether the total strain s(e)/E + e along a band of width h ever falls as the opening grows.
+bool snaps_back(const RotatingCrack& material, double h) {
+  const double E = young(material.parameters_in_use().moduli);
+  const double end = material.critical_crack_strain(h);
+  double previous = material.softening_stress(0.0, h) / E;
+  for (int i = 1; i <= 20000; ++i) {
+    const double e = end * i / 20000.0;
+    const double total = material.softening_stress(e, h) / E + e;
+    if (total < previous) return true;
+    previous = total;
+  }
+  return false;
+}
+
+TEST(CrackBandLimit, IsWhereTheSofteningSnapsBack) {
+  for (const auto curve : {SofteningCurve::linear, SofteningCurve::exponential}) {
+    const RotatingCrack sic("sic", 3150, ceramic(192e9, 175e9, 370e6, 24.7, curve));
+    const double limit = sic.crack_band_limit();
+    EXPECT_FALSE(snaps_back(sic, 0.99 * limit)) << static_cast<int>(curve);
+    EXPECT_TRUE(snaps_back(sic, 1.01 * limit)) << static_cast<int>(curve);
+  }
+}
+
+TEST(CrackBandLimit, CeramicsOfThePaper) {
+  const RotatingCrack sic("sic", 3150, ceramic(192e9, 175e9, 370e6, 24.7, SofteningCurve::linear));
+  const RotatingCrack alumina("alumina", 3690, ceramic(149.425e9, 107.438e9, 500e6, 34, SofteningCurve::linear));
+  EXPECT_NEAR(sic.crack_band_limit(), 0.145e-3, 0.005 * 0.145e-3);
+  EXPECT_NEAR(alumina.crack_band_limit(), 0.0707e-3, 0.005 * 0.0707e-3);
+}
+
+TEST(CrackBandLimit, CheckWarnsAboutElementsWiderThanTheLimit) {
+  const std::string plate = std::string(SHARD_TEST_DATA_DIR) + "/fracture/notched_plate_coarse.yaml";
+  const std::string coarse = check_scenario(plate);
+  EXPECT_NE(coarse.find("notched_plate_coarse.yaml:9: key 'materials.ceramic': part 'plate'"), std::string::npos)
+      << coarse;
+  EXPECT_NE(coarse.find("crack-band limit of material 'ceramic' (rotating_crack), 0.329 mm"), std::string::npos)
+      << coarse;
+  // 2 · 370 GPa · 100 J/m² / (300 MPa)² = 0.82 mm, wider than every element.
+  const std::string tough = check_scenario(plate, {{"materials.ceramic.fracture_energy", "100 J/m^2"}});
+  EXPECT_EQ(tough.find("crack-band limit"), std::string::npos) << tough;
+}
+
+}  // namespace
+}  // namespace shard
