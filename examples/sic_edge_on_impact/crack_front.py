@@ -2,14 +2,15 @@
 """Crack front of an edge-on impact run: how far from the impact edge the failed material and
 the inserted cracks reach at each frame, and the front speed.
 
-  examples/sic_edge_on_impact/crack_front.py OUT [--part-id 0] [--edge 0] [--impact 0.1us]
-        [--pictures 1 2 3 4 5]
+  examples/sic_edge_on_impact/crack_front.py OUT [--part-id 0] [--edge 0] [--impact 0.1]
+        [--failed failure_factor:1] [--window 2 8] [--pictures 1 2 3 4 5]
 
 For every frame of OUT/frames.pvd: the largest x − edge of (a) the cells of the beam whose
 failure factor F = ε_f/ε_f,c has reached 1 (the rotating_crack state), and (b) the nodes on a
 crack face (point field crack_face, when cracks are inserted). The front speed is the slope of a
-straight line through the front positions between 10 % and 90 % of the beam length (least
-squares). Writes OUT/crack_front.json and OUT/crack_front.png; with --pictures, draws the failure
+straight line through the front positions between 10 % and 90 % of the beam length, or over
+--window FROM TO µs after impact (least squares). --failed damage:0.5 takes the damage of the
+denoual_forquin_hild model instead of the failure factor. Writes OUT/crack_front.json and OUT/crack_front.png; with --pictures, draws the failure
 factor (or --field crack_face: the crack faces) at those times after impact (µs) with
 tools/shard_plot.py into OUT/failure_<t>us.png (crack_face_<t>us.png).
 Needs Debian's python3-numpy, python3-matplotlib and python3-meshio.
@@ -41,19 +42,29 @@ def main():
     parser.add_argument("--edge", type=float, default=0.0, help="x of the impact edge [mm]")
     parser.add_argument("--length", type=float, default=100.0, help="beam length [mm]")
     parser.add_argument("--impact", type=float, default=0.1, help="time of impact [µs]")
+    parser.add_argument("--window", type=float, nargs=2, default=None, metavar=("FROM", "TO"),
+                        help="fit the front speed over these times after impact [µs] instead of "
+                             "over 10-90 %% of the beam length")
     parser.add_argument("--pictures", type=float, nargs="*", default=[],
                         help="times after impact [µs] to draw")
-    parser.add_argument("--field", default="failure_factor",
+    parser.add_argument("--failed", default="failure_factor:1", metavar="FIELD:THRESHOLD",
+                        help="the cell field and the value from which a cell counts as failed "
+                             "(damage:0.5 for denoual_forquin_hild)")
+    parser.add_argument("--field", default=None,
                         help="field the pictures show (failure_factor, or crack_face for the faces "
                              "of inserted cracks)")
     args = parser.parse_args()
+    failed_field, threshold = args.failed.split(":")
+    threshold = float(threshold)
+    if args.field is None:
+        args.field = failed_field
     rows = []
     for time, path in frames(args.folder):
         mesh = meshio.read(path)
         cells = mesh.cells[0].data
         centre = mesh.points[cells].mean(axis=1) * 1e3
         part = mesh.cell_data["part"][0]
-        failed = (part == args.part_id) & (mesh.cell_data["failure_factor"][0] >= 1)
+        failed = (part == args.part_id) & (mesh.cell_data[failed_field][0] >= threshold)
         smeared = float(centre[failed, 0].max() - args.edge) if failed.any() else 0.0
         crack = 0.0
         cracked_nodes = 0
@@ -67,13 +78,17 @@ def main():
     result = {"frames": [dict(zip(("time_us", "failed_front_mm", "crack_front_mm", "failed_cells",
                                    "crack_face_nodes"), r)) for r in rows]}
     figure, axes = plt.subplots(figsize=(6.5, 4.2))
-    for column, label, colour in ((1, "failed material (F ≥ 1)", "tab:orange"),
+    for column, label, colour in ((1, f"failed material ({failed_field} ≥ {threshold:g})", "tab:orange"),
                                   (2, "inserted cracks", "tab:red")):
         front = data[:, column]
         if not front.any():
             continue
         axes.plot(data[:, 0] - args.impact, front, "o-", color=colour, label=label)
-        window = (front > 0.1 * args.length) & (front < 0.9 * args.length)
+        if args.window:
+            after = data[:, 0] - args.impact
+            window = (after >= args.window[0] - 1e-6) & (after <= args.window[1] + 1e-6)
+        else:
+            window = (front > 0.1 * args.length) & (front < 0.9 * args.length)
         if window.sum() >= 2:
             slope, intercept = np.polyfit(data[window, 0], front[window], 1)
             key = "failed_front_speed_m_per_s" if column == 1 else "crack_front_speed_m_per_s"

@@ -114,12 +114,15 @@ VtuGrid make_frame(const Model& model, const std::vector<std::unique_ptr<Materia
     });
   if (wants(fields, "part"))
     cell_field("part", 1, [](std::size_t p, const Part&, std::size_t, int) { return static_cast<double>(p); });
-  if (wants(fields, "state")) {
-    // One field per history variable name; zero in parts whose material lacks it.
+  {
+    // One field per history variable name ("state": all of them, or those named in `fields`);
+    // zero in parts whose material lacks it.
+    const bool all = wants(fields, "state");
     std::vector<std::string> names;
     for (const auto& part : model.parts)
       for (const auto& n : materials[part.material]->state_names())
-        if (std::find(names.begin(), names.end(), n) == names.end()) names.push_back(n);
+        if ((all || wants(fields, n.c_str())) && std::find(names.begin(), names.end(), n) == names.end())
+          names.push_back(n);
     for (const auto& name : names) {
       // Slot of the variable in each part's state (−1: absent), found once per field.
       std::vector<int> slot, stride;

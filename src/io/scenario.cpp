@@ -1121,11 +1121,21 @@ class ScenarioReader {
     if (!f.IsSequence()) out.fail("fields", "expected a list of field names, e.g. [stress, velocity]");
     YAML::Node fo(YAML::NodeType::Sequence);
     fo.SetStyle(YAML::EmitterStyle::Flow);
+    // A field is one of the fixed names, or one history variable of a material in use
+    // ("damage"), for a frame that holds what a study needs rather than every variable.
+    std::vector<std::string> known = kFieldNames;
+    for (const auto& m : sc.materials)
+      if (const auto* info = MaterialRegistry::find(m.model))
+        for (const auto& v : info->create(m.name, m.values)->state_names())
+          if (std::find(known.begin(), known.end(), v) == known.end()) known.push_back(v);
     for (const auto& name : f) {
       const std::string n = out.name_in_list("fields", name, "a field name");
-      if (std::find(kFieldNames.begin(), kFieldNames.end(), n) == kFieldNames.end()) {
-        std::string reason = "unknown field '" + n + "'";
-        const std::string close = closest_match(n, kFieldNames);
+      if (std::find(known.begin(), known.end(), n) == known.end()) {
+        std::string fixed;
+        for (const auto& k : kFieldNames) fixed += (fixed.empty() ? "" : ", ") + k;
+        std::string reason = "unknown field '" + n + "' (expected one of " + fixed +
+                             ", or a history variable of a material in use)";
+        const std::string close = closest_match(n, known);
         if (!close.empty()) reason += " (did you mean '" + close + "'?)";
         throw InputError(file, line_of(name), "output.fields", reason);
       }

@@ -24,6 +24,7 @@
 #include "core/tensor_ops.hpp"
 #include "core/voigt.hpp"
 #include "material/denoual_forquin_hild.hpp"
+#include "support/material_point.hpp"
 
 namespace shard {
 namespace {
@@ -55,15 +56,7 @@ struct PointDriver {
   double temperature = 293.15, volume = 1e-9, work = 0, fracture = 0;
 
   void step(const double* strain, double dt, const double* spin = nullptr) {
-    MaterialPointBatch b;
-    b.count = 1;
-    b.dt = dt;
-    b.strain_increment = strain;
-    b.spin = spin;
-    b.stress = stress;
-    b.state = state.data();
-    b.temperature = &temperature;
-    b.volume = &volume;
+    MaterialPointBatch b = testing::one_point(strain, dt, stress, state.data(), &temperature, &volume, nullptr, spin);
     double before[kTensorSize];
     std::copy(stress, stress + kTensorSize, before);
     material.update(b);

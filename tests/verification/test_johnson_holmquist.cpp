@@ -25,6 +25,7 @@
 #include <string>
 
 #include "material/johnson_holmquist.hpp"
+#include "support/material_point.hpp"
 #include "support/model_runner.hpp"
 
 namespace shard {
@@ -90,15 +91,7 @@ struct Point {
   explicit Point(const JohnsonHolmquistParameters& p) : model("ceramic", 3700, p) {}
 
   void step(const double (&de)[kTensorSize], double dt = 1e-9) {
-    MaterialPointBatch b;
-    b.count = 1;
-    b.dt = dt;
-    b.strain_increment = de;
-    b.stress = stress;
-    b.state = state;
-    b.temperature = &temperature;
-    b.volume = &volume;
-    b.characteristic_length = &band;
+    MaterialPointBatch b = testing::one_point(de, dt, stress, state, &temperature, &volume, &band);
     model.update(b);
     plastic += b.plastic_work;
     fracture += b.fracture_work;

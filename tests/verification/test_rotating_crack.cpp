@@ -44,6 +44,7 @@
 #include "material/rotating_crack.hpp"
 #include "support/contact_models.hpp"
 #include "model/remap.hpp"
+#include "support/material_point.hpp"
 #include "support/model_runner.hpp"
 #include "support/rotation.hpp"
 #include "support/scenario_run.hpp"
@@ -83,15 +84,7 @@ struct MaterialPoint {
 
   /// One increment; returns the fracture work density of the increment.
   double apply(const double* de) {
-    MaterialPointBatch b;
-    b.count = 1;
-    b.dt = 1e-9;
-    b.strain_increment = de;
-    b.stress = stress;
-    b.state = state;
-    b.temperature = &temperature;
-    b.volume = &volume;
-    b.characteristic_length = &band;
+    MaterialPointBatch b = testing::one_point(de, 1e-9, stress, state, &temperature, &volume, &band);
     material.update(b);
     for (int k = 0; k < kTensorSize; ++k) strain[k] += de[k];
     fracture += b.fracture_work;
