@@ -70,6 +70,14 @@ class Material {
   std::size_t state_size() const { return state_names().size(); }
   /// Initial values of the history variables of `points` points (zero by default).
   virtual void initialise(double* state, std::size_t points) const;
+  /// After initialise, for a model with a random field of properties (a Weibull strength per
+  /// element): the state of the `points_per_element` points of each of `elements` elements, given
+  /// their stable ids and volumes. Keyed by the id, never by the element's place or the thread,
+  /// so that a field is the same for any thread count, renumbering or restart. Nothing by default.
+  virtual void seed_elements(double* state, std::size_t points_per_element, std::size_t elements,
+                             const std::int64_t* element_ids, const double* element_volumes) const {
+    (void)state, (void)points_per_element, (void)elements, (void)element_ids, (void)element_volumes;
+  }
   /// The history variable that marks failure: a point whose state[index] ≥ 1 has failed and its
   /// element is eroded (removed from the force computation). −1: the model never fails points.
   virtual int failure_state_index() const { return -1; }

@@ -126,7 +126,47 @@ struct CrackProblem {
 std::vector<std::string> RotatingCrack::state_names() const {
   return {"max_crack_strain", "failure_factor", "nonlocal_failure_factor", "crack_normal_x",
           "crack_normal_y",   "crack_normal_z", "crack_angle",             "energy_density",
-          "point_volume",     "band_width"};
+          "point_volume",     "band_width",     "point_strength"};
+}
+
+void RotatingCrack::initialise(double* state, std::size_t points) const {
+  std::fill_n(state, slot_count * points, 0.0);
+  for (std::size_t q = 0; q < points; ++q) state[slot_count * q + strength] = p_.tensile_strength;
+}
+
+namespace {
+
+/// A uniform number in (0, 1) from a 64-bit key: the SplitMix64 finaliser (Steele, Lea & Flood
+/// 2014), whose output bits all depend on every input bit, so that neighbouring ids give
+/// independent draws; 53 bits, shifted off 0.
+double uniform_from(std::uint64_t key) {
+  std::uint64_t z = key + 0x9e3779b97f4a7c15ULL;
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+  z ^= z >> 31;
+  return (static_cast<double>(z >> 11) + 0.5) * 0x1.0p-53;
+}
+
+/// The key of an element's draw: its stable id and the seed, spread by two odd constants so
+/// that seed s and id i never meet seed s' and id i' on the same key for small s, i.
+std::uint64_t uniform_key(std::uint64_t seed, std::int64_t id) {
+  return static_cast<std::uint64_t>(id) * 0xd1b54a32d192ed03ULL + seed * 0x8cb92ba72f3d8dd7ULL;
+}
+
+}  // namespace
+
+void RotatingCrack::seed_elements(double* state, std::size_t points_per_element, std::size_t elements,
+                                  const std::int64_t* element_ids, const double* element_volumes) const {
+  const double m = p_.weibull_modulus;
+  if (!(m > 0.0)) return;
+  for (std::size_t e = 0; e < elements; ++e) {
+    // One draw per element and seed: the element is the volume the weakest link is taken over.
+    const std::uint64_t key = uniform_key(p_.seed, element_ids[e]);
+    const double u = uniform_from(key);
+    const double size = std::pow(p_.weibull_volume / std::abs(element_volumes[e]), 1.0 / m);
+    const double f = p_.tensile_strength * size * std::pow(std::log(1.0 / u) / std::log(2.0), 1.0 / m);
+    for (std::size_t q = 0; q < points_per_element; ++q) state[slot_count * (points_per_element * e + q) + strength] = f;
+  }
 }
 
 std::optional<Material::FailureMapSlots> RotatingCrack::failure_map_slots() const {
@@ -139,9 +179,9 @@ std::optional<Material::FailureMapSlots> RotatingCrack::failure_map_slots() cons
                           crack_normal_z, crack_angle}};
 }
 
-double RotatingCrack::critical_crack_strain(double h) const {
-  if (p_.softening == SofteningCurve::linear) return 2.0 * p_.fracture_energy / (p_.tensile_strength * h);
-  const double scale = p_.fracture_energy / (p_.tensile_strength * h * kExponentialArea);
+double RotatingCrack::critical_crack_strain(double h, double ft) const {
+  if (p_.softening == SofteningCurve::linear) return 2.0 * p_.fracture_energy / (ft * h);
+  const double scale = p_.fracture_energy / (ft * h * kExponentialArea);
   return scale * std::log(1.0 / kExponentialEnd);
 }
 
@@ -167,7 +207,6 @@ void RotatingCrack::update(MaterialPointBatch& batch) const {
     throw std::logic_error("rotating_crack: the element kernel gave no characteristic_length");
   const double K = p_.moduli.bulk, G = p_.moduli.shear;
   const double lambda = p_.moduli.lame(), two_g = 2.0 * G;
-  const double ft = p_.tensile_strength;
   const bool local = !(p_.nonlocal_length > 0);
   // ε = C⁻¹σ = (σ − (λ/3K) tr σ I) / 2G; Ψ_e = ½ σ : C⁻¹σ.
   const double nu_ratio = lambda / (3.0 * K);
@@ -191,6 +230,7 @@ void RotatingCrack::update(MaterialPointBatch& batch) const {
     const double* de = batch.strain_increment + kTensorSize * q;
     double* s = batch.stress + kTensorSize * q;
     double* hs = batch.state + slot_count * q;
+    const double ft = point_strength(hs);
     const double kappa = hs[max_crack_strain];
     // The band width is the element's size when its crack opens, kept from then on: the
     // softening curve of a crack does not change as the opening stretches the element.
@@ -210,7 +250,7 @@ void RotatingCrack::update(MaterialPointBatch& batch) const {
       }
     }
 
-    const double end = critical_crack_strain(h);
+    const double end = critical_crack_strain(h, ft);
     const Curve curve{p_.softening, ft, end, end / std::log(1.0 / kExponentialEnd)};
     double old[kTensorSize];
     std::copy_n(s, kTensorSize, old);
@@ -297,7 +337,7 @@ void RotatingCrack::update(MaterialPointBatch& batch) const {
 
 std::vector<Material::Transfer> RotatingCrack::state_transfer() const {
   std::vector<Transfer> rule(slot_count);
-  for (const int slot : {crack_normal_x, crack_normal_y, crack_normal_z, crack_angle, band_width})
+  for (const int slot : {crack_normal_x, crack_normal_y, crack_normal_z, crack_angle, band_width, strength})
     rule[slot].rule = Transfer::nearest;
   for (const int slot : {max_crack_strain, failure_factor, nonlocal_failure_factor, energy_density, point_volume})
     rule[slot].min = 0.0;
@@ -320,8 +360,8 @@ void RotatingCrack::after_transfer(MaterialPointBatch& batch) const {
     const double F = hs[failure_factor];
     double crack_energy = 0.0;
     if (F > 0.0 && h > 0.0) {
-      const double end = critical_crack_strain(h);
-      const Curve curve{p_.softening, p_.tensile_strength, end, end / std::log(1.0 / kExponentialEnd)};
+      const double end = critical_crack_strain(h, point_strength(hs));
+      const Curve curve{p_.softening, point_strength(hs), end, end / std::log(1.0 / kExponentialEnd)};
       hs[band_width] = h;
       hs[max_crack_strain] = F * end;
       double sv[3], sd[3][3];
@@ -359,6 +399,15 @@ KeyList RotatingCrack::parameters() {
       .must_be_given();
   keys.choice("softening", {"linear", "exponential"}, "shape of the tensile softening curve")
       .defaults_to("linear");
+  keys.quantity("weibull_modulus", dim::none,
+                "m: gives each element its own tensile strength, drawn from Weibull's law with the "
+                "size effect (V_ref/V)^(1/m) (needs weibull_volume); absent: f_t everywhere")
+      .above(0);
+  keys.quantity("weibull_volume", dim::volume, "V_ref: the volume whose median strength is tensile_strength")
+      .above(0);
+  keys.quantity("seed", dim::none, "seed of the Weibull strength field (a whole number; same seed, same field)")
+      .at_least(0)
+      .defaults_to("1");
   keys.quantity("nonlocal_length", dim::length,
                 "ℓ: the failure factor is averaged over the points of the part within ℓ "
                 "(bell weight); 0: local")
@@ -376,6 +425,18 @@ RotatingCrackParameters RotatingCrack::from(const ParameterValues& v) {
                     ? SofteningCurve::exponential
                     : SofteningCurve::linear;
   p.nonlocal_length = v.number("nonlocal_length");
+  if (v.has("weibull_modulus") != v.has("weibull_volume"))
+    throw ParameterError(v.has("weibull_modulus") ? "weibull_volume" : "weibull_modulus",
+                         "a Weibull strength field needs both weibull_modulus (m) and weibull_volume "
+                         "(the volume whose median strength is tensile_strength)");
+  if (v.has("weibull_modulus")) {
+    p.weibull_modulus = v.number("weibull_modulus");
+    p.weibull_volume = v.number("weibull_volume");
+    const double seed = v.number("seed");
+    if (seed != std::floor(seed) || seed > 9.0e15)
+      throw ParameterError("seed", "the seed must be a whole number from 0 to 9e15");
+    p.seed = static_cast<std::uint64_t>(seed);
+  }
   return p;
 }
 

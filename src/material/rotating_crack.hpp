@@ -29,6 +29,11 @@ struct RotatingCrackParameters {
   double fracture_energy = 0;   ///< G_f (J/m²)
   SofteningCurve softening = SofteningCurve::linear;
   double nonlocal_length = 0;   ///< ℓ (m); 0: the failure map is local
+  /// A Weibull strength per element (Brannon et al. 2007): modulus m (0: every point has f_t),
+  /// the volume V_ref whose median strength is f_t, and the seed of the field.
+  double weibull_modulus = 0;
+  double weibull_volume = 0;
+  std::uint64_t seed = 1;
 };
 
 class RotatingCrack final : public Material, public NonlocalAveraging {
@@ -45,6 +50,8 @@ class RotatingCrack final : public Material, public NonlocalAveraging {
     energy_density,           ///< Ψ: recoverable energy per unit volume, elastic + open cracks
     point_volume,             ///< V at the last update (for the energy change Ψ_n+1 V_n+1 − Ψ_n V_n)
     band_width,               ///< h of the crack band, fixed when the crack opens (m)
+    strength,                 ///< the point's f_t: the part's, or drawn from the Weibull field (Pa;
+                              ///< 0, a state zeroed without initialise: the part's)
     slot_count
   };
 
@@ -55,6 +62,12 @@ class RotatingCrack final : public Material, public NonlocalAveraging {
   ElasticModuli elastic() const override { return p_.moduli; }
   std::vector<std::string> state_names() const override;
   int failure_state_index() const override { return -1; }
+  void initialise(double* state, std::size_t points) const override;
+  /// With weibull_modulus m > 0: f_t,e = f_t (V_ref/V_e)^(1/m) (ln(1/U)/ln 2)^(1/m), U uniform
+  /// in (0, 1) from (seed, element id): Weibull's weakest link for an element of volume V_e,
+  /// with the median f_t at V_ref (Brannon, Wells & Strack 2007; docs/theory/rotating_crack.md, eq. 10).
+  void seed_elements(double* state, std::size_t points_per_element, std::size_t elements,
+                     const std::int64_t* element_ids, const double* element_volumes) const override;
   std::optional<FailureMapSlots> failure_map_slots() const override;
   void update(MaterialPointBatch& batch) const override;
   std::vector<Transfer> state_transfer() const override;
@@ -71,7 +84,11 @@ class RotatingCrack final : public Material, public NonlocalAveraging {
 
   /// ε_c: the crack opening strain at which the softening curve of a band of width h reaches
   /// zero (linear: 2 G_f/(f_t h)).
-  double critical_crack_strain(double band_width) const;
+  double critical_crack_strain(double band_width) const {
+    return critical_crack_strain(band_width, p_.tensile_strength);
+  }
+  /// The same for a point of strength `ft`.
+  double critical_crack_strain(double band_width, double ft) const;
   /// s(e): the normal stress an open crack carries at opening strain e on the softening curve of
   /// a band of width h (f_t at e = 0).
   double softening_stress(double opening, double band_width) const;
@@ -80,6 +97,10 @@ class RotatingCrack final : public Material, public NonlocalAveraging {
   static RotatingCrackParameters from(const ParameterValues& values);
 
  private:
+  double point_strength(const double* state) const {
+    return state[strength] > 0.0 ? state[strength] : p_.tensile_strength;
+  }
+
   RotatingCrackParameters p_;
 };
 

@@ -21,6 +21,13 @@ void prepare_part(Model& model, std::size_t p, const Material& material, double 
     part.id.resize(ne);
     for (auto& id : part.id) id = model.next_element_id++;
   }
+  if (!part.state.empty()) {
+    std::vector<double> volume(ne);
+    for (std::size_t e = 0; e < ne; ++e)
+      volume[e] = element_measure(part, model.nodes, e, model.formulation, model.thickness);
+    material.seed_elements(part.state.data(), static_cast<std::size_t>(part.type->points), ne, part.id.data(),
+                           volume.data());
+  }
   colour_elements(model, p);
 }
 
