@@ -24,24 +24,31 @@ std::vector<std::string> crack_band_warnings(const Scenario& scenario, const Sim
     const Material& material = *sim.materials[part.material];
     const double limit = material.crack_band_limit();
     if (!std::isfinite(limit)) continue;
+    // Each element against the limit at its own strength (a Weibull field makes the stronger,
+    // smaller elements need smaller sizes); the first point's state stands for the element's.
+    const std::size_t per_element = static_cast<std::size_t>(part.type->points) * material.state_size();
     std::size_t larger = 0;
-    double largest = 0.0;
+    double largest = 0.0, tightest = limit;
     for (std::size_t e = 0; e < part.element_count(); ++e) {
       const double h = crack_band_width(part, sim.model.nodes, e);
+      const double own = part.state.empty() ? limit : material.crack_band_limit(&part.state[per_element * e]);
       largest = std::max(largest, h);
-      if (h > limit) ++larger;
+      tightest = std::min(tightest, own);
+      if (h > own) ++larger;
     }
     if (larger == 0) continue;
     const auto& input = scenario.materials[part.material];
-    char text[640];
+    char text[768];
     std::snprintf(text, sizeof text,
                   "part '%s': %zu of %zu elements are wider than the crack-band limit of material '%s' "
-                  "(%s), %.3g mm (the largest %.3g mm across): in them the softening would snap back, so "
-                  "the model acts as a strength criterion (a point fails when its stress reaches the "
-                  "tensile strength, with less than the fracture energy dissipated). Elements of %.3g mm "
-                  "or less across make it a regularised crack band",
+                  "(%s), %.3g mm at its tensile strength (the largest element %.3g mm across): in them "
+                  "the softening would snap back, so the model acts as a strength criterion (a point "
+                  "fails when its stress reaches the tensile strength, with less than the fracture "
+                  "energy dissipated). Elements of %.3g mm or less across make it a regularised crack "
+                  "band%s",
                   part.name.c_str(), larger, part.element_count(), material.name().c_str(),
-                  std::string(material.model()).c_str(), 1e3 * limit, 1e3 * largest, 1e3 * limit);
+                  std::string(material.model()).c_str(), 1e3 * limit, 1e3 * largest, 1e3 * tightest,
+                  tightest < limit ? " (the strongest elements of its Weibull field need that)" : "");
     warnings.push_back(InputError(shown_path(scenario.file), input.line, "materials." + input.name, text).what());
   }
   return warnings;

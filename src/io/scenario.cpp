@@ -418,7 +418,9 @@ KeyList output_keys() {
       .defaults_to("10 s");
   std::string all;
   for (const auto& f : kFieldNames) all += (all.empty() ? "" : ", ") + f;
-  k.add("fields", ValueKind::list, "frame fields, any of: " + all).defaults_to("all");
+  k.add("fields", ValueKind::list,
+        "frame fields, any of: " + all + ", or a history variable of a material a part uses (e.g. damage)")
+      .defaults_to("all");
   return k;
 }
 
@@ -1125,7 +1127,8 @@ class ScenarioReader {
     // ("damage"), for a frame that holds what a study needs rather than every variable.
     std::vector<std::string> known = kFieldNames;
     for (const auto& m : sc.materials)
-      if (const auto* info = MaterialRegistry::find(m.model))
+      if (const auto* info = MaterialRegistry::find(m.model);
+          info && std::any_of(sc.parts.begin(), sc.parts.end(), [&](const PartInput& p) { return p.material == m.name; }))
         for (const auto& v : info->create(m.name, m.values)->state_names())
           if (std::find(known.begin(), known.end(), v) == known.end()) known.push_back(v);
     for (const auto& name : f) {
@@ -1134,7 +1137,7 @@ class ScenarioReader {
         std::string fixed;
         for (const auto& k : kFieldNames) fixed += (fixed.empty() ? "" : ", ") + k;
         std::string reason = "unknown field '" + n + "' (expected one of " + fixed +
-                             ", or a history variable of a material in use)";
+                             ", or a history variable of a material a part uses)";
         const std::string close = closest_match(n, known);
         if (!close.empty()) reason += " (did you mean '" + close + "'?)";
         throw InputError(file, line_of(name), "output.fields", reason);

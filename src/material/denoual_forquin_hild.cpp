@@ -34,7 +34,7 @@ std::vector<std::string> DenoualForquinHild::state_names() const {
                              "crack_density_", "damage_"})
       names.push_back(base + s);
   }
-  names.insert(names.end(), {"damage", "energy_density", "point_volume"});
+  names.insert(names.end(), {"damage", "energy_density"});
   return names;
 }
 
@@ -109,7 +109,9 @@ void DenoualForquinHild::update(MaterialPointBatch& batch) const {
     hs[largest_damage] = largest;
 
     // 3. The damaged stress, its recoverable energy ½ Σ σ_i ε_i (ε_i the elastic strains of σ̃,
-    //    same axes), and the fracture work as the work done less the change of that energy.
+    //    same axes), and the fracture work as the work done less the change of that energy, per
+    //    unit volume (nothing at an intact point, where the two are equal: the trapezoidal work
+    //    of a linear law is exact).
     double old[kTensorSize];
     std::copy(sig, sig + kTensorSize, old);
     double carried[3];
@@ -121,9 +123,8 @@ void DenoualForquinHild::update(MaterialPointBatch& batch) const {
     double work = 0.0;
     for (int k = 0; k < kTensorSize; ++k) work += (k < 3 ? 0.5 : 1.0) * (old[k] + sig[k]) * de[k];
     const double v = batch.volume ? batch.volume[q] : 0.0;
-    batch.fracture_work += work * v - (energy * v - hs[energy_density] * hs[point_volume]);
+    batch.fracture_work += (work - (energy - hs[energy_density])) * v;
     hs[energy_density] = energy;
-    hs[point_volume] = v;
   }
 }
 
@@ -136,7 +137,6 @@ std::vector<Material::Transfer> DenoualForquinHild::state_transfer() const {
   }
   rule[largest_damage] = {Transfer::interpolate, 0.0, 1.0};
   rule[energy_density].min = 0.0;
-  rule[point_volume].min = 0.0;
   return rule;
 }
 
@@ -163,7 +163,6 @@ void DenoualForquinHild::after_transfer(MaterialPointBatch& batch) const {
     double energy = 0.0;
     for (int i = 0; i < 3; ++i) energy += 0.5 * carried[i] * (value[i] - nu_ratio * tr_eff) / two_g;
     hs[energy_density] = energy;
-    hs[point_volume] = batch.volume[q];
   }
 }
 

@@ -45,7 +45,6 @@ class DenoualForquinHild final : public Material {
     first_direction = effective_stress + kTensorSize,    ///< 3 × direction_slots
     largest_damage = first_direction + 3 * direction_slots,  ///< max_i D_i, for plots
     energy_density,  ///< Ψ = ½ σ : C⁻¹σ̃, the recoverable energy per unit volume
-    point_volume,    ///< V at the last update (for the energy change Ψ_n+1 V_n+1 − Ψ_n V_n)
     slot_count
   };
 

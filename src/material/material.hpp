@@ -131,6 +131,11 @@ class Material {
   /// dissipates its fracture energy: in a larger element the softening branch would snap back, and
   /// the model acts as a strength criterion instead (+∞: a model without a regularised softening).
   virtual double crack_band_limit() const { return std::numeric_limits<double>::infinity(); }
+  /// The same for one point, from its state (a model whose strength varies from point to point).
+  virtual double crack_band_limit(const double* point_state) const {
+    (void)point_state;
+    return crack_band_limit();
+  }
 
   double density() const { return density_; }
   /// Dilatational (P-wave) speed sqrt((K + 4G/3)/ρ), for the stable time step.

@@ -191,9 +191,9 @@ double RotatingCrack::softening_stress(double opening, double h) const {
   return curve.stress(opening);
 }
 
-double RotatingCrack::crack_band_limit() const {
+double RotatingCrack::crack_band_limit_at(double ft) const {
   const double K = p_.moduli.bulk, G = p_.moduli.shear;
-  const double young = 9.0 * K * G / (3.0 * K + G), ft = p_.tensile_strength;
+  const double young = 9.0 * K * G / (3.0 * K + G);
   // Linear: s falls from f_t to 0 over ε_c = 2G_f/(f_t h); the band's total strain keeps rising
   // while ε_c ≥ f_t/E. Exponential: the steepest slope is the first, −(f_t/ε_s)(1 + r/ln(1/r)),
   // with ε_s = G_f/(f_t h a), a = kExponentialArea.

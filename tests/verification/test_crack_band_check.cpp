@@ -6,7 +6,8 @@
 // 2. The limits of the ceramics paper's materials (Cottrell, Yu, Wei & Owen 2003, Eng. Comput.
 //    20(1), tables II and VI): 2EG_f/f_t² = 0.145 mm for SiC and 0.0707 mm for Sintox alumina.
 // 3. `shard check` warns, naming the material's line, for a plate of 0.4 mm elements whose limit
-//    is 0.329 mm; with a fracture energy that puts the limit above every element, it does not.
+//    is 0.329 mm; with a fracture energy that puts the limit above every element, it does not;
+//    with a Weibull strength field, each element is held to the limit at its own strength.
 #include <gtest/gtest.h>
 
 #include <string>
@@ -68,6 +69,15 @@ TEST(CrackBandLimit, CheckWarnsAboutElementsWiderThanTheLimit) {
   // 2 · 370 GPa · 100 J/m² / (300 MPa)² = 0.82 mm, wider than every element.
   const std::string tough = check_scenario(plate, {{"materials.ceramic.fracture_energy", "100 J/m^2"}});
   EXPECT_EQ(tough.find("crack-band limit"), std::string::npos) << tough;
+  // With a Weibull field whose median is f_t at 1 mm³, the 0.08 mm³ elements are stronger by
+  // about 12.5^(1/10) = 1.29: more of them are too wide, and the size asked for is smaller.
+  const std::string weibull = check_scenario(plate, {{"materials.ceramic.weibull_modulus", "10"},
+                                                     {"materials.ceramic.weibull_volume", "1 mm^3"}});
+  EXPECT_NE(weibull.find("the strongest elements of its Weibull field need that"), std::string::npos) << weibull;
+  auto count = [](const std::string& text) {  // "N of M elements are wider" in the warning
+    return std::stoul(text.substr(text.find("'plate': ", text.find("warning:")) + 9));
+  };
+  EXPECT_GT(count(weibull), count(coarse)) << weibull;
 }
 
 }  // namespace
