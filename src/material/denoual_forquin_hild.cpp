@@ -11,20 +11,6 @@
 
 namespace shard {
 
-namespace {
-
-/// The principal stresses of the damaged material: a tensile effective value σ̃_i carries
-/// (1 − D_i) of itself, a compressive one all of it (the flaws close).
-void damaged_principal(const double effective[3], const double* state, double out[3]) {
-  for (int i = 0; i < 3; ++i) {
-    const double d = state[DenoualForquinHild::first_direction + i * DenoualForquinHild::direction_slots +
-                           DenoualForquinHild::damage];
-    out[i] = effective[i] > 0.0 ? (1.0 - d) * effective[i] : effective[i];
-  }
-}
-
-}  // namespace
-
 std::vector<std::string> DenoualForquinHild::state_names() const {
   std::vector<std::string> names = {"effective_stress_xx", "effective_stress_yy", "effective_stress_zz",
                                     "effective_stress_xy", "effective_stress_yz", "effective_stress_zx"};
@@ -36,6 +22,22 @@ std::vector<std::string> DenoualForquinHild::state_names() const {
   }
   names.insert(names.end(), {"damage", "energy_density"});
   return names;
+}
+
+double DenoualForquinHild::damaged_stress(const double value[3], const double axis[3][3], const double* state,
+                                          double* stress) const {
+  // A tensile effective value σ̃_i carries (1 − D_i) of itself, a compressive one all of it (the
+  // flaws close); ε_i = (σ̃_i − (λ/3K) tr σ̃)/2G are the elastic strains on the same axes.
+  const double two_g = 2.0 * p_.moduli.shear, nu_ratio = p_.moduli.lame() / (3.0 * p_.moduli.bulk);
+  const double trace = value[0] + value[1] + value[2];
+  double carried[3], energy = 0.0;
+  for (int i = 0; i < 3; ++i) {
+    const double d = state[first_direction + i * direction_slots + damage];
+    carried[i] = value[i] > 0.0 ? (1.0 - d) * value[i] : value[i];
+    energy += 0.5 * carried[i] * (value[i] - nu_ratio * trace) / two_g;
+  }
+  from_principal(carried, axis, stress);
+  return energy;
 }
 
 double DenoualForquinHild::activated_flaws(double stress) const {
@@ -68,7 +70,6 @@ void shift_moments(double* a, double tau, double added) {
 
 void DenoualForquinHild::update(MaterialPointBatch& batch) const {
   const double lambda = p_.moduli.lame(), two_g = 2.0 * p_.moduli.shear;
-  const double nu_ratio = lambda / (3.0 * p_.moduli.bulk);  // ε = (σ − (λ/3K) tr σ I)/2G
   const double obscuring = p_.shape_factor * p_.crack_speed * p_.crack_speed * p_.crack_speed;
   for (std::size_t q = 0; q < batch.count; ++q) {
     if (batch.volume && !(batch.volume[q] > 0.0)) continue;  // an eroded element: nothing acts
@@ -114,12 +115,7 @@ void DenoualForquinHild::update(MaterialPointBatch& batch) const {
     //    of a linear law is exact).
     double old[kTensorSize];
     std::copy(sig, sig + kTensorSize, old);
-    double carried[3];
-    damaged_principal(value, hs, carried);
-    from_principal(carried, axis, sig);
-    const double tr_eff = value[0] + value[1] + value[2];
-    double energy = 0.0;
-    for (int i = 0; i < 3; ++i) energy += 0.5 * carried[i] * (value[i] - nu_ratio * tr_eff) / two_g;
+    const double energy = damaged_stress(value, axis, hs, sig);
     double work = 0.0;
     for (int k = 0; k < kTensorSize; ++k) work += (k < 3 ? 0.5 : 1.0) * (old[k] + sig[k]) * de[k];
     const double v = batch.volume ? batch.volume[q] : 0.0;
@@ -143,8 +139,6 @@ std::vector<Material::Transfer> DenoualForquinHild::state_transfer() const {
 // A remesh interpolates σ̃ and the moments; the damage is made the obscuration of the carried
 // A_3 again and the stress is rebuilt from σ̃, so that σ, D and Ψ agree at every new point.
 void DenoualForquinHild::after_transfer(MaterialPointBatch& batch) const {
-  const double two_g = 2.0 * p_.moduli.shear;
-  const double nu_ratio = p_.moduli.lame() / (3.0 * p_.moduli.bulk);
   const double obscuring = p_.shape_factor * p_.crack_speed * p_.crack_speed * p_.crack_speed;
   for (std::size_t q = 0; q < batch.count; ++q) {
     double* hs = batch.state + slot_count * q;
@@ -155,14 +149,9 @@ void DenoualForquinHild::after_transfer(MaterialPointBatch& batch) const {
       largest = std::max(largest, d[damage]);
     }
     hs[largest_damage] = largest;
-    double value[3], axis[3][3], carried[3];
+    double value[3], axis[3][3];
     principal(hs + effective_stress, value, axis);
-    damaged_principal(value, hs, carried);
-    from_principal(carried, axis, batch.stress + kTensorSize * q);
-    const double tr_eff = value[0] + value[1] + value[2];
-    double energy = 0.0;
-    for (int i = 0; i < 3; ++i) energy += 0.5 * carried[i] * (value[i] - nu_ratio * tr_eff) / two_g;
-    hs[energy_density] = energy;
+    hs[energy_density] = damaged_stress(value, axis, hs, batch.stress + kTensorSize * q);
   }
 }
 

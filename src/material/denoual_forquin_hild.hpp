@@ -70,7 +70,9 @@ class DenoualForquinHild final : public Material {
   static FragmentationParameters from(const ParameterValues& values);
 
  private:
-  void stress_from_effective(const double* effective, const double* state, double* stress, double& energy) const;
+  /// The stress a point carries (eq. 8) from the principal values and axes of its effective
+  /// stress and its damages; returns its recoverable energy ½ Σ σ_i ε_i per unit volume.
+  double damaged_stress(const double value[3], const double axis[3][3], const double* state, double* stress) const;
 
   FragmentationParameters p_;
 };
