@@ -37,6 +37,13 @@ inline std::string read_file(const std::filesystem::path& p) {
   return s.str();
 }
 
+/// A file name under the system temp folder that no other test process shares: ctest runs the
+/// tests of one binary as separate processes side by side, so a fixed name lets one test read
+/// the file another has just written.
+inline std::filesystem::path temp_path(const std::string& name) {
+  return std::filesystem::temp_directory_path() / ("shard_test_" + std::to_string(::getpid()) + "_" + name);
+}
+
 /// A fresh empty folder under the system temp folder.
 inline std::filesystem::path fresh_dir(const std::string& name) {
   const auto dir = std::filesystem::temp_directory_path() / ("shard_test_" + name + "_" + std::to_string(::getpid()));

@@ -41,7 +41,7 @@ TEST(Checkpoint, RoundTripRestoresEverything) {
   state.energy.at("viscosity") = 0.25;
   state.pending_external = 0.125;
   OutputCursor cursor{7, 99, 3, 4096};
-  const auto path = std::filesystem::temp_directory_path() / "shard_ckpt_roundtrip.bin";
+  const auto path = std::filesystem::temp_directory_path() / ("shard_ckpt_roundtrip_" + std::to_string(::getpid()) + ".bin");
   write_checkpoint(path, written, state, cursor, "scenario-A");
 
   Model read = sample_model(4);

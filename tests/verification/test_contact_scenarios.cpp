@@ -44,7 +44,7 @@ TEST(ContactScenarios, DiscBouncesOffRigidWall) {
 
 /// Mean x-acceleration of the block between 100 and 200 µs for gravity tilted by theta.
 double sliding_acceleration(double theta_degrees, double mu, double* g_out, double* travel = nullptr) {
-  const std::string file = (std::filesystem::temp_directory_path() / "shard_incline.yaml").string();
+  const std::string file = testing::temp_path("incline_" + std::to_string(int(theta_degrees)) + ".yaml").string();
   {
     std::ifstream in(kData + "block_on_incline.yaml");
     std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());

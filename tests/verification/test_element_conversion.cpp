@@ -18,6 +18,7 @@
 #include "solver/element_conversion.hpp"
 #include "solver/explicit_solver.hpp"
 #include "solver/setup.hpp"
+#include "support/cli.hpp"
 #include "support/copper_strip.hpp"
 
 namespace shard {
@@ -320,7 +321,7 @@ std::vector<double> strip_state(int threads, std::size_t restart_after, std::siz
     const std::size_t made = strip.run.model.particle_parts[0].count();
     if (restart_after > 0 && made >= restart_after) {
       if (at_restart) *at_restart = made;
-      const auto path = std::filesystem::temp_directory_path() / "shard_conversion_restart.ckpt";
+      const auto path = testing::temp_path("conversion_restart.ckpt");
       OutputCursor cursor;
       write_checkpoint(path, strip.run.model, strip.solver->state(), cursor, "strip");
       Strip again(true);

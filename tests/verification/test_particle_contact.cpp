@@ -179,7 +179,7 @@ std::vector<double> pile_state(int threads, int steps, int restart_at) {
   omp_set_num_threads(threads);
   DemRun run = pile_run();
   fill_box(run, 6);
-  const auto path = std::filesystem::temp_directory_path() / "shard_dem_restart.ckpt";
+  const auto path = testing::temp_path("dem_restart.ckpt");
   for (int s = 0; s < steps; ++s) {
     if (s == restart_at) {
       OutputCursor cursor;

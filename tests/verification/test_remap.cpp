@@ -20,6 +20,7 @@
 
 #include "io/checkpoint.hpp"
 #include "model/assembly.hpp"
+#include "support/cli.hpp"
 #include "support/contact_models.hpp"
 #include "support/mca_samples.hpp"
 #include "support/model_runner.hpp"
@@ -278,7 +279,7 @@ TEST(Remap, PermutationAndSplitThereAndBackLeaveTheRunBitIdentical) {
 }
 
 TEST(Remap, CheckpointAfterARemapRestartsBitIdentical) {
-  const auto path = std::filesystem::temp_directory_path() / "shard_remap_checkpoint.bin";
+  const auto path = testing::temp_path("remap_checkpoint.bin");
   Fixture straight;
   std::mt19937 rng(99);
   straight.steps(20);
