@@ -709,6 +709,64 @@ def plot_fragments(args):
     save(figure, output, args.dpi)
 
 
+def crack_edge_speeds(mesh):
+    """Per crack-face edge (an edge of one triangle only, both ends reached by a crack at different
+    times): its length over the difference of its ends' crack_time, the speed of the tip that
+    crossed it. Also the number of crack-face edges opened at once (nucleation: same times)."""
+    if "crack_time" not in mesh.point_data:
+        raise PlotError("the frame has no point field crack_time: the run inserted no cracks "
+                        "(scenario section cracking:), or was written by an older shard")
+    times = np.asarray(mesh.point_data["crack_time"], dtype=float).ravel()
+    triangles = np.asarray(mesh.cells_dict.get("triangle", np.zeros((0, 3), dtype=int)))
+    if triangles.size == 0:
+        raise PlotError("the frame has no triangles: crack speeds are measured on 2D cracking runs")
+    edges = np.sort(np.concatenate([triangles[:, [0, 1]], triangles[:, [1, 2]], triangles[:, [2, 0]]]), axis=1)
+    unique, count = np.unique(edges, axis=0, return_counts=True)
+    face = unique[count == 1]
+    a, b = face[:, 0], face[:, 1]
+    reached = (times[a] >= 0) & (times[b] >= 0)
+    a, b = a[reached], b[reached]
+    dt = np.abs(times[a] - times[b])
+    length = np.linalg.norm(mesh.points[a, :2] - mesh.points[b, :2], axis=1)
+    grown = dt > 0
+    return length[grown] / dt[grown], int(np.count_nonzero(~grown))
+
+
+def plot_crack_speeds(args):
+    """Distribution of the crack-tip speeds of a 2D cracking run, from the frame's crack_time."""
+    vtu, _, label = pick_frame(args)
+    speeds, nucleated = crack_edge_speeds(read_mesh(vtu))
+    if speeds.size == 0:
+        raise PlotError(f"{vtu}: no crack has grown from one node to the next")
+    q1, median, q3, p90 = np.percentile(speeds, [25, 50, 75, 90])
+    figures = {"edges": int(speeds.size), "edges_opened_at_once": nucleated, "median_m_per_s": float(median),
+               "quartiles_m_per_s": [float(q1), float(q3)], "p90_m_per_s": float(p90),
+               "max_m_per_s": float(speeds.max())}
+    line = (f"{vtu} ({label}): {speeds.size} crack-face edges crossed by a tip, {nucleated} opened at once; "
+            f"tip speed median {median:.0f} m/s (quartiles {q1:.0f}–{q3:.0f}, 90 % below {p90:.0f}, "
+            f"largest {speeds.max():.0f})")
+    if args.limit:
+        above = int(np.count_nonzero(speeds > args.limit))
+        figures.update(limit_m_per_s=args.limit, above_limit=above)
+        line += f"; {above} ({above / speeds.size:.1%}) above {args.limit:.0f} m/s"
+    print(line)
+    if args.json:
+        with open(args.json, "w") as stream:
+            json.dump(figures, stream, indent=1)
+    figure, axes = plt.subplots(figsize=(6.4, 4.2))
+    top = np.percentile(speeds, 99) * 1.1
+    axes.hist(np.clip(speeds, 0, top), bins=40, range=(0, top), color="tab:blue", alpha=0.8)
+    axes.axvline(median, color="k", label=f"median {median:.0f} m/s")
+    if args.limit:
+        axes.axvline(args.limit, color="tab:red", linestyle="--", label=f"limit {args.limit:.0f} m/s")
+    axes.set_xlabel("tip speed over one edge [m/s] (the last bin holds everything above)")
+    axes.set_ylabel("crack-face edges")
+    axes.legend(fontsize=8)
+    axes.set_title(args.title or f"{run_name(args.input)}: crack-tip speeds")
+    output = args.output or os.path.join(run_folder(args.input), "crack_speeds.png")
+    save(figure, output, args.dpi)
+
+
 def save(figure, output, dpi):
     figure.tight_layout()
     try:
@@ -1733,6 +1791,24 @@ particle part, or --part), with --frame (default last).""")
     fragments.add_argument("--title", help="title (default: the run folder's name)")
     fragments.add_argument("--dpi", type=int, default=150, help="resolution (default: %(default)s)")
     fragments.set_defaults(run=plot_fragments)
+
+    speeds = commands.add_parser(
+        "crack-speeds", help="distribution of the crack-tip speeds of a 2D cracking run",
+        description="Speeds of the crack tips of a 2D run with discrete cracks, from the point "
+                    "field crack_time (the time a crack reached each node): over each edge of a "
+                    "crack face, its length over the difference of its ends' times. Edges opened "
+                    "at once (a crack starting in the middle of the material opens two) are "
+                    "counted apart. Prints the median, quartiles and largest speed, and with "
+                    "--limit how many edges were crossed faster (the Rayleigh speed, say); draws "
+                    "their histogram.")
+    speeds.add_argument("input", metavar="RUN", help="run folder, .pvd or .vtu")
+    speeds.add_argument("--frame", default=None, help="frame number, or 'last' (default)")
+    speeds.add_argument("--limit", type=float, default=None, help="a speed to count the edges above [m/s]")
+    speeds.add_argument("--json", help="also write the figures to this JSON file")
+    speeds.add_argument("-o", "--output", help="image file (default: RUN/crack_speeds.png)")
+    speeds.add_argument("--title", help="title (default: the run folder's name)")
+    speeds.add_argument("--dpi", type=int, default=150, help="resolution (default: %(default)s)")
+    speeds.set_defaults(run=plot_crack_speeds)
     return parser.parse_args(argv)
 
 

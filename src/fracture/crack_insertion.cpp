@@ -331,10 +331,10 @@ namespace {
 class CrackPlanner {
  public:
   CrackPlanner(Model& model, std::span<const CrackingPart> parts, std::vector<char> wanted,
-               int min_fragment, CrackInsertion& out)
-      : parts_(parts), out_(out), min_fragment_(min_fragment), X_(model.nodes.x.data()),
+               const CrackInsertionSettings& settings, CrackInsertion& out)
+      : parts_(parts), out_(out), min_fragment_(settings.min_fragment_elements), X_(model.nodes.x.data()),
         on_crack_(model.crack_face_nodes()) {
-    if (min_fragment > 1) sizer_.emplace(model, part_begin_of(model), wanted, min_fragment);
+    if (min_fragment_ > 1) sizer_.emplace(model, part_begin_of(model), wanted, min_fragment_);
     fans_.emplace(build_fans(model, std::move(wanted), true));
   }
 
@@ -555,6 +555,17 @@ void reinitialise_failed_elements(Model& model, std::span<const CrackingPart> pa
   }
 }
 
+// Both ends of each opened edge: reached by a crack now, unless one reached them before. Set
+// before the split, so that the copies of a node inherit its time.
+void record_crack_time(Model& model, std::span<const std::array<std::int32_t, 2>> edges, double time) {
+  if (edges.empty()) return;
+  std::vector<double>& t = model.nodes.crack_time;
+  if (t.empty()) t.assign(model.nodes.count(), -1.0);
+  for (const auto& edge : edges)
+    for (const std::int32_t p : edge)
+      if (t[static_cast<std::size_t>(p)] < 0) t[static_cast<std::size_t>(p)] = time;
+}
+
 }  // namespace
 
 CrackInsertion insert_cracks(Model& model, std::span<const CrackingPart> parts,
@@ -580,8 +591,9 @@ CrackInsertion insert_cracks(Model& model, std::span<const CrackingPart> parts,
   // The edges opened run from a failed node to a neighbour: those are all the nodes to look at.
   std::vector<char> wanted(nn, 0);
   for (const auto p : failed) wanted[p] = 1;
-  CrackPlanner planner(model, parts, std::move(wanted), settings.min_fragment_elements, out);
+  CrackPlanner planner(model, parts, std::move(wanted), settings, out);
   for (const std::int32_t p : failed) planner.plan(p, &nodal_normal[2 * p]);
+  record_crack_time(model, out.opened_edges, settings.time);
 
   std::vector<double> density(parts.size());
   for (std::size_t i = 0; i < parts.size(); ++i) density[i] = parts[i].density;

@@ -47,6 +47,7 @@ struct CrackInsertionSettings {
   /// smeared crack (open in tension, closed in compression) instead of loose triangles in
   /// contact with each other.
   int min_fragment_elements = 1;
+  double time = 0;  ///< the time of this update: the crack_time of the nodes it reaches
 };
 
 /// The outcome of one topological update.
@@ -88,7 +89,9 @@ struct CrackInsertion {
 ///  - a node already separated (by edges chosen at its neighbours) opens nothing more;
 ///  - no edge opens that would cut off fewer than min_fragment_elements elements (edge-connected
 ///    live triangles, counting the edges already chosen in this update): the node is skipped.
-/// Only edges between two elements of cracking parts open. Failed elements (a point with
+/// Only edges between two elements of cracking parts open. Both ends of each opened edge get
+/// crack_time = settings.time where none was set (model.nodes.crack_time is sized on the first
+/// update), before the split, so that the copies share it. Failed elements (a point with
 /// F ≥ threshold) that hold a cracked node are then re-initialised: zero stress, F and the
 /// part's reset_indices set to 0.
 CrackInsertion insert_cracks(Model& model, std::span<const CrackingPart> parts,

@@ -13,13 +13,13 @@ namespace shard {
 
 namespace {
 
-// The last byte is the format version: 4 added the elements' reference length (distortion
+// The last byte is the format version, '0' + n (':' is 10): 4 added the elements' reference length (distortion
 // criterion) and the particles' ring length; 5 the cohesive elements; 6 their open flag and
 // the crash force's running mean; 7 the automata's many-body share, the running means of the
 // history's force columns, the node groups' reactions and work, and the pending half step of the
 // contact dashpots' work; 8 the stored energy of each element part;
-// 9 the elements' reference shape (adaptive remeshing).
-constexpr char kMagic[8] = {'S', 'H', 'A', 'R', 'D', 'C', 'K', '9'};
+// 9 the elements' reference shape (adaptive remeshing); 10 the time a crack reached each node.
+constexpr char kMagic[8] = {'S', 'H', 'A', 'R', 'D', 'C', 'K', ':'};
 
 /// Scalars of SolverState and OutputCursor in one fixed order, for both directions.
 template <class F>
@@ -160,8 +160,8 @@ void read_checkpoint(const std::filesystem::path& path, Model& model, SolverStat
   in.read(magic, sizeof(magic));
   if (!in || std::memcmp(magic, kMagic, sizeof(kMagic) - 1) != 0) r.fail("not a shard checkpoint");
   if (magic[7] != kMagic[7])
-    r.fail(std::string("it was written by another version of shard (checkpoint format ") + magic[7] +
-           ", this one reads " + kMagic[7] + "): run the scenario again from the start");
+    r.fail("it was written by another version of shard (checkpoint format " + std::to_string(magic[7] - '0') +
+           ", this one reads " + std::to_string(kMagic[7] - '0') + "): run the scenario again from the start");
   if (r.text() != fingerprint)
     r.fail("it was written by a different scenario (restart with the scenario that wrote it)");
   visit_scalars(state, cursor, [&](auto& v) { v = r.raw<std::decay_t<decltype(v)>>(); });

@@ -50,6 +50,11 @@ VtuGrid make_frame(const Model& model, const std::vector<std::unique_ptr<Materia
     // ParaView offers it for the whole series.
     const std::vector<char> on_face = model.crack_face_nodes();
     grid.point_fields.push_back({"crack_face", 1, std::vector<double>(on_face.begin(), on_face.end())});
+    // The time a crack reached each node (−1: none): along a crack path, edge length over the
+    // difference of its ends' times is the speed of the tip that crossed it.
+    std::vector<double> reached = model.nodes.crack_time;
+    if (reached.empty()) reached.assign(nn, -1.0);
+    grid.point_fields.push_back({"crack_time", 1, std::move(reached)});
   }
 
   if (model.cohesive.element_count() > 0) {

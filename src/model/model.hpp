@@ -42,6 +42,11 @@ struct NodeArrays {
   /// prescribed velocities, src/solver/loads.hpp), −1 where it is free. A node split off by a
   /// crack inherits its parent's.
   std::vector<std::int32_t> prescribed;
+  /// The time a crack first reached each node (a node on a crack face or at a crack tip), −1
+  /// where none has; empty until the first crack is inserted. Along a crack, an edge's length
+  /// over the difference of its ends' times is the speed of the tip that crossed it
+  /// (docs/theory/crack_insertion.md, "Crack-tip speed").
+  std::vector<double> crack_time;
 
   std::size_t count() const { return mass.size(); }
   /// n nodes at rest at the origin, free, with ids and origins 0 … n−1.
@@ -58,6 +63,7 @@ struct NodeArrays {
     f(field("mass", Location::node, 1, Follow::share), mass);
     f(field("origin", Location::node, 1), origin);
     f(field("prescribed", Location::node, d, Follow::copy, -1), prescribed);
+    f(field("crack_time", Location::node, 0, Follow::copy, -1), crack_time);
   }
 };
 

@@ -34,8 +34,8 @@ CrackGrowth::CrackGrowth(const Model& model, const std::vector<std::unique_ptr<M
   }
 }
 
-std::size_t CrackGrowth::insert(Model& model, EnergyLedger& energy, Topology& topology, std::int64_t* eroded,
-                                std::vector<double>* part_stored) {
+std::size_t CrackGrowth::insert(Model& model, EnergyLedger& energy, Topology& topology, double time,
+                                std::int64_t* eroded, std::vector<double>* part_stored) {
   if (settings_.parts.empty()) return 0;
   // No node can reach the threshold while no point has (the nodal factor is a weighted mean).
   bool any = false;
@@ -50,6 +50,7 @@ std::size_t CrackGrowth::insert(Model& model, EnergyLedger& energy, Topology& to
   CrackInsertionSettings s;
   s.failure_threshold = settings_.failure_threshold;
   s.min_fragment_elements = settings_.min_fragment_elements;
+  s.time = time;
   const CrackInsertion ins = insert_cracks(model, parts_, map_.factor, map_.direction, s);
   energy.at("fracture") += ins.released_energy;
   if (part_stored)

@@ -35,15 +35,16 @@ class CrackGrowth final : public StepEvent {
   const char* name() const override { return "crack growth"; }
   Phase phase() const override { return Phase::after_advance; }
   void run(Model& model, EventContext& context) override {
-    insert(model, context.energy, context.topology, &context.eroded_elements, context.part_stored);
+    insert(model, context.energy, context.topology, context.time, &context.eroded_elements, context.part_stored);
   }
 
-  /// Inserts the cracks of the nodes that failed in the last step, in one topological update
-  /// announced through `topology`; books the released energy as fracture. Pieces too small to
+  /// Inserts the cracks of the nodes that failed in the last step (at `time`, the time the
+  /// nodes a crack reaches are stamped with), in one topological update announced through
+  /// `topology`; books the released energy as fracture. Pieces too small to
   /// cut off, in parts that comminute, are eroded (the erosion event makes them particles) and
   /// counted in *eroded. Returns the number of nodes added.
-  std::size_t insert(Model& model, EnergyLedger& energy, Topology& topology, std::int64_t* eroded = nullptr,
-                     std::vector<double>* part_stored = nullptr);
+  std::size_t insert(Model& model, EnergyLedger& energy, Topology& topology, double time,
+                     std::int64_t* eroded = nullptr, std::vector<double>* part_stored = nullptr);
 
   std::int64_t inserted_nodes() const { return inserted_; }
   /// Elements that became particles instead of a crack cutting them off, since the start.

@@ -15,6 +15,8 @@ what the plotting tool reads from them:
   two pieces, every row is of part 'plate', the count equals the history's last 'fragments'
   and 'fragments_plate' values, and the last frame's 'fragment' field holds each fragment's
   elements;
+- crack-speeds on the same run: the median tip speed from the frame's crack_time between 0.5 and
+  1 of the ceramic's Rayleigh speed, over at least 40 crack-face edges;
 - debris on the plate perforation example to 6 µs: the particles drawn, their mass, and the debris
   rows of fragments.csv against the history's particle count and mass; fragments on the same run:
   the projectile is a fragment of part 'projectile', and the largest fragment and the mass the
@@ -154,6 +156,21 @@ def main():
         fail(f"the frame's fragment ids disagree with fragments.csv ({counts} against {expected})")
     if not os.path.getsize(os.path.join(plate, "fragments.png")) > 0:
         fail("no fragments.png")
+    # Crack-tip speeds on the same run, from crack_time: the mode I crack through the ligament runs
+    # below the Rayleigh speed of the ceramic (E 370 GPa, nu 0.22, 3900 kg/m^3: c_R = c_S (0.862 +
+    # 1.14 nu)/(1 + nu) = 5688 m/s) and above half of it (median measured 4162 m/s).
+    c_r = (370e9 / (2 * 1.22) / 3900) ** 0.5 * (0.862 + 1.14 * 0.22) / 1.22
+    speeds_json = os.path.join(work, "crack_speeds.json")
+    if run(plot + ["crack-speeds", plate, "--limit", f"{c_r:.0f}", "--json", speeds_json]).returncode != 0:
+        fail("crack-speeds on the notched plate run failed")
+    with open(speeds_json) as stream:
+        speeds = json.load(stream)
+    print(f"crack-tip speeds: median {speeds['median_m_per_s']:.0f} m/s over {speeds['edges']} edges "
+          f"({speeds['median_m_per_s'] / c_r:.2f} c_R), {speeds['above_limit']} above c_R")
+    if speeds["edges"] < 40 or not 0.5 * c_r < speeds["median_m_per_s"] < c_r:
+        fail("the crack through the notched plate's ligament did not run at 0.5-1 c_R by crack-speeds")
+    if not os.path.getsize(os.path.join(plate, "crack_speeds.png")) > 0:
+        fail("no crack_speeds.png")
 
     # Debris: the plate perforation example to 6 µs (failed elements become particles); the tool's
     # count and mass against the history, and the debris rows of fragments.csv against both.
