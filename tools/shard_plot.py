@@ -709,7 +709,7 @@ def plot_fragments(args):
     save(figure, output, args.dpi)
 
 
-def crack_edge_speeds(mesh):
+def crack_edge_speeds(mesh, box=None):
     """Per crack-face edge (an edge of one triangle only, both ends reached by a crack at different
     times): its length over the difference of its ends' crack_time, the speed of the tip that
     crossed it. Also the number of crack-face edges opened at once (nucleation: same times)."""
@@ -725,6 +725,9 @@ def crack_edge_speeds(mesh):
     face = unique[count == 1]
     a, b = face[:, 0], face[:, 1]
     reached = (times[a] >= 0) & (times[b] >= 0)
+    if box is not None:  # [x0, x1, y0, y1] in m: the edges whose midpoint lies inside
+        mid = 0.5 * (mesh.points[a, :2] + mesh.points[b, :2])
+        reached &= (mid[:, 0] >= box[0]) & (mid[:, 0] <= box[1]) & (mid[:, 1] >= box[2]) & (mid[:, 1] <= box[3])
     a, b = a[reached], b[reached]
     dt = np.abs(times[a] - times[b])
     length = np.linalg.norm(mesh.points[a, :2] - mesh.points[b, :2], axis=1)
@@ -735,14 +738,16 @@ def crack_edge_speeds(mesh):
 def plot_crack_speeds(args):
     """Distribution of the crack-tip speeds of a 2D cracking run, from the frame's crack_time."""
     vtu, _, label = pick_frame(args)
-    speeds, nucleated = crack_edge_speeds(read_mesh(vtu))
+    box = [1e-3 * v for v in args.box] if args.box else None
+    speeds, nucleated = crack_edge_speeds(read_mesh(vtu), box)
     if speeds.size == 0:
-        raise PlotError(f"{vtu}: no crack has grown from one node to the next")
+        raise PlotError(f"{vtu}: no crack has grown from one node to the next" + (" in --box" if box else ""))
     q1, median, q3, p90 = np.percentile(speeds, [25, 50, 75, 90])
     figures = {"edges": int(speeds.size), "edges_opened_at_once": nucleated, "median_m_per_s": float(median),
                "quartiles_m_per_s": [float(q1), float(q3)], "p90_m_per_s": float(p90),
                "max_m_per_s": float(speeds.max())}
-    line = (f"{vtu} ({label}): {speeds.size} crack-face edges crossed by a tip, {nucleated} opened at once; "
+    where = f" in x {args.box[0]:g}–{args.box[1]:g} mm, y {args.box[2]:g}–{args.box[3]:g} mm" if box else ""
+    line = (f"{vtu} ({label}){where}: {speeds.size} crack-face edges crossed by a tip, {nucleated} opened at once; "
             f"tip speed median {median:.0f} m/s (quartiles {q1:.0f}–{q3:.0f}, 90 % below {p90:.0f}, "
             f"largest {speeds.max():.0f})")
     if args.limit:
@@ -1804,6 +1809,8 @@ particle part, or --part), with --frame (default last).""")
     speeds.add_argument("input", metavar="RUN", help="run folder, .pvd or .vtu")
     speeds.add_argument("--frame", default=None, help="frame number, or 'last' (default)")
     speeds.add_argument("--limit", type=float, default=None, help="a speed to count the edges above [m/s]")
+    speeds.add_argument("--box", type=float, nargs=4, metavar=("X0", "X1", "Y0", "Y1"),
+                        help="only the edges whose midpoint lies in this box [mm] (current positions)")
     speeds.add_argument("--json", help="also write the figures to this JSON file")
     speeds.add_argument("-o", "--output", help="image file (default: RUN/crack_speeds.png)")
     speeds.add_argument("--title", help="title (default: the run folder's name)")

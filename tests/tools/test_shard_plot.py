@@ -16,7 +16,8 @@ what the plotting tool reads from them:
   and 'fragments_plate' values, and the last frame's 'fragment' field holds each fragment's
   elements;
 - crack-speeds on the same run: the median tip speed from the frame's crack_time between 0.5 and
-  1 of the ceramic's Rayleigh speed, over at least 40 crack-face edges;
+  1 of the ceramic's Rayleigh speed, over at least 40 crack-face edges; --box over half the
+  ligament keeps some of the edges, one off the crack none (status 2);
 - debris on the plate perforation example to 6 µs: the particles drawn, their mass, and the debris
   rows of fragments.csv against the history's particle count and mass; fragments on the same run:
   the projectile is a fragment of part 'projectile', and the largest fragment and the mass the
@@ -171,6 +172,18 @@ def main():
         fail("the crack through the notched plate's ligament did not run at 0.5-1 c_R by crack-speeds")
     if not os.path.getsize(os.path.join(plate, "crack_speeds.png")) > 0:
         fail("no crack_speeds.png")
+    # --box keeps the edges whose midpoint lies inside: the first half of the ligament holds some
+    # of them, not all; a box off the crack holds none, and the tool says so (status 2).
+    half_json = os.path.join(work, "crack_speeds_half.json")
+    if run(plot + ["crack-speeds", plate, "--box", "4", "12", "0", "10", "--json", half_json,
+                   "-o", os.path.join(work, "half.png")]).returncode != 0:
+        fail("crack-speeds --box on the notched plate run failed")
+    with open(half_json) as stream:
+        half = json.load(stream)
+    if not 0 < half["edges"] < speeds["edges"]:
+        fail(f"--box over half the ligament kept {half['edges']} of {speeds['edges']} edges")
+    if run(plot + ["crack-speeds", plate, "--box", "0", "2", "0", "2"]).returncode != 2:
+        fail("crack-speeds with a box off the crack did not stop with status 2")
 
     # Debris: the plate perforation example to 6 µs (failed elements become particles); the tool's
     # count and mass against the history, and the debris rows of fragments.csv against both.
