@@ -176,9 +176,12 @@ TEST(RemeshScenarios, AnnulusRemeshedTurnsFullyAtASteadyStep) {
   EXPECT_LT(t.worst_error, 0.01);
 }
 
+// The torque over the second half of a 0.4π turn (the layer at the rim flows plastically from
+// about 0.1π): first order in the rim element size, and at 0.035 mm within 2 % of 2πa²k, the
+// issue's bound (measured +9.6 / +5.3 / +2.8 / +1.97 %; 19 minutes on one core in all).
 TEST(RemeshValidation, AnnulusTorqueConvergesToTheLimit) {
   std::vector<double> error;
-  for (const double h : {0.2e-3, 0.1e-3, 0.05e-3}) {
+  for (const double h : {0.2e-3, 0.1e-3, 0.05e-3, 0.035e-3}) {
     const Turn t = turn_annulus(
         [h](Scenario& sc) {
           RemeshedPartInput& part = sc.remeshing->parts.at(0);
@@ -192,12 +195,14 @@ TEST(RemeshValidation, AnnulusTorqueConvergesToTheLimit) {
     EXPECT_TRUE(t.failure.empty()) << t.failure;
     EXPECT_LT(t.worst_error, 0.01);
   }
-  // First order in the size of the elements at the rim: each halving at least 40 % closer, and the
-  // extrapolation to size zero within 2 % of 2 pi a^2 k.
-  for (std::size_t i = 1; i < error.size(); ++i) EXPECT_LT(error[i], 0.6 * error[i - 1]);
-  const double extrapolated = 2 * error.back() - error[error.size() - 2];
+  // First order in the size of the elements at the rim: each halving (0.2, 0.1, 0.05 mm) at least
+  // 40 % closer, and their extrapolation to size zero within 2 % of 2 pi a^2 k; the finest rim
+  // within 2 % itself.
+  for (std::size_t i = 1; i < 3; ++i) EXPECT_LT(error[i], 0.6 * error[i - 1]);
+  const double extrapolated = 2 * error[2] - error[1];
   std::printf("[annulus] extrapolated to size 0: %+.2f %%\n", 100 * extrapolated);
   EXPECT_LT(std::abs(extrapolated), 0.02);
+  EXPECT_LT(std::abs(error.back()), 0.02);
 }
 
 TEST(RemeshScenarios, SameBitsForOneAndTwoThreadsAndAcrossARestart) {
