@@ -899,6 +899,7 @@ void solver_settings(const Scenario& sc, SolverSettings& s) {
   s.time_step_safety = sc.time_step_safety;
   s.q_linear = sc.bulk_viscosity_linear;
   s.q_quadratic = sc.bulk_viscosity_quadratic;
+  s.q_length = sc.bulk_viscosity_length;
   s.mass_damping = sc.mass_damping;
   s.max_time_step = sc.max_time_step;
 }

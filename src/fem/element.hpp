@@ -20,6 +20,9 @@ struct StepContext {
   double thickness = 1.0;    ///< plane strain / plane stress
   double dt = 0.0;           ///< Δt_n-1/2: the increment the velocities in `nodes.v` act over
   double q_linear = 0.06;    ///< bulk viscosity, linear coefficient
+  /// Bulk viscosity, linear term as a length ℓ_v (0: C_l times the element's length): the
+  /// linear pressure ρ c ℓ_v |ε̇_v| is then the same on every mesh.
+  double q_length = 0.0;
   double q_quadratic = 1.5;  ///< bulk viscosity, quadratic coefficient
 };
 

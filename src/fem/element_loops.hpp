@@ -320,10 +320,13 @@ void element_forces(const StepContext& ctx, Part& part, NodeArrays& nodes, doubl
     const double rate = ws.volume_rate[i];
     const double l = ws.length[i];
     // Bulk viscosity (von Neumann–Richtmyer quadratic + Landshoff linear), in compression only.
+    // With a viscous length ℓ_v the linear term is ρ c ℓ_v |ε̇_v| (C_l = ℓ_v / l): a front spread
+    // over the same length on every mesh (docs/theory/time_integration_and_energy.md).
+    const double linear = ctx.q_length > 0.0 ? ctx.q_length / l : ctx.q_linear;
     double q = 0.0, qs = 0.0;
     if (rate < 0.0) {
-      q = rho * l * (ctx.q_quadratic * l * rate * rate - ctx.q_linear * c * rate);
-      qs = ctx.q_linear * c - ctx.q_quadratic * l * rate;
+      q = rho * l * (ctx.q_quadratic * l * rate * rate - linear * c * rate);
+      qs = linear * c - ctx.q_quadratic * l * rate;
     }
     // Work of the viscous forces over [t_n−1, t_n], where the velocities were v_n−1/2: the
     // trapezoid of the forces at both ends (the same split as every nodal force).

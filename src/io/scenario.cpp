@@ -106,6 +106,12 @@ KeyList analysis_keys() {
       .at_least(0)
       .at_most(1)
       .defaults_to("0.06");
+  k.quantity("bulk_viscosity_length", dim::length,
+             "the linear bulk viscosity as a length l_v instead of C_l times the element length: "
+             "the same viscous pressure rho c l_v |rate| on every mesh (for rate-dependent damage, "
+             "whose answer depends on how fast the wave front rises); 0: C_l")
+      .at_least(0)
+      .defaults_to("0");
   k.quantity("bulk_viscosity_quadratic", dim::none, "quadratic bulk viscosity coefficient C_q")
       .at_least(0)
       .at_most(4)
@@ -526,6 +532,14 @@ class ScenarioReader {
   sc.thickness = analysis.number("thickness");
   sc.bulk_viscosity_linear = analysis.number("bulk_viscosity_linear");
   sc.bulk_viscosity_quadratic = analysis.number("bulk_viscosity_quadratic");
+  sc.bulk_viscosity_length = analysis.number("bulk_viscosity_length");
+  if (sc.bulk_viscosity_length > 0) {
+    if (analysis.has("bulk_viscosity_linear"))
+      analysis.fail("bulk_viscosity_length",
+                    "give the linear bulk viscosity either as a coefficient (bulk_viscosity_linear) or as "
+                    "a length (bulk_viscosity_length), not both");
+    sc.resolved["analysis"].remove("bulk_viscosity_linear");  // not in use: resolved.yaml runs as given
+  }
   sc.mass_damping = analysis.number("mass_damping");
   sc.initial_temperature = analysis.number("initial_temperature");
   sc.max_steps = analysis.integer("max_steps");

@@ -284,6 +284,7 @@ struct Scenario {
   double thickness = 1;
   double bulk_viscosity_linear = 0.06;
   double bulk_viscosity_quadratic = 1.5;
+  double bulk_viscosity_length = 0;  ///< 0: the linear term is C_l times the element length
   double mass_damping = 0;
   double initial_temperature = 293.15;
   std::int64_t max_steps = 0;

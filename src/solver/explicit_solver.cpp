@@ -205,6 +205,7 @@ void ExplicitSolver::add_element_forces(ForceSums& total) {
   ctx.dt = state_.dt_half;
   ctx.q_linear = settings_.q_linear;
   ctx.q_quadratic = settings_.q_quadratic;
+  ctx.q_length = settings_.q_length;
   part_caches_.resize(model_.parts.size());
   state_.part_stored.resize(model_.parts.size(), 0.0);
   for (std::size_t p = 0; p < model_.parts.size(); ++p) {

@@ -31,6 +31,7 @@ struct SolverSettings {
   double time_step_safety = 0.9;
   double q_linear = 0.06;
   double q_quadratic = 1.5;
+  double q_length = 0;  ///< the linear bulk viscosity as a length (0: q_linear × element length)
   double mass_damping = 0;  ///< α of the damping force −α m v (1/s)
   double max_time_step = 0; ///< 0: no limit
   std::array<double, 3> gravity{0, 0, 0};  ///< body force per unit mass (m/s²)
