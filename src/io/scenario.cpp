@@ -734,6 +734,8 @@ class ScenarioReader {
     if (s.has("part") == s.has("group")) s.fail("part", "give either 'part' or 'group' (one of them)");
     ic.part = s.text("part");
     ic.group = s.text("group");
+    // resolved.yaml must run as a scenario: it keeps the one of the two that was given.
+    entry_out.remove(s.has("part") ? "group" : "part");
     if (!ic.part.empty() && std::find(moving.begin(), moving.end(), ic.part) == moving.end()) {
       std::string reason = "no part or particle part named '" + ic.part + "'";
       const std::string close = closest_match(ic.part, moving);

@@ -88,6 +88,13 @@ TEST(RunCli, ResolvedScenarioRunsAsAScenario) {
   ASSERT_EQ(testing::run_shard("run " + kExample2d + " --quiet --until 1us -o " + (dir / "a").string()).status, 0);
   const auto r = testing::run_shard("check " + (dir / "a" / "resolved.yaml").string());
   EXPECT_EQ(r.status, 0) << r.output;
+  // A scenario whose initial condition names a part (resolved.yaml once added an empty group
+  // beside it) and whose bulk viscosity is a length (it once kept the unused coefficient too):
+  // either made its resolved.yaml fail 'check'.
+  const std::string sic = std::string(SHARD_SOURCE_DIR) + "/examples/sic_edge_on_impact/sic_edge_on_impact_fragmentation.yaml";
+  ASSERT_EQ(testing::run_shard("run " + sic + " --quiet --until 0.02us -o " + (dir / "b").string()).status, 0);
+  const auto rb = testing::run_shard("check " + (dir / "b" / "resolved.yaml").string());
+  EXPECT_EQ(rb.status, 0) << rb.output;
   std::filesystem::remove_all(dir);
 }
 
