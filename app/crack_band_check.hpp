@@ -19,4 +19,10 @@ double crack_band_width(const Part& part, const NodeArrays& nodes, std::size_t e
 /// many, the largest, the limit and what it comes from, and the mesh size that would be needed.
 std::vector<std::string> crack_band_warnings(const Scenario& scenario, const Simulation& sim);
 
+/// One warning per material whose failure depends on the loading rate
+/// (Material::failure_depends_on_loading_rate) when the linear bulk viscosity is a coefficient
+/// on the element size: its results then move with the mesh; a viscous length keeps the spread
+/// of a wave front the same on every mesh (docs/theory/time_integration_and_energy.md §4).
+std::vector<std::string> loading_rate_warnings(const Scenario& scenario, const Simulation& sim);
+
 }  // namespace shard

@@ -938,6 +938,7 @@ Simulation build_simulation(Scenario& sc, const MeshData& mesh) {
   if (sim.cracking) sim.events.push_back(std::make_unique<CrackGrowth>(sim.model, sim.materials, *sim.cracking));
   build_remeshing(sc, sim);
   for (auto& w : crack_band_warnings(sc, sim)) sc.warnings.push_back(std::move(w));
+  for (auto& w : loading_rate_warnings(sc, sim)) sc.warnings.push_back(std::move(w));
   return sim;
 }
 

@@ -55,6 +55,8 @@ class DenoualForquinHild final : public Material {
   ElasticModuli elastic() const override { return p_.moduli; }
   std::vector<std::string> state_names() const override;
   int stored_energy_index() const override { return energy_density; }
+  /// Its strength rises with the stress rate (slope n/(m+n)) and its damage needs time to grow.
+  bool failure_depends_on_loading_rate() const override { return true; }
   void update(MaterialPointBatch& batch) const override;
   std::vector<Transfer> state_transfer() const override;
   void after_transfer(MaterialPointBatch& batch) const override;

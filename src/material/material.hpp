@@ -136,6 +136,10 @@ class Material {
     (void)point_state;
     return crack_band_limit();
   }
+  /// True for a model whose failure depends on how fast the stress rises (a rate-dependent
+  /// strength or a damage that takes time to grow): its results then depend on how the bulk
+  /// viscosity spreads a wave front, which `shard check` points out.
+  virtual bool failure_depends_on_loading_rate() const { return false; }
 
   double density() const { return density_; }
   /// Dilatational (P-wave) speed sqrt((K + 4G/3)/ρ), for the stable time step.

@@ -80,5 +80,21 @@ TEST(CrackBandLimit, CheckWarnsAboutElementsWiderThanTheLimit) {
   EXPECT_GT(count(weibull), count(coarse)) << weibull;
 }
 
+// A rate-dependent damage (the fragmentation damage of the SiC example) with the linear bulk
+// viscosity as a coefficient on the element size: 'check' warns at the material's line and names
+// the key that fixes it; with the viscosity as a length (the example's own setting) it does not.
+TEST(LoadingRateCheck, WarnsWhenTheBulkViscosityScalesWithTheMesh) {
+  const std::string sic =
+      std::string(SHARD_SOURCE_DIR) + "/examples/sic_edge_on_impact/sic_edge_on_impact_fragmentation.yaml";
+  const std::string as_length = check_scenario(sic);
+  EXPECT_EQ(as_length.find("fails by how fast the stress rises"), std::string::npos) << as_length;
+  const std::string as_coefficient = check_scenario(sic, {{"analysis.bulk_viscosity_length", "0"}});
+  EXPECT_NE(as_coefficient.find("sic_edge_on_impact_fragmentation.yaml:21: key 'materials.sic': material 'sic' "
+                                "(denoual_forquin_hild) fails by how fast the stress rises"),
+            std::string::npos)
+      << as_coefficient;
+  EXPECT_NE(as_coefficient.find("Give analysis.bulk_viscosity_length"), std::string::npos) << as_coefficient;
+}
+
 }  // namespace
 }  // namespace shard
