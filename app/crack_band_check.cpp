@@ -18,6 +18,16 @@ double crack_band_width(const Part& part, const NodeArrays& nodes, std::size_t e
   return std::cbrt(part.type->nodes == 4 ? 6.0 * volume : volume);
 }
 
+namespace {
+
+/// A warning placed at the line of the scenario's material `material` (its key named).
+std::string warning_at_material(const Scenario& scenario, int material, const std::string& text) {
+  const auto& input = scenario.materials[static_cast<std::size_t>(material)];
+  return InputError(shown_path(scenario.file), input.line, "materials." + input.name, text).what();
+}
+
+}  // namespace
+
 std::vector<std::string> crack_band_warnings(const Scenario& scenario, const Simulation& sim) {
   std::vector<std::string> warnings;
   for (const Part& part : sim.model.parts) {
@@ -37,7 +47,6 @@ std::vector<std::string> crack_band_warnings(const Scenario& scenario, const Sim
       if (h > own) ++larger;
     }
     if (larger == 0) continue;
-    const auto& input = scenario.materials[part.material];
     char text[768];
     std::snprintf(text, sizeof text,
                   "part '%s': %zu of %zu elements are wider than the crack-band limit of material '%s' "
@@ -49,7 +58,7 @@ std::vector<std::string> crack_band_warnings(const Scenario& scenario, const Sim
                   part.name.c_str(), larger, part.element_count(), material.name().c_str(),
                   std::string(material.model()).c_str(), 1e3 * limit, 1e3 * largest, 1e3 * tightest,
                   tightest < limit ? " (the strongest elements of its Weibull field need that)" : "");
-    warnings.push_back(InputError(shown_path(scenario.file), input.line, "materials." + input.name, text).what());
+    warnings.push_back(warning_at_material(scenario, part.material, text));
   }
   return warnings;
 }
@@ -62,7 +71,6 @@ std::vector<std::string> loading_rate_warnings(const Scenario& scenario, const S
     const Material& material = *sim.materials[part.material];
     if (seen[part.material] || !material.failure_depends_on_loading_rate()) continue;
     seen[part.material] = 1;
-    const auto& input = scenario.materials[part.material];
     char text[768];
     std::snprintf(text, sizeof text,
                   "material '%s' (%s) fails by how fast the stress rises, and the linear bulk viscosity "
@@ -72,7 +80,7 @@ std::vector<std::string> loading_rate_warnings(const Scenario& scenario, const S
                   "(a length about C_l times the element size you trust, e.g. 12 um for 0.25 mm "
                   "triangles) to spread it over the same length on every mesh",
                   material.name().c_str(), std::string(material.model()).c_str(), scenario.bulk_viscosity_linear);
-    warnings.push_back(InputError(shown_path(scenario.file), input.line, "materials." + input.name, text).what());
+    warnings.push_back(warning_at_material(scenario, part.material, text));
   }
   return warnings;
 }
