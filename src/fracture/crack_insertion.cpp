@@ -331,10 +331,10 @@ namespace {
 class CrackPlanner {
  public:
   CrackPlanner(Model& model, std::span<const CrackingPart> parts, std::vector<char> wanted,
-               const CrackInsertionSettings& settings, CrackInsertion& out)
-      : parts_(parts), out_(out), min_fragment_(settings.min_fragment_elements), X_(model.nodes.x.data()),
+               int min_fragment, CrackInsertion& out)
+      : parts_(parts), out_(out), min_fragment_(min_fragment), X_(model.nodes.x.data()),
         on_crack_(model.crack_face_nodes()) {
-    if (min_fragment_ > 1) sizer_.emplace(model, part_begin_of(model), wanted, min_fragment_);
+    if (min_fragment > 1) sizer_.emplace(model, part_begin_of(model), wanted, min_fragment);
     fans_.emplace(build_fans(model, std::move(wanted), true));
   }
 
@@ -591,7 +591,7 @@ CrackInsertion insert_cracks(Model& model, std::span<const CrackingPart> parts,
   // The edges opened run from a failed node to a neighbour: those are all the nodes to look at.
   std::vector<char> wanted(nn, 0);
   for (const auto p : failed) wanted[p] = 1;
-  CrackPlanner planner(model, parts, std::move(wanted), settings, out);
+  CrackPlanner planner(model, parts, std::move(wanted), settings.min_fragment_elements, out);
   for (const std::int32_t p : failed) planner.plan(p, &nodal_normal[2 * p]);
   record_crack_time(model, out.opened_edges, settings.time);
 
