@@ -28,6 +28,7 @@ namespace shard {
 using scenario_detail::key_name;
 using scenario_detail::line_of;
 using scenario_detail::Section;
+using scenario_detail::unreadable_file_reason;
 using scenario_detail::velocity_component_keys;
 
 // ---------------------------------------------------------------------------------------------
@@ -574,9 +575,9 @@ class ScenarioReader {
   if (mesh_file.is_relative()) mesh_file = sc.file.parent_path() / mesh_file;
   sc.mesh_file = mesh_file.lexically_normal();
   sc.resolved["mesh"]["file"] = sc.mesh_file.string();
-  if (!std::filesystem::exists(sc.mesh_file))
-    mesh.fail("file", "mesh file '" + sc.mesh_file.string() +
-                          "' not found (a relative path is taken from the scenario file's folder)");
+  if (const std::string why = unreadable_file_reason(sc.mesh_file); !why.empty())
+    mesh.fail("file", "mesh file '" + sc.mesh_file.string() + "' " + why +
+                          " (a relative path is taken from the scenario file's folder)");
   sc.mesh_unit = mesh.number("unit");
   sc.mesh_size = mesh.optional_number("size").value_or(0.0);
   sc.mesh_size_line = mesh.line("size");

@@ -449,9 +449,9 @@ void read_sample(Section& s, const Scenario& sc, ParticlePartInput& p) {
   if (file.is_relative()) file = sc.file.parent_path() / file;
   file = file.lexically_normal();
   s.resolved()["sample"] = file.string();
-  if (!std::filesystem::is_regular_file(file))
-    s.fail("sample", "no sample file '" + file.string() +
-                         "' (the path is relative to the scenario file; a run writes particles_<part>_sample.csv)");
+  if (const std::string why = unreadable_file_reason(file); !why.empty())
+    s.fail("sample", "sample file '" + file.string() + "' " + why +
+                         " (the path is relative to the scenario file; a run writes particles_<part>_sample.csv)");
   const SampleReference where{s.file(), s.line("sample"), s.key_path("sample"), given};
   p.sample = read_particle_sample(file, sc.dim(), automaton_names(sc), where);
   p.packing.lattice = p.sample->lattice;

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <algorithm>
+#include <filesystem>
 #include <map>
 #include <optional>
 #include <string>
@@ -42,6 +43,18 @@ class ScenarioWarnings {
   }
   std::vector<std::string>* previous_;
 };
+
+/// Why a file the scenario names cannot be read: "" when it is a file, else the reason. Never
+/// throws: a path the system refuses (too long, a bad name) is the user's input error, like a
+/// file that is not there, and must be reported as one.
+inline std::string unreadable_file_reason(const std::filesystem::path& file) {
+  std::error_code ec;
+  const std::filesystem::file_status st = std::filesystem::status(file, ec);
+  if (st.type() == std::filesystem::file_type::not_found) return "not found";
+  if (ec) return "cannot be read: " + ec.message();
+  if (std::filesystem::is_directory(st)) return "is a folder, not a file";
+  return "";
+}
 
 /// The name a map gives as a key ("steel:" under materials): its text, or an error at its line
 /// when the key is itself a list or a map.
