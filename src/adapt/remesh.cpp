@@ -605,8 +605,8 @@ bool split_slits(const Model& model, const Domain& dom, const Triangulation& mes
 /// The first of the two remaps: the born nodes appended (every old node stays for now, so the
 /// old indices the fix-ups use still hold), the part's elements replaced by the new ones, whose
 /// corners are then set.
-Remap first_remap(const Model& model, std::size_t p, const Triangulation& mesh, const NewMesh& nm) {
-  Remap r;
+/// Every old node continues; the born nodes are appended with their parents.
+EntityRemap nodes_with_born(const Model& model, const NewMesh& nm) {
   EntityRemap nodes = EntityRemap::identity(model.nodes.count());
   nodes.parent_begin.assign(nodes.new_count() + 1, 0);
   for (const BornNode& b : nm.born) {
@@ -618,7 +618,12 @@ Remap first_remap(const Model& model, std::size_t p, const Triangulation& mesh, 
     }
     nodes.parent_begin.push_back(static_cast<std::int32_t>(nodes.parents.size()));
   }
-  r.nodes = std::move(nodes);
+  return nodes;
+}
+
+Remap first_remap(const Model& model, std::size_t p, const Triangulation& mesh, const NewMesh& nm) {
+  Remap r;
+  r.nodes = nodes_with_born(model, nm);
   EntityRemap elements;
   elements.old_count = model.parts[p].element_count();
   const std::size_t n_tri = mesh.triangles.size() / 3;
@@ -859,37 +864,39 @@ void restore_mass_and_momentum(Model& model, std::size_t p, const Material& mate
   }
 }
 
-/// The part's new points: size, reference shape, the state that comes from the nearest old point,
-/// bounds, and the material's own consistency.
+/// The part's new points (`position`: their elements' indices): size, reference shape, the state
+/// that comes from the nearest old point, bounds, and the material's own consistency, element by
+/// element (every material's after_transfer acts point by point).
 void finish_points(Model& model, std::size_t p, const Material& material, const std::vector<double>& holder_state,
                    const std::vector<std::int32_t>& position) {
   Part& part = model.parts[p];
-  const std::size_t ne = part.element_count(), size = static_cast<std::size_t>(part.state_size);
-  std::vector<double> length(ne);
-  for (std::size_t e = 0; e < ne; ++e) {
+  const std::size_t size = static_cast<std::size_t>(part.state_size);
+  part.shape_reference.resize(4 * part.element_count(), 0.0);
+  const auto rules = material.state_transfer();
+  for (std::size_t t = 0; t < position.size(); ++t) {
+    const std::size_t e = static_cast<std::size_t>(position[t]);
     part.volume[e] = element_measure(part, model.nodes, e, model.formulation, model.thickness);
     const double* a = &model.nodes.x[2 * part.connectivity[3 * e]];
     const double* b = &model.nodes.x[2 * part.connectivity[3 * e + 1]];
     const double* c = &model.nodes.x[2 * part.connectivity[3 * e + 2]];
-    length[e] = std::sqrt(std::abs(twice_area(a, b, c)));
-  }
-  measure_reference_shape(part, model.nodes, part.shape_reference);
-  const auto rules = material.state_transfer();
-  for (std::size_t t = 0; t < position.size() && size > 0; ++t) {
-    double* state = &part.state[size * position[t]];
+    double length = std::sqrt(std::abs(twice_area(a, b, c)));
+    const auto angles = triangle_angles(a, b, c);
+    part.shape_reference[4 * e] = 0.5 * twice_area(a, b, c);
+    for (int k = 0; k < 3; ++k) part.shape_reference[4 * e + 1 + k] = angles[k];
+    double* state = size > 0 ? &part.state[size * e] : nullptr;
     for (std::size_t k = 0; k < size; ++k) {
       if (rules[k].rule == Material::Transfer::nearest) state[k] = holder_state[size * t + k];
       state[k] = std::clamp(state[k], rules[k].min, rules[k].max);
     }
+    MaterialPointBatch batch;
+    batch.count = 1;
+    batch.stress = &part.stress[kTensorSize * e];
+    batch.state = state;
+    batch.temperature = &part.temperature[e];
+    batch.volume = &part.volume[e];
+    batch.characteristic_length = &length;
+    material.after_transfer(batch);
   }
-  MaterialPointBatch batch;
-  batch.count = ne;
-  batch.stress = part.stress.data();
-  batch.state = part.state.data();
-  batch.temperature = part.temperature.data();
-  batch.volume = part.volume.data();
-  batch.characteristic_length = length.data();
-  material.after_transfer(batch);
 }
 
 double part_area(const Part& part, const NodeArrays& nodes) {
@@ -1064,6 +1071,381 @@ RemeshOutcome remesh_part(Model& model, std::size_t p, const Material& material,
     for (int d = 0; d < 2; ++d) out.momentum_after[d] += after.momentum[b][d];
   }
   out.min_angle = mesh.min_angle;
+  out.seconds_apply = since(t0);
+  return out;
+}
+
+}  // namespace shard
+
+// ---------------------------------------------------------------------------------------------
+// Local remeshing of a patch: the patch's boundary nodes stay where they are, the elements and
+// nodes inside it are made again, and everything outside continues untouched.
+// ---------------------------------------------------------------------------------------------
+namespace shard {
+
+namespace {
+
+/// The patch's connected pieces (elements sharing a node), each in increasing order.
+std::vector<std::vector<std::int32_t>> patch_pieces(const Part& part, const std::vector<std::int32_t>& patch,
+                                                    std::size_t node_count) {
+  std::vector<std::vector<std::int32_t>> at_node(node_count);
+  for (std::size_t i = 0; i < patch.size(); ++i)
+    for (int k = 0; k < 3; ++k) at_node[part.connectivity[3 * patch[i] + k]].push_back(static_cast<std::int32_t>(i));
+  std::vector<std::int32_t> piece(patch.size(), -1);
+  std::vector<std::vector<std::int32_t>> pieces;
+  for (std::size_t seed = 0; seed < patch.size(); ++seed) {
+    if (piece[seed] >= 0) continue;
+    const std::int32_t id = static_cast<std::int32_t>(pieces.size());
+    std::vector<std::int32_t> stack{static_cast<std::int32_t>(seed)}, members;
+    piece[seed] = id;
+    while (!stack.empty()) {
+      const std::int32_t i = stack.back();
+      stack.pop_back();
+      members.push_back(patch[i]);
+      for (int k = 0; k < 3; ++k)
+        for (const std::int32_t j : at_node[part.connectivity[3 * patch[i] + k]])
+          if (piece[j] < 0) {
+            piece[j] = id;
+            stack.push_back(j);
+          }
+    }
+    std::sort(members.begin(), members.end());
+    pieces.push_back(std::move(members));
+  }
+  return pieces;
+}
+
+/// The part as read_old_part reads it (node sets, facet sets), with the patch's pieces as its
+/// bodies: their loops, and body_of_node and on_boundary for the patch's nodes alone.
+OldPart read_patch(const Model& model, std::size_t p, const std::vector<std::int32_t>& patch) {
+  const Part& part = model.parts[p];
+  OldPart old = read_old_part(model, p);
+  old.bodies = patch_pieces(part, patch, model.nodes.count());
+  old.loops.clear();
+  old.loop_body.clear();
+  std::fill(old.body_of_node.begin(), old.body_of_node.end(), -1);
+  std::fill(old.on_boundary.begin(), old.on_boundary.end(), 0);
+  for (std::size_t b = 0; b < old.bodies.size(); ++b) {
+    for (const std::int32_t e : old.bodies[b])
+      for (int k = 0; k < 3; ++k) old.body_of_node[part.connectivity[3 * e + k]] = static_cast<std::int32_t>(b);
+    for (BoundaryLoop& loop : boundary_loops(part, old.bodies[b], model.nodes)) {
+      for (const std::int32_t n : loop.nodes) old.on_boundary[n] = 1;
+      old.loops.push_back(std::move(loop));
+      old.loop_body.push_back(static_cast<std::int32_t>(b));
+    }
+  }
+  return old;
+}
+
+/// The edges of facets (of any set) that patch elements own: a remap drops them with their
+/// owners, and the new mesh's boundary gives them back.
+std::set<std::uint64_t> facets_owned_by(const Model& model, std::size_t p, const std::vector<std::int32_t>& patch) {
+  std::vector<char> in_patch(model.parts[p].element_count(), 0);
+  for (const std::int32_t e : patch) in_patch[e] = 1;
+  std::set<std::uint64_t> edges;
+  for (const FacetSet& set : model.facet_sets) {
+    if (set.nodes_per_facet != 2) continue;
+    for (std::size_t k = 0; k < set.owner_part.size(); ++k)
+      if (set.owner_part[k] == static_cast<std::int32_t>(p) && in_patch[set.owner_element[k]])
+        edges.insert(pair_key(set.nodes[2 * k], set.nodes[2 * k + 1]));
+  }
+  return edges;
+}
+
+/// The domain of a patch: its boundary loops node for node (no point added or dropped, so the
+/// elements outside still fit), and the labelled and probed nodes inside it as embedded points.
+Domain patch_domain(const Model& model, const Part& part, const OldPart& old, const std::set<std::int32_t>& kept,
+                    const std::set<std::uint64_t>& owned_facets) {
+  Domain dom;
+  std::unordered_map<std::int32_t, std::int32_t> point_of_node;
+  auto add_point = [&](std::int32_t n, std::pair<std::int32_t, std::int32_t> segment) {
+    if (const auto it = point_of_node.find(n); it != point_of_node.end()) return it->second;
+    BoundaryPoint bp;
+    bp.node = n;
+    bp.segment = segment;
+    const std::int32_t index = static_cast<std::int32_t>(dom.points.size());
+    dom.points.push_back(bp);
+    dom.planar.xy.push_back(model.nodes.x[2 * n]);
+    dom.planar.xy.push_back(model.nodes.x[2 * n + 1]);
+    point_of_node.emplace(n, index);
+    return index;
+  };
+  for (std::size_t l = 0; l < old.loops.size(); ++l) {
+    const auto& nodes = old.loops[l].nodes;
+    std::vector<std::int32_t> loop;
+    for (std::size_t i = 0; i < nodes.size(); ++i) {
+      const std::int32_t a = nodes[i], b = nodes[(i + 1) % nodes.size()];
+      const bool owned = owned_facets.count(pair_key(a, b)) > 0;
+      loop.push_back(add_point(a, owned ? std::make_pair(a, b) : std::make_pair(-1, -1)));
+    }
+    dom.planar.loops.push_back(loop);
+    dom.loop_points.push_back(loop);
+    dom.loop_body.push_back(old.loop_body[l]);
+  }
+  for (const std::int32_t n : embedded_nodes(model, part, old, kept))
+    dom.planar.embedded.push_back(add_point(n, {-1, -1}));
+  return dom;
+}
+
+
+/// The patch's nodes: those of its elements.
+std::vector<char> nodes_of(const Part& part, const std::vector<std::int32_t>& elements, std::size_t node_count) {
+  std::vector<char> in(node_count, 0);
+  for (const std::int32_t e : elements)
+    for (int k = 0; k < 3; ++k) in[part.connectivity[3 * e + k]] = 1;
+  return in;
+}
+
+/// Lumped masses of triangles (three corners each) at the nodes' current positions.
+std::vector<double> lumped_shares(const Part& part, std::vector<std::int32_t> triangles, const NodeArrays& nodes,
+                                  const Material& material, const Model& model) {
+  Part piece;
+  piece.type = part.type;
+  piece.connectivity = std::move(triangles);
+  std::vector<double> share(nodes.count(), 0.0);
+  add_lumped_masses(piece, nodes, material.density(), model.formulation, model.thickness, share);
+  return share;
+}
+
+/// Linear momentum of the flagged nodes.
+std::array<double, 2> momentum_of(const NodeArrays& nodes, const std::vector<char>& flagged) {
+  std::array<double, 2> p{0.0, 0.0};
+  for (std::size_t n = 0; n < flagged.size(); ++n)
+    if (flagged[n])
+      for (int d = 0; d < 2; ++d) p[d] += nodes.mass[n] * nodes.v[2 * n + d];
+  return p;
+}
+
+/// The patch's nodes take the new triangles' lumped masses in place of the old ones' (the same
+/// boundary, so the patch keeps its mass to round-off), and the patch's linear momentum is
+/// restored by one velocity shift of its free components.
+void patch_masses_and_momentum(Model& model, std::size_t p, const Material& material, const std::vector<char>& in_patch,
+                               const std::vector<double>& old_share, const std::vector<std::int32_t>& new_elements,
+                               const std::array<double, 2>& momentum_before) {
+  NodeArrays& nodes = model.nodes;
+  const std::vector<double> share =
+      lumped_shares(model.parts[p], body_triangles(model.parts[p], new_elements), nodes, material, model);
+  for (std::size_t n = 0; n < nodes.count(); ++n)
+    if (in_patch[n]) nodes.mass[n] += share[n] - old_share[n];
+  const std::array<double, 2> now = momentum_of(nodes, in_patch);
+  for (int d = 0; d < 2; ++d) {
+    double free_mass = 0;
+    for (std::size_t n = 0; n < nodes.count(); ++n)
+      if (in_patch[n] && nodes.prescribed[2 * n + d] < 0) free_mass += nodes.mass[n];
+    if (!(free_mass > 0)) continue;
+    const double shift = (momentum_before[d] - now[d]) / free_mass;
+    for (std::size_t n = 0; n < nodes.count(); ++n)
+      if (in_patch[n] && nodes.prescribed[2 * n + d] < 0) nodes.v[2 * n + d] += shift;
+  }
+}
+
+/// The elements remap of a patch remesh: the elements outside the patch continue, in order; the
+/// new triangles are born after them from their weighted old parents; their corners are set.
+Remap patch_remap(const Model& model, std::size_t p, const std::vector<std::int32_t>& patch, const NewMesh& nm) {
+  Remap r;
+  r.nodes = nodes_with_born(model, nm);
+  const std::size_t ne = model.parts[p].element_count(), n_tri = nm.body.size();
+  std::vector<std::uint8_t> keep(ne, 1);
+  for (const std::int32_t e : patch) keep[e] = 0;
+  EntityRemap elements = EntityRemap::keeping(keep);
+  const std::size_t continued = elements.new_count();
+  elements.parent_begin.assign(continued + 1, 0);
+  for (std::size_t t = 0; t < n_tri; ++t) {
+    elements.source.push_back(-1);
+    elements.born.push_back(1);
+    for (std::int32_t q = nm.elements.begin[t]; q < nm.elements.begin[t + 1]; ++q) {
+      elements.parents.push_back(nm.elements.index[q]);
+      elements.parent_weight.push_back(nm.elements.weight[q]);
+    }
+    elements.parent_begin.push_back(static_cast<std::int32_t>(elements.parents.size()));
+  }
+  r.elements.emplace(static_cast<int>(p), std::move(elements));
+  for (std::size_t t = 0; t < n_tri; ++t)
+    for (int k = 0; k < 3; ++k)
+      r.corners.push_back(CornerMove{static_cast<std::int32_t>(p), static_cast<std::int32_t>(continued + t), k,
+                                     nm.corner[3 * t + k]});
+  return r;
+}
+
+/// Why the patch cannot be remeshed locally (empty: it can).
+std::string patch_refusal(const Model& model, std::size_t p, const std::vector<std::int32_t>& patch,
+                          const std::vector<char>& crack_face) {
+  if (std::string why = refusal(model, p); !why.empty()) return why;
+  if (patch.empty()) return "the patch is empty";
+  const Part& part = model.parts[p];
+  for (const std::int32_t e : patch) {
+    if (e < 0 || static_cast<std::size_t>(e) >= part.element_count()) return "the patch names no element of the part";
+    for (int k = 0; k < 3; ++k)
+      if (crack_face[part.connectivity[3 * e + k]]) return "the patch touches a crack";
+  }
+  return {};
+}
+
+/// The new mesh of a patch: its domain meshed against the size rule over the patch, in old terms.
+NewPartMesh make_patch_mesh(const Model& model, std::size_t p, const Material& material, const OldPart& old,
+                            const std::vector<std::int32_t>& patch, const std::set<std::int32_t>& kept,
+                            const RemeshSettings& s, RemeshOutcome& out) {
+  using Clock = std::chrono::steady_clock;
+  auto since = [](Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); };
+  const Part& part = model.parts[p];
+  auto t0 = Clock::now();
+  SizeRule rule = s.size;
+  rule.max_elements = 0;  // the budget is the part's, not the patch's
+  if (rule.measure == SizeMeasure::uniform && !(rule.uniform_size > 0)) {
+    // "The sizes as they are" of a patch is its mean size: a sliver's own size (that of its
+    // small area) would refine the patch around it for nothing.
+    double area = 0;
+    for (const std::int32_t e : patch)
+      area += 0.5 * std::abs(twice_area(&model.nodes.x[2 * part.connectivity[3 * e]],
+                                        &model.nodes.x[2 * part.connectivity[3 * e + 1]],
+                                        &model.nodes.x[2 * part.connectivity[3 * e + 2]]));
+    rule.uniform_size = equilateral_size(area / static_cast<double>(patch.size()));
+  }
+  const ElementSizes sizes = element_target_sizes(part, patch, model.nodes, material, model.formulation, rule);
+  const std::vector<double> nodal = nodal_sizes(part, patch, model.nodes, sizes, rule);
+  const TriangleLocator old_mesh(model.nodes.x, body_triangles(part, patch));
+  const SizeField field(old_mesh, nodal);
+  NewPartMesh m;
+  m.dom = patch_domain(model, part, old, kept, facets_owned_by(model, p, patch));
+  out.seconds_boundary += since(t0);
+  t0 = Clock::now();
+  const std::vector<char> no_crack(model.nodes.count(), 0);
+  m.mesh = mesh_domain(model, no_crack, m.dom, field, s, out);
+  out.seconds_gmsh += since(t0);
+  if (!m.mesh.ok()) {
+    m.failure = "Gmsh could not mesh the patch (" + m.mesh.failure + ")";
+    return m;
+  }
+  t0 = Clock::now();
+  m.nm = map_new_mesh(model, part, old, m.dom, m.mesh, s.transfer);
+  split_slits(model, m.dom, m.mesh, m.nm);  // no slits: the corners as Gmsh made them
+  out.seconds_transfer += since(t0);
+  return m;
+}
+
+}  // namespace
+
+std::vector<std::int32_t> grow_patch(const Model& model, std::size_t p, const std::vector<std::int32_t>& seeds, int rings) {
+  const Part& part = model.parts[p];
+  const std::vector<char> crack_face = model.crack_face_nodes();
+  const std::size_t ne = part.element_count();
+  std::vector<char> in(ne, 0);
+  for (const std::int32_t e : seeds) in[e] = 1;
+  for (int r = 0; r < rings; ++r) {
+    const std::vector<char> reached = nodes_of(part, [&] {
+      std::vector<std::int32_t> now;
+      for (std::size_t e = 0; e < ne; ++e)
+        if (in[e]) now.push_back(static_cast<std::int32_t>(e));
+      return now;
+    }(), model.nodes.count());
+    for (std::size_t e = 0; e < ne; ++e) {
+      if (in[e]) continue;
+      bool touches = false, cracked = false;
+      for (int k = 0; k < 3; ++k) {
+        const std::int32_t n = part.connectivity[3 * e + k];
+        touches = touches || reached[n];
+        cracked = cracked || crack_face[n];
+      }
+      if (touches && !cracked) in[e] = 1;
+    }
+  }
+  std::vector<std::int32_t> patch;
+  for (std::size_t e = 0; e < ne; ++e)
+    if (in[e]) patch.push_back(static_cast<std::int32_t>(e));
+  return patch;
+}
+
+RemeshOutcome remesh_patch(Model& model, std::size_t p, const Material& material, const RemeshSettings& s,
+                           const std::vector<std::int32_t>& patch, const std::vector<std::int64_t>& kept_nodes) {
+  RemeshOutcome out;
+  const std::vector<char> crack_face = model.crack_face_nodes();
+  out.skipped = patch_refusal(model, p, patch, crack_face);
+  if (!out.skipped.empty()) return out;
+  using Clock = std::chrono::steady_clock;
+  auto since = [](Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); };
+  auto t0 = Clock::now();
+  const OldPart old = read_patch(model, p, patch);
+  std::set<std::int32_t> kept;
+  {
+    const std::set<std::int64_t> ids(kept_nodes.begin(), kept_nodes.end());
+    for (std::size_t n = 0; n < model.nodes.count(); ++n)
+      if (old.body_of_node[n] >= 0 && ids.count(model.nodes.id[n])) kept.insert(static_cast<std::int32_t>(n));
+  }
+  out.seconds_boundary = since(t0);
+  const NewPartMesh made = make_patch_mesh(model, p, material, old, patch, kept, s, out);
+  if (!made.failure.empty()) {
+    out.skipped = made.failure;
+    return out;
+  }
+  t0 = Clock::now();
+  const NewMesh& nm = made.nm;
+  const std::size_t nn = model.nodes.count(), n_tri = made.mesh.triangles.size() / 3;
+  Part& part = model.parts[p];
+  std::vector<char> in_patch(nn, 0);
+  for (std::size_t n = 0; n < nn; ++n) in_patch[n] = old.body_of_node[n] >= 0;
+  const std::vector<double> old_share = lumped_shares(part, body_triangles(part, patch), model.nodes, material, model);
+  out.bodies = old.bodies.size();
+  out.elements_before = patch.size();
+  out.area_before = part_area(part, model.nodes);
+  out.stored_before = stored_energy(part, material, model.nodes, model.formulation, model.thickness);
+  out.kinetic_before = kinetic_energy(model, old.body_of_node);
+  out.momentum_before = momentum_of(model.nodes, in_patch);
+  for (std::size_t n = 0; n < nn; ++n) {
+    out.nodes_before += in_patch[n];
+    if (in_patch[n]) out.mass_before += model.nodes.mass[n];
+  }
+  const std::size_t size = static_cast<std::size_t>(part.state_size);
+  std::vector<double> holder_state(size * n_tri);
+  for (std::size_t t = 0; t < n_tri && size > 0; ++t)
+    std::copy_n(&part.state[size * nm.holder[t]], size, &holder_state[size * t]);
+  const std::vector<double> velocity_gradient = nodal_velocity_gradients(model, part, old);
+
+  // Remap one: born nodes appended, the patch's elements replaced by the new triangles.
+  const std::int64_t first_id = model.next_element_id;
+  apply_remap(model, patch_remap(model, p, patch, nm));
+  fix_born_nodes(model, old, nm, nn, velocity_gradient);
+  rebuild_facets(model, p, old, made.dom, made.mesh, nm, positions_of(model.parts[p], first_id, n_tri));
+  // Remap two: the patch's old inner nodes leave.
+  std::vector<std::uint8_t> keep(model.nodes.count(), 1);
+  for (std::size_t n = 0; n < nn; ++n) keep[n] = !in_patch[n];
+  for (const std::int32_t n : nm.corner) keep[n] = 1;
+  Remap second;
+  second.nodes = EntityRemap::keeping(keep);
+  const std::vector<std::int32_t> new_of_old = second.nodes->new_of_old();
+  apply_remap(model, second);
+  colour_elements(model, p);
+
+  std::vector<char> patch_now(model.nodes.count(), 0);
+  std::vector<double> share_now(model.nodes.count(), 0.0);
+  std::vector<std::int32_t> body_now(model.nodes.count(), -1);
+  for (std::size_t n = 0; n < new_of_old.size(); ++n) {
+    const std::int32_t m = new_of_old[n];
+    if (m < 0) continue;
+    if (n < nn) {
+      patch_now[m] = in_patch[n];
+      share_now[m] = old_share[n];
+      body_now[m] = old.body_of_node[n];
+    } else {
+      patch_now[m] = 1;
+      body_now[m] = nm.born[n - nn].body;
+      model.nodes.mass[m] = 0.0;
+    }
+  }
+  const std::vector<std::int32_t> position = positions_of(model.parts[p], first_id, n_tri);
+  patch_masses_and_momentum(model, p, material, patch_now, share_now, position, out.momentum_before);
+  finish_points(model, p, material, holder_state, position);
+
+  out.remeshed = true;
+  out.elements_after = n_tri;
+  out.area_after = part_area(model.parts[p], model.nodes);
+  out.stored_after = stored_energy(model.parts[p], material, model.nodes, model.formulation, model.thickness);
+  out.kinetic_after = kinetic_energy(model, body_now);
+  out.momentum_after = momentum_of(model.nodes, patch_now);
+  for (std::size_t n = 0; n < patch_now.size(); ++n) {
+    out.nodes_after += patch_now[n];
+    if (patch_now[n]) out.mass_after += model.nodes.mass[n];
+  }
+  out.min_angle = made.mesh.min_angle;
   out.seconds_apply = since(t0);
   return out;
 }

@@ -68,6 +68,20 @@ struct RemeshOutcome {
 RemeshOutcome remesh_part(Model& model, std::size_t part, const Material& material, const RemeshSettings& settings,
                           const std::vector<std::int64_t>& kept_nodes);
 
+/// The patch a local remesh replaces around `seeds` (elements of part `part`): the seeds and
+/// `rings` rings of elements sharing a node with it, none with a node on a crack face.
+std::vector<std::int32_t> grow_patch(const Model& model, std::size_t part, const std::vector<std::int32_t>& seeds,
+                                     int rings);
+
+/// Remeshes a patch of part `part` (element indices, none with a crack-face node): the patch's
+/// boundary nodes stay, node for node, so the elements outside it fit the new ones unchanged; its
+/// inner nodes and elements are made again by Gmsh against the size rule and take their state
+/// from the old patch as remesh_part's do. The nodes of the patch keep its mass (to round-off)
+/// and linear momentum. The outcome's counts and sums are the patch's (its area and stored energy
+/// the part's). On failure the model is unchanged.
+RemeshOutcome remesh_patch(Model& model, std::size_t part, const Material& material, const RemeshSettings& settings,
+                           const std::vector<std::int32_t>& patch, const std::vector<std::int64_t>& kept_nodes);
+
 /// The elastic energy the points of a part store, Σ ψ V (ψ the material's stored energy per unit
 /// volume, or p²/2K + s:s/4G of the stress).
 double stored_energy(const Part& part, const Material& material, const NodeArrays& nodes, Formulation formulation,
