@@ -1006,7 +1006,9 @@ class RunDriver {
       const std::size_t p = remesher_->parts()[i].part;
       const auto& count = sim_.model.remesh_count;
       j << (i ? ", " : "") << json_string(sim_.model.parts[p].name) << ": {\"remeshes\": "
-        << (p < count.size() ? count[p] : 0) << ", \"elements\": " << sim_.model.parts[p].element_count()
+        << (p < count.size() ? count[p] : 0) << ", \"local_remeshes\": "
+        << (p < sim_.model.remesh_local_count.size() ? sim_.model.remesh_local_count[p] : 0)
+        << ", \"elements\": " << sim_.model.parts[p].element_count()
         << ", \"seconds\": " << remesher_->seconds()[i] << "}";
     }
     j << "}";

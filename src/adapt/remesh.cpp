@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <numbers>
 #include <numeric>
@@ -1300,6 +1301,7 @@ NewPartMesh make_patch_mesh(const Model& model, std::size_t p, const Material& m
                                         &model.nodes.x[2 * part.connectivity[3 * e + 1]],
                                         &model.nodes.x[2 * part.connectivity[3 * e + 2]]));
     rule.uniform_size = equilateral_size(area / static_cast<double>(patch.size()));
+    rule.max_coarsening = std::numeric_limits<double>::infinity();
   }
   const ElementSizes sizes = element_target_sizes(part, patch, model.nodes, material, model.formulation, rule);
   const std::vector<double> nodal = nodal_sizes(part, patch, model.nodes, sizes, rule);

@@ -45,11 +45,11 @@ std::vector<EnergyTerm> RemeshEvent::energy_terms() const {
            energy_rank::eroded + 6, {{G::dissipated, +1}}, "remesh"}};
 }
 
-std::string RemeshEvent::due(const Model& model, std::size_t i, std::int64_t step) const {
+RemeshEvent::Due RemeshEvent::due(const Model& model, std::size_t i, std::int64_t step) const {
   const std::size_t p = parts_[i].part;
   const Part& part = model.parts[p];
   if (triggers_.max_interval > 0 && step - model.remesh_step[p] >= triggers_.max_interval)
-    return format("%.0f steps since the last remesh", static_cast<double>(step - model.remesh_step[p]));
+    return {format("%.0f steps since the last remesh", static_cast<double>(step - model.remesh_step[p]))};
   double worst = 0, smallest = std::numbers::pi, largest = 0;
   for (std::size_t e = 0; e < part.element_count(); ++e) {
     worst = std::max(worst, element_distortion(part, model.nodes, e).value());
@@ -61,26 +61,58 @@ std::string RemeshEvent::due(const Model& model, std::size_t i, std::int64_t ste
   }
   const double degree = std::numbers::pi / 180.0;
   if (triggers_.distortion > 0 && worst > triggers_.distortion)
-    return format("an element distorted by %.2f %% (allowed %.2f %%)", 100 * worst, 100 * triggers_.distortion);
+    return {format("an element distorted by %.2f %% (allowed %.2f %%)", 100 * worst, 100 * triggers_.distortion), true};
   if (triggers_.min_angle > 0 && smallest < triggers_.min_angle)
-    return format("an angle of %.1f deg (below %.1f)", smallest / degree, triggers_.min_angle / degree);
+    return {format("an angle of %.1f deg (below %.1f)", smallest / degree, triggers_.min_angle / degree), true};
   if (triggers_.max_angle > 0 && largest > triggers_.max_angle)
-    return format("an angle of %.1f deg (above %.1f)", largest / degree, triggers_.max_angle / degree);
+    return {format("an angle of %.1f deg (above %.1f)", largest / degree, triggers_.max_angle / degree), true};
   if (triggers_.size_mismatch > 0) {
     const ElementSizes sizes = element_target_sizes(part, all_elements(part), model.nodes, *materials_[part.material],
                                                     model.formulation, parts_[i].settings.size);
     for (std::size_t e = 0; e < sizes.target.size(); ++e) {
       const double ratio = sizes.current[e] / sizes.target[e];
       if (ratio > triggers_.size_mismatch || ratio < 1.0 / triggers_.size_mismatch)
-        return format("an element %.2f times the size asked for (allowed %.2f)", ratio, triggers_.size_mismatch);
+        return {format("an element %.2f times the size asked for (allowed %.2f)", ratio, triggers_.size_mismatch)};
     }
   }
   return {};
 }
 
+std::vector<std::int32_t> RemeshEvent::poor_elements(const Model& model, std::size_t i) const {
+  const Part& part = model.parts[parts_[i].part];
+  std::vector<std::int32_t> out;
+  for (std::size_t e = 0; e < part.element_count(); ++e) {
+    bool poor = triggers_.distortion > 0 && element_distortion(part, model.nodes, e).value() > triggers_.distortion;
+    const std::int32_t* c = &part.connectivity[3 * e];
+    for (const double a : triangle_angles(&model.nodes.x[2 * c[0]], &model.nodes.x[2 * c[1]], &model.nodes.x[2 * c[2]]))
+      poor = poor || (triggers_.min_angle > 0 && a < triggers_.min_angle) || (triggers_.max_angle > 0 && a > triggers_.max_angle);
+    if (poor) out.push_back(static_cast<std::int32_t>(e));
+  }
+  return out;
+}
+
+RemeshOutcome RemeshEvent::remesh(Model& model, std::size_t i, const Due& why, bool& local) const {
+  const std::size_t p = parts_[i].part;
+  const Material& material = *materials_[model.parts[p].material];
+  local = false;
+  if (why.shape && triggers_.patch_rings > 0) {
+    const std::vector<std::int32_t> patch = grow_patch(model, p, poor_elements(model, i), triggers_.patch_rings);
+    if (!patch.empty() &&
+        static_cast<double>(patch.size()) <= triggers_.patch_max_fraction * static_cast<double>(model.parts[p].element_count())) {
+      RemeshOutcome out = remesh_patch(model, p, material, parts_[i].settings, patch, kept_nodes_);
+      if (out.remeshed) {
+        local = true;
+        return out;
+      }
+    }
+  }
+  return remesh_part(model, p, material, parts_[i].settings, kept_nodes_);
+}
+
 void RemeshEvent::run(Model& model, EventContext& context) {
   model.remesh_count.resize(model.parts.size(), 0);
   model.remesh_step.resize(model.parts.size(), 0);
+  model.remesh_local_count.resize(model.parts.size(), 0);
   for (std::size_t i = 0; i < parts_.size(); ++i) {
     Part& part = model.parts[parts_[i].part];
     // Elements made since the last look (the first step) are measured now.
@@ -95,11 +127,12 @@ void RemeshEvent::run(Model& model, EventContext& context) {
     // the part is assessed at the next check.
     const auto& eroded = model.parts[p].eroded;
     if (std::find(eroded.begin(), eroded.end(), 1) != eroded.end()) continue;
-    const std::string why = due(model, i, context.step);
+    const Due why_due = due(model, i, context.step);
+    const std::string& why = why_due.why;
     if (why.empty()) continue;
-    const Material& material = *materials_[model.parts[p].material];
     const auto start = std::chrono::steady_clock::now();
-    const RemeshOutcome out = remesh_part(model, p, material, parts_[i].settings, kept_nodes_);
+    bool local = false;
+    const RemeshOutcome out = remesh(model, i, why_due, local);
     seconds_[i] += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (!out.remeshed) {
       notes_.push_back("part '" + model.parts[p].name + "' not remeshed at step " + std::to_string(context.step) +
@@ -108,7 +141,8 @@ void RemeshEvent::run(Model& model, EventContext& context) {
     }
     changed = true;
     model.remesh_count[p]++;
-    model.remesh_step[p] = context.step;
+    model.remesh_local_count[p] += local;
+    if (!local) model.remesh_step[p] = context.step;  // max_interval counts whole-part remeshes
     const double elastic = out.stored_before - out.stored_after, kinetic = out.kinetic_before - out.kinetic_after;
     context.energy.at("remesh_elastic") += elastic;
     context.energy.at("remesh_kinetic") += kinetic;

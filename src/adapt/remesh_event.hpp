@@ -29,6 +29,11 @@ struct RemeshTriggers {
   /// its reciprocal (0: not used).
   double size_mismatch = 0;
   std::int64_t max_interval = 0;  ///< remesh at least every this many steps (0: not used)
+  /// A part due for its elements' shape alone (distortion, angles) has only a patch remeshed:
+  /// the poor elements and this many rings of elements around them (0: the whole part always).
+  int patch_rings = 0;
+  /// … unless the patch would hold more than this fraction of the part's elements.
+  double patch_max_fraction = 0.3;
 };
 
 /// A part to remesh and how.
@@ -63,8 +68,18 @@ class RemeshEvent final : public StepEvent {
   std::vector<double> target_size(const Model& model, std::size_t part) const;
 
  private:
-  /// Why part i is due (empty: it is not).
-  std::string due(const Model& model, std::size_t i, std::int64_t step) const;
+  /// Why a part is due: empty `why` if it is not; `shape` when its elements' shape alone is the
+  /// reason (a patch around them may do).
+  struct Due {
+    std::string why;
+    bool shape = false;
+  };
+  Due due(const Model& model, std::size_t i, std::int64_t step) const;
+  /// The elements of part i whose shape is beyond the limits (distortion or angles).
+  std::vector<std::int32_t> poor_elements(const Model& model, std::size_t i) const;
+  /// Remeshes part i: a patch around its poor elements when the triggers allow it and that
+  /// succeeds, else the whole part. `local` tells which was done.
+  RemeshOutcome remesh(Model& model, std::size_t i, const Due& due, bool& local) const;
 
   /// Each part's material (the objects, not the run's vector, which moves with the simulation).
   std::vector<const Material*> materials_;

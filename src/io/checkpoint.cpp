@@ -13,13 +13,14 @@ namespace shard {
 
 namespace {
 
-// The last byte is the format version, '0' + n (':' is 10): 4 added the elements' reference
+// The last byte is the format version, '0' + n (':' is 10, ';' 11): 4 added the elements' reference
 // length (distortion criterion) and the particles' ring length; 5 the cohesive elements; 6 their open flag and
 // the crash force's running mean; 7 the automata's many-body share, the running means of the
 // history's force columns, the node groups' reactions and work, and the pending half step of the
 // contact dashpots' work; 8 the stored energy of each element part;
-// 9 the elements' reference shape (adaptive remeshing); 10 the time a crack reached each node.
-constexpr char kMagic[8] = {'S', 'H', 'A', 'R', 'D', 'C', 'K', ':'};
+// 9 the elements' reference shape (adaptive remeshing); 10 the time a crack reached each node;
+// 11 the count of local remeshes.
+constexpr char kMagic[8] = {'S', 'H', 'A', 'R', 'D', 'C', 'K', ';'};
 
 /// Scalars of SolverState and OutputCursor in one fixed order, for both directions.
 template <class F>

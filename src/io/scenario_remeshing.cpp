@@ -33,9 +33,20 @@ KeyList remeshing_keys() {
              "reciprocal; 0: not used")
       .at_least(0)
       .defaults_to("0");
-  k.add("max_interval", ValueKind::integer, "remesh at least every this many steps (0: not used)")
+  k.add("max_interval", ValueKind::integer, "remesh the whole part at least every this many steps (0: not used)")
       .at_least(0)
       .defaults_to("0");
+  k.add("patch_rings", ValueKind::integer,
+        "local remeshing: when only the elements' shape is due (distortion, min_angle, max_angle), remesh a patch "
+        "of the poor elements and this many rings of elements around them, its boundary kept node for node; "
+        "0: always the whole part")
+      .at_least(0)
+      .defaults_to("0");
+  k.quantity("patch_max_fraction", dim::none,
+             "the whole part is remeshed instead when the patch would hold more than this fraction of its elements")
+      .above(0)
+      .at_most(1)
+      .defaults_to("0.3");
   return k;
 }
 
@@ -176,6 +187,8 @@ void read_remeshing(Section& top, Scenario& sc) {
   if (in.triggers.size_mismatch > 0 && in.triggers.size_mismatch <= 1)
     r.fail("size_mismatch", "a mismatch factor is above 1 (e.g. 1.5), or 0 for none");
   in.triggers.max_interval = r.integer("max_interval");
+  in.triggers.patch_rings = static_cast<int>(r.integer("patch_rings"));
+  in.triggers.patch_max_fraction = r.number("patch_max_fraction");
   const YAML::Node list = r.value("parts");
   if (!list.IsSequence() || list.size() == 0)
     r.fail("parts", "expected a list of parts, e.g. [{part: beam, size_by: strain_rate, table: [[0, 5 mm], [1e6, 0.75 mm]]}]");

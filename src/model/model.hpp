@@ -268,6 +268,8 @@ struct Model {
   /// Per part, how many times it has been remeshed and the step of its last remesh (empty when
   /// no part is remeshed; src/adapt/remesh_event.hpp).
   std::vector<std::int64_t> remesh_count, remesh_step;
+  /// Per part, how many of its remeshes were local (a patch; the others remade the whole part).
+  std::vector<std::int64_t> remesh_local_count;
   /// The next stable id of a node, an element and a particle (ids are never reused).
   std::int64_t next_node_id = 0, next_element_id = 0, next_particle_id = 0;
 
@@ -317,6 +319,7 @@ struct Model {
     cohesive.visit_fields([&f](const std::string& name, const FieldInfo& info, auto& a) { f("cohesive." + name, info, a); });
     f("remesh.count", field("count", Location::model, 0), remesh_count);
     f("remesh.step", field("step", Location::model, 0), remesh_step);
+    f("remesh.local_count", field("local_count", Location::model, 0), remesh_local_count);
     for (auto& p : parts) p.visit_fields(as("part." + p.name + "."));
     for (auto& pp : particle_parts) {
       pp.visit_all_fields(as("particles." + pp.name + "."));

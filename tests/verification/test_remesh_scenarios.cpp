@@ -30,7 +30,8 @@ struct Shape {
 };
 
 /// The Taylor bar run to its end: length, footprint diameter, the worst balance error.
-Shape taylor(const std::string& file, const std::function<void(Scenario&)>& adjust = {}) {
+Shape taylor(const std::string& file, const std::function<void(Scenario&)>& adjust = {},
+             std::int64_t* local_remeshes = nullptr) {
   testing::ScenarioRun run(file, adjust);
   Shape s;
   while (!run.solver->finished()) {
@@ -46,6 +47,7 @@ Shape taylor(const std::string& file, const std::function<void(Scenario&)>& adju
   }
   s.length = top - bottom;
   s.remeshes = m.remesh_count.empty() ? 0 : m.remesh_count[0];
+  if (local_remeshes) *local_remeshes = m.remesh_local_count.empty() ? 0 : m.remesh_local_count[0];
   return s;
 }
 
@@ -100,6 +102,29 @@ TEST(RemeshScenarios, TaylorBarSizedByPlasticStrainMatchesTheTest) {
   EXPECT_GE(s.remeshes, 5);
   EXPECT_NEAR(s.length / 22.48e-3, 1.0, 0.05);
   EXPECT_NEAR(s.diameter / 11.1e-3, 1.0, 0.05);
+  EXPECT_NEAR(s.length / reference.length, 1.0, 0.005);
+  EXPECT_NEAR(s.diameter / reference.diameter, 1.0, 0.01);
+  EXPECT_LT(s.worst_error, 0.01);
+}
+
+// Local remeshing: the same bar, remeshed only where its triangles' angles leave 20–140°, and
+// then only a patch of two rings around them (the rest of the mesh untouched), ends as the run
+// without remeshing does.
+TEST(RemeshScenarios, TaylorBarRemeshedInPatchesEndsAsWithoutRemeshing) {
+  std::int64_t local = 0, whole = 0;
+  const Shape s = taylor(kTaylorRemeshed, [](Scenario& sc) {
+    sc.remeshing->triggers.max_interval = 0;
+    sc.remeshing->triggers.patch_rings = 2;
+  }, &local);
+  whole = s.remeshes - local;
+  const Shape reference = taylor(kTaylor);
+  std::printf("[taylor, local patches] %lld remeshes (%lld of patches): length %.4f mm (%+.3f %%), footprint %.4f mm "
+              "(%+.3f %%), balance within %.3f %%\n",
+              static_cast<long long>(s.remeshes), static_cast<long long>(local), s.length * 1e3,
+              100 * (s.length / reference.length - 1), s.diameter * 1e3, 100 * (s.diameter / reference.diameter - 1),
+              100 * s.worst_error);
+  EXPECT_GE(local, 3);
+  EXPECT_LT(whole, local);
   EXPECT_NEAR(s.length / reference.length, 1.0, 0.005);
   EXPECT_NEAR(s.diameter / reference.diameter, 1.0, 0.01);
   EXPECT_LT(s.worst_error, 0.01);
@@ -205,9 +230,10 @@ TEST(RemeshValidation, AnnulusTorqueConvergesToTheLimit) {
   EXPECT_LT(std::abs(error.back()), 0.02);
 }
 
-TEST(RemeshScenarios, SameBitsForOneAndTwoThreadsAndAcrossARestart) {
+void expect_same_bits_for_threads_and_restart(const std::string& options) {
   const auto dir = testing::fresh_dir("remesh_bits");
-  const std::string run = "run " + kTaylorRemeshed + " --quiet --set analysis.end_time=16us --set output.frame_interval=1us ";
+  const std::string run =
+      "run " + kTaylorRemeshed + " --quiet --set analysis.end_time=16us --set output.frame_interval=1us " + options + " ";
   const auto one = testing::run_shard(run + "--threads 1 -o " + (dir / "one").string());
   const auto two = testing::run_shard(run + "--threads 2 -o " + (dir / "two").string());
   ASSERT_EQ(one.status, 0) << one.output;
@@ -228,6 +254,14 @@ TEST(RemeshScenarios, SameBitsForOneAndTwoThreadsAndAcrossARestart) {
   EXPECT_EQ(h1, testing::read_file(dir / "pieces" / "history.csv"));
   EXPECT_EQ(frame, testing::read_file(dir / "pieces" / "frame_00015.vtu"));
   std::filesystem::remove_all(dir);
+}
+
+TEST(RemeshScenarios, SameBitsForOneAndTwoThreadsAndAcrossARestart) { expect_same_bits_for_threads_and_restart(""); }
+
+// The same with local remeshes only (patches of two rings: seven by 15 µs, from 9.5 µs on; the
+// restart at 10 µs falls between the first two).
+TEST(RemeshScenarios, LocalRemeshesGiveTheSameBitsForOneAndTwoThreadsAndAcrossARestart) {
+  expect_same_bits_for_threads_and_restart("--set remeshing.patch_rings=2 --set remeshing.max_interval=0");
 }
 
 }  // namespace
