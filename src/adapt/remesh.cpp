@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <map>
 #include <numbers>
@@ -792,7 +793,11 @@ void rebuild_facets(Model& model, std::size_t p, const OldPart& old, const Domai
   for (const auto& loop : dom.loop_points)
     for (std::size_t i = 0; i < loop.size(); ++i) {
       const std::int32_t a = loop[i], b = loop[(i + 1) % loop.size()];
-      const auto seg = dom.points[a].segment;
+      // An old edge kept as it is is looked up by its ends (a node a loop passes twice, a pinch,
+      // is one point with the segment of its first pass); a new segment by the old one it lies on.
+      const std::int32_t na = dom.points[a].node, nb = dom.points[b].node;
+      const bool old_edge = na >= 0 && nb >= 0 && old.facet_sets_of.count(pair_key(na, nb));
+      const auto seg = old_edge ? std::make_pair(na, nb) : dom.points[a].segment;
       if (seg.first < 0) continue;
       const auto& sets = facet_sets_at(old, seg.first, seg.second);
       if (sets.empty()) continue;
@@ -1116,11 +1121,30 @@ std::vector<std::vector<std::int32_t>> patch_pieces(const Part& part, const std:
   return pieces;
 }
 
+/// The edges of facets (of any set) that patch elements own: a remap drops them with their
+/// owners, and the new mesh's boundary gives them back.
+std::set<std::uint64_t> facets_owned_by(const Model& model, std::size_t p, const std::vector<std::int32_t>& patch) {
+  std::vector<char> in_patch(model.parts[p].element_count(), 0);
+  for (const std::int32_t e : patch) in_patch[e] = 1;
+  std::set<std::uint64_t> edges;
+  for (const FacetSet& set : model.facet_sets) {
+    if (set.nodes_per_facet != 2) continue;
+    for (std::size_t k = 0; k < set.owner_part.size(); ++k)
+      if (set.owner_part[k] == static_cast<std::int32_t>(p) && in_patch[set.owner_element[k]])
+        edges.insert(pair_key(set.nodes[2 * k], set.nodes[2 * k + 1]));
+  }
+  return edges;
+}
+
 /// The part as read_old_part reads it (node sets, facet sets), with the patch's pieces as its
 /// bodies: their loops, and body_of_node and on_boundary for the patch's nodes alone.
 OldPart read_patch(const Model& model, std::size_t p, const std::vector<std::int32_t>& patch) {
   const Part& part = model.parts[p];
   OldPart old = read_old_part(model, p);
+  // Only the facets the patch's elements own leave with them and are given back.
+  const std::set<std::uint64_t> owned = facets_owned_by(model, p, patch);
+  for (auto it = old.facet_sets_of.begin(); it != old.facet_sets_of.end();)
+    it = owned.count(it->first) ? std::next(it) : old.facet_sets_of.erase(it);
   old.bodies = patch_pieces(part, patch, model.nodes.count());
   old.loops.clear();
   old.loop_body.clear();
@@ -1138,32 +1162,17 @@ OldPart read_patch(const Model& model, std::size_t p, const std::vector<std::int
   return old;
 }
 
-/// The edges of facets (of any set) that patch elements own: a remap drops them with their
-/// owners, and the new mesh's boundary gives them back.
-std::set<std::uint64_t> facets_owned_by(const Model& model, std::size_t p, const std::vector<std::int32_t>& patch) {
-  std::vector<char> in_patch(model.parts[p].element_count(), 0);
-  for (const std::int32_t e : patch) in_patch[e] = 1;
-  std::set<std::uint64_t> edges;
-  for (const FacetSet& set : model.facet_sets) {
-    if (set.nodes_per_facet != 2) continue;
-    for (std::size_t k = 0; k < set.owner_part.size(); ++k)
-      if (set.owner_part[k] == static_cast<std::int32_t>(p) && in_patch[set.owner_element[k]])
-        edges.insert(pair_key(set.nodes[2 * k], set.nodes[2 * k + 1]));
-  }
-  return edges;
-}
-
 /// The domain of a patch: its boundary loops node for node (no point added or dropped, so the
 /// elements outside still fit), and the labelled and probed nodes inside it as embedded points.
-Domain patch_domain(const Model& model, const Part& part, const OldPart& old, const std::set<std::int32_t>& kept,
-                    const std::set<std::uint64_t>& owned_facets) {
+/// Its facets are found by their edges (rebuild_facets), the part's facet sets cut down to those
+/// the patch owns (read_patch).
+Domain patch_domain(const Model& model, const Part& part, const OldPart& old, const std::set<std::int32_t>& kept) {
   Domain dom;
   std::unordered_map<std::int32_t, std::int32_t> point_of_node;
-  auto add_point = [&](std::int32_t n, std::pair<std::int32_t, std::int32_t> segment) {
+  auto add_point = [&](std::int32_t n) {
     if (const auto it = point_of_node.find(n); it != point_of_node.end()) return it->second;
     BoundaryPoint bp;
     bp.node = n;
-    bp.segment = segment;
     const std::int32_t index = static_cast<std::int32_t>(dom.points.size());
     dom.points.push_back(bp);
     dom.planar.xy.push_back(model.nodes.x[2 * n]);
@@ -1174,17 +1183,13 @@ Domain patch_domain(const Model& model, const Part& part, const OldPart& old, co
   for (std::size_t l = 0; l < old.loops.size(); ++l) {
     const auto& nodes = old.loops[l].nodes;
     std::vector<std::int32_t> loop;
-    for (std::size_t i = 0; i < nodes.size(); ++i) {
-      const std::int32_t a = nodes[i], b = nodes[(i + 1) % nodes.size()];
-      const bool owned = owned_facets.count(pair_key(a, b)) > 0;
-      loop.push_back(add_point(a, owned ? std::make_pair(a, b) : std::make_pair(-1, -1)));
-    }
+    for (const std::int32_t n : nodes) loop.push_back(add_point(n));
     dom.planar.loops.push_back(loop);
     dom.loop_points.push_back(loop);
     dom.loop_body.push_back(old.loop_body[l]);
   }
   for (const std::int32_t n : embedded_nodes(model, part, old, kept))
-    dom.planar.embedded.push_back(add_point(n, {-1, -1}));
+    dom.planar.embedded.push_back(add_point(n));
   return dom;
 }
 
@@ -1217,17 +1222,19 @@ std::array<double, 2> momentum_of(const NodeArrays& nodes, const std::vector<cha
   return p;
 }
 
-/// The patch's nodes take the new triangles' lumped masses in place of the old ones' (the same
-/// boundary, so the patch keeps its mass to round-off), and the patch's linear momentum is
-/// restored by one velocity shift of its free components.
+/// The patch's nodes take the new triangles' lumped masses in place of the old ones' and the
+/// patch's linear momentum is restored by one velocity shift of its free components. Masses were
+/// lumped on the shape the mesh was made in, the shares on the current one: both shares are
+/// scaled by `ratio`, the masses of the inner nodes that left over their shares, so that the patch
+/// keeps its mass (the same polygon: the old and new shares have one sum).
 void patch_masses_and_momentum(Model& model, std::size_t p, const Material& material, const std::vector<char>& in_patch,
-                               const std::vector<double>& old_share, const std::vector<std::int32_t>& new_elements,
-                               const std::array<double, 2>& momentum_before) {
+                               const std::vector<double>& old_share, double ratio,
+                               const std::vector<std::int32_t>& new_elements, const std::array<double, 2>& momentum_before) {
   NodeArrays& nodes = model.nodes;
   const std::vector<double> share =
       lumped_shares(model.parts[p], body_triangles(model.parts[p], new_elements), nodes, material, model);
   for (std::size_t n = 0; n < nodes.count(); ++n)
-    if (in_patch[n]) nodes.mass[n] += share[n] - old_share[n];
+    if (in_patch[n]) nodes.mass[n] += ratio * (share[n] - old_share[n]);
   const std::array<double, 2> now = momentum_of(nodes, in_patch);
   for (int d = 0; d < 2; ++d) {
     double free_mass = 0;
@@ -1308,7 +1315,7 @@ NewPartMesh make_patch_mesh(const Model& model, std::size_t p, const Material& m
   const TriangleLocator old_mesh(model.nodes.x, body_triangles(part, patch));
   const SizeField field(old_mesh, nodal);
   NewPartMesh m;
-  m.dom = patch_domain(model, part, old, kept, facets_owned_by(model, p, patch));
+  m.dom = patch_domain(model, part, old, kept);
   out.seconds_boundary += since(t0);
   t0 = Clock::now();
   const std::vector<char> no_crack(model.nodes.count(), 0);
@@ -1358,7 +1365,8 @@ std::vector<std::int32_t> grow_patch(const Model& model, std::size_t p, const st
 }
 
 RemeshOutcome remesh_patch(Model& model, std::size_t p, const Material& material, const RemeshSettings& s,
-                           const std::vector<std::int32_t>& patch, const std::vector<std::int64_t>& kept_nodes) {
+                           const std::vector<std::int32_t>& patch, const std::vector<std::int64_t>& kept_nodes,
+                           double min_angle) {
   RemeshOutcome out;
   const std::vector<char> crack_face = model.crack_face_nodes();
   out.skipped = patch_refusal(model, p, patch, crack_face);
@@ -1374,7 +1382,13 @@ RemeshOutcome remesh_patch(Model& model, std::size_t p, const Material& material
       if (old.body_of_node[n] >= 0 && ids.count(model.nodes.id[n])) kept.insert(static_cast<std::int32_t>(n));
   }
   out.seconds_boundary = since(t0);
-  const NewPartMesh made = make_patch_mesh(model, p, material, old, patch, kept, s, out);
+  NewPartMesh made = make_patch_mesh(model, p, material, old, patch, kept, s, out);
+  if (made.failure.empty() && made.mesh.min_angle < min_angle) {
+    char why[160];
+    std::snprintf(why, sizeof why, "the patch's new mesh has an angle of %.1f deg (its boundary keeps its short edges)",
+                  made.mesh.min_angle * 180 / std::numbers::pi);
+    made.failure = why;
+  }
   if (!made.failure.empty()) {
     out.skipped = made.failure;
     return out;
@@ -1411,6 +1425,13 @@ RemeshOutcome remesh_patch(Model& model, std::size_t p, const Material& material
   std::vector<std::uint8_t> keep(model.nodes.count(), 1);
   for (std::size_t n = 0; n < nn; ++n) keep[n] = !in_patch[n];
   for (const std::int32_t n : nm.corner) keep[n] = 1;
+  double leaving_mass = 0, leaving_share = 0;
+  for (std::size_t n = 0; n < nn; ++n)
+    if (!keep[n]) {
+      leaving_mass += model.nodes.mass[n];
+      leaving_share += old_share[n];
+    }
+  const double ratio = leaving_share > 0 ? leaving_mass / leaving_share : 1.0;
   Remap second;
   second.nodes = EntityRemap::keeping(keep);
   const std::vector<std::int32_t> new_of_old = second.nodes->new_of_old();
@@ -1434,7 +1455,7 @@ RemeshOutcome remesh_patch(Model& model, std::size_t p, const Material& material
     }
   }
   const std::vector<std::int32_t> position = positions_of(model.parts[p], first_id, n_tri);
-  patch_masses_and_momentum(model, p, material, patch_now, share_now, position, out.momentum_before);
+  patch_masses_and_momentum(model, p, material, patch_now, share_now, ratio, position, out.momentum_before);
   finish_points(model, p, material, holder_state, position);
 
   out.remeshed = true;

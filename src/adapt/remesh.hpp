@@ -78,9 +78,12 @@ std::vector<std::int32_t> grow_patch(const Model& model, std::size_t part, const
 /// inner nodes and elements are made again by Gmsh against the size rule and take their state
 /// from the old patch as remesh_part's do. The nodes of the patch keep its mass (to round-off)
 /// and linear momentum. The outcome's counts and sums are the patch's (its area and stored energy
-/// the part's). On failure the model is unchanged.
+/// the part's). A new mesh with an angle below `min_angle` (rad) is refused: a patch keeps its
+/// boundary's short edges, which the whole-part remesh would coarsen. On failure the model is
+/// unchanged.
 RemeshOutcome remesh_patch(Model& model, std::size_t part, const Material& material, const RemeshSettings& settings,
-                           const std::vector<std::int32_t>& patch, const std::vector<std::int64_t>& kept_nodes);
+                           const std::vector<std::int32_t>& patch, const std::vector<std::int64_t>& kept_nodes,
+                           double min_angle = 0);
 
 /// The elastic energy the points of a part store, Σ ψ V (ψ the material's stored energy per unit
 /// volume, or p²/2K + s:s/4G of the stress).

@@ -99,7 +99,7 @@ RemeshOutcome RemeshEvent::remesh(Model& model, std::size_t i, const Due& why, b
     const std::vector<std::int32_t> patch = grow_patch(model, p, poor_elements(model, i), triggers_.patch_rings);
     if (!patch.empty() &&
         static_cast<double>(patch.size()) <= triggers_.patch_max_fraction * static_cast<double>(model.parts[p].element_count())) {
-      RemeshOutcome out = remesh_patch(model, p, material, parts_[i].settings, patch, kept_nodes_);
+      RemeshOutcome out = remesh_patch(model, p, material, parts_[i].settings, patch, kept_nodes_, triggers_.min_angle);
       if (out.remeshed) {
         local = true;
         return out;

@@ -39,17 +39,19 @@ testing::ElasticRun squashed_plate() {
   Model model = make_box_model(Formulation::plane_strain, box);
   model.thickness = 0.01;
   for (FacetSet& set : model.facet_sets) orient_facets_outward(model, set);
+  testing::ElasticRun run(std::move(model), kRho, kE, kNu);
+  Model& m = run.model;
+  // The masses are lumped on the shape the mesh was made in, as a run's are: the squashed
+  // triangles' current areas no longer match them.
+  lump_masses(m, run.materials);
   const double h = kL / kNx;
   auto squash = [&](int i, int j, double dx, double dy) {
     const std::size_t n = static_cast<std::size_t>(j * (kNx + 1) + i);
-    model.nodes.x[2 * n] += dx * h;
-    model.nodes.x[2 * n + 1] += dy * h;
+    m.nodes.x[2 * n] += dx * h;
+    m.nodes.x[2 * n + 1] += dy * h;
   };
   squash(12, 10, 0.8, 0.1);
   squash(30, 1, -0.8, -0.1);
-  testing::ElasticRun run(std::move(model), kRho, kE, kNu);
-  Model& m = run.model;
-  lump_masses(m, run.materials);
   for (std::size_t n = 0; n < m.nodes.count(); ++n) {
     m.nodes.v[2 * n] = velocity_x(&m.nodes.x[2 * n]);
     m.nodes.v[2 * n + 1] = velocity_y(&m.nodes.x[2 * n]);
@@ -200,6 +202,23 @@ TEST(RemeshPatch, TheSameStateRemeshesToTheSameBits) {
   EXPECT_EQ(a.model.nodes.v, b.model.nodes.v);
   EXPECT_EQ(a.model.parts[0].connectivity, b.model.parts[0].connectivity);
   EXPECT_EQ(a.model.parts[0].stress, b.model.parts[0].stress);
+}
+
+// The event gives its min_angle: a new mesh below it is refused (the whole part is remeshed
+// instead), and the model is left as it was.
+TEST(RemeshPatch, APatchMeshBelowTheAngleAskedForIsRefused) {
+  auto run = squashed_plate();
+  Model& model = run.model;
+  const double degree = std::numbers::pi / 180;
+  const auto patch = grow_patch(model, 0, slivers(model, 15 * degree), 2);
+  const auto x = model.nodes.x;
+  const auto connectivity = model.parts[0].connectivity;
+  const RemeshOutcome refused = remesh_patch(model, 0, *run.materials[0], RemeshSettings{}, patch, {}, 59 * degree);
+  EXPECT_FALSE(refused.remeshed);
+  EXPECT_NE(refused.skipped.find("has an angle of"), std::string::npos) << refused.skipped;
+  EXPECT_EQ(model.nodes.x, x);
+  EXPECT_EQ(model.parts[0].connectivity, connectivity);
+  EXPECT_TRUE(remesh_patch(model, 0, *run.materials[0], RemeshSettings{}, patch, {}, 20 * degree).remeshed);
 }
 
 TEST(RemeshPatch, APatchStopsAtACrackAndOneThatTouchesItIsRefused) {
