@@ -59,13 +59,8 @@ RemeshEvent::Due RemeshEvent::due(const Model& model, std::size_t i, std::int64_
       largest = std::max(largest, a);
     }
   }
-  const double degree = std::numbers::pi / 180.0;
-  if (triggers_.distortion > 0 && worst > triggers_.distortion)
-    return {format("an element distorted by %.2f %% (allowed %.2f %%)", 100 * worst, 100 * triggers_.distortion), true};
-  if (triggers_.min_angle > 0 && smallest < triggers_.min_angle)
-    return {format("an angle of %.1f deg (below %.1f)", smallest / degree, triggers_.min_angle / degree), true};
-  if (triggers_.max_angle > 0 && largest > triggers_.max_angle)
-    return {format("an angle of %.1f deg (above %.1f)", largest / degree, triggers_.max_angle / degree), true};
+  // A size mismatch asks for the whole part, so it is looked for before the shapes (which a
+  // patch may fix).
   if (triggers_.size_mismatch > 0) {
     const ElementSizes sizes = element_target_sizes(part, all_elements(part), model.nodes, *materials_[part.material],
                                                     model.formulation, parts_[i].settings.size);
@@ -75,6 +70,13 @@ RemeshEvent::Due RemeshEvent::due(const Model& model, std::size_t i, std::int64_
         return {format("an element %.2f times the size asked for (allowed %.2f)", ratio, triggers_.size_mismatch)};
     }
   }
+  const double degree = std::numbers::pi / 180.0;
+  if (triggers_.distortion > 0 && worst > triggers_.distortion)
+    return {format("an element distorted by %.2f %% (allowed %.2f %%)", 100 * worst, 100 * triggers_.distortion), true};
+  if (triggers_.min_angle > 0 && smallest < triggers_.min_angle)
+    return {format("an angle of %.1f deg (below %.1f)", smallest / degree, triggers_.min_angle / degree), true};
+  if (triggers_.max_angle > 0 && largest > triggers_.max_angle)
+    return {format("an angle of %.1f deg (above %.1f)", largest / degree, triggers_.max_angle / degree), true};
   return {};
 }
 
@@ -91,7 +93,7 @@ std::vector<std::int32_t> RemeshEvent::poor_elements(const Model& model, std::si
   return out;
 }
 
-RemeshOutcome RemeshEvent::remesh(Model& model, std::size_t i, const Due& why, bool& local) const {
+RemeshOutcome RemeshEvent::remesh(Model& model, std::size_t i, const Due& why, bool& local) {
   const std::size_t p = parts_[i].part;
   const Material& material = *materials_[model.parts[p].material];
   local = false;
@@ -104,6 +106,8 @@ RemeshOutcome RemeshEvent::remesh(Model& model, std::size_t i, const Due& why, b
         local = true;
         return out;
       }
+      notes_.push_back("part '" + model.parts[p].name + "': a patch of " + std::to_string(patch.size()) +
+                       " elements was not remeshed (" + out.skipped + "); the whole part is remeshed instead");
     }
   }
   return remesh_part(model, p, material, parts_[i].settings, kept_nodes_);

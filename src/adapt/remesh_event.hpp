@@ -78,8 +78,8 @@ class RemeshEvent final : public StepEvent {
   /// The elements of part i whose shape is beyond the limits (distortion or angles).
   std::vector<std::int32_t> poor_elements(const Model& model, std::size_t i) const;
   /// Remeshes part i: a patch around its poor elements when the triggers allow it and that
-  /// succeeds, else the whole part. `local` tells which was done.
-  RemeshOutcome remesh(Model& model, std::size_t i, const Due& due, bool& local) const;
+  /// succeeds, else the whole part (a refused patch is noted). `local` tells which was done.
+  RemeshOutcome remesh(Model& model, std::size_t i, const Due& due, bool& local);
 
   /// Each part's material (the objects, not the run's vector, which moves with the simulation).
   std::vector<const Material*> materials_;
