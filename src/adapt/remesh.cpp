@@ -1194,14 +1194,6 @@ Domain patch_domain(const Model& model, const Part& part, const OldPart& old, co
 }
 
 
-/// The patch's nodes: those of its elements.
-std::vector<char> nodes_of(const Part& part, const std::vector<std::int32_t>& elements, std::size_t node_count) {
-  std::vector<char> in(node_count, 0);
-  for (const std::int32_t e : elements)
-    for (int k = 0; k < 3; ++k) in[part.connectivity[3 * e + k]] = 1;
-  return in;
-}
-
 /// Lumped masses of triangles (three corners each) at the nodes' current positions.
 std::vector<double> lumped_shares(const Part& part, std::vector<std::int32_t> triangles, const NodeArrays& nodes,
                                   const Material& material, const Model& model) {
@@ -1275,16 +1267,46 @@ Remap patch_remap(const Model& model, std::size_t p, const std::vector<std::int3
   return r;
 }
 
+/// The copies of crack nodes a patch holds, by origin: a patch may reach a crack from one side,
+/// but not hold two copies of one node (both lips), whose coincident points Gmsh cannot mesh as
+/// one boundary kept point for point.
+class LipGuard {
+ public:
+  LipGuard(const Model& model, const std::vector<char>& crack_face) : model_(model), face_(crack_face) {}
+  /// Whether element e's corners are no other copies of the crack nodes taken so far.
+  bool fits(const Part& part, std::size_t e) const {
+    for (int k = 0; k < 3; ++k) {
+      const std::int32_t n = part.connectivity[3 * e + k];
+      if (!face_[n]) continue;
+      const auto it = taken_.find(model_.nodes.origin[n]);
+      if (it != taken_.end() && it->second != n) return false;
+    }
+    return true;
+  }
+  void take(const Part& part, std::size_t e) {
+    for (int k = 0; k < 3; ++k) {
+      const std::int32_t n = part.connectivity[3 * e + k];
+      if (face_[n]) taken_.emplace(model_.nodes.origin[n], n);
+    }
+  }
+
+ private:
+  const Model& model_;
+  const std::vector<char>& face_;
+  std::map<std::int64_t, std::int32_t> taken_;
+};
+
 /// Why the patch cannot be remeshed locally (empty: it can).
 std::string patch_refusal(const Model& model, std::size_t p, const std::vector<std::int32_t>& patch,
                           const std::vector<char>& crack_face) {
   if (std::string why = refusal(model, p); !why.empty()) return why;
   if (patch.empty()) return "the patch is empty";
   const Part& part = model.parts[p];
+  LipGuard lips(model, crack_face);
   for (const std::int32_t e : patch) {
     if (e < 0 || static_cast<std::size_t>(e) >= part.element_count()) return "the patch names no element of the part";
-    for (int k = 0; k < 3; ++k)
-      if (crack_face[part.connectivity[3 * e + k]]) return "the patch touches a crack";
+    if (!lips.fits(part, static_cast<std::size_t>(e))) return "the patch holds both lips of a crack";
+    lips.take(part, static_cast<std::size_t>(e));
   }
   return {};
 }
@@ -1339,23 +1361,26 @@ std::vector<std::int32_t> grow_patch(const Model& model, std::size_t p, const st
   const std::vector<char> crack_face = model.crack_face_nodes();
   const std::size_t ne = part.element_count();
   std::vector<char> in(ne, 0);
-  for (const std::int32_t e : seeds) in[e] = 1;
+  LipGuard lips(model, crack_face);
+  std::vector<std::int32_t> sorted = seeds;
+  std::sort(sorted.begin(), sorted.end());
+  for (const std::int32_t e : sorted) {
+    if (!lips.fits(part, static_cast<std::size_t>(e))) return {};  // poor elements on both lips
+    in[e] = 1;
+    lips.take(part, static_cast<std::size_t>(e));
+  }
   for (int r = 0; r < rings; ++r) {
-    const std::vector<char> reached = nodes_of(part, [&] {
-      std::vector<std::int32_t> now;
-      for (std::size_t e = 0; e < ne; ++e)
-        if (in[e]) now.push_back(static_cast<std::int32_t>(e));
-      return now;
-    }(), model.nodes.count());
+    std::vector<char> reached(model.nodes.count(), 0);
+    for (std::size_t e = 0; e < ne; ++e)
+      if (in[e])
+        for (int k = 0; k < 3; ++k) reached[part.connectivity[3 * e + k]] = 1;
     for (std::size_t e = 0; e < ne; ++e) {
       if (in[e]) continue;
-      bool touches = false, cracked = false;
-      for (int k = 0; k < 3; ++k) {
-        const std::int32_t n = part.connectivity[3 * e + k];
-        touches = touches || reached[n];
-        cracked = cracked || crack_face[n];
-      }
-      if (touches && !cracked) in[e] = 1;
+      bool touches = false;
+      for (int k = 0; k < 3; ++k) touches = touches || reached[part.connectivity[3 * e + k]];
+      if (!touches || !lips.fits(part, e)) continue;
+      in[e] = 1;
+      lips.take(part, e);
     }
   }
   std::vector<std::int32_t> patch;

@@ -69,11 +69,14 @@ RemeshOutcome remesh_part(Model& model, std::size_t part, const Material& materi
                           const std::vector<std::int64_t>& kept_nodes);
 
 /// The patch a local remesh replaces around `seeds` (elements of part `part`): the seeds and
-/// `rings` rings of elements sharing a node with it, none with a node on a crack face.
+/// `rings` rings of elements sharing a node with it (in element order), none that would give the
+/// patch a second copy of a crack node (the other lip). Empty when the seeds themselves hold
+/// both lips of a crack.
 std::vector<std::int32_t> grow_patch(const Model& model, std::size_t part, const std::vector<std::int32_t>& seeds,
                                      int rings);
 
-/// Remeshes a patch of part `part` (element indices, none with a crack-face node): the patch's
+/// Remeshes a patch of part `part` (element indices; it may reach a crack from one side, its
+/// lip kept node for node, but not hold both lips): the patch's
 /// boundary nodes stay, node for node, so the elements outside it fit the new ones unchanged; its
 /// inner nodes and elements are made again by Gmsh against the size rule and take their state
 /// from the old patch as remesh_part's do. The nodes of the patch keep its mass (to round-off)

@@ -221,11 +221,28 @@ TEST(RemeshPatch, APatchMeshBelowTheAngleAskedForIsRefused) {
   EXPECT_TRUE(remesh_patch(model, 0, *run.materials[0], RemeshSettings{}, patch, {}, 20 * degree).remeshed);
 }
 
-TEST(RemeshPatch, APatchStopsAtACrackAndOneThatTouchesItIsRefused) {
+/// Crack nodes with a sibling (another copy of the same origin) at the same place.
+std::size_t paired_lip_nodes(const Model& model) {
+  const auto face = model.crack_face_nodes();
+  std::map<std::int64_t, std::vector<std::size_t>> family;
+  for (std::size_t n = 0; n < model.nodes.count(); ++n)
+    if (face[n]) family[model.nodes.origin[n]].push_back(n);
+  std::size_t paired = 0;
+  for (const auto& [origin, members] : family)
+    for (const std::size_t a : members)
+      for (const std::size_t b : members)
+        if (a != b && model.nodes.x[2 * a] == model.nodes.x[2 * b] && model.nodes.x[2 * a + 1] == model.nodes.x[2 * b + 1]) {
+          ++paired;
+          break;
+        }
+  return paired;
+}
+
+// A patch may reach a crack from one side (its lip kept node for node), never both lips.
+TEST(RemeshPatch, APatchReachesACrackFromOneSideAndOneHoldingBothLipsIsRefused) {
   auto run = squashed_plate();
   Model& model = run.model;
-  // An edge crack along the tenth row of nodes, 13 nodes deep: its tip is next to the inner
-  // squashed spot.
+  // An edge crack along the tenth row of nodes, 13 nodes deep, through the inner squashed spot.
   std::vector<double> factor(model.nodes.count(), 0.0), normal(2 * model.nodes.count(), 0.0);
   for (int i = 0; i < 13; ++i) {
     const std::size_t n = static_cast<std::size_t>(10 * (kNx + 1) + i);
@@ -238,40 +255,84 @@ TEST(RemeshPatch, APatchStopsAtACrackAndOneThatTouchesItIsRefused) {
   cracking.moduli = run.materials[0]->elastic();
   insert_cracks(model, std::vector<CrackingPart>{cracking}, factor, normal);
   const std::vector<char> face = model.crack_face_nodes();
-  ASSERT_GT(std::count(face.begin(), face.end(), 1), 20);
+  const auto face_count = std::count(face.begin(), face.end(), 1);
+  ASSERT_GT(face_count, 20);
+  const std::size_t paired = paired_lip_nodes(model);
+  ASSERT_GT(paired, 20u);
   const Part& part = model.parts[0];
-  auto touches = [&](std::int32_t e) {
+  auto on_crack = [&](std::int32_t e) {
     for (int k = 0; k < 3; ++k)
       if (face[part.connectivity[3 * e + k]]) return true;
     return false;
   };
+  // Seeds: the slivers, but on one lip only (the first a sliver holds).
   const double degree = std::numbers::pi / 180;
   std::vector<std::int32_t> seeds;
-  for (const std::int32_t e : slivers(model, 15 * degree))
-    if (!touches(e)) seeds.push_back(e);
+  std::map<std::int64_t, std::int32_t> lip;
+  for (const std::int32_t e : slivers(model, 15 * degree)) {
+    bool one_lip = true;
+    for (int k = 0; k < 3; ++k) {
+      const std::int32_t n = part.connectivity[3 * e + k];
+      const auto it = lip.find(model.nodes.origin[n]);
+      one_lip = one_lip && (!face[n] || it == lip.end() || it->second == n);
+    }
+    if (!one_lip) continue;
+    seeds.push_back(e);
+    for (int k = 0; k < 3; ++k)
+      if (face[part.connectivity[3 * e + k]]) lip.emplace(model.nodes.origin[part.connectivity[3 * e + k]], part.connectivity[3 * e + k]);
+  }
   ASSERT_FALSE(seeds.empty());
   const std::vector<std::int32_t> patch = grow_patch(model, 0, seeds, 3);
-  std::size_t cracked = 0;
-  for (const std::int32_t e : patch) cracked += touches(e);
-  EXPECT_EQ(cracked, 0u) << "the patch took elements on the crack";
-  EXPECT_GT(patch.size(), 3 * seeds.size());
-  std::vector<std::int32_t> across = patch;
-  for (std::size_t e = 0; e < part.element_count(); ++e)
-    if (touches(static_cast<std::int32_t>(e))) {
-      across.push_back(static_cast<std::int32_t>(e));
-      break;
+  std::map<std::int64_t, std::set<std::int32_t>> copies;
+  std::size_t reaching = 0;
+  for (const std::int32_t e : patch) {
+    reaching += on_crack(e);
+    for (int k = 0; k < 3; ++k) {
+      const std::int32_t n = part.connectivity[3 * e + k];
+      if (face[n]) copies[model.nodes.origin[n]].insert(n);
     }
+  }
+  EXPECT_GT(reaching, 5u) << "the patch does not reach the crack";
+  for (const auto& [origin, nodes] : copies) EXPECT_EQ(nodes.size(), 1u) << "both lips of node " << origin;
+  // A patch given an element on each lip of one crack node is refused, the model untouched.
+  std::vector<std::int32_t> across;
+  for (const auto& [origin, nodes] : copies) {
+    for (std::size_t e = 0; e < part.element_count() && across.size() < 2; ++e)
+      for (int k = 0; k < 3; ++k) {
+        const std::int32_t n = part.connectivity[3 * e + k];
+        if (face[n] && model.nodes.origin[n] == origin && !nodes.count(n)) {
+          across = {*std::find_if(patch.begin(), patch.end(), [&](std::int32_t q) {
+                      for (int j = 0; j < 3; ++j)
+                        if (nodes.count(part.connectivity[3 * q + j])) return true;
+                      return false;
+                    }),
+                    static_cast<std::int32_t>(e)};
+          break;
+        }
+      }
+    if (!across.empty()) break;
+  }
+  ASSERT_EQ(across.size(), 2u);
   const auto connectivity = part.connectivity;
   const RemeshOutcome refused = remesh_patch(model, 0, *run.materials[0], RemeshSettings{}, across, {});
   EXPECT_FALSE(refused.remeshed);
-  EXPECT_EQ(refused.skipped, "the patch touches a crack");
+  EXPECT_EQ(refused.skipped, "the patch holds both lips of a crack");
   EXPECT_EQ(model.parts[0].connectivity, connectivity);
-  const RemeshOutcome done = remesh_patch(model, 0, *run.materials[0], RemeshSettings{}, patch, {});
-  EXPECT_TRUE(done.remeshed) << done.skipped;
-  EXPECT_EQ(std::count(face.begin(), face.end(), 1), [&] {
-    const auto now = model.crack_face_nodes();
-    return std::count(now.begin(), now.end(), 1);
-  }());
+  EXPECT_TRUE(grow_patch(model, 0, across, 1).empty());
+  // The patch that reaches the crack from above: remeshed, the lips as they were.
+  double mass = 0;
+  for (const double m : model.nodes.mass) mass += m;
+  const RemeshOutcome done = remesh_patch(model, 0, *run.materials[0], RemeshSettings{}, patch, {}, 20 * degree);
+  ASSERT_TRUE(done.remeshed) << done.skipped;
+  const auto now = model.crack_face_nodes();
+  EXPECT_EQ(std::count(now.begin(), now.end(), 1), face_count);
+  EXPECT_EQ(paired_lip_nodes(model), paired);
+  double after = 0;
+  for (const double m : model.nodes.mass) after += m;
+  EXPECT_NEAR(after, mass, 1e-13 * mass);
+  EXPECT_TRUE(slivers(model, 15 * degree).size() < seeds.size());
+  std::printf("[patch at a crack] %zu seeds, patch of %zu (%zu on the crack) -> %zu, min angle %.1f deg\n", seeds.size(),
+              patch.size(), reaching, done.elements_after, done.min_angle / degree);
 }
 
 }  // namespace
