@@ -117,6 +117,8 @@ void RemeshEvent::run(Model& model, EventContext& context) {
   model.remesh_count.resize(model.parts.size(), 0);
   model.remesh_step.resize(model.parts.size(), 0);
   model.remesh_local_count.resize(model.parts.size(), 0);
+  model.remesh_failures.resize(model.parts.size(), 0);
+  model.remesh_retry_step.resize(model.parts.size(), 0);
   for (std::size_t i = 0; i < parts_.size(); ++i) {
     Part& part = model.parts[parts_[i].part];
     // Elements made since the last look (the first step) are measured now.
@@ -131,6 +133,7 @@ void RemeshEvent::run(Model& model, EventContext& context) {
     // the part is assessed at the next check.
     const auto& eroded = model.parts[p].eroded;
     if (std::find(eroded.begin(), eroded.end(), 1) != eroded.end()) continue;
+    if (context.step < model.remesh_retry_step[p]) continue;  // backing off after a failure
     const Due why_due = due(model, i, context.step);
     const std::string& why = why_due.why;
     if (why.empty()) continue;
@@ -139,10 +142,18 @@ void RemeshEvent::run(Model& model, EventContext& context) {
     const RemeshOutcome out = remesh(model, i, why_due, local);
     seconds_[i] += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (!out.remeshed) {
+      // What failed once will mostly fail again on a mesh that has hardly changed, and a failed
+      // remesh of a large cracked part can cost as much as a thousand steps: the next attempt
+      // waits twice as long as the one before (up to 64 checks).
+      const std::int64_t failures = ++model.remesh_failures[p];
+      model.remesh_retry_step[p] = context.step + (triggers_.check_interval << std::min<std::int64_t>(failures, 6));
       notes_.push_back("part '" + model.parts[p].name + "' not remeshed at step " + std::to_string(context.step) +
-                       " (t = " + format("%.6g s", context.time) + "), due to " + why + ": " + out.skipped);
+                       " (t = " + format("%.6g s", context.time) + "), due to " + why + ": " + out.skipped +
+                       "; not assessed again before step " + std::to_string(model.remesh_retry_step[p]));
       continue;
     }
+    model.remesh_failures[p] = 0;
+    model.remesh_retry_step[p] = 0;
     changed = true;
     model.remesh_count[p]++;
     model.remesh_local_count[p] += local;

@@ -19,7 +19,7 @@ namespace {
 // history's force columns, the node groups' reactions and work, and the pending half step of the
 // contact dashpots' work; 8 the stored energy of each element part;
 // 9 the elements' reference shape (adaptive remeshing); 10 the time a crack reached each node;
-// 11 the count of local remeshes.
+// 11 the count of local remeshes and the back-off of failed ones.
 constexpr char kMagic[8] = {'S', 'H', 'A', 'R', 'D', 'C', 'K', ';'};
 
 /// Scalars of SolverState and OutputCursor in one fixed order, for both directions.

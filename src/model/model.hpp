@@ -270,6 +270,9 @@ struct Model {
   std::vector<std::int64_t> remesh_count, remesh_step;
   /// Per part, how many of its remeshes were local (a patch; the others remade the whole part).
   std::vector<std::int64_t> remesh_local_count;
+  /// Per part, remesh attempts that failed in a row, and the step before which it is not
+  /// assessed again (a failed remesh is retried after twice the wait of the one before).
+  std::vector<std::int64_t> remesh_failures, remesh_retry_step;
   /// The next stable id of a node, an element and a particle (ids are never reused).
   std::int64_t next_node_id = 0, next_element_id = 0, next_particle_id = 0;
 
@@ -320,6 +323,8 @@ struct Model {
     f("remesh.count", field("count", Location::model, 0), remesh_count);
     f("remesh.step", field("step", Location::model, 0), remesh_step);
     f("remesh.local_count", field("local_count", Location::model, 0), remesh_local_count);
+    f("remesh.failures", field("failures", Location::model, 0), remesh_failures);
+    f("remesh.retry_step", field("retry_step", Location::model, 0), remesh_retry_step);
     for (auto& p : parts) p.visit_fields(as("part." + p.name + "."));
     for (auto& pp : particle_parts) {
       pp.visit_all_fields(as("particles." + pp.name + "."));

@@ -312,6 +312,61 @@ WaveRun wave_with_remeshing(int per_wavelength, std::int64_t every) {
   return out;
 }
 
+// A remesh that fails is retried after twice the wait of the one before, not at every check: a
+// part that shares nodes with another is refused every time, and in 200 steps of checks every 10
+// it is tried at steps 10, 30, 70 and 150 (waits of 20, 40, 80, 160 steps), not 20 times.
+TEST(Remesh, AFailedRemeshIsRetriedAfterDoublingWaits) {
+  BoxMesh box;
+  box.element = "tri3";
+  box.cells = {8, 4, 1};
+  box.size = {0.008, 0.004, 1};
+  Model model = make_box_model(Formulation::plane_strain, box);
+  model.thickness = 0.01;
+  // The upper half of the elements as a second part on the same nodes.
+  Part upper = model.parts[0];
+  upper.name = "upper";
+  std::vector<std::int32_t> lower_corners, upper_corners;
+  for (std::size_t e = 0; e < model.parts[0].element_count(); ++e) {
+    const std::int32_t* c = &model.parts[0].connectivity[3 * e];
+    const double y = (model.nodes.x[2 * c[0] + 1] + model.nodes.x[2 * c[1] + 1] + model.nodes.x[2 * c[2] + 1]) / 3;
+    (y > 0.002 ? upper_corners : lower_corners).insert((y > 0.002 ? upper_corners : lower_corners).end(), c, c + 3);
+  }
+  model.parts[0].connectivity = lower_corners;
+  upper.connectivity = upper_corners;
+  for (Part* part : {&model.parts[0], &upper}) {
+    part->id.clear();
+    part->colour.clear();
+    part->colour_begin.clear();
+  }
+  model.parts.push_back(std::move(upper));
+  model.facet_sets.clear();  // they name elements of the one part there was
+  model.assign_ids();
+  testing::ElasticRun run(std::move(model), kRho, kE, kNu);
+  lump_masses(run.model, run.materials);
+  RemeshTriggers triggers;
+  triggers.check_interval = 10;
+  triggers.max_interval = 10;
+  RemeshEvent event(run.materials, {RemeshedPart{0, uniform(0.5e-3)}}, triggers, {});
+  run.events.push_back(&event);
+  std::vector<std::int64_t> attempts;
+  std::int64_t failures = -1, retry = -1;
+  run.settings.end_time = 3e-5;  // some 500 steps
+  run.run({}, [&](const ExplicitSolver& solver) {
+    const std::int64_t step = solver.state().step;
+    for (const std::string& note : event.take_notes())
+      if (note.find("shares nodes with part 'upper'") != std::string::npos && step <= 200) attempts.push_back(step);
+    if (step == 200) {
+      failures = run.model.remesh_failures.at(0);
+      retry = run.model.remesh_retry_step.at(0);
+    }
+  });
+  ASSERT_GT(run.steps, 200);
+  EXPECT_EQ(attempts, (std::vector<std::int64_t>{10, 30, 70, 150}));
+  EXPECT_EQ(failures, 4);
+  EXPECT_EQ(retry, 150 + 160);
+  EXPECT_EQ(run.model.remesh_count.at(0), 0);
+}
+
 TEST(Remesh, WaveResolvedByThirtyTwoElementsLosesUnderHalfAPercentPerRemesh) {
   for (const int per_wavelength : {32, 64}) {
     const WaveRun r = wave_with_remeshing(per_wavelength, 25);
