@@ -296,7 +296,9 @@ TEST(RemeshPatch, APatchReachesACrackFromOneSideAndOneHoldingBothLipsIsRefused) 
   for (const auto& [origin, nodes] : copies) EXPECT_EQ(nodes.size(), 1u) << "both lips of node " << origin;
   // A patch given an element on each lip of one crack node is refused, the model untouched.
   std::vector<std::int32_t> across;
-  for (const auto& [origin, nodes] : copies) {
+  for (const auto& entry : copies) {
+    const std::int64_t origin = entry.first;
+    const std::set<std::int32_t>& nodes = entry.second;  // (a lambda below captures it)
     for (std::size_t e = 0; e < part.element_count() && across.size() < 2; ++e)
       for (int k = 0; k < 3; ++k) {
         const std::int32_t n = part.connectivity[3 * e + k];
