@@ -66,13 +66,14 @@ struct OldPart {
   std::vector<char> area_set;  ///< per node set: it holds interior nodes of the part
 };
 
-OldPart read_old_part(const Model& model, std::size_t p) {
-  const Part& part = model.parts[p];
-  OldPart old;
-  old.bodies = bodies_of(part);
-  const std::size_t nn = model.nodes.count();
-  old.body_of_node.assign(nn, -1);
-  old.on_boundary.assign(nn, 0);
+/// Gives `old` these bodies: body_of_node, their boundary loops (and each loop's body), and which
+/// nodes are on them.
+void set_bodies(const Model& model, const Part& part, std::vector<std::vector<std::int32_t>> bodies, OldPart& old) {
+  old.bodies = std::move(bodies);
+  old.loops.clear();
+  old.loop_body.clear();
+  old.body_of_node.assign(model.nodes.count(), -1);
+  old.on_boundary.assign(model.nodes.count(), 0);
   for (std::size_t b = 0; b < old.bodies.size(); ++b) {
     for (const std::int32_t e : old.bodies[b])
       for (int k = 0; k < 3; ++k) old.body_of_node[part.connectivity[3 * e + k]] = static_cast<std::int32_t>(b);
@@ -82,6 +83,13 @@ OldPart read_old_part(const Model& model, std::size_t p) {
       old.loop_body.push_back(static_cast<std::int32_t>(b));
     }
   }
+}
+
+OldPart read_old_part(const Model& model, std::size_t p) {
+  const Part& part = model.parts[p];
+  OldPart old;
+  set_bodies(model, part, bodies_of(part), old);
+  const std::size_t nn = model.nodes.count();
   old.sets_of.resize(nn);
   old.area_set.assign(model.node_sets.size(), 0);
   for (std::size_t s = 0; s < model.node_sets.size(); ++s)
@@ -1145,20 +1153,7 @@ OldPart read_patch(const Model& model, std::size_t p, const std::vector<std::int
   const std::set<std::uint64_t> owned = facets_owned_by(model, p, patch);
   for (auto it = old.facet_sets_of.begin(); it != old.facet_sets_of.end();)
     it = owned.count(it->first) ? std::next(it) : old.facet_sets_of.erase(it);
-  old.bodies = patch_pieces(part, patch, model.nodes.count());
-  old.loops.clear();
-  old.loop_body.clear();
-  std::fill(old.body_of_node.begin(), old.body_of_node.end(), -1);
-  std::fill(old.on_boundary.begin(), old.on_boundary.end(), 0);
-  for (std::size_t b = 0; b < old.bodies.size(); ++b) {
-    for (const std::int32_t e : old.bodies[b])
-      for (int k = 0; k < 3; ++k) old.body_of_node[part.connectivity[3 * e + k]] = static_cast<std::int32_t>(b);
-    for (BoundaryLoop& loop : boundary_loops(part, old.bodies[b], model.nodes)) {
-      for (const std::int32_t n : loop.nodes) old.on_boundary[n] = 1;
-      old.loops.push_back(std::move(loop));
-      old.loop_body.push_back(static_cast<std::int32_t>(b));
-    }
-  }
+  set_bodies(model, part, patch_pieces(part, patch, model.nodes.count()), old);
   return old;
 }
 
