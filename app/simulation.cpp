@@ -667,6 +667,7 @@ RigidWall rigid_wall(const WallInput& wi, const Model& model) {
   for (int k = 0; k < 3; ++k)
     if (wi.velocity[k]) w.velocity[k] = *wi.velocity[k];
   w.friction = {wi.friction, wi.dynamic_friction};
+  w.extent = wi.extent;
   w.parts.assign(model.parts.size(), wi.parts.empty() ? 1 : 0);
   for (const auto& name : wi.parts) w.parts[part_index(model, name)] = 1;
   return w;

@@ -536,7 +536,7 @@ void ContactSystem::add_wall_forces(Model& model, std::size_t w, double time, do
     double* T = &model.contact.wall_tangential[(s * nw + w) * dim];
     double gap = 0;
     for (int d = 0; d < dim; ++d) gap += (model.nodes.x[dim * s + d] - origin[d]) * wall.normal[d];
-    if (gap >= 0) {
+    if (gap >= 0 || !wall.reaches(&model.nodes.x[dim * s], origin, gap, dim)) {
       for (int d = 0; d < dim; ++d) T[d] = 0;
       continue;
     }

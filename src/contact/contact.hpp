@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "contact/contact_surface.hpp"
+#include "contact/wall_extent.hpp"
 #include "core/cell_grid.hpp"
 #include "core/energy_ledger.hpp"
 #include "core/time_table.hpp"
@@ -29,6 +30,22 @@ struct RigidWall {
                                      TimeTable::constant(0)};
   FrictionLaw friction;
   std::vector<char> parts;  ///< per part: 1 if the wall acts on it
+  WallExtent extent;
+
+  /// Whether the wall pushes a point at `x` that lies `gap` in front of its plane (negative:
+  /// behind), the plane's corner being at `origin` now: always for an unbounded wall, else when
+  /// the point's projection lies on the rectangle and it is no deeper than `depth`. `x` and
+  /// `origin` have `dim` components (in 2D the rectangle is unbounded across the plane).
+  bool reaches(const double* x, const double* origin, double gap, int dim) const {
+    if (gap < -extent.depth) return false;
+    const auto& l = extent.along;
+    if (l[0] == 0 && l[1] == 0 && l[2] == 0) return true;
+    const std::array<double, 3> m{normal[1] * l[2] - normal[2] * l[1], normal[2] * l[0] - normal[0] * l[2],
+                                  normal[0] * l[1] - normal[1] * l[0]};
+    double s = 0, t = 0;
+    for (int d = 0; d < dim; ++d) s += (x[d] - origin[d]) * l[d], t += (x[d] - origin[d]) * m[d];
+    return s >= 0 && s <= extent.length && (dim < 3 || (t >= 0 && t <= extent.width));
+  }
 };
 
 struct ContactSettings {

@@ -527,6 +527,9 @@ inline void ParticleContact::geometry(const Model& model, std::size_t k, const s
   double dist = 0;
   for (int q = 0; q < c.dim; ++q) dist += (x_[3 * a + q] - wall_origin[3 * w + q]) * normal[q];
   c.overlap = radius_[a] - dist;
+  // Off a finite wall's rectangle, or past its depth: apart (a contact that held lets go).
+  if (w < settings_.walls.size() && !settings_.walls[w].reaches(&x_[3 * a], &wall_origin[3 * w], dist, c.dim))
+    c.overlap = std::min(c.overlap, -radius_[a]);
   for (int q = 0; q < 3; ++q) c.normal[q] = normal[q];
 }
 

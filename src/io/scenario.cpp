@@ -259,6 +259,18 @@ KeyList wall_keys() {
   k.quantity("dynamic_friction", dim::none, "sliding coefficient").at_least(0).defaults_to("friction");
   k.add("velocity", ValueKind::section, "wall velocity per component: {y: -1 m/s} or time tables");
   k.add("parts", ValueKind::list, "the mesh parts it acts on (default: all); particles meet every wall").defaults_to("all");
+  k.add("extent", ValueKind::section, "a finite wall: the rectangle of the plane that pushes, from `point` as its corner (default: the whole plane)");
+  return k;
+}
+
+KeyList wall_extent_keys() {
+  KeyList k;
+  KeySpec& a = k.add("along", ValueKind::vector, "a direction in the plane, from `point` along the rectangle's length");
+  a.dimension = dim::none;
+  a.must_be_given();
+  k.quantity("length", dim::length, "the rectangle's length along `along`").above(0).must_be_given();
+  k.quantity("width", dim::length, "3D: its width along normal × along (default: unbounded)").above(0);
+  k.quantity("depth", dim::length, "how deep behind the plane it still pushes; a point deeper has gone round its edge (default: unbounded)").above(0);
   return k;
 }
 
@@ -1041,6 +1053,26 @@ class ScenarioReader {
 
   }
 
+  /// walls[].extent: the rectangle must lie in the plane, so `along` may not lean off it.
+  void wall_extent(Section& w, const std::string& path, YAML::Node& entry, WallInput& wi) {
+    const KeyList keys = wall_extent_keys();
+    Section e(w.value("extent"), file, path + ".extent", keys, entry["extent"], w.line("extent"));
+    const auto along = e.vector("along", dim);
+    double dot = 0, norm = 0;
+    for (std::size_t k = 0; k < dim; ++k) dot += along[k] * wi.normal[k], norm += along[k] * along[k];
+    if (!(norm > 0)) e.fail("along", "the direction must not be zero");
+    if (std::abs(dot) > 1e-9 * std::sqrt(norm))
+      e.fail("along", "must lie in the wall's plane: it is not at right angles to `normal`");
+    WallExtent& x = wi.extent;
+    for (std::size_t k = 0; k < dim; ++k) x.along[k] = along[k] / std::sqrt(norm);
+    x.length = e.number("length");
+    if (e.has("width")) {
+      if (dim < 3) e.fail("width", "a 2D wall is a segment: it has a length and no width");
+      x.width = e.number("width");
+    }
+    if (e.has("depth")) x.depth = e.number("depth");
+  }
+
   void walls() {
   // rigid walls
   if (top.has("walls")) {
@@ -1086,6 +1118,7 @@ class ScenarioReader {
         }
       }
       if (wi.parts.empty()) entry["parts"] = "all";
+      if (w.has("extent")) wall_extent(w, path, entry, wi);
       sc.walls.push_back(wi);
       out.push_back(entry);
     }
@@ -1330,6 +1363,7 @@ std::vector<SchemaSection> scenario_schema() {
           {"contact", "contact between parts", contact_keys()},
           {"contact.material_friction[]", "friction of a pair of materials", material_friction_keys()},
           {"walls[]", "a rigid plane", wall_keys()},
+          {"walls[].extent", "a finite wall (docs/theory/contact.md, \"Rigid walls\")", wall_extent_keys()},
           {"interfaces[]", "a cohesive interface (docs/theory/cohesive_interfaces.md)", scenario_detail::interface_keys()},
           {"particle_contact", "the law particles touch each other and the walls with; the law's own parameters "
                                "(linear_spring: modulus, tangential_ratio, friction, damping_ratio or restitution, "

@@ -13,6 +13,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include "adapt/remesh_event.hpp"
+#include "contact/wall_extent.hpp"
 #include "core/parameters.hpp"
 #include "core/time_table.hpp"
 #include "fracture/cohesive_law.hpp"
@@ -187,6 +188,7 @@ struct WallInput {
   std::array<std::optional<TimeTable>, 3> velocity;
   double friction = 0, dynamic_friction = 0;
   std::vector<std::string> parts;  ///< empty: all
+  WallExtent extent;               ///< the whole plane unless `extent:` is given
   int line = 0;
 };
 

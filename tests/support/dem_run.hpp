@@ -50,10 +50,11 @@ class DemRun {
     part().add_particles(n);
     reserved_ = static_cast<int>(n);
   }
-  void add_wall(std::array<double, 3> point, std::array<double, 3> normal) {
+  void add_wall(std::array<double, 3> point, std::array<double, 3> normal, WallExtent extent = {}) {
     RigidWall w;
     w.point = point;
     w.normal = normal;
+    w.extent = extent;
     contact_settings_.walls.push_back(w);
   }
   /// Holds a particle's rotation (all components) at zero.

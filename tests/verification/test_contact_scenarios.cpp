@@ -42,6 +42,54 @@ TEST(ContactScenarios, DiscBouncesOffRigidWall) {
   EXPECT_EQ(run.contact->active_contacts(), 0u) << "the disc must have left the wall";
 }
 
+/// The disc of disc_bounce.yaml thrown at a wall given by `wall` (a flow map after `name: base, `):
+/// its mean velocity at the end, whether any node touched, and the worst energy balance.
+struct WallRun {
+  double v0 = 0, v1 = 0, worst = 0;
+  bool touched = false;
+};
+
+WallRun disc_at_wall(const std::string& tag, const std::string& wall) {
+  const std::string file = testing::temp_path("finite_wall_" + tag + ".yaml").string();
+  {
+    std::ifstream in(kData + "disc_bounce.yaml");
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    text.replace(text.find("mesh: {file: "), 13, "mesh: {file: " + kData);
+    const std::size_t at = text.find("  - {name: base");
+    text.replace(at, text.find('\n', at) - at, "  - {name: base, " + wall + "}");
+    std::ofstream(file) << text;
+  }
+  ScenarioRun run(file);
+  WallRun out;
+  out.v0 = run.mean_velocity()[1];
+  while (!run.solver->finished()) {
+    run.step();
+    out.touched = out.touched || run.contact->active_contacts() > 0;
+    out.worst = std::max(out.worst, std::abs(run.solver->state().energy.relative_error()));
+  }
+  out.v1 = run.mean_velocity()[1];
+  return out;
+}
+
+// A finite wall (docs/theory/contact.md, "Rigid walls") pushes only where a node's projection
+// lies on its segment and the node is no deeper behind it than `depth`: a segment under the
+// disc bounces it as the whole plane does; a segment that starts 0.5 mm beside the disc, or a
+// plane the disc lies wholly behind (deeper than `depth`), lets it fly on untouched.
+TEST(ContactScenarios, FiniteWallPushesOnlyWithinItsExtent) {
+  const WallRun under = disc_at_wall("under", "point: [-6 mm, 0], normal: [0, 1], extent: {along: [1, 0], length: 12 mm}");
+  const WallRun beside = disc_at_wall("beside", "point: [5.5 mm, 0], normal: [0, 1], extent: {along: [1, 0], length: 10 mm}");
+  const WallRun behind = disc_at_wall("behind", "point: [0, 12 mm], normal: [0, 1], extent: {along: [1, 0], length: 1 m, depth: 0.5 mm}");
+  std::printf("[finite wall] under: restitution %.4f, balance %.1e; beside: v %.6f → %.6f m/s; behind: v %.6f → %.6f m/s\n",
+              -under.v1 / under.v0, under.worst, beside.v0, beside.v1, behind.v0, behind.v1);
+  EXPECT_GT(-under.v1 / under.v0, 0.95);
+  EXPECT_LE(-under.v1 / under.v0, 1.0);
+  EXPECT_LT(under.worst, 0.01);
+  for (const WallRun& r : {beside, behind}) {
+    EXPECT_FALSE(r.touched);
+    EXPECT_NEAR(r.v1, r.v0, 1e-12 * std::abs(r.v0));
+  }
+}
+
 /// Mean x-acceleration of the block between 100 and 200 µs for gravity tilted by theta.
 double sliding_acceleration(double theta_degrees, double mu, double* g_out, double* travel = nullptr) {
   const std::string file = testing::temp_path("incline_" + std::to_string(int(theta_degrees)) + ".yaml").string();

@@ -11,6 +11,7 @@
 #include <fstream>
 #include <sstream>
 #include <numbers>
+#include <tuple>
 
 #include "io/checkpoint.hpp"
 #include "material/linear_elastic.hpp"
@@ -130,6 +131,59 @@ TEST(ParticleContact, GrainOnAnInclineSlidesSticksOrRolls) {
   const double rolling = 5.0 / 7.0 * g * std::sin(gentle);
   std::printf("rolls: a = %.5f m/s² (5/7 g sin θ = %.5f)\n", roll.acceleration, rolling);
   EXPECT_NEAR(roll.acceleration, rolling, 0.02 * rolling);
+}
+
+// A grain held against rotation slides on a finite floor (normal +z, its rectangle 1 mm long
+// from the grain's start, and 1 mm wide) with friction μ under gravity g: it slows at μg and
+// leaves the floor's edge at √(v0² − 2μgL), then falls with that horizontal speed. Sent along
+// the rectangle's length it leaves at L = 1 mm, sent across it at L = 0.5 mm; sent off the
+// rectangle from the start, it never touches it.
+struct EdgeRun {
+  double edge_speed = 0, worst_balance = 0;
+  bool touched = false;
+};
+
+EdgeRun slide_off_finite_floor(std::array<double, 3> direction, double corner_y) {
+  const double R = 1e-3, rho = 2500, g = 981, mu = 0.3, v0 = 1.0;
+  DemRun run(3, "linear_spring", {{"modulus", 1e8}, {"friction", mu}, {"restitution", 0.3}});
+  run.settings_.gravity = {0, 0, -g};
+  WallExtent extent;
+  extent.along = {1, 0, 0};
+  extent.length = 1e-3;
+  extent.width = 1e-3;
+  extent.depth = 0.5 * R;
+  run.add_wall({0, corner_y, 0}, {0, 0, 1}, extent);
+  const double m = rho * 4.0 / 3.0 * std::numbers::pi * R * R * R, sink = m * g / (1e8 * R);
+  run.add({0, 0, R - sink}, {v0 * direction[0], v0 * direction[1], 0}, R, rho);
+  run.hold_rotation(0);
+  ParticlePart& p = run.part();
+  EdgeRun out;
+  while (p.x[2] > -0.2 * R) {
+    run.step();
+    out.touched = out.touched || run.contact().active_contacts() > 0;
+    out.worst_balance = std::max(out.worst_balance, std::abs(run.solver().state().energy.relative_error()));
+    if (run.time() > 0.1) break;
+  }
+  out.edge_speed = std::hypot(p.v[0], p.v[1]);
+  return out;
+}
+
+TEST(ParticleContact, GrainSlidesOffTheEdgeOfAFiniteFloor) {
+  const double g = 981, mu = 0.3, v0 = 1.0;
+  for (const auto& [direction, corner_y, L] :
+       {std::tuple{std::array<double, 3>{1, 0, 0}, -0.5e-3, 1e-3}, std::tuple{std::array<double, 3>{0, 1, 0}, -0.5e-3, 0.5e-3}}) {
+    const EdgeRun r = slide_off_finite_floor(direction, corner_y);
+    const double expected = std::sqrt(v0 * v0 - 2 * mu * g * L);
+    std::printf("[finite floor] along (%g, %g): leaves at %.5f m/s, √(v0² − 2μgL) = %.5f (%+.3f %%), balance %.1e\n",
+                direction[0], direction[1], r.edge_speed, expected, 100 * (r.edge_speed / expected - 1), r.worst_balance);
+    EXPECT_TRUE(r.touched);
+    EXPECT_NEAR(r.edge_speed, expected, 0.01 * expected);
+    EXPECT_LT(r.worst_balance, 1e-3);
+  }
+  // The floor's rectangle starts 0.5 mm beside the grain: it falls through, never slowed.
+  const EdgeRun beside = slide_off_finite_floor({1, 0, 0}, 0.5e-3);
+  EXPECT_FALSE(beside.touched);
+  EXPECT_DOUBLE_EQ(beside.edge_speed, v0);
 }
 
 // Grains dropped into a box (a floor and four side walls) under gravity, with friction and
