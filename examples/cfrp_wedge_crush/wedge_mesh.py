@@ -4,7 +4,11 @@ edge-on, its thickness along x (plies of one element each), its length along y, 
 in z (the symmetry faces make it plane strain), with the 45° chamfer as a staircase (ply k, counted
 from x = 0, starts k elements above the base), and a block on top standing for the carriage.
 
-    wedge_mesh.py OUT.msh [--plies 20] [--ply 0.27] [--height 20] [--carriage 2.7]
+    wedge_mesh.py OUT.msh [--plies 20] [--ply 0.27] [--height 40] [--fine 14] [--coarse 0.54]
+                          [--carriage 2.7]
+
+Rows are one ply thickness tall up to `--fine` mm above the base, where the plate crushes,
+splays and delaminates, and `--coarse` mm tall above it, where it only carries the load.
 
 Physical groups: volumes "plate" and "carriage"; surfaces "sides" (z = 0 and z = depth).
 """
@@ -16,12 +20,20 @@ def main():
     ap.add_argument("out")
     ap.add_argument("--plies", type=int, default=20)
     ap.add_argument("--ply", type=float, default=0.27, help="ply thickness = element size (mm)")
-    ap.add_argument("--height", type=float, default=20.0, help="plate length in the slice (mm)")
+    ap.add_argument("--height", type=float, default=40.0, help="plate length in the slice (mm)")
+    ap.add_argument("--fine", type=float, default=14.0, help="rows one ply tall up to here (mm)")
+    ap.add_argument("--coarse", type=float, default=0.54, help="row height above --fine (mm)")
     ap.add_argument("--carriage", type=float, default=2.7, help="height of the carriage block (mm)")
     a = ap.parse_args()
     t, n = a.ply, a.plies
-    rows = round(a.height / t)
+    fine = a.height if a.fine is None else min(a.fine, a.height)
+    coarse = t if a.coarse is None else a.coarse
+    y = [j * t for j in range(round(fine / t) + 1)]
+    while y[-1] < a.height - 0.5 * coarse:
+        y.append(y[-1] + coarse)
+    rows = len(y) - 1
     top_rows = round(a.carriage / t)
+    y += [y[-1] + (j + 1) * t for j in range(top_rows)]
     nodes = {}
 
     def node(i, j, k):
@@ -47,15 +59,15 @@ def main():
         f.write('$PhysicalNames\n3\n2 3 "sides"\n3 1 "plate"\n3 2 "carriage"\n$EndPhysicalNames\n')
         f.write("$Nodes\n%d\n" % len(nodes))
         for (i, j, k), tag in sorted(nodes.items(), key=lambda kv: kv[1]):
-            f.write("%d %.10g %.10g %.10g\n" % (tag, i * t, j * t, k * t))
+            f.write("%d %.10g %.10g %.10g\n" % (tag, i * t, y[j], k * t))
         f.write("$EndNodes\n")
         cells = [(5, 1, c) for c in plate] + [(5, 2, c) for c in carriage] + [(3, 3, s) for s in sides]
         f.write("$Elements\n%d\n" % len(cells))
         for e, (kind, group, c) in enumerate(cells, 1):
             f.write("%d %d 2 %d %d %s\n" % (e, kind, group, group, " ".join(map(str, c))))
         f.write("$EndElements\n")
-    print("%s: %d plies of %.3g mm, %d plate and %d carriage hexahedra, %d nodes"
-          % (a.out, n, t, len(plate), len(carriage), len(nodes)))
+    print("%s: %d plies of %.3g mm, %.4g mm long, %d plate and %d carriage hexahedra, %d nodes"
+          % (a.out, n, t, y[rows], len(plate), len(carriage), len(nodes)))
 
 
 if __name__ == "__main__":
