@@ -44,7 +44,9 @@ struct RigidWall {
                                   normal[0] * l[1] - normal[1] * l[0]};
     double s = 0, t = 0;
     for (int d = 0; d < dim; ++d) s += (x[d] - origin[d]) * l[d], t += (x[d] - origin[d]) * m[d];
-    return s >= 0 && s <= extent.length && (dim < 3 || (t >= 0 && t <= extent.width));
+    // No width: unbounded across, on both sides of the corner (not a half-strip).
+    const bool across = dim < 3 || extent.width == std::numeric_limits<double>::infinity() || (t >= 0 && t <= extent.width);
+    return s >= 0 && s <= extent.length && across;
   }
 };
 

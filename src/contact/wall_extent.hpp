@@ -1,4 +1,4 @@
-// The extent of a finite rigid wall. Theory: docs/theory/contact.md, "Rigid walls".
+// The extent of a finite rigid wall. Theory: docs/theory/contact.md, "Finite walls".
 #pragma once
 
 #include <array>
@@ -9,7 +9,7 @@ namespace shard {
 /// The part of a wall's plane that pushes: a rectangle from the corner `point`, `length` along
 /// the unit in-plane direction `along` and `width` along normal × along, and as deep behind the
 /// face as `depth`; a point deeper than that has gone past the wall (round its edge). Infinite
-/// values leave a direction unbounded. Theory: docs/theory/contact.md, "Rigid walls".
+/// values leave a direction unbounded. Theory: docs/theory/contact.md, "Finite walls".
 struct WallExtent {
   std::array<double, 3> along{0, 0, 0};  ///< unit, in the plane (zero: the plane is unbounded)
   double length = std::numeric_limits<double>::infinity();

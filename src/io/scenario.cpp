@@ -1363,7 +1363,7 @@ std::vector<SchemaSection> scenario_schema() {
           {"contact", "contact between parts", contact_keys()},
           {"contact.material_friction[]", "friction of a pair of materials", material_friction_keys()},
           {"walls[]", "a rigid plane", wall_keys()},
-          {"walls[].extent", "a finite wall (docs/theory/contact.md, \"Rigid walls\")", wall_extent_keys()},
+          {"walls[].extent", "a finite wall (docs/theory/contact.md, \"Finite walls\")", wall_extent_keys()},
           {"interfaces[]", "a cohesive interface (docs/theory/cohesive_interfaces.md)", scenario_detail::interface_keys()},
           {"particle_contact", "the law particles touch each other and the walls with; the law's own parameters "
                                "(linear_spring: modulus, tangential_ratio, friction, damping_ratio or restitution, "

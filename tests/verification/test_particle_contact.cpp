@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <limits>
 #include <numbers>
 #include <tuple>
 
@@ -133,26 +134,26 @@ TEST(ParticleContact, GrainOnAnInclineSlidesSticksOrRolls) {
   EXPECT_NEAR(roll.acceleration, rolling, 0.02 * rolling);
 }
 
-// A grain held against rotation slides on a finite floor (normal +z, its rectangle 1 mm long
-// from the grain's start, and 1 mm wide) with friction μ under gravity g: it slows at μg and
-// leaves the floor's edge at √(v0² − 2μgL), then falls with that horizontal speed. Sent along
-// the rectangle's length it leaves at L = 1 mm, sent across it at L = 0.5 mm; sent off the
-// rectangle from the start, it never touches it.
+// A grain held against rotation slides on a finite floor (normal +z) with friction μ under
+// gravity g: it slows at μg and leaves the floor's edge at √(v0² − 2μgL), then falls with that
+// horizontal speed. The floor is a rectangle from `corner`, 1.2 mm along `along` and `width`
+// across (n × along); the grain starts at the origin.
 struct EdgeRun {
   double edge_speed = 0, worst_balance = 0;
   bool touched = false;
 };
 
-EdgeRun slide_off_finite_floor(std::array<double, 3> direction, double corner_y) {
+EdgeRun slide_off_finite_floor(std::array<double, 3> direction, std::array<double, 3> corner,
+                               std::array<double, 3> along, double width) {
   const double R = 1e-3, rho = 2500, g = 981, mu = 0.3, v0 = 1.0;
   DemRun run(3, "linear_spring", {{"modulus", 1e8}, {"friction", mu}, {"restitution", 0.3}});
   run.settings_.gravity = {0, 0, -g};
   WallExtent extent;
-  extent.along = {1, 0, 0};
-  extent.length = 1e-3;
-  extent.width = 1e-3;
+  extent.along = along;
+  extent.length = 1.2e-3;
+  extent.width = width;
   extent.depth = 0.5 * R;
-  run.add_wall({0, corner_y, 0}, {0, 0, 1}, extent);
+  run.add_wall(corner, {0, 0, 1}, extent);
   const double m = rho * 4.0 / 3.0 * std::numbers::pi * R * R * R, sink = m * g / (1e8 * R);
   run.add({0, 0, R - sink}, {v0 * direction[0], v0 * direction[1], 0}, R, rho);
   run.hold_rotation(0);
@@ -169,19 +170,28 @@ EdgeRun slide_off_finite_floor(std::array<double, 3> direction, double corner_y)
 }
 
 TEST(ParticleContact, GrainSlidesOffTheEdgeOfAFiniteFloor) {
-  const double g = 981, mu = 0.3, v0 = 1.0;
-  for (const auto& [direction, corner_y, L] :
-       {std::tuple{std::array<double, 3>{1, 0, 0}, -0.5e-3, 1e-3}, std::tuple{std::array<double, 3>{0, 1, 0}, -0.5e-3, 0.5e-3}}) {
-    const EdgeRun r = slide_off_finite_floor(direction, corner_y);
-    const double expected = std::sqrt(v0 * v0 - 2 * mu * g * L);
-    std::printf("[finite floor] along (%g, %g): leaves at %.5f m/s, √(v0² − 2μgL) = %.5f (%+.3f %%), balance %.1e\n",
-                direction[0], direction[1], r.edge_speed, expected, 100 * (r.edge_speed / expected - 1), r.worst_balance);
+  const double g = 981, mu = 0.3, v0 = 1.0, inf = std::numeric_limits<double>::infinity();
+  using Dir = std::array<double, 3>;
+  struct Case {
+    Dir direction, corner, along;
+    double width, L;
+  };
+  // Along the length (leaves 1 mm on); across the width (0.5 mm on); along a length whose n ×
+  // along points away from the grain, with no width: unbounded on both sides of the corner.
+  for (const Case& c : {Case{{1, 0, 0}, {-0.2e-3, -0.5e-3, 0}, {1, 0, 0}, 1e-3, 1e-3},
+                        Case{{0, 1, 0}, {-0.2e-3, -0.5e-3, 0}, {1, 0, 0}, 1e-3, 0.5e-3},
+                        Case{{0, 1, 0}, {-0.3e-3, -0.4e-3, 0}, {0, 1, 0}, inf, 0.8e-3}}) {
+    const EdgeRun r = slide_off_finite_floor(c.direction, c.corner, c.along, c.width);
+    const double expected = std::sqrt(v0 * v0 - 2 * mu * g * c.L);
+    std::printf("[finite floor] along (%g, %g), L %.1f mm: leaves at %.5f m/s, √(v0² − 2μgL) = %.5f (%+.3f %%), balance %.1e\n",
+                c.direction[0], c.direction[1], c.L * 1e3, r.edge_speed, expected, 100 * (r.edge_speed / expected - 1),
+                r.worst_balance);
     EXPECT_TRUE(r.touched);
     EXPECT_NEAR(r.edge_speed, expected, 0.01 * expected);
     EXPECT_LT(r.worst_balance, 1e-3);
   }
   // The floor's rectangle starts 0.5 mm beside the grain: it falls through, never slowed.
-  const EdgeRun beside = slide_off_finite_floor({1, 0, 0}, 0.5e-3);
+  const EdgeRun beside = slide_off_finite_floor({1, 0, 0}, {-0.2e-3, 0.5e-3, 0}, {1, 0, 0}, 1e-3);
   EXPECT_FALSE(beside.touched);
   EXPECT_DOUBLE_EQ(beside.edge_speed, v0);
 }
