@@ -33,6 +33,7 @@ ContactSystem::ContactSystem(const Model& model, ContactSettings settings,
 
 void ContactSystem::rebuild(const Model& model) {
   surface_ = extract_contact_surface(model);
+  candidates_valid_ = false;
   crack_face_ = model.crack_face_nodes();  // changes only when cracks split nodes, then rebuild
   hits_.assign(surface_.nodes.size(), Hit{});
   normal_force_.assign(model.nodes.count(), 0.0);
@@ -110,6 +111,10 @@ namespace {
 /// A node may project outside a facet by its depth, up to this fraction of the facet (its
 /// weights then lie in [−margin, 1 + margin]; docs/theory/contact.md, "Search").
 constexpr double kProjectionMargin = 0.1;
+
+/// The Verlet list's skin as a fraction of the mean facet diagonal: the list then lasts while the
+/// bodies move by 0.3 / (2 + √3) ≈ 8 % of a facet (docs/theory/contact.md, "Search").
+constexpr double kSkinFraction = 0.3;
 
 /// Copies of one split node (same NodeArrays::origin).
 bool is_sibling(const std::vector<std::int64_t>& origin, std::int32_t p, std::int32_t q) {
@@ -191,8 +196,82 @@ void ContactSystem::bin_facets(const Model& model) {
     mean += diagonal;
   }
   mean /= static_cast<double>(nf);
+  skin_ = kSkinFraction * mean;
+  for (std::size_t f = 0; f < nf; ++f)
+    for (int d = 0; d < dim; ++d) {
+      facet_box_[6 * f + d] -= skin_;
+      facet_box_[6 * f + 3 + d] += skin_;
+    }
   bin_size_ = std::max({2.5 * mean, largest / 8.0, 1e-12});
   grid_.build_boxes(facet_box_, dim, bin_size_);
+}
+
+bool ContactSystem::facet_may_touch(const Model& model, std::size_t i, std::int32_t f) const {
+  const int dim = model.dim();
+  const std::size_t np = model.parts.size();
+  const std::int32_t s = surface_.nodes[i];
+  const int ps = surface_.node_part[i], pf = surface_.facet_part[f];
+  if (!settings_.part_pairs[ps * np + pf]) return false;
+  const double* x = &model.nodes.x[dim * s];
+  const double* box = &facet_box_[6 * static_cast<std::size_t>(f)];
+  for (int d = 0; d < dim; ++d)
+    if (x[d] < box[d] || x[d] > box[3 + d]) return false;
+  // The faces of the node's own element neighbourhood cannot be penetrated by it; a face
+  // that ends at a copy of the node (a crack face across from the node's own) can.
+  const std::int32_t* fn = &surface_.facets[dim * f];
+  bool own = false, sibling = false;
+  for (int a = 0; a < dim; ++a) {
+    own = own || fn[a] == s || (ps == pf && surface_.are_neighbours(i, fn[a]));
+    sibling = sibling || is_sibling(model.nodes.origin, s, fn[a]);
+  }
+  return !own || (sibling && std::find(fn, fn + dim, s) == fn + dim);
+}
+
+// The Verlet list of every surface node: the facets of its cell that may touch it (the filters of
+// facet_may_touch), kept while the bodies move less than the skin allows (candidates_stale).
+void ContactSystem::build_candidates(const Model& model) {
+  bin_facets(model);
+  const std::size_t ns = surface_.nodes.size();
+  const int dim = model.dim();
+  candidate_begin_.assign(ns + 1, 0);
+#pragma omp parallel for schedule(static)
+  for (std::size_t i = 0; i < ns; ++i) {
+    std::int32_t count = 0;
+    for (const std::int32_t f : grid_.cell(&model.nodes.x[dim * surface_.nodes[i]]))
+      count += facet_may_touch(model, i, f) ? 1 : 0;
+    candidate_begin_[i + 1] = count;
+  }
+  for (std::size_t i = 0; i < ns; ++i) candidate_begin_[i + 1] += candidate_begin_[i];
+  candidates_.resize(static_cast<std::size_t>(candidate_begin_[ns]));
+#pragma omp parallel for schedule(static)
+  for (std::size_t i = 0; i < ns; ++i) {
+    std::int32_t k = candidate_begin_[i];
+    for (const std::int32_t f : grid_.cell(&model.nodes.x[dim * surface_.nodes[i]]))
+      if (facet_may_touch(model, i, f)) candidates_[k++] = f;
+  }
+  candidate_x_ = model.nodes.x;
+  candidates_valid_ = true;
+  ++candidate_builds_;
+}
+
+// A node moves by at most δ since the build, and so does every facet corner: the facet's box,
+// grown by half its diagonal, then moves by δ and grows by at most δ√dim on each side. A node
+// inside that box now was inside the box of the build grown by δ(2 + √dim): the list holds it
+// while that is within the skin.
+bool ContactSystem::candidates_stale(const Model& model) const {
+  if (!candidates_valid_ || candidate_x_.size() != model.nodes.x.size()) return true;
+  const int dim = model.dim();
+  const double* X = model.nodes.x.data();
+  double moved2 = 0;
+  for (const std::int32_t s : surface_.nodes) {
+    double d2 = 0;
+    for (int d = 0; d < dim; ++d) {
+      const double u = X[dim * s + d] - candidate_x_[dim * s + d];
+      d2 += u * u;
+    }
+    moved2 = std::max(moved2, d2);
+  }
+  return (2.0 + std::sqrt(static_cast<double>(dim))) * std::sqrt(moved2) >= skin_;
 }
 
 void ContactSystem::sum_node_normals(const Model& model) {
@@ -312,7 +391,6 @@ bool ContactSystem::segment_hit(const Model& model, std::int32_t f, std::int32_t
 // touch, the shallowest penetration, which is the face the node came through.
 ContactSystem::Hit ContactSystem::nearest_facet_hit(const Model& model, std::size_t i) const {
   const int dim = model.dim();
-  const std::size_t np = model.parts.size();
   const std::int32_t* F = surface_.facets.data();
   const std::int32_t s = surface_.nodes[i];
   const int ps = surface_.node_part[i];
@@ -320,18 +398,10 @@ ContactSystem::Hit ContactSystem::nearest_facet_hit(const Model& model, std::siz
   const double* nn = &node_normal_[dim * s];
   Hit best;
   double best_gap = -std::numeric_limits<double>::infinity();
-  for (const std::int32_t f : grid_.cell(x)) {
+  for (std::int32_t k = candidate_begin_[i]; k < candidate_begin_[i + 1]; ++k) {
+    const std::int32_t f = candidates_[k];
     const int pf = surface_.facet_part[f];
-    if (!settings_.part_pairs[ps * np + pf]) continue;
     const std::int32_t* fn = &F[dim * f];
-    // The faces of the node's own element neighbourhood cannot be penetrated by it; a face
-    // that ends at a copy of the node (a crack face across from the node's own) can.
-    bool own = false, sibling = false;
-    for (int a = 0; a < dim; ++a) {
-      own = own || fn[a] == s || (ps == pf && surface_.are_neighbours(i, fn[a]));
-      sibling = sibling || is_sibling(model.nodes.origin, s, fn[a]);
-    }
-    if (own && !(sibling && std::find(fn, fn + dim, s) == fn + dim)) continue;
     Hit hit;
     hit.facet = f;
     const bool found = dim == 2 ? segment_hit(model, f, s, ps, pf, nn, hit)
@@ -348,7 +418,7 @@ ContactSystem::Hit ContactSystem::nearest_facet_hit(const Model& model, std::siz
 void ContactSystem::find_facet_hits(const Model& model) {
   for (auto& h : hits_) h = Hit{};
   if (surface_.facet_count() == 0 || !settings_.any_pairs()) return;
-  bin_facets(model);
+  if (candidates_stale(model)) build_candidates(model);
   sum_node_normals(model);
   const std::size_t ns = surface_.nodes.size();
 #pragma omp parallel for schedule(static)

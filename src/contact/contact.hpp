@@ -111,6 +111,8 @@ class ContactSystem final : public TopologyListener {
   double max_frequency_squared() const { return max_frequency2_; }
   /// The deepest penetration (−gap, m) found in the last call, node-to-facet and walls.
   double max_penetration() const { return max_penetration_; }
+  /// How many times the facet candidates of the surface nodes (the Verlet list) were built.
+  std::size_t candidate_builds() const { return candidate_builds_; }
   /// (dof, force) of every contact and wall force added in the last call, in a fixed order.
   const std::vector<std::pair<std::int64_t, double>>& applied_forces() const { return applied_; }
   /// (dof, force) of the dashpots' part of those forces: the solver books their work as
@@ -141,7 +143,10 @@ class ContactSystem final : public TopologyListener {
     bool crack_faces = false;  ///< node and facet of one part, either on a crack face (2D cracks)
   };
   void find_facet_hits(const Model& model);
+  bool candidates_stale(const Model& model) const;
+  void build_candidates(const Model& model);
   void bin_facets(const Model& model);
+  bool facet_may_touch(const Model& model, std::size_t i, std::int32_t f) const;
   void sum_node_normals(const Model& model);
   Hit nearest_facet_hit(const Model& model, std::size_t i) const;
   bool segment_hit(const Model& model, std::int32_t f, std::int32_t s, int ps, int pf, const double* nn,
@@ -162,6 +167,14 @@ class ContactSystem final : public TopologyListener {
   std::vector<Hit> hits_;                // per surface node
   std::vector<double> normal_force_;     // per node: normal force across the interface, last call (N)
   CellGrid grid_;                       // the facets near each node (the one broad phase)
+  // Verlet list: per surface node (CSR), the facets whose grown box, grown again by skin_, held
+  // the node when it was built at positions candidate_x_; valid until the bodies have moved by
+  // skin_ / (2 + √dim) (docs/theory/contact.md, "Search").
+  std::vector<std::int32_t> candidate_begin_, candidates_;
+  std::vector<double> candidate_x_;
+  double skin_ = 0;
+  bool candidates_valid_ = false;
+  std::size_t candidate_builds_ = 0;
   std::vector<char> crack_face_;        // per node: on a crack face (Model::crack_face_nodes)
   std::vector<double> facet_box_;       // scratch: per facet lo[3], hi[3] grown by the search depth
   double bin_size_ = 0;
