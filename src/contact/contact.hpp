@@ -176,7 +176,7 @@ class ContactSystem final : public TopologyListener {
   bool candidates_valid_ = false;
   std::size_t candidate_builds_ = 0;
   std::vector<char> crack_face_;        // per node: on a crack face (Model::crack_face_nodes)
-  std::vector<double> facet_box_;       // scratch: per facet lo[3], hi[3] grown by the search depth
+  std::vector<double> facet_box_;       // per facet lo[3], hi[3] grown by the search depth and skin_, at the list's build
   double bin_size_ = 0;
   double friction_work_ = 0;
   std::size_t active_ = 0;
