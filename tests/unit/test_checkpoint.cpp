@@ -2,6 +2,7 @@
 // any moment leaves the previous complete checkpoint readable.
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <csignal>
 #include <filesystem>
 #include <fstream>
@@ -83,14 +84,21 @@ TEST(Checkpoint, RoundTripRestoresEverything) {
 }
 
 TEST(Checkpoint, KilledWriterLeavesThePreviousCheckpointIntact) {
-  // A model of several MB so that a kill often lands in the middle of a write.
+  // A model of several MB so that one write takes milliseconds. The child rewrites the
+  // checkpoint until killed; the parent waits until the child's first "<path>.tmp" appears (a
+  // forked child may take long to start on a loaded machine, which a fixed delay missed in CI),
+  // then kills it a varying fraction of one write's duration later, so most kills land mid-write.
   const auto path = std::filesystem::temp_directory_path() / ("shard_ckpt_kill_" + std::to_string(getpid()) + ".bin");
+  const std::filesystem::path tmp = path.string() + ".tmp";
   Model model = sample_model(24);
   SolverState state;
   OutputCursor cursor;
+  const auto start = std::chrono::steady_clock::now();
   write_checkpoint(path, model, state, cursor, "scenario");
+  const auto write_us = std::chrono::duration_cast<std::chrono::microseconds>(std::chrono::steady_clock::now() - start).count();
   int killed_mid_write = 0;
-  for (int trial = 0; trial < 12; ++trial) {
+  int trials = 0;
+  for (; trials < 60 && killed_mid_write < 6; ++trials) {
     const pid_t child = fork();
     ASSERT_GE(child, 0);
     if (child == 0) {
@@ -100,18 +108,20 @@ TEST(Checkpoint, KilledWriterLeavesThePreviousCheckpointIntact) {
         write_checkpoint(path, model, s, cursor, "scenario");
       }
     }
-    usleep(20000 + 7919 * trial);
+    for (int waited_ms = 0; !std::filesystem::exists(tmp) && waited_ms < 20000; ++waited_ms) usleep(1000);
+    usleep(static_cast<useconds_t>(write_us * (trials % 7) / 5));
     kill(child, SIGKILL);
     waitpid(child, nullptr, 0);
-    if (std::filesystem::exists(path.string() + ".tmp")) ++killed_mid_write;
+    if (std::filesystem::exists(tmp)) ++killed_mid_write;
     Model restored = sample_model(24);
     SolverState s;
     OutputCursor c;
-    ASSERT_NO_THROW(read_checkpoint(path, restored, s, c, "scenario")) << "trial " << trial;
+    ASSERT_NO_THROW(read_checkpoint(path, restored, s, c, "scenario")) << "trial " << trials;
     EXPECT_EQ(restored.nodes.v, model.nodes.v);
-    std::filesystem::remove(path.string() + ".tmp");
+    std::filesystem::remove(tmp);
   }
-  EXPECT_GT(killed_mid_write, 0) << "no kill landed during a write: the test proved nothing";
+  EXPECT_GT(killed_mid_write, 0) << "no kill of " << trials << " landed during a write (one write takes " << write_us
+                                 << " us): the test proved nothing";
   std::filesystem::remove(path);
 }
 
