@@ -108,7 +108,13 @@ TEST(Checkpoint, KilledWriterLeavesThePreviousCheckpointIntact) {
         write_checkpoint(path, model, s, cursor, "scenario");
       }
     }
-    for (int waited_ms = 0; !std::filesystem::exists(tmp) && waited_ms < 20000; ++waited_ms) usleep(1000);
+    int waited_ms = 0;
+    for (; !std::filesystem::exists(tmp) && waited_ms < 20000; ++waited_ms) usleep(1000);
+    if (waited_ms == 20000) {
+      kill(child, SIGKILL);
+      waitpid(child, nullptr, 0);
+      FAIL() << "trial " << trials << ": the child wrote nothing in 20 s";
+    }
     usleep(static_cast<useconds_t>(write_us * (trials % 7) / 5));
     kill(child, SIGKILL);
     waitpid(child, nullptr, 0);
