@@ -604,27 +604,27 @@ void ContactSystem::add_wall_forces(Model& model, std::size_t w, double time, do
     if (!wall.parts[ps]) continue;
     const std::int32_t s = surface_.nodes[i];
     double* T = &model.contact.wall_tangential[(s * nw + w) * dim];
-    double gap = 0;
-    for (int d = 0; d < dim; ++d) gap += (model.nodes.x[dim * s + d] - origin[d]) * wall.normal[d];
-    if (gap >= 0 || !wall.reaches(&model.nodes.x[dim * s], origin, gap, dim)) {
+    WallTouch touch;
+    if (!wall.touch(&model.nodes.x[dim * s], origin, 0.0, dim, touch)) {
       for (int d = 0; d < dim; ++d) T[d] = 0;
       continue;
     }
-    // the wall does not move back
+    // the wall does not move back; a finite wall's plate pushes through the face the node is nearest
     const double k = penalty(2.0 * M[s], stable_dt, settings_.time_step_reduction, settings_.penalty_scale);
-    const double fn_mag = -k * gap;
+    const double fn_mag = k * touch.penetration;
     add_row_stiffness(s, k);
-    max_penetration_ = std::max(max_penetration_, -gap);
+    max_penetration_ = std::max(max_penetration_, touch.penetration);
+    const double* n = touch.normal.data();
     double vrel[3] = {0, 0, 0}, vn = 0;
     for (int d = 0; d < dim; ++d) {
       vrel[d] = V[dim * s + d] - vw[d];
-      vn += vrel[d] * wall.normal[d];
+      vn += vrel[d] * n[d];
     }
     double vt[3];
-    for (int d = 0; d < dim; ++d) vt[d] = vrel[d] - vn * wall.normal[d];
-    friction_work_ += coulomb(T, wall.normal.data(), vt, k, dt, fn_mag, wall.friction, dim);
+    for (int d = 0; d < dim; ++d) vt[d] = vrel[d] - vn * n[d];
+    friction_work_ += coulomb(T, n, vt, k, dt, fn_mag, wall.friction, dim);
     for (int d = 0; d < dim; ++d) {
-      const double f = fn_mag * wall.normal[d] + T[d];
+      const double f = fn_mag * n[d] + T[d];
       force[dim * s + d] += f;
       applied_.emplace_back(static_cast<std::int64_t>(dim) * s + d, f);
       wall_force_[dim * w + d] -= f;

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <array>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -21,8 +22,18 @@ struct FrictionLaw {
   double dynamic_coefficient = 0;  ///< μ_d: sliding force μ_d F_n
 };
 
-/// A rigid plane. Bodies stay on the side its normal points to.
+/// Where a point presses on a wall: the outward unit normal there, how deep (m, > 0), and which
+/// face (0 the wall's face, 1 the back of a finite wall's plate, 2–5 its edge faces at s = 0,
+/// s = L, t = 0, t = W; 6 a rounded edge or corner).
+struct WallTouch {
+  std::array<double, 3> normal{0, 0, 0};
+  double penetration = 0;
+  int face = 0;
+};
+
+/// A rigid plane, or a finite rigid plate (`extent`). Bodies stay on the side its normal points to.
 struct RigidWall {
+  static constexpr double kInfinity = std::numeric_limits<double>::infinity();
   std::string name;
   std::array<double, 3> point{0, 0, 0};
   std::array<double, 3> normal{0, 1, 0};  ///< unit
@@ -32,22 +43,15 @@ struct RigidWall {
   std::vector<char> parts;  ///< per part: 1 if the wall acts on it
   WallExtent extent;
 
-  /// Whether the wall pushes a point at `x` that lies `gap` in front of its plane (negative:
-  /// behind), the plane's corner being at `origin` now: always for an unbounded wall, else when
-  /// the point's projection lies on the rectangle and it is no deeper than `depth`. `x` and
-  /// `origin` have `dim` components (in 2D the rectangle is unbounded across the plane).
-  bool reaches(const double* x, const double* origin, double gap, int dim) const {
-    if (gap < -extent.depth) return false;
-    const auto& l = extent.along;
-    if (l[0] == 0 && l[1] == 0 && l[2] == 0) return true;
-    const std::array<double, 3> m{normal[1] * l[2] - normal[2] * l[1], normal[2] * l[0] - normal[0] * l[2],
-                                  normal[0] * l[1] - normal[1] * l[0]};
-    double s = 0, t = 0;
-    for (int d = 0; d < dim; ++d) s += (x[d] - origin[d]) * l[d], t += (x[d] - origin[d]) * m[d];
-    // No width: unbounded across, on both sides of the corner (not a half-strip).
-    const bool across = dim < 3 || extent.width == std::numeric_limits<double>::infinity() || (t >= 0 && t <= extent.width);
-    return s >= 0 && s <= extent.length && across;
-  }
+  /// Where a point of radius `radius` (0 for a node) at `x` presses on the wall, the plane's
+  /// corner being at `origin` now; false if it does not. An unbounded wall is the half-space
+  /// behind its plane. A finite wall is a rigid plate, the box of its rectangle and `depth`
+  /// behind it: a point outside the box touches it where the box is closest (its face, or an
+  /// edge or corner, which are rounded by the radius), a point inside is pushed out through the
+  /// nearest face. So a point coming round an edge is pushed back past that edge, not across the
+  /// plate to the front. `x` and `origin` have `dim` components. Theory: docs/theory/contact.md,
+  /// "Finite walls".
+  bool touch(const double* x, const double* origin, double radius, int dim, WallTouch& out) const;
 };
 
 struct ContactSettings {

@@ -523,14 +523,17 @@ inline void ParticleContact::geometry(const Model& model, std::size_t k, const s
     return;
   }
   const std::size_t w = static_cast<std::size_t>(-1 - b);
-  const double* normal = w < settings_.walls.size() ? settings_.walls[w].normal.data() : kAxisNormal;
-  double dist = 0;
-  for (int q = 0; q < c.dim; ++q) dist += (x_[3 * a + q] - wall_origin[3 * w + q]) * normal[q];
-  c.overlap = radius_[a] - dist;
-  // Off a finite wall's rectangle, or past its depth: apart (a contact that held lets go).
-  if (w < settings_.walls.size() && !settings_.walls[w].reaches(&x_[3 * a], &wall_origin[3 * w], dist, c.dim))
-    c.overlap = std::min(c.overlap, -radius_[a]);
-  for (int q = 0; q < 3; ++q) c.normal[q] = normal[q];
+  if (w >= settings_.walls.size()) {  // the axis of an axisymmetric model: a plane through 0
+    c.overlap = radius_[a] - x_[3 * a];
+    std::copy_n(kAxisNormal, 3, c.normal);
+    return;
+  }
+  // A finite wall's plate pushes through the face the particle is nearest; off it, or past its
+  // depth, the contact is apart (one that held lets go).
+  WallTouch touch;
+  const bool touching = settings_.walls[w].touch(&x_[3 * a], &wall_origin[3 * w], radius_[a], c.dim, touch);
+  c.overlap = touching ? touch.penetration : std::min(touch.penetration, -radius_[a]);
+  for (int q = 0; q < 3; ++q) c.normal[q] = touch.normal[q];
 }
 
 std::vector<double> ParticleContact::wall_origins(const Model& model) const {

@@ -259,7 +259,7 @@ KeyList wall_keys() {
   k.quantity("dynamic_friction", dim::none, "sliding coefficient").at_least(0).defaults_to("friction");
   k.add("velocity", ValueKind::section, "wall velocity per component: {y: -1 m/s} or time tables");
   k.add("parts", ValueKind::list, "the mesh parts it acts on (default: all); particles meet every wall").defaults_to("all");
-  k.add("extent", ValueKind::section, "a finite wall: the rectangle of the plane that pushes, from `point` as its corner (default: the whole plane)");
+  k.add("extent", ValueKind::section, "a finite wall: a rigid plate, the rectangle of the plane from `point` as its corner and `depth` behind it (default: the whole plane)");
   return k;
 }
 
@@ -270,7 +270,7 @@ KeyList wall_extent_keys() {
   a.must_be_given();
   k.quantity("length", dim::length, "the rectangle's length along `along`").above(0).must_be_given();
   k.quantity("width", dim::length, "3D: its width along normal × along (default: unbounded)").above(0);
-  k.quantity("depth", dim::length, "how deep behind the plane it still pushes; a point deeper has gone round its edge (default: unbounded)").above(0);
+  k.quantity("depth", dim::length, "the thickness of the wall's plate behind its plane: a point behind it is pushed out through the plate's nearest face (the wall's face, its back or an edge face), a point deeper has gone past it (default: unbounded)").above(0);
   return k;
 }
 

@@ -45,7 +45,7 @@ TEST(ContactScenarios, DiscBouncesOffRigidWall) {
 /// The disc of disc_bounce.yaml thrown at a wall given by `wall` (a flow map after `name: base, `):
 /// its mean velocity at the end, whether any node touched, and the worst energy balance.
 struct WallRun {
-  double v0 = 0, v1 = 0, worst = 0;
+  double v0 = 0, v1 = 0, worst = 0, vx1 = 0;
   bool touched = false;
 };
 
@@ -68,22 +68,32 @@ WallRun disc_at_wall(const std::string& tag, const std::string& wall) {
     out.worst = std::max(out.worst, std::abs(run.solver->state().energy.relative_error()));
   }
   out.v1 = run.mean_velocity()[1];
+  out.vx1 = run.mean_velocity()[0];
   return out;
 }
 
-// A finite wall (docs/theory/contact.md, "Rigid walls") pushes only where a node's projection
-// lies on its segment and the node is no deeper behind it than `depth`: a segment under the
+// A finite wall (docs/theory/contact.md, "Finite walls") is a rigid plate: a segment under the
 // disc bounces it as the whole plane does; a segment that starts 0.5 mm beside the disc, or a
-// plane the disc lies wholly behind (deeper than `depth`), lets it fly on untouched.
+// plane the disc lies wholly behind (deeper than `depth`), lets it fly on untouched; and a plate
+// standing on edge under the disc (its face at x = 6 mm, 12 mm thick) bounces it off its top
+// edge face as a floor would, without pushing it sideways out through its face.
 TEST(ContactScenarios, FiniteWallPushesOnlyWithinItsExtent) {
   const WallRun under = disc_at_wall("under", "point: [-6 mm, 0], normal: [0, 1], extent: {along: [1, 0], length: 12 mm}");
   const WallRun beside = disc_at_wall("beside", "point: [5.5 mm, 0], normal: [0, 1], extent: {along: [1, 0], length: 10 mm}");
   const WallRun behind = disc_at_wall("behind", "point: [0, 12 mm], normal: [0, 1], extent: {along: [1, 0], length: 1 m, depth: 0.5 mm}");
-  std::printf("[finite wall] under: restitution %.4f, balance %.1e; beside: v %.6f → %.6f m/s; behind: v %.6f → %.6f m/s\n",
-              -under.v1 / under.v0, under.worst, beside.v0, beside.v1, behind.v0, behind.v1);
-  EXPECT_GT(-under.v1 / under.v0, 0.95);
-  EXPECT_LE(-under.v1 / under.v0, 1.0);
-  EXPECT_LT(under.worst, 0.01);
+  const WallRun on_edge =
+      disc_at_wall("on_edge", "point: [6 mm, 0], normal: [1, 0], extent: {along: [0, -1], length: 1 m, depth: 12 mm}");
+  std::printf("[finite wall] under: restitution %.4f, balance %.1e; beside: v %.6f → %.6f m/s; behind: v %.6f → %.6f m/s; "
+              "on edge: restitution %.4f, sideways %.2e m/s, balance %.1e\n",
+              -under.v1 / under.v0, under.worst, beside.v0, beside.v1, behind.v0, behind.v1, -on_edge.v1 / on_edge.v0,
+              on_edge.vx1, on_edge.worst);
+  for (const WallRun& r : {under, on_edge}) {
+    EXPECT_GT(-r.v1 / r.v0, 0.95);
+    EXPECT_LE(-r.v1 / r.v0, 1.0);
+    EXPECT_LT(r.worst, 0.01);
+  }
+  EXPECT_NEAR(-on_edge.v1 / on_edge.v0, -under.v1 / under.v0, 1e-3);
+  EXPECT_LT(std::abs(on_edge.vx1), 1e-3 * std::abs(on_edge.v0));
   for (const WallRun& r : {beside, behind}) {
     EXPECT_FALSE(r.touched);
     EXPECT_NEAR(r.v1, r.v0, 1e-12 * std::abs(r.v0));

@@ -135,16 +135,18 @@ TEST(ParticleContact, GrainOnAnInclineSlidesSticksOrRolls) {
 }
 
 // A grain held against rotation slides on a finite floor (normal +z) with friction μ under
-// gravity g: it slows at μg and leaves the floor's edge at √(v0² − 2μgL), then falls with that
-// horizontal speed. The floor is a rectangle from `corner`, 1.2 mm along `along` and `width`
-// across (n × along); the grain starts at the origin.
+// gravity g: it slows at μg and reaches the floor's edge, its centre over the edge after a
+// travel L, at √(v0² − 2μgL); then it tips over the edge, which is rounded by its radius (the
+// floor is a plate, docs/theory/contact.md "Finite walls"), and falls. The floor is a rectangle
+// from `corner`, 1.2 mm along `along` and `width` across (n × along), half a radius thick; the
+// grain starts at the origin. `edge_speed` is its speed when it has travelled L.
 struct EdgeRun {
-  double edge_speed = 0, worst_balance = 0;
+  double edge_speed = 0, worst_balance = 0, fell_at = 0;
   bool touched = false;
 };
 
 EdgeRun slide_off_finite_floor(std::array<double, 3> direction, std::array<double, 3> corner,
-                               std::array<double, 3> along, double width) {
+                               std::array<double, 3> along, double width, double L) {
   const double R = 1e-3, rho = 2500, g = 981, mu = 0.3, v0 = 1.0;
   DemRun run(3, "linear_spring", {{"modulus", 1e8}, {"friction", mu}, {"restitution", 0.3}});
   run.settings_.gravity = {0, 0, -g};
@@ -163,9 +165,10 @@ EdgeRun slide_off_finite_floor(std::array<double, 3> direction, std::array<doubl
     run.step();
     out.touched = out.touched || run.contact().active_contacts() > 0;
     out.worst_balance = std::max(out.worst_balance, std::abs(run.solver().state().energy.relative_error()));
+    if (out.edge_speed == 0 && p.x[0] * direction[0] + p.x[1] * direction[1] >= L) out.edge_speed = std::hypot(p.v[0], p.v[1]);
     if (run.time() > 0.1) break;
   }
-  out.edge_speed = std::hypot(p.v[0], p.v[1]);
+  out.fell_at = std::hypot(p.v[0], p.v[1]);
   return out;
 }
 
@@ -181,19 +184,65 @@ TEST(ParticleContact, GrainSlidesOffTheEdgeOfAFiniteFloor) {
   for (const Case& c : {Case{{1, 0, 0}, {-0.2e-3, -0.5e-3, 0}, {1, 0, 0}, 1e-3, 1e-3},
                         Case{{0, 1, 0}, {-0.2e-3, -0.5e-3, 0}, {1, 0, 0}, 1e-3, 0.5e-3},
                         Case{{0, 1, 0}, {-0.3e-3, -0.4e-3, 0}, {0, 1, 0}, inf, 0.8e-3}}) {
-    const EdgeRun r = slide_off_finite_floor(c.direction, c.corner, c.along, c.width);
+    const EdgeRun r = slide_off_finite_floor(c.direction, c.corner, c.along, c.width, c.L);
     const double expected = std::sqrt(v0 * v0 - 2 * mu * g * c.L);
-    std::printf("[finite floor] along (%g, %g), L %.1f mm: leaves at %.5f m/s, √(v0² − 2μgL) = %.5f (%+.3f %%), balance %.1e\n",
+    std::printf("[finite floor] along (%g, %g), L %.1f mm: at the edge %.5f m/s, √(v0² − 2μgL) = %.5f (%+.3f %%), "
+                "balance %.1e; falling at %.5f m/s\n",
                 c.direction[0], c.direction[1], c.L * 1e3, r.edge_speed, expected, 100 * (r.edge_speed / expected - 1),
-                r.worst_balance);
+                r.worst_balance, r.fell_at);
     EXPECT_TRUE(r.touched);
+    EXPECT_GT(r.edge_speed, 0) << "never reached the edge";
     EXPECT_NEAR(r.edge_speed, expected, 0.01 * expected);
     EXPECT_LT(r.worst_balance, 1e-3);
   }
-  // The floor's rectangle starts 0.5 mm beside the grain: it falls through, never slowed.
-  const EdgeRun beside = slide_off_finite_floor({1, 0, 0}, {-0.2e-3, 0.5e-3, 0}, {1, 0, 0}, 1e-3);
+  // The floor's rectangle starts 1.1 radii beside the grain: it falls past, never slowed.
+  const EdgeRun beside = slide_off_finite_floor({1, 0, 0}, {-0.2e-3, 1.1e-3, 0}, {1, 0, 0}, 1e-3, 1e-3);
   EXPECT_FALSE(beside.touched);
-  EXPECT_DOUBLE_EQ(beside.edge_speed, v0);
+  EXPECT_DOUBLE_EQ(beside.fell_at, v0);
+}
+
+// A grain rising beside a finite wall, behind its plane but above its depth (the CFRP wedge
+// crush's debris under a guide), meets the plate's lower edge face: it bounces back down as off
+// a whole plane across its path, with no sideways speed. Pushed out through the wall's face
+// instead, as before the plate had edge faces, it was thrown sideways (63 km/s in the wedge
+// crush).
+struct Rebound {
+  std::array<double, 3> v{0, 0, 0}, x{0, 0, 0};
+  double worst_balance = 0;
+  bool touched = false;
+};
+
+Rebound grain_rising_into(std::array<double, 3> point, std::array<double, 3> normal, WallExtent extent) {
+  const double R = 0.1e-3;
+  DemRun run(3, "hertz_mindlin", {{"young", 70e9}, {"poisson", 0.3}, {"restitution", 0.5}, {"friction", 0.1}});
+  run.add_wall(point, normal, extent);
+  run.add({-0.5e-3, -2 * R, 0}, {0, 2.0, 0}, R, 1550);
+  ParticlePart& p = run.part();
+  Rebound out;
+  for (int s = 0; s < 20000 && !(out.touched && run.contact().active_contacts() == 0 && p.x[1] < -1.5 * R); ++s) {
+    run.step();
+    out.touched = out.touched || run.contact().active_contacts() > 0;
+    out.worst_balance = std::max(out.worst_balance, std::abs(run.solver().state().energy.relative_error()));
+  }
+  for (int a = 0; a < 3; ++a) out.v[a] = p.v[a], out.x[a] = p.x[a];
+  return out;
+}
+
+TEST(ParticleContact, GrainComingRoundTheEdgeOfAFiniteWallBouncesOffItsEdgeFace) {
+  WallExtent guide;  // the plane x = 0 facing +x, 1 mm thick, from y = 0 up
+  guide.along = {0, 1, 0};
+  guide.length = 0.1;
+  guide.depth = 1e-3;
+  const Rebound edge = grain_rising_into({0, 0, 0}, {1, 0, 0}, guide);
+  const Rebound plane = grain_rising_into({0, 0, 0}, {0, -1, 0}, {});  // the whole plane y = 0, facing −y
+  std::printf("[edge face] v 2 m/s → (%.3g, %.6f, %.3g) m/s, balance %.1e; off the whole plane y = 0: %.6f m/s, balance %.1e\n",
+              edge.v[0], edge.v[1], edge.v[2], edge.worst_balance, plane.v[1], plane.worst_balance);
+  EXPECT_TRUE(edge.touched);
+  EXPECT_NEAR(-edge.v[1] / 2.0, 0.5, 0.03 * 0.5);  // the law's restitution
+  EXPECT_NEAR(edge.v[1], plane.v[1], 1e-12 * std::abs(plane.v[1]));
+  EXPECT_EQ(edge.v[0], 0.0);
+  EXPECT_EQ(edge.x[0], -0.5e-3);
+  EXPECT_NEAR(edge.worst_balance, plane.worst_balance, 1e-9);
 }
 
 // Grains dropped into a box (a floor and four side walls) under gravity, with friction and
