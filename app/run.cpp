@@ -287,6 +287,10 @@ namespace {
 /// than on 1 on a busy machine).
 constexpr std::size_t kEntitiesPerThread = 5000;
 
+/// The energy balance is checked against analysis.energy_error_limit from this fraction of the
+/// end time on.
+constexpr double kEnergyCheckStart = 0.05;
+
 /// The thread count when neither --threads nor OMP_NUM_THREADS says: one per core, but no more
 /// than the model has work for. Results are the same bits for any count.
 int default_threads(const Model& model, int cores) {
@@ -319,6 +323,8 @@ class RunDriver {
       solver_.initialise();
     }
     for (const auto& pp : sim_.model.particle_parts) particles_ += pp.count();
+    last_row_energy_ = solver_.state().energy.values();
+    last_row_time_ = solver_.state().time;
   }
 
   RunSummary run() {
@@ -571,6 +577,7 @@ class RunDriver {
       book_reactions(dt_n);
       if (row) {
         write_history_row(t, step, dt_used);
+        check_energy_balance(t, step);
         if (out.history_interval > 0)
           cursor_.next_history = static_cast<std::int64_t>(std::floor(t / out.history_interval * (1 + 1e-9))) + 1;
       }
@@ -793,6 +800,30 @@ class RunDriver {
     char buffer[64];
     std::snprintf(buffer, sizeof buffer, ",%.12e", v);
     history_ << buffer;
+  }
+
+  /// A balance that no longer closes means the run has gone wrong (an instability, energy a
+  /// contact made): stop at the row that shows it, saying what moved since the row before, with
+  /// every output so far kept (analysis.energy_error_limit).
+  void check_energy_balance(double t, std::int64_t step) {
+    const EnergyLedger& energy = solver_.state().energy;
+    const double error = energy.relative_error();
+    // The first 5 % of the run is start-up: the energy in play is small and a shock's first
+    // steps leave a residual of the same size (docs/theory/time_integration_and_energy.md).
+    const bool started = t >= kEnergyCheckStart * sc_.end_time;
+    if (sc_.energy_error_limit > 0 && started && std::abs(error) > sc_.energy_error_limit) {
+      char head[256];
+      std::snprintf(head, sizeof head,
+                    "the energy balance no longer closes: its relative error is %+.3g %% at t = %s, step %lld "
+                    "(analysis.energy_error_limit = %.3g %%); since the history row at t = %s, ",
+                    100 * error, format_time(t).c_str(), static_cast<long long>(step), 100 * sc_.energy_error_limit,
+                    format_time(last_row_time_).c_str());
+      throw RunError(std::string(head) + energy.largest_changes(last_row_energy_, 3) +
+                     ". The run has become unstable or a method made energy: look at the last frames and "
+                     "history.csv; raise energy_error_limit (or 0) only if the error is understood");
+    }
+    last_row_energy_ = energy.values();
+    last_row_time_ = t;
   }
 
   void write_history_row(double t, std::int64_t step, double dt_used) {
@@ -1077,6 +1108,8 @@ class RunDriver {
   std::string particle_step_note_;  ///< also in summary.json
   Clock::time_point start_ = Clock::now();
   std::int64_t first_step_ = 0;
+  std::vector<double> last_row_energy_;  ///< the ledger at the last history row (check_energy_balance)
+  double last_row_time_ = 0;
   std::size_t particles_ = 0;
   std::string status_ = "completed", message_;
 };

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 
 namespace shard {
@@ -75,6 +76,29 @@ double EnergyLedger::relative_error() const {
   const double scale = std::max({std::abs(initial()), std::abs(external()),
                                  kinetic() + std::abs(internal()) + std::abs(contact()) + dissipated()});
   return scale > 0 ? residual() / scale : 0.0;
+}
+
+std::vector<double> EnergyLedger::values() const {
+  std::vector<double> v;
+  v.reserve(terms_.size());
+  for (const auto& t : terms_) v.push_back(t.value);
+  return v;
+}
+
+std::string EnergyLedger::largest_changes(const std::vector<double>& before, std::size_t count) const {
+  std::vector<std::size_t> order(terms_.size());
+  for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
+  auto was = [&](std::size_t k) { return k < before.size() ? before[k] : 0.0; };
+  auto moved = [&](std::size_t k) { return std::abs(terms_[k].value - was(k)); };
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return moved(a) > moved(b); });
+  std::string out;
+  for (std::size_t i = 0; i < std::min(count, order.size()); ++i) {
+    const std::size_t k = order[i];
+    char line[160];
+    std::snprintf(line, sizeof line, "%s%s %.4g → %.4g J", i ? "; " : "", terms_[k].name.c_str(), was(k), terms_[k].value);
+    out += line;
+  }
+  return out;
 }
 
 std::vector<std::string> EnergyLedger::column_names() const {

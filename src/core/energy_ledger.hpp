@@ -73,6 +73,13 @@ class EnergyLedger {
   std::vector<std::string> column_names() const;
   std::vector<double> column_values() const;
 
+  /// Every term's value, in registration order.
+  std::vector<double> values() const;
+  /// The `count` terms whose values moved most since `before` (values() at that time; a term
+  /// registered since then counts from 0), largest move first, as "name a → b J; ...". What a
+  /// run that stops on its energy balance says went wrong.
+  std::string largest_changes(const std::vector<double>& before, std::size_t count) const;
+
   /// The registered terms, in registration order (what checkpoints store, by name).
   const std::vector<EnergyTerm>& terms() const { return terms_; }
   std::vector<EnergyTerm>& terms() { return terms_; }

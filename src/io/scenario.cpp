@@ -129,6 +129,12 @@ KeyList analysis_keys() {
         "steps is refused unless this is set)")
       .at_least(0)
       .defaults_to("0");
+  k.quantity("energy_error_limit", dim::none,
+             "stop with an error when the energy balance's relative error (history.csv's energy_error) "
+             "exceeds this, at a history row from 5 % of end_time on, naming the terms that moved most since the last row; "
+             "0: never stop")
+      .at_least(0)
+      .defaults_to("0.05");
   KeySpec& g = k.add("gravity", ValueKind::vector, "body force per unit mass, e.g. [0, -9.81 m/s^2]");
   g.dimension = dim::acceleration;
   g.defaults_to("[0, 0, 0]");
@@ -556,6 +562,7 @@ class ScenarioReader {
   sc.mass_damping = analysis.number("mass_damping");
   sc.initial_temperature = analysis.number("initial_temperature");
   sc.max_steps = analysis.integer("max_steps");
+  sc.energy_error_limit = analysis.number("energy_error_limit");
   dim = static_cast<std::size_t>(sc.dim());
   if (analysis.has("gravity")) {
     const auto g = analysis.vector("gravity", dim);

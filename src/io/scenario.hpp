@@ -290,6 +290,7 @@ struct Scenario {
   double mass_damping = 0;
   double initial_temperature = 293.15;
   std::int64_t max_steps = 0;
+  double energy_error_limit = 0.05;  ///< the run stops when |energy_error| exceeds it (0: never)
   std::array<double, 3> gravity{0, 0, 0};
 
   std::filesystem::path mesh_file;  ///< absolute

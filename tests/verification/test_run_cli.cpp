@@ -2,6 +2,7 @@
 // example's expected result, and exit codes.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <unistd.h>
 
@@ -149,6 +150,38 @@ TEST(RunCli, FailedRunStopsWithWhereAndWhyAndKeepsOutputs) {
   EXPECT_NE(summary.find("\"status\": \"failed\""), std::string::npos) << summary;
   EXPECT_TRUE(std::filesystem::exists(dir / "out" / "frame_00001.vtu"));
   EXPECT_GT(testing::read_history(dir / "out" / "history.csv").rows.size(), 10u);
+  std::filesystem::remove_all(dir);
+}
+
+TEST(RunCli, RunStopsWhenItsEnergyBalanceNoLongerCloses) {
+  // analysis.energy_error_limit: the disc thrown at a wall closes its balance to 3.6e-4 at worst
+  // (ContactScenarios.FiniteWallPushesOnlyWithinItsExtent). Held to 1e-4 it must stop at the
+  // first history row beyond that, say so with the terms that moved, and keep its outputs; held
+  // to 1e-3 it must run to the end.
+  const auto dir = testing::fresh_dir("energy_limit");
+  const std::string scenario = (dir / "disc.yaml").string();
+  {
+    std::ifstream in(std::string(SHARD_TEST_DATA_DIR) + "/contact/disc_bounce.yaml");
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    text.replace(text.find("mesh: {file: "), 13, "mesh: {file: " + std::string(SHARD_TEST_DATA_DIR) + "/contact/");
+    std::ofstream(scenario) << text;
+  }
+  const auto tight = testing::run_shard("run " + scenario + " --quiet --set analysis.energy_error_limit=1e-4 -o " +
+                                        (dir / "tight").string());
+  EXPECT_EQ(tight.status, 1) << tight.output;
+  EXPECT_NE(tight.output.find("the energy balance no longer closes"), std::string::npos) << tight.output;
+  EXPECT_NE(tight.output.find("energy_error_limit = 0.01 %"), std::string::npos) << tight.output;
+  EXPECT_NE(tight.output.find(" → "), std::string::npos) << "names what moved:\n" << tight.output;
+  const auto h = testing::read_history(dir / "tight" / "history.csv");
+  const auto column = std::find(h.columns.begin(), h.columns.end(), "energy_error") - h.columns.begin();
+  ASSERT_LT(static_cast<std::size_t>(column), h.columns.size());
+  ASSERT_GT(h.rows.size(), 2u);
+  EXPECT_GT(std::abs(h.rows.back()[column]), 1e-4) << "the last row written is the one that broke the limit";
+  for (std::size_t k = 0; k + 1 < h.rows.size(); ++k) EXPECT_LE(std::abs(h.rows[k][column]), 1e-4) << "row " << k;
+  EXPECT_NE(testing::read_file(dir / "tight" / "summary.json").find("\"status\": \"failed\""), std::string::npos);
+  const auto loose = testing::run_shard("run " + scenario + " --quiet --set analysis.energy_error_limit=1e-3 -o " +
+                                        (dir / "loose").string());
+  EXPECT_EQ(loose.status, 0) << loose.output;
   std::filesystem::remove_all(dir);
 }
 
