@@ -342,6 +342,14 @@ double ExplicitSolver::choose_time_step(double element_stable_dt, double particl
   double dt = settings_.time_step_safety * state_.stable_dt;
   dt = std::min(dt, particle_dt);
   if (settings_.max_time_step > 0) dt = std::min(dt, settings_.max_time_step);
+  if (global_minimum_) {
+    // A decomposed run: each rank saw only its elements. A minimum commutes with the safety
+    // factor and the caps above, so the step is the whole model's, bit for bit.
+    double values[2] = {state_.stable_dt, dt};
+    global_minimum_(values, 2);
+    state_.stable_dt = values[0];
+    dt = values[1];
+  }
   const double remaining = settings_.end_time - state_.time;
   if (remaining > 0 && remaining < 1.000001 * dt) dt = remaining;  // land on end_time
   if (state_.initial_dt == 0) state_.initial_dt = dt;

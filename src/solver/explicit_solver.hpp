@@ -9,6 +9,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -99,6 +100,11 @@ class ExplicitSolver : private TopologyListener {
   /// Cohesive interfaces between faces of the mesh (optional; not owned).
   void attach_cohesive(CohesiveInterfaces* cohesive);
   const CohesiveInterfaces* cohesive() const { return cohesive_; }
+  /// One rank of a decomposed run (src/parallel/ghost_exchange.hpp): `minimum` replaces each of
+  /// its `count` values by the smallest over the ranks, and is called once per force phase with
+  /// the stable step and the step chosen, so that every rank takes the step of the whole model.
+  using GlobalMinimum = std::function<void(double* values, int count)>;
+  void agree_time_step_with(GlobalMinimum minimum) { global_minimum_ = std::move(minimum); }
   /// The element stable step and the one the cohesive springs leave (before the safety factor)
   /// of the last force phase; equal when the interfaces do not limit it.
   double element_stable_time_step() const { return element_dt_; }
@@ -156,6 +162,7 @@ class ExplicitSolver : private TopologyListener {
   ParticleContact* particle_contact_ = nullptr;
   CohesiveInterfaces* cohesive_ = nullptr;
   double element_dt_ = 0, cohesive_dt_ = 0;
+  GlobalMinimum global_minimum_;
   std::vector<double> particle_reactions_, node_reactions_, node_work_;
   /// The prescribed degrees of freedom of the nodes and of each particle part, from their
   /// `prescribed` fields; rebuilt after every topology change.

@@ -1,0 +1,44 @@
+// What ranks say to each other during a run, behind one small interface: the MPI build will
+// implement it over MPI; ThreadTeam runs ranks as threads of one process, so that the whole
+// decomposition (partition, ghosts, exchanges, agreement on the step) is tested on every build.
+// Theory: docs/theory/domain_decomposition.md.
+#pragma once
+
+#include <functional>
+#include <vector>
+
+namespace shard {
+
+class Communicator {
+ public:
+  virtual ~Communicator() = default;
+  virtual int rank() const = 0;
+  virtual int size() const = 0;
+  /// Replaces each of values[0 … count) by its smallest value over all ranks (a collective:
+  /// every rank calls it, in the same order). A minimum is exact, so its result does not depend
+  /// on the number of ranks or the order they arrive in.
+  virtual void minimum(double* values, int count) = 0;
+  /// Sends send[i] to rank neighbours[i] and receives receive[i] from it (a collective of the
+  /// neighbours; both ends know each message's length, receive[i] is sized by the caller).
+  virtual void exchange(const std::vector<int>& neighbours, const std::vector<std::vector<double>>& send,
+                        std::vector<std::vector<double>>& receive) = 0;
+};
+
+/// Ranks as threads of one process (tests). A rank that throws ends the team: the others throw
+/// at their next collective, and run() rethrows the first exception.
+class ThreadTeam {
+ public:
+  explicit ThreadTeam(int size);
+  ~ThreadTeam();
+  ThreadTeam(const ThreadTeam&) = delete;
+  ThreadTeam& operator=(const ThreadTeam&) = delete;
+  /// Runs body(communicator) once per rank, each on its own thread, and waits for all.
+  void run(const std::function<void(Communicator&)>& body);
+
+ private:
+  struct Shared;
+  class Member;
+  int size_;
+};
+
+}  // namespace shard

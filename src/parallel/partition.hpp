@@ -1,0 +1,48 @@
+// Splitting a model over ranks: weighted recursive coordinate bisection of its elements, and the
+// owner of every node. The partition depends on the entities alone (positions, weights, stable
+// ids), never on their storage order, so that every rank computes the same one and a remapped
+// or restarted model is cut the same way. Theory: docs/theory/domain_decomposition.md.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "model/model.hpp"
+
+namespace shard {
+
+/// A point to be partitioned: its position, its cost, and the stable id that breaks ties.
+struct PartitionPoint {
+  double x[3] = {0, 0, 0};
+  double weight = 1;
+  std::int64_t id = 0;
+};
+
+/// The rank (0 … parts−1) of each point by recursive coordinate bisection (Berger & Bokhari
+/// 1987, IEEE Trans. Computers 36): the box of a set is cut across its longest side, at the
+/// weighted share of the ranks each half gets (⌊n/2⌋ and ⌈n/2⌉), points ordered by that
+/// coordinate and then by id. Ranks are given in the order of the cuts (the lower side first),
+/// so neighbouring ranks hold neighbouring boxes. Each rank gets at least one point when there
+/// are as many points as ranks.
+std::vector<std::int32_t> recursive_coordinate_bisection(const std::vector<PartitionPoint>& points, int dim,
+                                                         int parts);
+
+/// The rank of every element of every part (rank[part][element]).
+struct ElementPartition {
+  int ranks = 1;
+  std::vector<std::vector<std::int32_t>> rank;
+};
+
+/// The elements of every part cut by recursive coordinate bisection of their centroids (current
+/// positions), each weighted by its integration points.
+ElementPartition partition_elements(const Model& model, int ranks);
+
+/// Every element on a rank drawn from a generator seeded with `seed` and the element's id: the
+/// worst case for the ghost layers, for tests.
+ElementPartition scatter_elements(const Model& model, int ranks, std::uint64_t seed);
+
+/// The owner of each node: the rank of the element with the smallest stable id among those that
+/// hold it (−1 for a node no element holds).
+std::vector<std::int32_t> node_owners(const Model& model, const ElementPartition& partition);
+
+}  // namespace shard

@@ -1,0 +1,120 @@
+#include "parallel/subdomain.hpp"
+
+#include <stdexcept>
+#include <string>
+
+#include "model/remap.hpp"
+
+namespace shard {
+
+LocalEntities local_entities(const Model& model, const ElementPartition& partition,
+                             const std::vector<std::int32_t>& owner, int rank) {
+  LocalEntities held;
+  held.node.assign(model.nodes.count(), Holding::none);
+  for (std::size_t p = 0; p < model.parts.size(); ++p) {
+    const Part& part = model.parts[p];
+    const int npe = part.type->nodes;
+    auto& element = held.element.emplace_back(part.element_count(), Holding::none);
+    for (std::size_t e = 0; e < part.element_count(); ++e) {
+      const std::int32_t* nodes = &part.connectivity[npe * e];
+      bool touches_owned_node = false;
+      for (int a = 0; a < npe; ++a) touches_owned_node = touches_owned_node || owner[nodes[a]] == rank;
+      if (partition.rank[p][e] == rank)
+        element[e] = Holding::owned;
+      else if (touches_owned_node)
+        element[e] = Holding::ghost;
+      else
+        continue;
+      for (int a = 0; a < npe; ++a) held.node[nodes[a]] = owner[nodes[a]] == rank ? Holding::owned : Holding::ghost;
+    }
+  }
+  return held;
+}
+
+std::size_t Subdomain::owned_element_count() const {
+  std::size_t n = 0;
+  for (const auto& owned : element_owned)
+    for (auto o : owned) n += o;
+  return n;
+}
+
+std::size_t Subdomain::ghost_element_count() const {
+  std::size_t n = 0;
+  for (const auto& owned : element_owned) n += owned.size();
+  return n - owned_element_count();
+}
+
+namespace {
+
+void check_decomposable(const Model& model) {
+  if (!model.particle_parts.empty())
+    throw std::invalid_argument("domain decomposition: particles are not decomposed yet");
+  if (model.cohesive.element_count() > 0)
+    throw std::invalid_argument("domain decomposition: cohesive interfaces are not decomposed yet");
+  if (model.has_cracks()) throw std::invalid_argument("domain decomposition: cracked models are not decomposed yet");
+}
+
+/// The ghost exchange of `rank`: per neighbour, the owned nodes it holds as ghosts and the ghost
+/// nodes it owns, both in ascending index of the whole model (local indices keep that order).
+GhostExchangePlan plan_ghost_exchange(const Model& model, const ElementPartition& partition,
+                                      const std::vector<std::int32_t>& owner, int rank,
+                                      const std::vector<std::int32_t>& global_node,
+                                      const std::vector<std::uint8_t>& node_owned) {
+  GhostExchangePlan plan;
+  for (int q = 0; q < partition.ranks; ++q) {
+    if (q == rank) continue;
+    const LocalEntities theirs = local_entities(model, partition, owner, q);
+    std::vector<std::int32_t> send, receive;
+    for (std::size_t i = 0; i < global_node.size(); ++i) {
+      const auto g = static_cast<std::size_t>(global_node[i]);
+      if (node_owned[i] && theirs.node[g] == Holding::ghost) send.push_back(static_cast<std::int32_t>(i));
+      if (!node_owned[i] && owner[g] == q) receive.push_back(static_cast<std::int32_t>(i));
+    }
+    if (send.empty() && receive.empty()) continue;
+    plan.neighbours.push_back(q);
+    plan.send.push_back(std::move(send));
+    plan.receive.push_back(std::move(receive));
+  }
+  return plan;
+}
+
+}  // namespace
+
+Subdomain make_subdomain(const Model& model, const ElementPartition& partition, int rank) {
+  check_decomposable(model);
+  if (rank < 0 || rank >= partition.ranks || partition.rank.size() != model.parts.size())
+    throw std::invalid_argument("make_subdomain: rank " + std::to_string(rank) + " outside the partition");
+  const std::vector<std::int32_t> owner = node_owners(model, partition);
+  const LocalEntities held = local_entities(model, partition, owner, rank);
+
+  Subdomain sub;
+  sub.rank = rank;
+  sub.ranks = partition.ranks;
+  sub.model = model;
+  Remap cut;
+  std::vector<std::uint8_t> keep(model.nodes.count());
+  for (std::size_t n = 0; n < keep.size(); ++n) {
+    keep[n] = held.node[n] != Holding::none;
+    if (!keep[n]) continue;
+    sub.global_node.push_back(static_cast<std::int32_t>(n));
+    sub.node_owned.push_back(held.node[n] == Holding::owned);
+  }
+  cut.nodes = EntityRemap::keeping(keep);
+  for (std::size_t p = 0; p < model.parts.size(); ++p) {
+    std::vector<std::uint8_t> keep_element(model.parts[p].element_count());
+    auto& global = sub.global_element.emplace_back();
+    auto& owned = sub.element_owned.emplace_back();
+    for (std::size_t e = 0; e < keep_element.size(); ++e) {
+      keep_element[e] = held.element[p][e] != Holding::none;
+      if (!keep_element[e]) continue;
+      global.push_back(static_cast<std::int32_t>(e));
+      owned.push_back(held.element[p][e] == Holding::owned);
+    }
+    cut.elements.emplace(static_cast<int>(p), EntityRemap::keeping(keep_element));
+  }
+  apply_remap(sub.model, cut);
+  sub.ghosts = plan_ghost_exchange(model, partition, owner, rank, sub.global_node, sub.node_owned);
+  return sub;
+}
+
+}  // namespace shard

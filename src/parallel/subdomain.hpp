@@ -1,0 +1,62 @@
+// What one rank holds of a partitioned model: the elements it owns, one layer of ghost elements
+// around its nodes, and the nodes of both, as a Model of its own cut out of the whole by one
+// remap. An owned node's force is then complete on its rank: every element that holds it is
+// there, summed in the same (part, colour) order as in the whole model, because the colour is a
+// property of the element and travels with it. Per step, ranks only exchange the positions and
+// velocities of ghost nodes (GhostExchangePlan) and agree on one time step.
+// Theory: docs/theory/domain_decomposition.md.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "model/model.hpp"
+#include "parallel/partition.hpp"
+
+namespace shard {
+
+/// How a rank holds an entity of the whole model.
+enum class Holding : std::uint8_t { none, owned, ghost };
+
+/// What rank `rank` holds: per part and element of the whole model, and per node.
+struct LocalEntities {
+  std::vector<std::vector<Holding>> element;
+  std::vector<Holding> node;
+};
+
+/// Owned: the rank's elements and the nodes it owns (node_owners). Ghost: the elements of other
+/// ranks that hold one of its nodes, and the nodes of its elements that other ranks own.
+LocalEntities local_entities(const Model& model, const ElementPartition& partition,
+                             const std::vector<std::int32_t>& owner, int rank);
+
+/// The ghost nodes a rank receives and the owned nodes it sends, per neighbouring rank, as local
+/// node indices; both sides list a node pair in the same order (ascending index in the whole
+/// model), so a message is a plain array.
+struct GhostExchangePlan {
+  std::vector<int> neighbours;                     ///< ascending
+  std::vector<std::vector<std::int32_t>> send;     ///< per neighbour: owned nodes it holds as ghosts
+  std::vector<std::vector<std::int32_t>> receive;  ///< per neighbour: ghost nodes it owns
+};
+
+struct Subdomain {
+  int rank = 0;
+  int ranks = 1;
+  /// The rank's part of the model: every declared field of its elements and nodes, in the whole
+  /// model's order (so elements stay grouped by their colour), node and facet sets cut to them.
+  Model model;
+  std::vector<std::int32_t> global_node;                  ///< per local node, its index in the whole model
+  std::vector<std::vector<std::int32_t>> global_element;  ///< per part and local element
+  std::vector<std::uint8_t> node_owned;                   ///< per local node: 1 if this rank owns it
+  std::vector<std::vector<std::uint8_t>> element_owned;   ///< per part and local element
+  GhostExchangePlan ghosts;
+
+  std::size_t owned_element_count() const;
+  std::size_t ghost_element_count() const;
+};
+
+/// Cuts the part of `model` that rank `rank` holds out of a copy of it (apply_remap, keeping the
+/// held nodes and elements) and plans its ghost exchange. Particles, interfaces and contact are
+/// not yet decomposed: throws std::invalid_argument for a model that has any.
+Subdomain make_subdomain(const Model& model, const ElementPartition& partition, int rank);
+
+}  // namespace shard
