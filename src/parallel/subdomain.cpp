@@ -2,6 +2,7 @@
 
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 
 #include "model/remap.hpp"
 
@@ -115,6 +116,54 @@ Subdomain make_subdomain(const Model& model, const ElementPartition& partition, 
   apply_remap(sub.model, cut);
   sub.ghosts = plan_ghost_exchange(model, partition, owner, rank, sub.global_node, sub.node_owned);
   return sub;
+}
+
+namespace {
+
+/// Copies entity local_index[i]'s values of `from` to entity whole_index[i] of `to`, for the
+/// entities with owned[i], `to` first sized for `whole_count` entities if it is not.
+template <class T>
+void copy_owned(const FieldInfo& info, const std::vector<T>& from, std::vector<T>& to, std::size_t local_count,
+                std::size_t whole_count, const std::vector<std::int32_t>& whole_index,
+                const std::vector<std::uint8_t>& owned) {
+  if (from.empty() || local_count == 0) return;
+  const std::size_t comps = info.components > 0 ? static_cast<std::size_t>(info.components) : from.size() / local_count;
+  if (to.size() != comps * whole_count) to.assign(comps * whole_count, static_cast<T>(info.initial));
+  for (std::size_t i = 0; i < local_count; ++i) {
+    if (!owned[i]) continue;
+    const std::size_t g = static_cast<std::size_t>(whole_index[i]);
+    std::copy(from.begin() + comps * i, from.begin() + comps * (i + 1), to.begin() + comps * g);
+  }
+}
+
+/// Calls copy_owned for every field of `visit_local` (a holder's field visitor) with the field of
+/// the same name of `visit_whole`.
+template <class VisitLocal, class VisitWhole>
+void copy_owned_fields(VisitLocal&& visit_local, VisitWhole&& visit_whole, Location location, std::size_t local_count,
+                       std::size_t whole_count, const std::vector<std::int32_t>& whole_index,
+                       const std::vector<std::uint8_t>& owned) {
+  visit_local([&](const FieldInfo& info, auto& from) {
+    // Indices into other entities are local; the topology has not changed, so the whole
+    // model's own are right.
+    if (info.location != location || info.follow == Follow::node_index || info.follow == Follow::particle_index)
+      return;
+    visit_whole([&](const FieldInfo& whole_info, auto& to) {
+      if constexpr (std::is_same_v<std::decay_t<decltype(from)>, std::decay_t<decltype(to)>>)
+        if (whole_info.name == info.name) copy_owned(info, from, to, local_count, whole_count, whole_index, owned);
+    });
+  });
+}
+
+}  // namespace
+
+void gather_owned(const Subdomain& sub, Model& local, Model& whole) {
+  copy_owned_fields([&](auto&& f) { local.visit_node_fields(f); }, [&](auto&& f) { whole.visit_node_fields(f); },
+                    Location::node, local.nodes.count(), whole.nodes.count(), sub.global_node, sub.node_owned);
+  for (std::size_t p = 0; p < whole.parts.size(); ++p)
+    copy_owned_fields([&](auto&& f) { local.parts[p].visit_fields(f); },
+                      [&](auto&& f) { whole.parts[p].visit_fields(f); }, Location::element,
+                      local.parts[p].element_count(), whole.parts[p].element_count(), sub.global_element[p],
+                      sub.element_owned[p]);
 }
 
 }  // namespace shard

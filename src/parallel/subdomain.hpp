@@ -59,4 +59,11 @@ struct Subdomain {
 /// not yet decomposed: throws std::invalid_argument for a model that has any.
 Subdomain make_subdomain(const Model& model, const ElementPartition& partition, int rank);
 
+/// Writes what `sub` owns — every declared node and element field of its owned nodes and
+/// elements, as they are in `local` (the subdomain's model as its run has left it) — into `whole`,
+/// the model it was cut from; model-wide arrays are left as `whole` has them. After every rank
+/// has written, `whole` is the state of the whole model, to be output, checkpointed or cut again
+/// (a rebalance, or another number of ranks). The topology must not have changed since the cut.
+void gather_owned(const Subdomain& sub, Model& local, Model& whole);
+
 }  // namespace shard
