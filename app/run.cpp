@@ -324,6 +324,7 @@ class RunDriver {
     }
     for (const auto& pp : sim_.model.particle_parts) particles_ += pp.count();
     last_row_energy_ = solver_.state().energy.values();
+    last_row_residual_ = solver_.state().energy.residual();
     last_row_time_ = solver_.state().time;
   }
 
@@ -815,14 +816,16 @@ class RunDriver {
       char head[256];
       std::snprintf(head, sizeof head,
                     "the energy balance no longer closes: its relative error is %+.3g %% at t = %s, step %lld "
-                    "(analysis.energy_error_limit = %.3g %%); since the history row at t = %s, ",
+                    "(analysis.energy_error_limit = %.3g %%); since the history row at t = %s the residual "
+                    "went %.4g → %.4g J, and the terms that moved most: ",
                     100 * error, format_time(t).c_str(), static_cast<long long>(step), 100 * sc_.energy_error_limit,
-                    format_time(last_row_time_).c_str());
+                    format_time(last_row_time_).c_str(), last_row_residual_, energy.residual());
       throw RunError(std::string(head) + energy.largest_changes(last_row_energy_, 3) +
                      ". The run has become unstable or a method made energy: look at the last frames and "
                      "history.csv; raise energy_error_limit (or 0) only if the error is understood");
     }
     last_row_energy_ = energy.values();
+    last_row_residual_ = energy.residual();
     last_row_time_ = t;
   }
 
@@ -1109,7 +1112,7 @@ class RunDriver {
   Clock::time_point start_ = Clock::now();
   std::int64_t first_step_ = 0;
   std::vector<double> last_row_energy_;  ///< the ledger at the last history row (check_energy_balance)
-  double last_row_time_ = 0;
+  double last_row_time_ = 0, last_row_residual_ = 0;
   std::size_t particles_ = 0;
   std::string status_ = "completed", message_;
 };
