@@ -39,6 +39,12 @@ class TimedCommunicator final : public Communicator {
     inner_.minimum(values, count);
     seconds += std::chrono::duration<double>(Clock::now() - start).count();
   }
+  void sum(std::int64_t* values, int count) override {
+    const auto start = Clock::now();
+    inner_.sum(values, count);
+    seconds += std::chrono::duration<double>(Clock::now() - start).count();
+  }
+  std::vector<std::vector<double>> gather(const std::vector<double>& mine) override { return inner_.gather(mine); }
   void exchange(const std::vector<int>& neighbours, const std::vector<std::vector<double>>& send,
                 std::vector<std::vector<double>>& receive) override {
     const auto start = Clock::now();

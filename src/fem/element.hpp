@@ -26,15 +26,16 @@ struct StepContext {
   double q_quadratic = 1.5;  ///< bulk viscosity, quadratic coefficient
 };
 
-/// Sums over a part for one step. Work terms are for the increment just taken (J).
+/// Sums over a part for one step. Work terms are for the increment just taken (J), summed
+/// exactly (src/core/exact_sum.hpp): the same bits whatever the batches, threads or ranks.
 struct ForceSums {
-  double stress_work = 0;     ///< ∫ ½(σ_n + σ_n+1) : Δε dV
-  double viscous_work = 0;    ///< bulk viscosity dissipation
-  double hourglass_work = 0;  ///< hourglass control dissipation
-  double plastic_work = 0;    ///< from the material
-  double fracture_work = 0;   ///< from the material
-  double heat = 0;            ///< the part of plastic_work that became heat
-  double eroded_energy = 0;   ///< elastic energy of the elements eroded in this step
+  ExactSum stress_work;     ///< ∫ ½(σ_n + σ_n+1) : Δε dV
+  ExactSum viscous_work;    ///< bulk viscosity dissipation
+  ExactSum hourglass_work;  ///< hourglass control dissipation
+  ExactSum plastic_work;    ///< from the material
+  ExactSum fracture_work;   ///< from the material
+  ExactSum heat;            ///< the part of plastic_work that became heat
+  ExactSum eroded_energy;   ///< elastic energy of the elements eroded in this step
   std::int64_t eroded_elements = 0;  ///< elements eroded in this step
   double stable_dt = std::numeric_limits<double>::infinity();  ///< min over elements
   std::int64_t inverted_element = -1;  ///< first element with non-positive volume, or -1

@@ -14,6 +14,10 @@
 #include <limits>
 #include <vector>
 
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
 #include "fem/internal_forces.hpp"
 #include "fem/nonlocal_average.hpp"
 #include "core/tensor_ops.hpp"
@@ -63,6 +67,7 @@ thread_local Workspace workspace;
 
 struct Batch {
   std::size_t begin, end;  // element range
+  bool ghost = false;      // ghost elements of a subdomain: their energies are their owners'
 };
 
 /// An element that turned inside out in this step: no strain, no volume, no force, and its
@@ -254,14 +259,20 @@ void update_points(const StepContext& ctx, Part& part, const Material& material,
   out.fracture_work += mp.fracture_work;
   out.heat += mp.heat;
 
-  for (std::size_t p = 0; p < mp.count; ++p) {
-    const double* de = &mp.strain_increment[kTensorSize * p];
-    const double* old = &ws.stress_old[kTensorSize * (s0 + p)];
-    double s_mid[kTensorSize];
-    for (int k = 0; k < kTensorSize; ++k) s_mid[k] = 0.5 * (old[k] + mp.stress[kTensorSize * p + k]);
-    out.stress_work += double_contraction(s_mid, de) * mp.volume[p];
-    double* eps = &part.strain[kTensorSize * (p0 + p)];
-    for (int k = 0; k < kTensorSize; ++k) eps[k] += de[k];
+  // The stress work of an element's points is summed first (in point order, the same in any
+  // batch), then added to the exact sum once per element.
+  for (std::size_t first = 0; first < mp.count; first += npts) {
+    double element_work = 0;
+    for (std::size_t p = first; p < first + npts; ++p) {
+      const double* de = &mp.strain_increment[kTensorSize * p];
+      const double* old = &ws.stress_old[kTensorSize * (s0 + p)];
+      double s_mid[kTensorSize];
+      for (int k = 0; k < kTensorSize; ++k) s_mid[k] = 0.5 * (old[k] + mp.stress[kTensorSize * p + k]);
+      element_work += double_contraction(s_mid, de) * mp.volume[p];
+      double* eps = &part.strain[kTensorSize * (p0 + p)];
+      for (int k = 0; k < kTensorSize; ++k) eps[k] += de[k];
+    }
+    out.stress_work += element_work;
   }
 
   // Eroded elements stay stress-free (a total-form equation of state would otherwise restore a
@@ -346,18 +357,63 @@ void element_forces(const StepContext& ctx, Part& part, NodeArrays& nodes, doubl
   out.stable_dt = stable;
 }
 
-/// Batches of at most kBatch elements within each colour; first batch of each colour.
+/// Batches of at most kBatch elements within each colour, the owned elements of a subdomain
+/// apart from its ghosts (Part::ghost_begin); first batch of each colour.
 void make_batches(const Part& part, std::vector<Batch>& batches, std::vector<std::size_t>& colour_first_batch) {
   batches.clear();
   colour_first_batch.clear();
+  auto add_range = [&](std::size_t begin, std::size_t end, bool ghost) {
+    for (std::size_t b = begin; b < end; b += kBatch) batches.push_back({b, std::min(b + kBatch, end), ghost});
+  };
   for (std::size_t col = 0; col < part.colour_count(); ++col) {
     colour_first_batch.push_back(batches.size());
-    for (std::size_t b = part.colour_begin[col]; b < static_cast<std::size_t>(part.colour_begin[col + 1]);
-         b += kBatch)
-      batches.push_back({b, std::min<std::size_t>(b + kBatch, part.colour_begin[col + 1])});
+    const auto begin = static_cast<std::size_t>(part.colour_begin[col]);
+    const auto end = static_cast<std::size_t>(part.colour_begin[col + 1]);
+    const std::size_t ghosts = part.ghost_begin.empty() ? end : static_cast<std::size_t>(part.ghost_begin[col]);
+    add_range(begin, ghosts, false);
+    add_range(ghosts, end, true);
   }
   colour_first_batch.push_back(batches.size());
 }
+
+/// The sums of a part's batches: per thread, one for the batches it owns and one for its ghost
+/// batches. The energies are exact sums, so which thread took which batch changes no bit.
+class BatchSums {
+ public:
+  BatchSums() {
+#ifdef _OPENMP
+    sums_.resize(2 * static_cast<std::size_t>(omp_get_max_threads()));
+#else
+    sums_.resize(2);
+#endif
+  }
+  ForceSums& of(const Batch& b) {
+#ifdef _OPENMP
+    return sums_[2 * static_cast<std::size_t>(omp_get_thread_num()) + b.ghost];
+#else
+    return sums_[b.ghost];
+#endif
+  }
+  /// The part's sums: the smallest stable step and first inverted element of every batch, the
+  /// energies and erosion counts of the owned ones.
+  ForceSums total() const {
+    ForceSums total;
+    for (std::size_t i = 0; i < sums_.size(); ++i) {
+      if (i % 2 == 0) {
+        total.add(sums_[i]);
+        continue;
+      }
+      ForceSums limits;
+      limits.stable_dt = sums_[i].stable_dt;
+      limits.inverted_element = sums_[i].inverted_element;
+      total.add(limits);
+    }
+    return total;
+  }
+
+ private:
+  std::vector<ForceSums> sums_;
+};
 
 template <class Kernel>
 ForceSums run_part(Part& part, const Material& material, NodeArrays& nodes,
@@ -371,7 +427,7 @@ ForceSums run_part(Part& part, const Material& material, NodeArrays& nodes,
   std::vector<Batch> batches;
   std::vector<std::size_t> colour_first_batch;
   make_batches(part, batches, colour_first_batch);
-  std::vector<ForceSums> sums(batches.size());
+  BatchSums sums;
 
   // One pass per colour: kinematics, material and forces of a batch together, while its
   // scratch is in cache. Elements of one colour share no node, so batches scatter in parallel.
@@ -381,7 +437,7 @@ ForceSums run_part(Part& part, const Material& material, NodeArrays& nodes,
 #pragma omp parallel for schedule(static)
     for (std::ptrdiff_t bi = first; bi < last; ++bi) {
       const Batch batch = batches[bi];
-      ForceSums& out = sums[bi];
+      ForceSums& out = sums.of(batch);
       Workspace& ws = workspace;
       const std::size_t n = batch.end - batch.begin;
       ws.size_for(n, n * npts, Kernel::geometry);
@@ -390,9 +446,7 @@ ForceSums run_part(Part& part, const Material& material, NodeArrays& nodes,
       element_forces<Kernel>(ctx, part, nodes, rho, c, batch.begin, batch.end, ws, 0, nullptr, out);
     }
   }
-  ForceSums total;
-  for (const auto& s : sums) total.add(s);
-  return total;
+  return sums.total();
 }
 
 /// Scratch of the averaged-nodal-pressure pass, for a whole part (the passes need every
@@ -432,7 +486,7 @@ ForceSums run_part_nodal_pressure(Part& part, const Material& material, NodeArra
   std::vector<Batch> batches;
   std::vector<std::size_t> colour_first_batch;
   make_batches(part, batches, colour_first_batch);
-  std::vector<ForceSums> sums(batches.size());
+  BatchSums sums;
   const auto nb = static_cast<std::ptrdiff_t>(batches.size());
 
   // Per colour, batches in parallel: no two elements of a colour share a node, so the nodal sums
@@ -442,7 +496,7 @@ ForceSums run_part_nodal_pressure(Part& part, const Material& material, NodeArra
       const auto first = static_cast<std::ptrdiff_t>(colour_first_batch[col]);
       const auto last = static_cast<std::ptrdiff_t>(colour_first_batch[col + 1]);
 #pragma omp parallel for schedule(static)
-      for (std::ptrdiff_t bi = first; bi < last; ++bi) body(batches[bi], sums[bi]);
+      for (std::ptrdiff_t bi = first; bi < last; ++bi) body(batches[bi], sums.of(batches[bi]));
     }
   };
 
@@ -450,7 +504,7 @@ ForceSums run_part_nodal_pressure(Part& part, const Material& material, NodeArra
 #pragma omp parallel for schedule(static)
   for (std::ptrdiff_t bi = 0; bi < nb; ++bi)
     element_kinematics<Kernel>(ctx, part, nodes, batches[bi].begin, batches[bi].end, ws,
-                               batches[bi].begin, 0.0, sums[bi]);
+                               batches[bi].begin, 0.0, sums.of(batches[bi]));
   per_colour([&](const Batch& b, ForceSums&) {
     for (std::size_t e = b.begin; e < b.end; ++e) {
       const double v = ws.volume[e] / npe, r = ws.volume[e] * ws.volume_rate[e] / npe;
@@ -485,7 +539,7 @@ ForceSums run_part_nodal_pressure(Part& part, const Material& material, NodeArra
       de[yy] += shift;
       de[zz] += shift;
     }
-    update_points<Kernel>(ctx, part, material, layout, b.begin, b.end, ws, b.begin, sums[bi]);
+    update_points<Kernel>(ctx, part, material, layout, b.begin, b.end, ws, b.begin, sums.of(b));
   }
   per_colour([&](const Batch& b, ForceSums&) {
     for (std::size_t e = b.begin; e < b.end; ++e) {
@@ -511,9 +565,7 @@ ForceSums run_part_nodal_pressure(Part& part, const Material& material, NodeArra
                            sc.pressure_shift.data(), out);
   });
 
-  ForceSums total;
-  for (const auto& s : sums) total.add(s);
-  return total;
+  return sums.total();
 }
 
 }  // namespace

@@ -14,6 +14,7 @@
 #include <string_view>
 #include <vector>
 
+#include "core/exact_sum.hpp"
 #include "core/parameters.hpp"
 #include "core/voigt.hpp"
 
@@ -39,10 +40,12 @@ struct MaterialPointBatch {
   /// element. Other models ignore it.
   const double* characteristic_length = nullptr;
 
-  // Energy dissipated in this increment by the whole batch (J); added to by the model.
-  double plastic_work = 0;
-  double fracture_work = 0;
-  double heat = 0;  ///< the part of plastic_work that became heat (J)
+  // Energy dissipated in this increment by the whole batch (J); added to by the model. Exact
+  // sums (src/core/exact_sum.hpp): which points share a batch differs between a whole model and
+  // its subdomains, and the ledger must not.
+  ExactSum plastic_work;
+  ExactSum fracture_work;
+  ExactSum heat;  ///< the part of plastic_work that became heat (J)
 };
 
 struct ElasticModuli {

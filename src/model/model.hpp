@@ -132,6 +132,13 @@ struct Part {
   /// empty when the part is not remeshed. A new element measures its own.
   std::vector<double> shape_reference;
 
+  /// In a subdomain of a decomposed run (src/parallel/subdomain.hpp), per colour the first of
+  /// its ghost elements: within each colour the rank's own elements come first, [colour_begin[c],
+  /// ghost_begin[c]), and its ghosts after, up to colour_begin[c + 1]. Ghosts are computed like
+  /// the others, so that the forces on owned nodes are complete, but leave the energy sums to
+  /// their owners. Empty: no ghosts. Not a field: set on a cut model, whose topology stays.
+  std::vector<std::int32_t> ghost_begin;
+
   std::size_t element_count() const { return connectivity.size() / static_cast<std::size_t>(type->nodes); }
   std::size_t point_count() const { return element_count() * static_cast<std::size_t>(type->points); }
   std::size_t colour_count() const { return colour_begin.empty() ? 0 : colour_begin.size() - 1; }
@@ -275,6 +282,10 @@ struct Model {
   std::vector<std::int64_t> remesh_failures, remesh_retry_step;
   /// The next stable id of a node, an element and a particle (ids are never reused).
   std::int64_t next_node_id = 0, next_element_id = 0, next_particle_id = 0;
+  /// In a subdomain of a decomposed run, 1 for a node another rank owns: it moves with the rest
+  /// (its owner's position and velocity replace its own after each step) but leaves the energy
+  /// sums to its owner. Empty: every node is the model's own. Not a field: set on a cut model.
+  std::vector<std::uint8_t> ghost_node;
 
   int dim() const { return nodes.dim; }
   std::size_t element_count() const;

@@ -11,10 +11,12 @@
 namespace shard {
 
 struct ThreadTeam::Shared {
-  explicit Shared(int size) : barrier(size), values(size), mail(size, std::vector<std::vector<double>>(size)) {}
+  explicit Shared(int size)
+      : barrier(size), values(size), integers(size), mail(size, std::vector<std::vector<double>>(size)) {}
   std::barrier<> barrier;
   std::atomic<bool> failed{false};
-  std::vector<std::vector<double>> values;            ///< per rank: its values of a minimum
+  std::vector<std::vector<double>> values;            ///< per rank: its values of a minimum or a gather
+  std::vector<std::vector<std::int64_t>> integers;    ///< per rank: its values of a sum
   std::vector<std::vector<std::vector<double>>> mail;  ///< mail[from][to]
   std::mutex error_mutex;
   std::exception_ptr error;
@@ -32,6 +34,25 @@ class ThreadTeam::Member final : public Communicator {
     for (int r = 0; r < size_; ++r)
       for (int i = 0; i < count; ++i) values[i] = std::min(values[i], shared_.values[r][i]);
     wait();  // nobody posts the next values before everyone has read these
+  }
+
+  void sum(std::int64_t* values, int count) override {
+    shared_.integers[rank_].assign(values, values + count);
+    wait();
+    for (int i = 0; i < count; ++i) {
+      values[i] = 0;
+      for (int r = 0; r < size_; ++r) values[i] += shared_.integers[r][i];  // every rank, in rank order
+    }
+    wait();
+  }
+
+  std::vector<std::vector<double>> gather(const std::vector<double>& mine) override {
+    shared_.values[rank_] = mine;
+    wait();
+    std::vector<std::vector<double>> all;
+    if (rank_ == 0) all = shared_.values;
+    wait();
+    return all;
   }
 
   void exchange(const std::vector<int>& neighbours, const std::vector<std::vector<double>>& send,

@@ -4,6 +4,7 @@
 // Theory: docs/theory/domain_decomposition.md.
 #pragma once
 
+#include <cstdint>
 #include <functional>
 #include <vector>
 
@@ -18,6 +19,12 @@ class Communicator {
   /// every rank calls it, in the same order). A minimum is exact, so its result does not depend
   /// on the number of ranks or the order they arrive in.
   virtual void minimum(double* values, int count) = 0;
+  /// Replaces each of values[0 … count) by its sum over all ranks (a collective). Integer sums are
+  /// exact: the words of exact energy sums (src/core/exact_sum.hpp) travel this way.
+  virtual void sum(std::int64_t* values, int count) = 0;
+  /// Rank 0 receives every rank's `mine`, in rank order (its own first); the others get nothing
+  /// back (a collective). What a decomposed run's outputs are written from.
+  virtual std::vector<std::vector<double>> gather(const std::vector<double>& mine) = 0;
   /// Sends send[i] to rank neighbours[i] and receives receive[i] from it (a collective of the
   /// neighbours; both ends know each message's length, receive[i] is sized by the caller).
   virtual void exchange(const std::vector<int>& neighbours, const std::vector<std::vector<double>>& send,

@@ -33,6 +33,7 @@ void GhostExchange::exchange(NodeArrays& nodes) {
 
 void join_decomposed_run(ExplicitSolver& solver, GhostExchange& exchange, Communicator& communicator) {
   solver.agree_time_step_with([&communicator](double* values, int count) { communicator.minimum(values, count); });
+  solver.sum_energies_with([&communicator](std::int64_t* values, int count) { communicator.sum(values, count); });
   solver.add_event(exchange);
 }
 

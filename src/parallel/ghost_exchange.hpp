@@ -29,8 +29,9 @@ class GhostExchange final : public StepEvent {
   std::vector<std::vector<double>> send_, receive_;
 };
 
-/// Makes `solver` one rank of a decomposed run: its time step agreed with the other ranks', and
-/// its ghost nodes refreshed after every advance by `exchange` (added to the solver's events).
+/// Makes `solver` one rank of a decomposed run: its time step agreed with the other ranks', its
+/// energy sums summed over them (so that every rank books the whole model's ledger), and its
+/// ghost nodes refreshed after every advance by `exchange` (added to the solver's events).
 void join_decomposed_run(ExplicitSolver& solver, GhostExchange& exchange, Communicator& communicator);
 
 }  // namespace shard

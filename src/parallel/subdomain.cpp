@@ -53,6 +53,11 @@ void check_decomposable(const Model& model) {
   if (model.cohesive.element_count() > 0)
     throw std::invalid_argument("domain decomposition: cohesive interfaces are not decomposed yet");
   if (model.has_cracks()) throw std::invalid_argument("domain decomposition: cracked models are not decomposed yet");
+  for (const Part& part : model.parts)
+    if (part.volumetric == VolumetricTreatment::average_nodal_pressure)
+      // Its nodal averages need every element around a ghost node, two layers deep.
+      throw std::invalid_argument("domain decomposition: part '" + part.name +
+                                  "' averages its pressure over the nodes; that is not decomposed yet");
 }
 
 /// The ghost exchange of `rank`: per neighbour, the owned nodes it holds as ghosts and the ghost
@@ -101,19 +106,35 @@ Subdomain make_subdomain(const Model& model, const ElementPartition& partition, 
     sub.node_owned.push_back(held.node[n] == Holding::owned);
   }
   cut.nodes = EntityRemap::keeping(keep);
+  // Within each colour, the owned elements first, then the ghosts: the order of a colour's
+  // elements changes no force (they share no node), and the ghosts' batches then leave the
+  // energy sums to their owners (Part::ghost_begin).
+  std::vector<std::vector<std::int32_t>> ghost_begin(model.parts.size());
   for (std::size_t p = 0; p < model.parts.size(); ++p) {
-    std::vector<std::uint8_t> keep_element(model.parts[p].element_count());
+    const Part& part = model.parts[p];
     auto& global = sub.global_element.emplace_back();
     auto& owned = sub.element_owned.emplace_back();
-    for (std::size_t e = 0; e < keep_element.size(); ++e) {
-      keep_element[e] = held.element[p][e] != Holding::none;
-      if (!keep_element[e]) continue;
-      global.push_back(static_cast<std::int32_t>(e));
-      owned.push_back(held.element[p][e] == Holding::owned);
+    for (std::size_t col = 0; col < part.colour_count(); ++col) {
+      for (const Holding wanted : {Holding::owned, Holding::ghost}) {
+        if (wanted == Holding::ghost) ghost_begin[p].push_back(static_cast<std::int32_t>(global.size()));
+        for (auto e = part.colour_begin[col]; e < part.colour_begin[col + 1]; ++e) {
+          if (held.element[p][e] != wanted) continue;
+          global.push_back(e);
+          owned.push_back(wanted == Holding::owned);
+        }
+      }
     }
-    cut.elements.emplace(static_cast<int>(p), EntityRemap::keeping(keep_element));
+    cut.elements.emplace(static_cast<int>(p), EntityRemap::reorder(part.element_count(), global));
   }
   apply_remap(sub.model, cut);
+  for (std::size_t p = 0; p < model.parts.size(); ++p) {
+    // The cut may hold none of the last colours: the part then counts fewer.
+    Part& local = sub.model.parts[p];
+    local.ghost_begin = std::move(ghost_begin[p]);
+    local.ghost_begin.resize(local.colour_count());
+  }
+  sub.model.ghost_node.resize(sub.node_owned.size());
+  for (std::size_t n = 0; n < sub.node_owned.size(); ++n) sub.model.ghost_node[n] = !sub.node_owned[n];
   sub.ghosts = plan_ghost_exchange(model, partition, owner, rank, sub.global_node, sub.node_owned);
   return sub;
 }
@@ -164,6 +185,72 @@ void gather_owned(const Subdomain& sub, Model& local, Model& whole) {
                       [&](auto&& f) { whole.parts[p].visit_fields(f); }, Location::element,
                       local.parts[p].element_count(), whole.parts[p].element_count(), sub.global_element[p],
                       sub.element_owned[p]);
+}
+
+namespace {
+
+/// Calls f(info, values, holder) for every floating-point field of the nodes (holder −1), then
+/// of each part's elements (holder: the part), in one fixed order: the same on every rank.
+template <class F>
+void visit_gathered_fields(Model& model, F&& f) {
+  auto doubles = [&](Location location, int holder) {
+    return [&f, location, holder](const FieldInfo& info, auto& values) {
+      if constexpr (std::is_same_v<std::decay_t<decltype(values)>, std::vector<double>>)
+        if (info.location == location) f(info, values, holder);
+    };
+  };
+  model.visit_node_fields(doubles(Location::node, -1));
+  for (std::size_t p = 0; p < model.parts.size(); ++p)
+    model.parts[p].visit_fields(doubles(Location::element, static_cast<int>(p)));
+}
+
+}  // namespace
+
+std::vector<double> pack_owned(const Subdomain& sub, Model& local) {
+  // Indices first (exact as doubles below 2^53): the owned nodes, then each part's owned elements.
+  std::vector<double> packed;
+  std::vector<std::size_t> nodes;
+  std::vector<std::vector<std::size_t>> elements(local.parts.size());
+  for (std::size_t i = 0; i < sub.node_owned.size(); ++i)
+    if (sub.node_owned[i]) nodes.push_back(i);
+  packed.push_back(static_cast<double>(nodes.size()));
+  for (auto i : nodes) packed.push_back(sub.global_node[i]);
+  for (std::size_t p = 0; p < local.parts.size(); ++p) {
+    for (std::size_t e = 0; e < sub.element_owned[p].size(); ++e)
+      if (sub.element_owned[p][e]) elements[p].push_back(e);
+    packed.push_back(static_cast<double>(elements[p].size()));
+    for (auto e : elements[p]) packed.push_back(sub.global_element[p][e]);
+  }
+  // Then per field its components per entity and the owned entities' values.
+  visit_gathered_fields(local, [&](const FieldInfo&, std::vector<double>& values, int holder) {
+    const std::size_t count = holder < 0 ? local.nodes.count() : local.parts[holder].element_count();
+    const auto& owned = holder < 0 ? nodes : elements[holder];
+    const std::size_t comps = count == 0 ? 0 : values.size() / count;
+    packed.push_back(static_cast<double>(comps));
+    for (auto i : owned) packed.insert(packed.end(), values.begin() + comps * i, values.begin() + comps * (i + 1));
+  });
+  return packed;
+}
+
+void unpack_owned(const std::vector<double>& packed, Model& whole) {
+  std::size_t at = 0;
+  auto next = [&] { return packed.at(at++); };
+  std::vector<std::size_t> nodes(static_cast<std::size_t>(next()));
+  for (auto& n : nodes) n = static_cast<std::size_t>(next());
+  std::vector<std::vector<std::size_t>> elements(whole.parts.size());
+  for (auto& list : elements) {
+    list.resize(static_cast<std::size_t>(next()));
+    for (auto& e : list) e = static_cast<std::size_t>(next());
+  }
+  visit_gathered_fields(whole, [&](const FieldInfo& info, std::vector<double>& values, int holder) {
+    const std::size_t count = holder < 0 ? whole.nodes.count() : whole.parts[holder].element_count();
+    const auto& owned = holder < 0 ? nodes : elements[holder];
+    const auto comps = static_cast<std::size_t>(next());
+    if (comps > 0 && values.size() != comps * count) values.assign(comps * count, info.initial);
+    for (auto i : owned)
+      for (std::size_t k = 0; k < comps; ++k) values[comps * i + k] = next();
+  });
+  if (at != packed.size()) throw std::logic_error("unpack_owned: the array holds more than its fields");
 }
 
 }  // namespace shard

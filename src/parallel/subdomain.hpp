@@ -66,4 +66,11 @@ Subdomain make_subdomain(const Model& model, const ElementPartition& partition, 
 /// (a rebalance, or another number of ranks). The topology must not have changed since the cut.
 void gather_owned(const Subdomain& sub, Model& local, Model& whole);
 
+/// gather_owned across processes: what `sub` owns of every floating-point node and element field
+/// of `local` (the rest of a cut model — ids, connectivity, colours — does not change), with
+/// the owned entities' indices in the whole model, as one array to send to the rank that writes
+/// the outputs; unpack_owned writes such an array into `whole`.
+std::vector<double> pack_owned(const Subdomain& sub, Model& local);
+void unpack_owned(const std::vector<double>& packed, Model& whole);
+
 }  // namespace shard

@@ -179,7 +179,9 @@ void ExplicitSolver::initialise() {
       throw RunError(out.str());
     }
   }
-  double kinetic = kinetic_energy(model_.nodes);
+  ExactSum node_kinetic = kinetic_energy(moving_points(model_));
+  sum_over_ranks(&node_kinetic, 1);
+  double kinetic = node_kinetic.value();
   for (std::size_t p = 0; p < model_.particle_parts.size(); ++p) {
     const MovingPoints points = moving_points(model_.particle_parts[p]);
     for (const auto& c : particle_dofs_[p])
@@ -206,30 +208,86 @@ void ExplicitSolver::add_element_forces(ForceSums& total) {
   ctx.q_linear = settings_.q_linear;
   ctx.q_quadratic = settings_.q_quadratic;
   ctx.q_length = settings_.q_length;
-  part_caches_.resize(model_.parts.size());
-  state_.part_stored.resize(model_.parts.size(), 0.0);
-  for (std::size_t p = 0; p < model_.parts.size(); ++p) {
+  const std::size_t parts = model_.parts.size();
+  part_caches_.resize(parts);
+  state_.part_stored.resize(parts, 0.0);
+  std::vector<ForceSums> part_sums(parts);
+  for (std::size_t p = 0; p < parts; ++p) {
     Part& part = model_.parts[p];
-    ForceSums sums = add_internal_forces(part, *materials_[part.material], model_.nodes, ctx, part_caches_[p]);
+    part_sums[p] = add_internal_forces(part, *materials_[part.material], model_.nodes, ctx, part_caches_[p]);
+    if (part_sums[p].inverted_element >= 0)
+      inverted_element(model_, part, part_sums[p].inverted_element, state_.time, state_.step);
+  }
+  if (global_sum_) sum_part_sums_over_ranks(part_sums);
+  for (std::size_t p = 0; p < parts; ++p) {
+    ForceSums& sums = part_sums[p];
     // The part's share of the internal group (stress_work − plastic − fracture − eroded or
     // conversion_elastic), booked in the same order as the ledger's terms.
-    state_.part_stored[p] += sums.stress_work - sums.plastic_work - sums.fracture_work - sums.eroded_energy;
-    if (part.erosion.to_particles) {
+    state_.part_stored[p] += sums.stress_work.value() - sums.plastic_work.value() - sums.fracture_work.value() -
+                             sums.eroded_energy.value();
+    if (model_.parts[p].erosion.to_particles) {
       // Elements that become particles: their elastic energy is a conversion term, not erosion.
-      state_.energy[terms_.conversion_elastic] += sums.eroded_energy;
-      sums.eroded_energy = 0;
+      state_.energy[terms_.conversion_elastic] += sums.eroded_energy.value();
+      sums.eroded_energy = ExactSum();
     }
-    if (sums.inverted_element >= 0) inverted_element(model_, part, sums.inverted_element, state_.time, state_.step);
     total.add(sums);
   }
   auto& E = state_.energy;
-  E[terms_.stress_work] += total.stress_work;
-  E[terms_.viscosity] += total.viscous_work;
-  E[terms_.hourglass] += total.hourglass_work;
-  E[terms_.plastic] += total.plastic_work;
-  E[terms_.fracture] += total.fracture_work;
-  E[terms_.heat] += total.heat;
-  E[terms_.eroded] += total.eroded_energy;
+  E[terms_.stress_work] += total.stress_work.value();
+  E[terms_.viscosity] += total.viscous_work.value();
+  E[terms_.hourglass] += total.hourglass_work.value();
+  E[terms_.plastic] += total.plastic_work.value();
+  E[terms_.fracture] += total.fracture_work.value();
+  E[terms_.heat] += total.heat.value();
+  E[terms_.eroded] += total.eroded_energy.value();
+}
+
+void ExplicitSolver::sum_part_sums_over_ranks(std::vector<ForceSums>& part_sums) {
+  // Seven exact sums per part, and its count of eroded elements, in one message.
+  std::vector<ExactSum> sums;
+  std::vector<std::int64_t> counts;
+  for (const ForceSums& s : part_sums) {
+    sums.insert(sums.end(), {s.stress_work, s.viscous_work, s.hourglass_work, s.plastic_work, s.fracture_work, s.heat,
+                             s.eroded_energy});
+    counts.push_back(s.eroded_elements);
+  }
+  sum_over_ranks(sums.data(), sums.size(), counts.data(), counts.size());
+  for (std::size_t p = 0; p < part_sums.size(); ++p) {
+    ForceSums& s = part_sums[p];
+    const ExactSum* q = &sums[7 * p];
+    s.stress_work = q[0], s.viscous_work = q[1], s.hourglass_work = q[2], s.plastic_work = q[3];
+    s.fracture_work = q[4], s.heat = q[5], s.eroded_energy = q[6];
+    s.eroded_elements = counts[p];
+  }
+}
+
+void ExplicitSolver::sum_advance_over_ranks(AdvanceSums& sums) {
+  // The step's energy sums, then the reactions and work of the node groups, in one message.
+  std::vector<ExactSum> all{sums.kinetic, sums.damp_back, sums.damp_ahead, sums.external_back, sums.external_ahead};
+  all.insert(all.end(), node_reaction_sums_.begin(), node_reaction_sums_.end());
+  all.insert(all.end(), node_work_sums_.begin(), node_work_sums_.end());
+  sum_over_ranks(all.data(), all.size());
+  sums.kinetic = all[0], sums.damp_back = all[1], sums.damp_ahead = all[2];
+  sums.external_back = all[3], sums.external_ahead = all[4];
+  const std::size_t r = node_reaction_sums_.size();
+  node_reactions_.resize(r);
+  node_work_.resize(node_work_sums_.size());
+  for (std::size_t i = 0; i < r; ++i) node_reactions_[i] = all[5 + i].value();
+  for (std::size_t i = 0; i < node_work_.size(); ++i) node_work_[i] = all[5 + r + i].value();
+}
+
+void ExplicitSolver::sum_over_ranks(ExactSum* sums, std::size_t count, std::int64_t* counts, std::size_t n_counts) {
+  if (!global_sum_) return;
+  constexpr auto W = static_cast<std::size_t>(ExactSum::kWords);
+  std::vector<std::int64_t> words(W * count + n_counts);
+  for (std::size_t i = 0; i < count; ++i) {
+    const auto w = sums[i].words();
+    std::copy(w.begin(), w.end(), words.begin() + static_cast<std::ptrdiff_t>(W * i));
+  }
+  std::copy(counts, counts + n_counts, words.begin() + static_cast<std::ptrdiff_t>(W * count));
+  global_sum_(words.data(), static_cast<int>(words.size()));
+  for (std::size_t i = 0; i < count; ++i) sums[i] = ExactSum::from_words(&words[W * i]);
+  std::copy(words.begin() + static_cast<std::ptrdiff_t>(W * count), words.end(), counts);
 }
 
 double ExplicitSolver::add_particle_forces() {
@@ -365,20 +423,22 @@ double ExplicitSolver::choose_time_step(double element_stable_dt, double particl
   return dt;
 }
 
-void ExplicitSolver::apply_prescribed_velocities(const AdvanceCoefficients& c, double& external_back,
-                                                 double& external_ahead) {
+void ExplicitSolver::apply_prescribed_velocities(const AdvanceCoefficients& c, ExactSum& external_back,
+                                                 ExactSum& external_ahead) {
   // Prescribed velocities, nodes and particles alike: the force becomes the one that gives
   // v+ = v_prescribed; the difference is the reaction, whose work is external work. The
   // particles' reactions are summed per group for the history (load-displacement curves).
   const double t_half = state_.time + 0.5 * state_.dt_next;
-  node_reactions_.assign(6 * loads_.node_groups.size(), 0.0);
-  node_work_.assign(2 * loads_.node_groups.size(), 0.0);
-  apply_prescribed(moving_points(model_.nodes), node_dofs_, loads_, c, t_half, external_back, external_ahead,
-                   &node_reactions_, &node_work_);
-  particle_reactions_.assign(6 * loads_.particle_groups.size(), 0.0);
+  node_reaction_sums_.assign(6 * loads_.node_groups.size(), ExactSum());
+  node_work_sums_.assign(2 * loads_.node_groups.size(), ExactSum());
+  apply_prescribed(moving_points(model_), node_dofs_, loads_, c, t_half, external_back, external_ahead,
+                   &node_reaction_sums_, &node_work_sums_);
+  std::vector<ExactSum> particle_reactions(6 * loads_.particle_groups.size());
   for (std::size_t p = 0; p < model_.particle_parts.size(); ++p)
     apply_prescribed(moving_points(model_.particle_parts[p]), particle_dofs_[p], loads_, c, t_half, external_back,
-                     external_ahead, &particle_reactions_);
+                     external_ahead, &particle_reactions);
+  particle_reactions_.resize(particle_reactions.size());
+  for (std::size_t i = 0; i < particle_reactions.size(); ++i) particle_reactions_[i] = particle_reactions[i].value();
 }
 
 void ExplicitSolver::book_contact_work(double dt_n, double d1, double d2, double back, double ahead,
@@ -443,37 +503,34 @@ void ExplicitSolver::advance() {
   // next step, so that the reported energies all end at t_n, where the element stress work ends.
   c.back = 0.5 * state_.dt_half;
   c.ahead = 0.5 * c.dt_next;
-  double external_back = 0, external_ahead = 0;
-  apply_prescribed_velocities(c, external_back, external_ahead);
+  AdvanceSums sums;
+  apply_prescribed_velocities(c, sums.external_back, sums.external_ahead);
   const int dim = model_.dim();
   const double* V = model_.nodes.v.data();
   const double* F = model_.nodes.force.data();
   const double* M = model_.nodes.mass.data();
+  const std::uint8_t* ghost = model_.ghost_node.empty() ? nullptr : model_.ghost_node.data();
   for (const auto& [dof, f] : applied_) {
+    if (ghost && ghost[dof / dim]) continue;  // its owner books the work
     const double m = M[dof / dim];
-    external_back += f * c.back * V[dof];
-    external_ahead += f * c.ahead * ((c.d1 * V[dof] + c.dt_n * (F[dof] / m)) * c.d2);
+    sums.external_back += f * c.back * V[dof];
+    sums.external_ahead += f * c.ahead * ((c.d1 * V[dof] + c.dt_n * (F[dof] / m)) * c.d2);
   }
   double contact_back = 0, contact_ahead = 0, wall_back = 0, wall_ahead = 0, pwall_back = 0, pwall_ahead = 0;
   double dashpot_back = 0, dashpot_ahead = 0;
   book_contact_work(c.dt_n, c.d1, c.d2, c.back, c.ahead, c.dt_next, contact_back, contact_ahead, dashpot_back,
                     dashpot_ahead, wall_back, wall_ahead, pwall_back, pwall_ahead);
 
-  // kinetic, damping back/ahead, external back/ahead (the nodes' gravity work adds to the latter)
-  double sums[5] = {0, 0, 0, external_back, external_ahead};
-  const std::int64_t bad_node = advance_points(moving_points(model_.nodes), c, sums, block_sums_);
+  // The nodes' gravity work adds to the external work.
+  const std::int64_t bad_node = advance_points(moving_points(model_), c, sums, block_sums_);
   if (bad_node >= 0) {
     std::ostringstream out;
     out << "the velocity of node " << bad_node << " is not finite at t = " << state_.time << " s, step "
         << state_.step << " (the run has become unstable)";
     throw RunError(out.str());
   }
-  double kinetic = sums[0], damp_back = sums[1], damp_ahead = sums[2];
-  external_back = sums[3];
-  external_ahead = sums[4];
   for (ParticlePart& pp : model_.particle_parts) {
-    double ps[5] = {0, 0, 0, 0, 0};
-    const std::int64_t bad = advance_points(moving_points(pp), c, ps, block_sums_);
+    const std::int64_t bad = advance_points(moving_points(pp), c, sums, block_sums_);
     if (bad >= 0) {
       std::ostringstream out;
       out << "the velocity of particle " << bad << " of particle part '" << pp.name << "' is not finite at t = "
@@ -481,12 +538,11 @@ void ExplicitSolver::advance() {
           << " (the run has become unstable: lower the part's time_step_safety)";
       throw RunError(out.str());
     }
-    kinetic += ps[0];
-    damp_back += ps[1];
-    damp_ahead += ps[2];
-    external_back += ps[3];
-    external_ahead += ps[4];
   }
+  sum_advance_over_ranks(sums);
+  const double kinetic = sums.kinetic.value(), damp_back = sums.damp_back.value(),
+               damp_ahead = sums.damp_ahead.value(), external_back = sums.external_back.value(),
+               external_ahead = sums.external_ahead.value();
   const double dt_next = c.dt_next;
   auto& E = state_.energy;
   E[terms_.kinetic] = kinetic;

@@ -105,6 +105,13 @@ class ExplicitSolver : private TopologyListener {
   /// the stable step and the step chosen, so that every rank takes the step of the whole model.
   using GlobalMinimum = std::function<void(double* values, int count)>;
   void agree_time_step_with(GlobalMinimum minimum) { global_minimum_ = std::move(minimum); }
+  /// Makes the solver one rank of a decomposed run for its energy sums too: `sum` replaces its
+  /// `count` integers by their sum over the ranks. The ledger's sums of a step are exact
+  /// (src/core/exact_sum.hpp) over what each rank owns, and are summed over the ranks as
+  /// integers, so that every rank books the whole model's energies, with the same bits as one
+  /// process.
+  using GlobalSum = std::function<void(std::int64_t* words, int count)>;
+  void sum_energies_with(GlobalSum sum) { global_sum_ = std::move(sum); }
   /// The element stable step and the one the cohesive springs leave (before the safety factor)
   /// of the last force phase; equal when the interfaces do not limit it.
   double element_stable_time_step() const { return element_dt_; }
@@ -141,7 +148,7 @@ class ExplicitSolver : private TopologyListener {
   double add_particle_forces();
   double choose_time_step(double element_dt, double particle_dt);
   /// External work of the prescribed velocities of the nodes and particles (back, ahead halves).
-  void apply_prescribed_velocities(const AdvanceCoefficients& c, double& external_back, double& external_ahead);
+  void apply_prescribed_velocities(const AdvanceCoefficients& c, ExactSum& external_back, ExactSum& external_ahead);
   void book_contact_work(double dt_n, double d1, double d2, double back, double ahead, double dt_next,
                          double& contact_back, double& contact_ahead, double& damping_back, double& damping_ahead,
                          double& wall_back, double& wall_ahead, double& particle_wall_back,
@@ -156,14 +163,22 @@ class ExplicitSolver : private TopologyListener {
   std::vector<StepEvent*> events_;
   std::vector<std::unique_ptr<StepEvent>> own_events_;
   std::vector<std::pair<std::int64_t, double>> applied_;  // (dof, force) of pressure loads
-  std::vector<double> block_sums_;
+  std::vector<AdvanceSums> block_sums_;
   std::vector<PartCache> part_caches_;  ///< per part (derived from the Model, checked as used)
   ContactSystem* contact_ = nullptr;
   ParticleContact* particle_contact_ = nullptr;
   CohesiveInterfaces* cohesive_ = nullptr;
   double element_dt_ = 0, cohesive_dt_ = 0;
   GlobalMinimum global_minimum_;
+  GlobalSum global_sum_;
+  void sum_part_sums_over_ranks(std::vector<ForceSums>& part_sums);
+  /// Sums exact accumulators, and integer counts, over the ranks in place (nothing in one process).
+  void sum_over_ranks(ExactSum* sums, std::size_t count, std::int64_t* counts = nullptr, std::size_t n_counts = 0);
   std::vector<double> particle_reactions_, node_reactions_, node_work_;
+  std::vector<ExactSum> node_reaction_sums_, node_work_sums_;
+  /// The step's sums and the node groups' reactions and work over the ranks; then the latter
+  /// as node_reactions_ and node_work_.
+  void sum_advance_over_ranks(AdvanceSums& sums);
   /// The prescribed degrees of freedom of the nodes and of each particle part, from their
   /// `prescribed` fields; rebuilt after every topology change.
   std::vector<PrescribedDof> node_dofs_;

@@ -19,6 +19,12 @@ MovingPoints moving_points(NodeArrays& nodes) {
   return p;
 }
 
+MovingPoints moving_points(Model& model) {
+  MovingPoints p = moving_points(model.nodes);
+  if (!model.ghost_node.empty()) p.ghost = model.ghost_node.data();
+  return p;
+}
+
 MovingPoints moving_points(ParticlePart& part) {
   MovingPoints p;
   p.count = part.count();
@@ -72,9 +78,9 @@ DofRef dof_of(const MovingPoints& p, const PrescribedDof& d) {
 }
 
 void apply_prescribed(const MovingPoints& p, const std::vector<PrescribedDof>& dofs, const Loads& loads,
-                      const AdvanceCoefficients& c, double time_half, double& external_back,
-                      double& external_ahead, std::vector<double>* group_reactions,
-                      std::vector<double>* group_work) {
+                      const AdvanceCoefficients& c, double time_half, ExactSum& external_back,
+                      ExactSum& external_ahead, std::vector<ExactSum>* group_reactions,
+                      std::vector<ExactSum>* group_work) {
   for (const auto& d : dofs) {
     const DofRef dof = dof_of(p, d);
     const Prescription& pr = loads.prescriptions[d.prescription];
@@ -85,11 +91,12 @@ void apply_prescribed(const MovingPoints& p, const std::vector<PrescribedDof>& d
     const double f_needed = dof.inertia * (vp / c.d2 - c.d1 * dof.velocity) / c.dt_n;
     const double reaction = f_needed - dof.force;
     const double back = reaction * c.back * dof.velocity, ahead = reaction * c.ahead * vp;
+    dof.force = f_needed;
+    if (p.ghost && p.ghost[d.point]) continue;  // held here too, but its owner sums it
     external_back += back;
     external_ahead += ahead;
-    dof.force = f_needed;
     if (group_reactions && pr.group >= 0) {
-      double* slot = &(*group_reactions)[6 * pr.group];
+      ExactSum* slot = &(*group_reactions)[6 * pr.group];
       slot[d.component] += reaction;
       // A rotating group's reaction moment about its centre, in the slots after the forces:
       // (r × e_k) f for the component k = x, y, z.
@@ -142,26 +149,35 @@ inline double kick(double* V, const double* F, int width, double m, const Advanc
 
 }  // namespace
 
-std::int64_t advance_points(const MovingPoints& p, const AdvanceCoefficients& c, double sums[5],
-                            std::vector<double>& scratch) {
+void AdvanceSums::add(const AdvanceSums& o) {
+  kinetic += o.kinetic;
+  damp_back += o.damp_back;
+  damp_ahead += o.damp_ahead;
+  external_back += o.external_back;
+  external_ahead += o.external_ahead;
+}
+
+std::int64_t advance_points(const MovingPoints& p, const AdvanceCoefficients& c, AdvanceSums& sums,
+                            std::vector<AdvanceSums>& scratch) {
   const int D = p.dim, R = p.rot_dim;
   const bool gravity = c.gravity[0] != 0 || c.gravity[1] != 0 || c.gravity[2] != 0;
+  const bool damping = c.alpha != 0;
   const double* g = gravity ? c.gravity.data() : nullptr;
   const std::size_t n = p.count;
   const std::size_t blocks = (n + p.block - 1) / p.block;
-  constexpr int kSums = 6;  // kinetic, damping back/ahead, gravity back/ahead, first bad point
-  scratch.assign(kSums * blocks, 0.0);
+  scratch.assign(blocks, AdvanceSums());
+  std::vector<std::int64_t> bad(blocks, -1);
 #pragma omp parallel for schedule(static)
   for (std::size_t b = 0; b < blocks; ++b) {
-    PointSums s;
-    double bad = -1;
+    AdvanceSums& out = scratch[b];
     for (std::size_t i = b * p.block; i < std::min(n, (b + 1) * p.block); ++i) {
+      PointSums s;
       const double v2 = kick(&p.v[D * i], &p.force[D * i], D, p.mass[i], c, g, s);
-      if (!std::isfinite(v2) && bad < 0) bad = static_cast<double>(i);
+      if (!std::isfinite(v2) && bad[b] < 0) bad[b] = static_cast<std::int64_t>(i);
       if (R > 0) {
         // The particles' inertia is isotropic: Euler's equations have no gyroscopic term.
         const double w2 = kick(&p.omega[R * i], &p.torque[R * i], R, p.inertia[i], c, nullptr, s);
-        if (!std::isfinite(w2) && bad < 0) bad = static_cast<double>(i);
+        if (!std::isfinite(w2) && bad[b] < 0) bad[b] = static_cast<std::int64_t>(i);
       }
       for (int k = 0; k < D; ++k) {
         if (p.x_old) p.x_old[D * i + k] = p.x[D * i + k];
@@ -171,29 +187,33 @@ std::int64_t advance_points(const MovingPoints& p, const AdvanceCoefficients& c,
         p.dtheta[R * i + k] = c.dt_next * p.omega[R * i + k];
         p.theta[R * i + k] += p.dtheta[R * i + k];
       }
+      if (p.ghost && p.ghost[i]) continue;  // its owner sums it
+      out.kinetic += s.kinetic;
+      if (damping) {
+        out.damp_back += s.damp_back;
+        out.damp_ahead += s.damp_ahead;
+      }
+      if (gravity) {
+        out.external_back += s.grav_back;
+        out.external_ahead += s.grav_ahead;
+      }
     }
-    double* out = &scratch[kSums * b];
-    out[0] = s.kinetic;
-    out[1] = s.damp_back;
-    out[2] = s.damp_ahead;
-    out[3] = s.grav_back;
-    out[4] = s.grav_ahead;
-    out[5] = bad;
   }
   std::int64_t first_bad = -1;
   for (std::size_t b = 0; b < blocks; ++b) {
-    const double* in = &scratch[kSums * b];
-    if (in[5] >= 0 && first_bad < 0) first_bad = static_cast<std::int64_t>(in[5]);
-    for (int k = 0; k < 5; ++k) sums[k] += in[k];
+    if (bad[b] >= 0 && first_bad < 0) first_bad = bad[b];
+    sums.add(scratch[b]);
   }
   return first_bad;
 }
 
-double kinetic_energy(const NodeArrays& nodes) {
+ExactSum kinetic_energy(const MovingPoints& nodes) {
   const int dim = nodes.dim;
-  double kinetic = 0;
-  for (std::size_t i = 0; i < nodes.count(); ++i)
+  ExactSum kinetic;
+  for (std::size_t i = 0; i < nodes.count; ++i) {
+    if (nodes.ghost && nodes.ghost[i]) continue;
     for (int k = 0; k < dim; ++k) kinetic += 0.5 * nodes.mass[i] * nodes.v[dim * i + k] * nodes.v[dim * i + k];
+  }
   return kinetic;
 }
 

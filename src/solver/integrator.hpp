@@ -2,13 +2,15 @@
 // particle part are the same kind of thing to it (positions, velocities, forces, masses), and
 // particles add rotation (angle, angular velocity, torque, isotropic inertia). Central
 // difference with mass-proportional damping at the mid-point, prescribed velocity components by
-// one path, and the energy sums in fixed blocks. Theory: docs/theory/time_integration_and_energy.md.
+// one path, and the energy sums exact (src/core/exact_sum.hpp) for the nodes, in fixed blocks for
+// particles. Theory: docs/theory/time_integration_and_energy.md.
 #pragma once
 
 #include <array>
 #include <cstdint>
 #include <vector>
 
+#include "core/exact_sum.hpp"
 #include "model/model.hpp"
 #include "solver/loads.hpp"
 
@@ -29,12 +31,17 @@ struct MovingPoints {
   const double* inertia = nullptr;
   double* dtheta = nullptr;  ///< the rotation increments of the step, kept (particles)
   double* x_old = nullptr;   ///< the positions before the drift, kept (particles)
-  /// Points per block of the energy sums (the blocks are summed in order: the same bits for any
-  /// thread count): 2048 for nodes, 1024 for particles.
+  /// Points per block of the parallel loop: 2048 for nodes, 1024 for particles (the energy sums
+  /// are exact, so the blocks do not change their bits).
   std::size_t block = 2048;
+  /// Per point, non-zero for a ghost of a subdomain (Model::ghost_node): moved, but left out of
+  /// the energy and reaction sums, which are its owner's. Null: none.
+  const std::uint8_t* ghost = nullptr;
 };
 
 MovingPoints moving_points(NodeArrays& nodes);
+/// The model's nodes, its ghost nodes marked.
+MovingPoints moving_points(Model& model);
 MovingPoints moving_points(ParticlePart& part);
 
 /// The coefficients of one advance: v+ = (d1 v− + Δt_n F/m) d2, x += Δt_n+1/2 v+, and the half
@@ -67,18 +74,26 @@ double rigid_velocity(const Rotation& rotation, double rate, const double* x, in
 /// group) and its work over the step to `group_work` (2 per group: the halves before and after
 /// t_n, as the ledger books them) when given.
 void apply_prescribed(const MovingPoints& p, const std::vector<PrescribedDof>& dofs, const Loads& loads,
-                      const AdvanceCoefficients& c, double time_half, double& external_back,
-                      double& external_ahead, std::vector<double>* group_reactions,
-                      std::vector<double>* group_work = nullptr);
+                      const AdvanceCoefficients& c, double time_half, ExactSum& external_back,
+                      ExactSum& external_ahead, std::vector<ExactSum>* group_reactions,
+                      std::vector<ExactSum>* group_work = nullptr);
 
-/// Velocities to t_n+1/2 and positions to t_n+1 (rotations too). sums[0..4] (kinetic at t_n,
-/// damping back and ahead, gravity work back and ahead) are added to, block by block. Returns
-/// the first point whose velocity is not finite, or −1. `scratch` holds the block sums.
-std::int64_t advance_points(const MovingPoints& p, const AdvanceCoefficients& c, double sums[5],
-                            std::vector<double>& scratch);
+/// The energy sums of an advance, exact (src/core/exact_sum.hpp).
+struct AdvanceSums {
+  ExactSum kinetic;                    ///< ½ m v² at t_n
+  ExactSum damp_back, damp_ahead;      ///< work of the damping force over the halves of the step
+  ExactSum external_back, external_ahead;  ///< gravity's work (and what the caller adds)
+  void add(const AdvanceSums& o);
+};
 
-/// Kinetic energy of the nodes at rest positions (the initial energy of a run).
-double kinetic_energy(const NodeArrays& nodes);
+/// Velocities to t_n+1/2 and positions to t_n+1 (rotations too); the points' kinetic energy,
+/// damping and gravity work are added to `sums`. Returns the first point whose velocity is not
+/// finite, or −1. `scratch` holds the sums of the blocks.
+std::int64_t advance_points(const MovingPoints& p, const AdvanceCoefficients& c, AdvanceSums& sums,
+                            std::vector<AdvanceSums>& scratch);
+
+/// Kinetic energy of the nodes (the initial energy of a run), ghosts left out, summed exactly.
+ExactSum kinetic_energy(const MovingPoints& nodes);
 /// Kinetic energy of a particle part, translation and rotation, in blocks of 2048.
 double kinetic_energy(const ParticlePart& part);
 

@@ -124,13 +124,23 @@ TEST(Subdomain, HoldsEveryElementOfItsNodesAndPlansASymmetricExchange) {
       for (std::size_t e = 0; e < part.element_count(); ++e)
         for (int a = 0; a < 3; ++a)
           if (owned_here[part.connectivity[3 * e + a]]) EXPECT_TRUE(held[e]) << "element " << e << ", rank " << sub.rank;
-      // Local elements keep the whole model's ids and colours, in its order.
+      // Local elements keep the whole model's ids and colours; within a colour the owned ones
+      // come first and the ghosts from ghost_begin on, each in the whole model's order.
       const Part& local = sub.model.parts[0];
       for (std::size_t e = 0; e < local.element_count(); ++e) {
         EXPECT_EQ(local.id[e], part.id[sub.global_element[0][e]]);
         EXPECT_EQ(local.colour[e], part.colour[sub.global_element[0][e]]);
       }
-      EXPECT_TRUE(std::is_sorted(sub.global_element[0].begin(), sub.global_element[0].end()));
+      ASSERT_EQ(local.ghost_begin.size(), local.colour_count());
+      const auto& global = sub.global_element[0];
+      for (std::size_t c = 0; c < local.colour_count(); ++c) {
+        const auto b = global.begin() + local.colour_begin[c], g = global.begin() + local.ghost_begin[c],
+                   end = global.begin() + local.colour_begin[c + 1];
+        EXPECT_TRUE(std::is_sorted(b, g) && std::is_sorted(g, end));
+        for (auto e = local.colour_begin[c]; e < local.colour_begin[c + 1]; ++e)
+          EXPECT_EQ(sub.element_owned[0][e], e < local.ghost_begin[c]) << "colour " << c << ", element " << e;
+      }
+      for (std::size_t i = 0; i < sub.node_owned.size(); ++i) EXPECT_EQ(sub.model.ghost_node[i], !sub.node_owned[i]);
     }
     EXPECT_EQ(owned_elements, model.parts[0].element_count());
     EXPECT_EQ(owned_nodes, model.nodes.count());

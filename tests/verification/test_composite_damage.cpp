@@ -124,7 +124,7 @@ struct PlyPoint {
     b.temperature = &temperature;
     b.volume = &v;
     material.update(b);
-    return b.fracture_work;
+    return b.fracture_work.value();
   }
 
   /// Advances by the strain increment `de` on the components with control[k] true; the others

@@ -32,27 +32,31 @@ using namespace testing;
 void check_decomposed_run(const Case& c, int ranks, bool scattered) {
   testing::ElasticRun whole = make_run(c);
   const Model start = whole.model;
-  run_steps(whole.model, whole.materials, whole.loads, whole.settings, kSteps);
+  const Booked booked = run_steps(whole.model, whole.materials, whole.loads, whole.settings, kSteps);
 
   const ElementPartition partition =
       scattered ? scatter_elements(start, ranks, 2026) : partition_elements(start, ranks);
   std::vector<Subdomain> subs;
   for (int r = 0; r < ranks; ++r) subs.push_back(make_subdomain(start, partition, r));
   std::vector<Model> finished(ranks);
+  std::vector<Booked> booked_by(ranks);
   ThreadTeam team(ranks);
   team.run([&](Communicator& communicator) {
     const Subdomain& sub = subs[communicator.rank()];
     Model local = sub.model;
     const auto materials = decomposition_materials();
     GhostExchange exchange(sub.ghosts, communicator);
-    run_steps(local, materials, whole.loads, whole.settings, kSteps,
-              [&](ExplicitSolver& solver) { join_decomposed_run(solver, exchange, communicator); });
+    booked_by[communicator.rank()] =
+        run_steps(local, materials, whole.loads, whole.settings, kSteps,
+                  [&](ExplicitSolver& solver) { join_decomposed_run(solver, exchange, communicator); });
     finished[communicator.rank()] = std::move(local);
   });
 
   std::size_t owned = 0, ghosts = 0, owned_nodes = 0;
   for (int r = 0; r < ranks; ++r) {
     EXPECT_EQ(differences(subs[r], finished[r], whole.model), 0u) << c.name << ", rank " << r << " of " << ranks;
+    // Every rank books the whole model's ledger, reactions and work, bit for bit.
+    EXPECT_EQ(differences(booked_by[r], booked), 0u) << c.name << ", ledger of rank " << r << " of " << ranks;
     owned += subs[r].owned_element_count();
     ghosts += subs[r].ghost_element_count();
     for (auto o : subs[r].node_owned) owned_nodes += o;

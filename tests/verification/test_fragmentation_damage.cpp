@@ -61,7 +61,7 @@ struct PointDriver {
     std::copy(stress, stress + kTensorSize, before);
     material.update(b);
     for (int k = 0; k < kTensorSize; ++k) work += (k < 3 ? 0.5 : 1.0) * (before[k] + stress[k]) * strain[k] * volume;
-    fracture += b.fracture_work;
+    fracture += b.fracture_work.value();
   }
   void tension_step(double stress_rate, double dt) {
     const auto& mod = material.parameters_in_use().moduli;

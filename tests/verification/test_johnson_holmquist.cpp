@@ -93,8 +93,8 @@ struct Point {
   void step(const double (&de)[kTensorSize], double dt = 1e-9) {
     MaterialPointBatch b = testing::one_point(de, dt, stress, state, &temperature, &volume, &band);
     model.update(b);
-    plastic += b.plastic_work;
-    fracture += b.fracture_work;
+    plastic += b.plastic_work.value();
+    fracture += b.fracture_work.value();
   }
   /// Compression along x with the lateral strains held (uniaxial strain), log strain increment d.
   void uniaxial(double d) { step({-d, 0, 0, 0, 0, 0}); }

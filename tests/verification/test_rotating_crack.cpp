@@ -87,8 +87,8 @@ struct MaterialPoint {
     MaterialPointBatch b = testing::one_point(de, 1e-9, stress, state, &temperature, &volume, &band);
     material.update(b);
     for (int k = 0; k < kTensorSize; ++k) strain[k] += de[k];
-    fracture += b.fracture_work;
-    return b.fracture_work;
+    fracture += b.fracture_work.value();
+    return b.fracture_work.value();
   }
 
   /// An increment of uniaxial stress along the unit vector n: the strain along n grows by

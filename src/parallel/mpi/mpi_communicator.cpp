@@ -25,6 +25,24 @@ void MpiCommunicator::minimum(double* values, int count) {
   check(MPI_Allreduce(MPI_IN_PLACE, values, count, MPI_DOUBLE, MPI_MIN, comm_), "MPI_Allreduce (the time step)");
 }
 
+void MpiCommunicator::sum(std::int64_t* values, int count) {
+  static_assert(sizeof(long long) == sizeof(std::int64_t));
+  check(MPI_Allreduce(MPI_IN_PLACE, values, count, MPI_LONG_LONG, MPI_SUM, comm_), "MPI_Allreduce (the energy sums)");
+}
+
+std::vector<std::vector<double>> MpiCommunicator::gather(const std::vector<double>& mine) {
+  const int n = static_cast<int>(mine.size());
+  std::vector<int> counts(rank_ == 0 ? size_ : 0), offsets(counts.size() + 1, 0);
+  check(MPI_Gather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, comm_), "MPI_Gather (sizes of the outputs)");
+  for (std::size_t r = 0; r < counts.size(); ++r) offsets[r + 1] = offsets[r] + counts[r];
+  std::vector<double> flat(rank_ == 0 ? static_cast<std::size_t>(offsets.back()) : 0);
+  check(MPI_Gatherv(mine.data(), n, MPI_DOUBLE, flat.data(), counts.data(), offsets.data(), MPI_DOUBLE, 0, comm_),
+        "MPI_Gatherv (the state to output)");
+  std::vector<std::vector<double>> all;
+  for (std::size_t r = 0; r < counts.size(); ++r) all.emplace_back(flat.begin() + offsets[r], flat.begin() + offsets[r + 1]);
+  return all;
+}
+
 void MpiCommunicator::exchange(const std::vector<int>& neighbours, const std::vector<std::vector<double>>& send,
                                std::vector<std::vector<double>>& receive) {
   // Receives first, then sends, then wait for all: no ordering between pairs of ranks needed.
