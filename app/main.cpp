@@ -17,6 +17,13 @@
 #include "contact/pair_law.hpp"
 #include "material/material.hpp"
 #include "app/run.hpp"
+#include "parallel/communicator.hpp"
+
+#ifdef SHARD_WITH_MPI
+#include <mpi.h>
+
+#include "parallel/mpi/mpi_communicator.hpp"
+#endif
 
 namespace {
 
@@ -64,6 +71,9 @@ checkpoint.bin (docs/outputs.md).
   --until TIME            stop at TIME (e.g. 20us) with a checkpoint, to continue with --restart
   --restart CHECKPOINT    continue OUTDIR/checkpoint.bin in the same OUTDIR
 
+Under mpirun (a build with MPI), the run is cut into one subdomain per rank and rank 0 writes
+the same outputs, byte for byte (docs/outputs.md, "Ranks").
+
 Exit status: 0 success, 1 the run failed (outputs so far kept, summary.json says why),
 2 bad input (nothing written).
 )";
@@ -81,14 +91,19 @@ bool asks_for_help(const std::vector<std::string>& args) {
   return false;
 }
 
+std::string rank_prefix(const shard::Communicator* ranks) {
+  return ranks && ranks->size() > 1 ? "rank " + std::to_string(ranks->rank()) + ": " : "";
+}
+
 int usage_error(const std::string& message) {
   std::fprintf(stderr, "shard: %s\nRun 'shard --help' for usage.\n", message.c_str());
   return kBadInput;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+/// The command line of one process, or of one rank of a decomposed run (`ranks`; rank 0 speaks
+/// for all of them).
+int shard_main(int argc, char** argv, shard::Communicator* ranks) {
+  const bool speaks = !ranks || ranks->rank() == 0;
   std::vector<std::string> args(argv + 1, argv + argc);
   if (args.empty()) {
     std::fputs(kHelp, stderr);
@@ -177,8 +192,9 @@ int main(int argc, char** argv) {
       options.output_dir = output ? *output
                                   : std::filesystem::path("out") /
                                         std::filesystem::path(*scenario).stem();
+      options.ranks = ranks;
       const auto summary = shard::run_scenario(*scenario, options);
-      if (!options.quiet)
+      if (!options.quiet && speaks)
         std::fprintf(stderr, "done: %lld steps to t = %.6g s in %.2f s wall, energy balance error %+.4f%%; outputs in %s\n",
                      static_cast<long long>(summary.steps), summary.end_time, summary.wall_seconds,
                      100 * summary.energy_balance_error, options.output_dir.string().c_str());
@@ -186,13 +202,46 @@ int main(int argc, char** argv) {
     }
     return usage_error("unknown command '" + command + "'");
   } catch (const shard::InputError& e) {
-    std::fprintf(stderr, "error: %s\n", e.what());
+    // Every rank reads the same input and finds the same fault: one says it.
+    if (speaks) std::fprintf(stderr, "error: %s\n", e.what());
     return kBadInput;
   } catch (const shard::RunError& e) {
-    std::fprintf(stderr, "\nrun failed: %s\n", e.what());
+    std::fprintf(stderr, "\n%srun failed: %s\n", rank_prefix(ranks).c_str(), e.what());
     return kRunFailed;
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "\ninternal error: %s\n", e.what());
+    std::fprintf(stderr, "\n%sinternal error: %s\n", rank_prefix(ranks).c_str(), e.what());
     return kRunFailed;
   }
+}
+
+#ifdef SHARD_WITH_MPI
+/// Started by mpirun (OpenMPI sets OMPI_COMM_WORLD_SIZE; MPICH and Slurm set PMI_SIZE): the run
+/// is decomposed over the ranks (docs/theory/domain_decomposition.md).
+bool launched_by_mpirun() { return std::getenv("OMPI_COMM_WORLD_SIZE") || std::getenv("PMI_SIZE"); }
+
+int main_on_ranks(int argc, char** argv) {
+  int provided = 0;
+  MPI_Init_thread(&argc, &argv, MPI_THREAD_FUNNELED, &provided);
+  int code = kRunFailed;
+  {
+    shard::MpiCommunicator ranks;
+    code = shard_main(argc, argv, &ranks);
+    // A rank that failed alone would leave the others waiting in a collective: end them all.
+    if (code == kRunFailed && ranks.size() > 1) {
+      std::fflush(stderr);
+      MPI_Abort(MPI_COMM_WORLD, code);
+    }
+  }
+  MPI_Finalize();
+  return code;
+}
+#endif
+
+}  // namespace
+
+int main(int argc, char** argv) {
+#ifdef SHARD_WITH_MPI
+  if (launched_by_mpirun()) return main_on_ranks(argc, argv);
+#endif
+  return shard_main(argc, argv, nullptr);
 }

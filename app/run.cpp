@@ -33,6 +33,9 @@
 #include "particle/mca_state.hpp"
 #include "fracture/fragments.hpp"
 #include "io/vtu_writer.hpp"
+#include "parallel/ghost_exchange.hpp"
+#include "parallel/partition.hpp"
+#include "parallel/subdomain.hpp"
 
 namespace shard {
 
@@ -307,15 +310,16 @@ class RunDriver {
         solver_(*solver_ptr_), contact_(solver_.contact()), cracks_(sim_.crack_growth()), remesher_(sim_.remeshing()),
         fingerprint_(fingerprint_of(sc_)), dir_(options.output_dir), history_path_(dir_ / "history.csv"),
         dim_(sim_.model.dim()), pvd_(dir_ / "frames.pvd"), probes_(sim_.probes, dir_, dim_),
-        progress_(options.quiet, sc_.output.log_interval, sc_.end_time) {
+        progress_(options.quiet || !writes(options), sc_.output.log_interval, sc_.end_time) {
 #ifdef _OPENMP
     if (options_.threads == 0 && std::getenv("OMP_NUM_THREADS") == nullptr)
       omp_set_num_threads(default_threads(sim_.model, omp_get_max_threads()));
     threads_ = omp_get_max_threads();
 #endif
     if (sc_.crash) crash_mass_per_length_ = crushed_mass_per_length();  // on the mesh as set up
+    if (options_.restart) read_checkpoint(*options_.restart, sim_.model, solver_.state(), cursor_, fingerprint_);
+    if (options_.ranks) decompose();
     if (options_.restart) {
-      read_checkpoint(*options_.restart, sim_.model, solver_.state(), cursor_, fingerprint_);
       // Cracks and erosion changed the mesh since set-up: every cache of the topology (the contact
       // surface, the prescribed degrees of freedom, the automata's pairs) follows the checkpoint.
       solver_.restored();
@@ -335,25 +339,27 @@ class RunDriver {
       // The first forces give the step the whole run is judged by, before any output exists.
       solver_.compute_forces();
     } catch (const RunError& e) {
-      open_outputs();
+      if (writes()) open_outputs();
       fail(e);
     }
     std::vector<std::string> warnings = sc_.warnings;
     if (auto long_run = check_step_count(sc_, solver_.state().dt_next, solver_.state().time))
       warnings.push_back(*long_run);
-    open_outputs();
+    if (writes()) open_outputs();
     for (const auto& w : warnings) {  // said even with --quiet: they may mean a wrong result
-      std::fprintf(stderr, "warning: %s\n", w.c_str());
+      if (writes()) std::fprintf(stderr, "warning: %s\n", w.c_str());
       notes_.push_back("warning: " + w);
     }
     forces_ready_ = true;
     try {
       loop();
       progress_.finish();
-      history_.flush();
-      check_written(history_, history_path_);
-      write_summary();
-      write_fragment_report();
+      as_whole([&] {
+        history_.flush();
+        check_written(history_, history_path_);
+        write_summary();
+        write_fragment_report();
+      });
     } catch (const RunError& e) {
       fail(e);
     }
@@ -369,9 +375,12 @@ class RunDriver {
   /// A run that went wrong: what it wrote so far stays, summary.json says why.
   [[noreturn]] void fail(const RunError& e) {
     progress_.finish();
-    history_.flush();
     status_ = "failed";
     message_ = e.what();
+    // A decomposed run fails on every rank at once (the checks that throw see the same sums
+    // everywhere); the writer keeps its outputs as a single process would, without a gather.
+    if (!writes()) throw e;
+    history_.flush();
     try {
       write_summary();
     } catch (const OutputError& also) {
@@ -379,6 +388,67 @@ class RunDriver {
       throw RunError(std::string(e.what()) + "; summary.json not written either (" + also.what() + ")");
     }
     throw e;
+  }
+
+  /// Whether this process writes the outputs: one process, or rank 0 of a decomposed run.
+  static bool writes(const RunOptions& options) { return !options.ranks || options.ranks->rank() == 0; }
+  bool writes() const { return writes(options_); }
+
+  /// Makes this process one rank of a decomposed run (docs/theory/domain_decomposition.md): the
+  /// model read (or restored) whole is cut by recursive coordinate bisection, this rank keeps its
+  /// subdomain to run and the whole model to gather the outputs into.
+  void decompose() {
+    Communicator& ranks = *options_.ranks;
+    if (const std::string why = not_decomposable(); !why.empty())
+      throw InputError(shown_path(sc_.file), 0, "mpirun",
+                       "a run on " + std::to_string(ranks.size()) + " ranks cannot yet hold " + why +
+                           ": run it as one process (without mpirun), with --threads");
+    const ElementPartition partition = partition_elements(sim_.model, ranks.size());
+    sub_ = make_subdomain(sim_.model, partition, ranks.rank());
+    whole_ = std::move(sim_.model);
+    sim_.model = sub_->model;  // the solver's model, in place
+    exchange_ = std::make_unique<GhostExchange>(sub_->ghosts, ranks);
+    join_decomposed_run(solver_, *exchange_, ranks);
+  }
+
+  /// What a decomposed run cannot hold yet, or "".
+  std::string not_decomposable() const {
+    if (!sim_.model.particle_parts.empty()) return "particles";
+    if (sim_.contact) return "contact";
+    if (sim_.cohesive) return "cohesive interfaces";
+    if (sim_.cracking || cracks_) return "discrete cracks";
+    if (remesher_) return "remeshing";
+    if (!sim_.events.empty()) return "step events (" + std::string(sim_.events.front()->name()) + ")";
+    if (!sim_.probes.empty()) return "probes";
+    if (sc_.crash) return "a crash report";
+    for (const Part& part : sim_.model.parts) {
+      const ErosionRule& rule = part.erosion;
+      const bool erodes = rule.by_shape() || rule.state_index >= 0 ||
+                          (rule.state_index == -1 && sim_.materials[part.material]->failure_state_index() >= 0);
+      if (erodes) return "erosion (part '" + part.name + "')";
+      if (part.volumetric == VolumetricTreatment::average_nodal_pressure)
+        return "averaged nodal pressure (part '" + part.name + "')";
+    }
+    return "";
+  }
+
+  /// Runs `write` with sim_.model holding the whole model's state: in a decomposed run every rank
+  /// sends what it owns to rank 0 (a collective), which writes; the others do nothing more.
+  template <class Write>
+  void as_whole(Write&& write) {
+    if (!options_.ranks) return write();
+    const auto owned = options_.ranks->gather(pack_owned(*sub_, sim_.model));
+    if (!writes()) return;
+    for (const auto& packed : owned) unpack_owned(packed, whole_);
+    // The solver keeps its reference to sim_.model; the outputs read it, whole, for a moment.
+    std::swap(sim_.model, whole_);
+    try {
+      write();
+    } catch (...) {
+      std::swap(sim_.model, whole_);
+      throw;
+    }
+    std::swap(sim_.model, whole_);
   }
 
   /// What the progress line says the run holds: crack-face nodes and fragments when parts crack,
@@ -561,23 +631,26 @@ class RunDriver {
       const double t = s.time;
       const bool final = t >= end * (1 - 1e-12);
       probes_.sample(sim_.model, t, cursor_.probe_next);  // the state the frames show
-      if (final || due(t, cursor_.next_frame, out.frame_interval)) {
-        write_frames(t);
-        cursor_.next_frame = static_cast<std::int64_t>(std::floor(t / out.frame_interval * (1 + 1e-9))) + 1;
-      }
+      const bool frame = final || due(t, cursor_.next_frame, out.frame_interval);
+      const bool row = final || due(t, cursor_.next_history, out.history_interval);
+      // With the velocities the frames show, before they move on.
+      if (frame || row)
+        as_whole([&] {
+          if (frame) write_frames(t);
+          if (row) part_sums_ = part_sums();
+        });
+      if (frame) cursor_.next_frame = static_cast<std::int64_t>(std::floor(t / out.frame_interval * (1 + 1e-9))) + 1;
       const std::int64_t step = s.step;
       const double dt_used = s.dt_half;
       // Before advance(): its events (crack growth) may rebuild the contact system, which
       // clears the forces it applied in this step.
       const double dt_n = step == 0 ? 0.5 * s.dt_next : 0.5 * (s.dt_half + s.dt_next);
       book_forces(dt_n);
-      const bool row = final || due(t, cursor_.next_history, out.history_interval);
-      if (row) part_sums_ = part_sums();  // with the velocities the frames show, before they move on
       solver_.advance();
       take_remesh_notes();
       book_reactions(dt_n);
       if (row) {
-        write_history_row(t, step, dt_used);
+        if (writes()) write_history_row(t, step, dt_used);
         check_energy_balance(t, step);
         if (out.history_interval > 0)
           cursor_.next_history = static_cast<std::int64_t>(std::floor(t / out.history_interval * (1 + 1e-9))) + 1;
@@ -915,13 +988,17 @@ class RunDriver {
     const bool stop = options_.until && s.time >= *options_.until * (1 - 1e-12);
     const bool checkpoint_due = out.checkpoint_interval > 0 && due(s.time, cursor_.next_checkpoint, out.checkpoint_interval);
     if (!stop && !checkpoint_due) return false;
-    history_.flush();
-    check_written(history_, history_path_);
-    cursor_.history_bytes = std::filesystem::file_size(history_path_);
-    cursor_.probe_bytes = probes_.sizes();
     if (checkpoint_due)
       cursor_.next_checkpoint = static_cast<std::int64_t>(std::floor(s.time / out.checkpoint_interval * (1 + 1e-9))) + 1;
-    write_checkpoint(dir_ / "checkpoint.bin", sim_.model, s, cursor_, fingerprint_);
+    // The whole model's state, in its own order: a checkpoint of a decomposed run continues on
+    // any number of ranks, or in one process.
+    as_whole([&] {
+      history_.flush();
+      check_written(history_, history_path_);
+      cursor_.history_bytes = std::filesystem::file_size(history_path_);
+      cursor_.probe_bytes = probes_.sizes();
+      write_checkpoint(dir_ / "checkpoint.bin", sim_.model, s, cursor_, fingerprint_);
+    });
     if (!stop) return false;
     status_ = "stopped";
     message_ = "stopped at t = " + format_time(s.time) + " (--until); continue with --restart " +
@@ -1012,7 +1089,7 @@ class RunDriver {
     j << "{\n  \"status\": " << json_string(status_) << ",\n  \"message\": " << json_string(message_)
       << ",\n  \"scenario\": " << json_string(sc_.file.string()) << ",\n  \"steps\": " << s.step
       << ",\n  \"end_time\": " << s.time - s.dt_half << ",\n  \"wall_seconds\": " << wall
-      << ",\n  \"threads\": " << threads_ << ",\n  \"elements\": " << sim_.model.element_count()
+      << ",\n  \"threads\": " << threads_ << ",\n  \"ranks\": " << (options_.ranks ? options_.ranks->size() : 1) << ",\n  \"elements\": " << sim_.model.element_count()
       << ",\n  \"nodes\": " << sim_.model.nodes.count() << ",\n  \"particles\": " << particles_
       << ",\n  \"element_steps_per_second\": " << (wall > 0 ? steps * elements / wall : 0.0)
       << ",\n  \"particle_steps_per_second\": "
@@ -1115,6 +1192,11 @@ class RunDriver {
   double last_row_time_ = 0, last_row_residual_ = 0;
   std::size_t particles_ = 0;
   std::string status_ = "completed", message_;
+  /// A decomposed run: this rank's subdomain, the whole model its outputs are gathered into
+  /// (rank 0), and its ghost exchange.
+  std::optional<Subdomain> sub_;
+  Model whole_;
+  std::unique_ptr<GhostExchange> exchange_;
 };
 
 }  // namespace

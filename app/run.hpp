@@ -9,6 +9,8 @@
 
 namespace shard {
 
+class Communicator;
+
 struct RunOptions {
   std::filesystem::path output_dir;
   std::vector<ScenarioOverride> overrides;  ///< --set KEY=VALUE, in order
@@ -16,6 +18,9 @@ struct RunOptions {
   bool quiet = false;
   std::optional<std::filesystem::path> restart;  ///< continue from this checkpoint
   std::optional<double> until;  ///< stop (with a checkpoint) once the time reaches this
+  /// A decomposed run (mpirun): this process is one of these ranks; rank 0 writes the outputs.
+  /// Null: one process.
+  Communicator* ranks = nullptr;
 };
 
 struct RunSummary {

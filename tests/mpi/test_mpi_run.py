@@ -1,0 +1,99 @@
+#!/usr/bin/python3
+"""`mpirun -np N shard run` against one process (ctest label "mpi").
+
+A run decomposed over N ranks writes the outputs of the same run in one process, byte for byte:
+history.csv, frames.pvd and every frame, resolved.yaml and checkpoint.bin; summary.json differs
+only in what describes the run rather than its result (wall time, speed, memory, ranks).
+Checked on the steel bar of examples/bar_impact/ in plane strain (tri3) on 1-4 ranks and in 3D
+(hex8 with one point and hourglass control) on 2 and 4 ranks, with 2 threads per rank once; a run
+checkpointed on 2 ranks and continued on 3 ends with the bytes of one straight through; a
+scenario with contact is refused before the run (exit status 2, saying what it cannot hold).
+
+Usage: test_mpi_run.py SHARD_EXECUTABLE MPIEXEC SOURCE_DIR WORK_DIR
+"""
+
+import filecmp
+import json
+import os
+import shutil
+import subprocess
+import sys
+
+shard, mpiexec, source, work = sys.argv[1:5]
+shard, source, work = os.path.abspath(shard), os.path.abspath(source), os.path.abspath(work)
+env = dict(os.environ, OMP_NUM_THREADS="1", OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
+           OMPI_MCA_rmaps_base_oversubscribe="1")
+failures = []
+RUN_FACTS = {"wall_seconds", "element_steps_per_second", "particle_steps_per_second", "peak_memory_mb", "ranks",
+             "threads"}
+
+
+def run(out, scenario, ranks=None, extra=(), threads=1):
+    command = [shard, "run", scenario, "-o", out, "-q", "--set", "analysis.end_time=3us", *extra]
+    if ranks is not None:
+        command = [mpiexec, "-np", str(ranks), "--bind-to", "none", *command]
+    result = subprocess.run(command, env=dict(env, OMP_NUM_THREADS=str(threads)), capture_output=True, text=True,
+                            timeout=600)
+    return result
+
+
+def same_outputs(a, b, what):
+    names = sorted(os.listdir(a))
+    if sorted(os.listdir(b)) != names:
+        failures.append(f"{what}: files {sorted(os.listdir(b))} instead of {names}")
+        return
+    for name in names:
+        if name == "summary.json":
+            sa, sb = (json.load(open(os.path.join(d, name))) for d in (a, b))
+            for key in set(sa) | set(sb):
+                if key not in RUN_FACTS and sa.get(key) != sb.get(key):
+                    failures.append(f"{what}: summary.json '{key}' is {sb.get(key)!r}, not {sa.get(key)!r}")
+        elif not filecmp.cmp(os.path.join(a, name), os.path.join(b, name), shallow=False):
+            failures.append(f"{what}: {name} differs")
+    print(f"{what}: {len(names)} files compared")
+
+
+shutil.rmtree(work, ignore_errors=True)
+os.makedirs(work)
+os.chdir(work)
+bar_2d = os.path.join(source, "examples/bar_impact/bar_2d.yaml")
+bar_3d = os.path.join(source, "examples/bar_impact/bar_3d.yaml")
+
+for scenario, name, ranks_list in ((bar_2d, "tri3", (1, 2, 3, 4)), (bar_3d, "hex8", (2, 4))):
+    reference = f"{name}_serial"
+    r = run(reference, scenario)
+    if r.returncode != 0:
+        sys.exit(f"the run in one process failed: {r.stderr}")
+    for ranks in ranks_list:
+        r = run(f"{name}_np{ranks}", scenario, ranks)
+        if r.returncode != 0:
+            failures.append(f"{name} on {ranks} ranks failed ({r.returncode}): {r.stderr[-2000:]}")
+            continue
+        same_outputs(reference, f"{name}_np{ranks}", f"{name} on {ranks} ranks")
+        summary = json.load(open(f"{name}_np{ranks}/summary.json"))
+        if summary["ranks"] != ranks:
+            failures.append(f"{name}: summary.json says {summary['ranks']} ranks, not {ranks}")
+
+# Two threads per rank give the same bytes too.
+r = run("hex8_np2_threads2", bar_3d, 2, threads=2)
+if r.returncode != 0:
+    failures.append(f"hex8 on 2 ranks of 2 threads failed: {r.stderr[-2000:]}")
+else:
+    same_outputs("hex8_serial", "hex8_np2_threads2", "hex8 on 2 ranks of 2 threads")
+
+# Checkpointed on 2 ranks at 1.5 us, continued on 3 to the end: the bytes of one straight run.
+r1 = run("hex8_restart", bar_3d, 2, ["--until", "1.5us"])
+r2 = run("hex8_restart", bar_3d, 3, ["--restart", "hex8_restart/checkpoint.bin"])
+if r1.returncode != 0 or r2.returncode != 0:
+    failures.append(f"the restart across rank counts failed: {r1.stderr[-1000:]} {r2.stderr[-1000:]}")
+else:
+    same_outputs("hex8_serial", "hex8_restart", "hex8 on 2 ranks to 1.5 us, then 3")
+
+# What a decomposed run cannot hold yet is said before the run, with exit status 2.
+r = run("refused", os.path.join(source, "examples/taylor_bar/copper_3d.yaml"), 2)
+if r.returncode != 2 or "cannot yet hold contact" not in r.stderr or os.path.exists("refused"):
+    failures.append(f"contact on 2 ranks: exit status {r.returncode}, said {r.stderr[:500]!r}")
+
+for f in failures:
+    print("FAIL:", f)
+sys.exit(1 if failures else 0)
