@@ -302,6 +302,18 @@ int default_threads(const Model& model, int cores) {
   return static_cast<int>(std::clamp<std::size_t>(entities / kEntitiesPerThread, 1, static_cast<std::size_t>(cores)));
 }
 
+/// The cores a process may take threads on: all it sees, shared among the ranks on its machine
+/// in a decomposed run (OpenMPI says how many there are), so that ranks do not oversubscribe it.
+#ifdef _OPENMP
+int cores_per_rank(const RunOptions& options) {
+  const int cores = omp_get_max_threads();
+  if (!options.ranks) return cores;
+  const char* local = std::getenv("OMPI_COMM_WORLD_LOCAL_SIZE");
+  const int sharing = local ? std::max(1, std::atoi(local)) : options.ranks->size();
+  return std::max(1, cores / sharing);
+}
+#endif
+
 /// One run: the simulation, its solver and its outputs (history, frames, checkpoints, summary).
 class RunDriver {
  public:
@@ -313,7 +325,7 @@ class RunDriver {
         progress_(options.quiet || !writes(options), sc_.output.log_interval, sc_.end_time) {
 #ifdef _OPENMP
     if (options_.threads == 0 && std::getenv("OMP_NUM_THREADS") == nullptr)
-      omp_set_num_threads(default_threads(sim_.model, omp_get_max_threads()));
+      omp_set_num_threads(default_threads(sim_.model, cores_per_rank(options_)));
     threads_ = omp_get_max_threads();
 #endif
     if (sc_.crash) crash_mass_per_length_ = crushed_mass_per_length();  // on the mesh as set up
@@ -381,6 +393,9 @@ class RunDriver {
     // everywhere); the writer keeps its outputs as a single process would, without a gather.
     if (!writes()) throw e;
     history_.flush();
+    // The whole model's counts for the summary (its state is that of the last gather; the other
+    // ranks may be gone).
+    if (sub_) std::swap(sim_.model, whole_);
     try {
       write_summary();
     } catch (const OutputError& also) {
