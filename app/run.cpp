@@ -1,5 +1,7 @@
 #include "app/run.hpp"
 
+#include "core/exact_sum.hpp"
+
 #include "app/crash_report.hpp"
 
 #include <sys/resource.h>
@@ -23,6 +25,7 @@
 #endif
 
 #include "core/error.hpp"
+#include "core/exact_sum.hpp"
 #include "fem/element.hpp"
 #include "io/checkpoint.hpp"
 #include "io/frame_output.hpp"
@@ -418,18 +421,51 @@ class RunDriver {
       throw InputError(shown_path(sc_.file), 0, "mpirun",
                        "a run on " + std::to_string(ranks.size()) + " ranks cannot yet hold " + why +
                            ": run it as one process (without mpirun), with --threads");
-    const ElementPartition partition = partition_elements(sim_.model, ranks.size());
-    sub_ = make_subdomain(sim_.model, partition, ranks.rank());
     whole_ = std::move(sim_.model);
+    cut_whole();
+  }
+
+  /// Cuts this rank's subdomain out of whole_ as it is now (recursive coordinate bisection; with
+  /// contact between parts, the halo its pairs need) and makes it the solver's model.
+  void cut_whole() {
+    Communicator& ranks = *options_.ranks;
+    const ElementPartition partition = partition_elements(whole_, ranks.size());
+    if (sim_.contact && sim_.contact->any_pairs()) halo_ = contact_halo(whole_, sim_.contact->part_pairs);
+    sub_ = make_subdomain(whole_, partition, ranks.rank(), halo_.parts.empty() ? nullptr : &halo_);
     sim_.model = sub_->model;  // the solver's model, in place
+    solver_.restored();        // every cache of the topology (the contact surface, ...) follows the cut
+    if (exchange_) solver_.remove_event(*exchange_);
     exchange_ = std::make_unique<GhostExchange>(sub_->ghosts, ranks);
     join_decomposed_run(solver_, *exchange_, ranks);
+  }
+
+  /// Contact between parts across ranks: the halo holds every pair a rank's nodes take part in
+  /// while no node has moved more than its allowed motion since the cut; once one has, every rank
+  /// gathers the whole model and cuts it anew. The run goes on as it would have: every value is
+  /// its owner's (docs/theory/domain_decomposition.md, "Contact between parts across ranks").
+  void cut_anew_if_moved() {
+    if (!sub_ || halo_.parts.empty()) return;
+    const auto dim = static_cast<std::size_t>(dim_);
+    const auto& x = sim_.model.nodes.x;
+    const auto& at_cut = sub_->model.nodes.x;
+    double moved2 = 0;
+    for (std::size_t i = 0; i < sub_->node_owned.size(); ++i) {
+      if (!sub_->node_owned[i]) continue;
+      double d2 = 0;
+      for (std::size_t k = 0; k < dim; ++k) d2 += (x[dim * i + k] - at_cut[dim * i + k]) * (x[dim * i + k] - at_cut[dim * i + k]);
+      moved2 = std::max(moved2, d2);
+    }
+    double most = -std::sqrt(moved2);  // a maximum as the minimum of its negative: exact
+    options_.ranks->minimum(&most, 1);
+    if (-most < halo_.allowed_motion) return;
+    for (const auto& packed : options_.ranks->all_gather(pack_owned(*sub_, sim_.model))) unpack_owned(packed, whole_);
+    cut_whole();
+    ++cuts_;
   }
 
   /// What a decomposed run cannot hold yet, or "".
   std::string not_decomposable() const {
     if (!sim_.model.particle_parts.empty()) return "particles";
-    if (sim_.contact) return "contact";
     if (sim_.cohesive) return "cohesive interfaces";
     if (sim_.cracking || cracks_) return "discrete cracks";
     if (remesher_) return "remeshing";
@@ -451,6 +487,7 @@ class RunDriver {
   /// sends what it owns to rank 0 (a collective), which writes; the others do nothing more.
   template <class Write>
   void as_whole(Write&& write) {
+    if (contact_) sim_.model.contact.pressure = contact_->nodal_pressure(sim_.model);
     if (!options_.ranks) return write();
     const auto owned = options_.ranks->gather(pack_owned(*sub_, sim_.model));
     if (!writes()) return;
@@ -649,11 +686,8 @@ class RunDriver {
       const bool frame = final || due(t, cursor_.next_frame, out.frame_interval);
       const bool row = final || due(t, cursor_.next_history, out.history_interval);
       // With the velocities the frames show, before they move on.
-      if (frame || row)
-        as_whole([&] {
-          if (frame) write_frames(t);
-          if (row) part_sums_ = part_sums();
-        });
+      if (row) part_sums_ = part_sums();  // summed over the ranks: no gather for a row
+      if (frame) as_whole([&] { write_frames(t); });
       if (frame) cursor_.next_frame = static_cast<std::int64_t>(std::floor(t / out.frame_interval * (1 + 1e-9))) + 1;
       const std::int64_t step = s.step;
       const double dt_used = s.dt_half;
@@ -675,6 +709,7 @@ class RunDriver {
       if (sc_.max_steps > 0 && s.step >= sc_.max_steps)
         throw RunError("reached analysis.max_steps = " + std::to_string(sc_.max_steps) + " at t = " +
                        format_time(s.time) + " before end_time = " + format_time(end));
+      cut_anew_if_moved();
       if (checkpoint_or_stop()) break;
     }
   }
@@ -711,7 +746,7 @@ class RunDriver {
     check_written(history_, history_path_);
     VtuGrid frame = make_frame(sim_.model, sim_.materials, sc_.output.fields, t, cracks_ != nullptr);
     if (contact_) {
-      VtuField p{"contact_pressure", 1, contact_->nodal_pressure(sim_.model)};
+      VtuField p{"contact_pressure", 1, sim_.model.contact.pressure};  // set by as_whole
       frame.point_fields.push_back(std::move(p));
     }
     std::vector<std::vector<double>> particle_fragment;
@@ -789,7 +824,9 @@ class RunDriver {
   /// Per part (the parts, then the particle parts): kinetic energy, momentum and mass of its nodes
   /// or particles, at the velocities of the last half step. A node shared by two parts counts in
   /// the first.
-  std::vector<double> part_sums() const {
+  /// Exact sums, over the nodes this process owns: a decomposed run sums them over its ranks (a
+  /// collective) and every rank has the whole model's, with the bits of one process.
+  std::vector<double> part_sums() {
     const std::size_t D = static_cast<std::size_t>(dim_);
     const auto& nodes = sim_.model.nodes;
     std::vector<int> owner(nodes.count(), -1);
@@ -797,22 +834,35 @@ class RunDriver {
       for (auto n : sim_.model.parts[p].connectivity)
         if (owner[n] < 0) owner[n] = static_cast<int>(p);
     const std::size_t stride = 2 + D;  // kinetic, mass, momentum
-    std::vector<double> sums(stride * (sim_.model.parts.size() + sim_.model.particle_parts.size()), 0.0);
+    std::vector<ExactSum> sums(stride * (sim_.model.parts.size() + sim_.model.particle_parts.size()));
     auto add = [&](std::size_t part, double m, const double* v) {
-      double* s = &sums[stride * part];
+      ExactSum* s = &sums[stride * part];
       for (std::size_t k = 0; k < D; ++k) {
         s[0] += 0.5 * m * v[k] * v[k];
         s[2 + k] += m * v[k];
       }
       s[1] += m;
     };
+    const auto& ghost = sim_.model.ghost_node;
     for (std::size_t i = 0; i < nodes.count(); ++i)
-      if (owner[i] >= 0) add(static_cast<std::size_t>(owner[i]), nodes.mass[i], &nodes.v[D * i]);
+      if (owner[i] >= 0 && (ghost.empty() || !ghost[i])) add(static_cast<std::size_t>(owner[i]), nodes.mass[i], &nodes.v[D * i]);
     for (std::size_t p = 0; p < sim_.model.particle_parts.size(); ++p) {
       const auto& pp = sim_.model.particle_parts[p];
       for (std::size_t i = 0; i < pp.count(); ++i) add(sim_.model.parts.size() + p, pp.mass[i], &pp.v[D * i]);
     }
-    return sums;
+    if (options_.ranks) {
+      constexpr auto W = static_cast<std::size_t>(ExactSum::kWords);
+      std::vector<std::int64_t> words(W * sums.size());
+      for (std::size_t i = 0; i < sums.size(); ++i) {
+        const auto w = sums[i].words();
+        std::copy(w.begin(), w.end(), words.begin() + static_cast<std::ptrdiff_t>(W * i));
+      }
+      options_.ranks->sum(words.data(), static_cast<int>(words.size()));
+      for (std::size_t i = 0; i < sums.size(); ++i) sums[i] = ExactSum::from_words(&words[W * i]);
+    }
+    std::vector<double> values(sums.size());
+    for (std::size_t i = 0; i < sums.size(); ++i) values[i] = sums[i].value();
+    return values;
   }
 
   /// The part sums of the row: kinetic and internal energy, momentum and mean velocity of each part.
@@ -1104,7 +1154,7 @@ class RunDriver {
     j << "{\n  \"status\": " << json_string(status_) << ",\n  \"message\": " << json_string(message_)
       << ",\n  \"scenario\": " << json_string(sc_.file.string()) << ",\n  \"steps\": " << s.step
       << ",\n  \"end_time\": " << s.time - s.dt_half << ",\n  \"wall_seconds\": " << wall
-      << ",\n  \"threads\": " << threads_ << ",\n  \"ranks\": " << (options_.ranks ? options_.ranks->size() : 1) << ",\n  \"elements\": " << sim_.model.element_count()
+      << ",\n  \"threads\": " << threads_ << ",\n  \"ranks\": " << (options_.ranks ? options_.ranks->size() : 1) << ",\n  \"cuts\": " << cuts_ << ",\n  \"elements\": " << sim_.model.element_count()
       << ",\n  \"nodes\": " << sim_.model.nodes.count() << ",\n  \"particles\": " << particles_
       << ",\n  \"element_steps_per_second\": " << (wall > 0 ? steps * elements / wall : 0.0)
       << ",\n  \"particle_steps_per_second\": "
@@ -1212,6 +1262,8 @@ class RunDriver {
   std::optional<Subdomain> sub_;
   Model whole_;
   std::unique_ptr<GhostExchange> exchange_;
+  ContactHalo halo_;        ///< with contact between parts: what the cut holds for it
+  std::int64_t cuts_ = 0;   ///< times the model was cut anew as contact nodes moved (summary.json)
 };
 
 }  // namespace

@@ -45,6 +45,9 @@ class TimedCommunicator final : public Communicator {
     seconds += std::chrono::duration<double>(Clock::now() - start).count();
   }
   std::vector<std::vector<double>> gather(const std::vector<double>& mine) override { return inner_.gather(mine); }
+  std::vector<std::vector<double>> all_gather(const std::vector<double>& mine) override {
+    return inner_.all_gather(mine);
+  }
   void exchange(const std::vector<int>& neighbours, const std::vector<std::vector<double>>& send,
                 std::vector<std::vector<double>>& receive) override {
     const auto start = Clock::now();

@@ -452,24 +452,41 @@ void ContactSystem::reset_step(Model& model) {
   active_ = 0;
   std::fill(pair_force_.begin(), pair_force_.end(), 0.0);
   std::fill(wall_force_.begin(), wall_force_.end(), 0.0);
+  booking_.sums.assign(1 + wall_force_.size() + pair_force_.size(), ExactSum());
+  booking_.maxima = {0, 0, 0};
+  booking_.active = 0;
+  ghost_ = model.ghost_node.size() == nn ? model.ghost_node.data() : nullptr;
   if (normal_force_.size() != nn) normal_force_.assign(nn, 0.0);
   std::fill(normal_force_.begin(), normal_force_.end(), 0.0);
 }
 
 void ContactSystem::add_forces(Model& model, double time, double dt, double stable_dt) {
   reset_step(model);
-  if (!(stable_dt > 0) || !std::isfinite(stable_dt)) return;
+  if (!(stable_dt > 0) || !std::isfinite(stable_dt)) return take_booking();
   if (model.contact.penalty_time_step.empty()) model.contact.penalty_time_step.assign(1, stable_dt);
   stable_dt = model.contact.penalty_time_step[0];
   find_facet_hits(model);
   for (std::size_t i = 0; i < surface_.nodes.size(); ++i) add_facet_force(model, i, dt, stable_dt);
   for (std::size_t w = 0; w < settings_.walls.size(); ++w) add_wall_forces(model, w, time, dt, stable_dt);
+  // A ghost's rows lack the springs of the pairs its rank does not hold: its owner bounds them.
   const double* M = model.nodes.mass.data();
   for (const std::int32_t n : stiffened_)
-    if (M[n] > 0) {
-      max_frequency2_ = std::max(max_frequency2_, row_stiffness_[n] / M[n]);
-      max_damping_rate_ = std::max(max_damping_rate_, row_damping_[n] / M[n]);
+    if (M[n] > 0 && !is_ghost(n)) {
+      booking_.maxima[1] = std::max(booking_.maxima[1], row_stiffness_[n] / M[n]);
+      booking_.maxima[2] = std::max(booking_.maxima[2], row_damping_[n] / M[n]);
     }
+  take_booking();
+}
+
+void ContactSystem::take_booking() {
+  friction_work_ = booking_.sums.empty() ? 0.0 : booking_.sums[0].value();
+  for (std::size_t i = 0; i < wall_force_.size(); ++i) wall_force_[i] = booking_.sums[1 + i].value();
+  for (std::size_t i = 0; i < pair_force_.size(); ++i)
+    pair_force_[i] = booking_.sums[1 + wall_force_.size() + i].value();
+  max_penetration_ = booking_.maxima[0];
+  max_frequency2_ = booking_.maxima[1];
+  max_damping_rate_ = booking_.maxima[2];
+  active_ = static_cast<std::size_t>(booking_.active);
 }
 
 // The depth the penalty acts on (hit.gap less the offset carried without force) for surface
@@ -543,12 +560,14 @@ void ContactSystem::add_facet_force(Model& model, std::size_t i, double dt, doub
   const double spring = -k * loaded_depth(model, s, hit, vn, dt);
   const double dashpot = settings_.damping * 2.0 * std::sqrt(k * 0.5 * pair_mass);
   const double fn_mag = std::max(0.0, spring - dashpot * vn);
-  max_penetration_ = std::max(max_penetration_, -hit.gap);
+  const bool booked = !is_ghost(s);  // a ghost's pair is its owner's to book
+  if (booked) booking_.maxima[0] = std::max(booking_.maxima[0], -hit.gap);
   double vt[3];
   for (int d = 0; d < dim; ++d) vt[d] = vrel[d] - vn * hit.normal[d];
   const int ps = surface_.node_part[i], pf = surface_.facet_part[hit.facet];
   const FrictionLaw& law = settings_.friction[part_material_[ps] * material_count_ + part_material_[pf]];
-  friction_work_ += coulomb(T, hit.normal, vt, k, dt, fn_mag, law, dim);
+  const double slip_work = coulomb(T, hit.normal, vt, k, dt, fn_mag, law, dim);
+  if (booked) booking_.sums[0] += slip_work;
   double f[3];
   for (int d = 0; d < dim; ++d) {
     f[d] = fn_mag * hit.normal[d] + T[d];
@@ -572,7 +591,7 @@ void ContactSystem::add_facet_force(Model& model, std::size_t i, double dt, doub
   // the facets the other body's nodes press on (docs/theory/contact.md, "Contact pressure").
   normal_force_[s] += fn_mag;
   for (int a = 0; a < dim; ++a) normal_force_[fn[a]] += hit.weights[a] * fn_mag;
-  ++active_;
+  booking_.active += booked;
   // Row sums of |K|: a weight can be a little below 0 where the node projects just past the facet.
   double wsum = 0;
   for (int a = 0; a < dim; ++a) wsum += std::abs(hit.weights[a]);
@@ -583,8 +602,8 @@ void ContactSystem::add_facet_force(Model& model, std::size_t i, double dt, doub
   }
   const std::size_t np = model.parts.size();
   const int p = ps <= pf ? pair_of_parts_[ps * np + pf] : pair_of_parts_[pf * np + ps];
-  if (p >= 0)
-    for (int d = 0; d < dim; ++d) pair_force_[dim * p + d] += ps <= pf ? f[d] : -f[d];
+  if (p >= 0 && booked)
+    for (int d = 0; d < dim; ++d) booking_.sums[1 + wall_force_.size() + dim * p + d] += ps <= pf ? f[d] : -f[d];
 }
 
 void ContactSystem::add_wall_forces(Model& model, std::size_t w, double time, double dt, double stable_dt) {
@@ -603,6 +622,7 @@ void ContactSystem::add_wall_forces(Model& model, std::size_t w, double time, do
     const int ps = surface_.node_part[i];
     if (!wall.parts[ps]) continue;
     const std::int32_t s = surface_.nodes[i];
+    if (is_ghost(s)) continue;  // a wall acts on a node alone: its owner has all of it
     double* T = &model.contact.wall_tangential[(s * nw + w) * dim];
     WallTouch touch;
     if (!wall.touch(&model.nodes.x[dim * s], origin, 0.0, dim, touch)) {
@@ -613,7 +633,7 @@ void ContactSystem::add_wall_forces(Model& model, std::size_t w, double time, do
     const double k = penalty(2.0 * M[s], stable_dt, settings_.time_step_reduction, settings_.penalty_scale);
     const double fn_mag = k * touch.penetration;
     add_row_stiffness(s, k);
-    max_penetration_ = std::max(max_penetration_, touch.penetration);
+    booking_.maxima[0] = std::max(booking_.maxima[0], touch.penetration);
     const double* n = touch.normal.data();
     double vrel[3] = {0, 0, 0}, vn = 0;
     for (int d = 0; d < dim; ++d) {
@@ -622,15 +642,15 @@ void ContactSystem::add_wall_forces(Model& model, std::size_t w, double time, do
     }
     double vt[3];
     for (int d = 0; d < dim; ++d) vt[d] = vrel[d] - vn * n[d];
-    friction_work_ += coulomb(T, n, vt, k, dt, fn_mag, wall.friction, dim);
+    booking_.sums[0] += coulomb(T, n, vt, k, dt, fn_mag, wall.friction, dim);
     for (int d = 0; d < dim; ++d) {
       const double f = fn_mag * n[d] + T[d];
       force[dim * s + d] += f;
       applied_.emplace_back(static_cast<std::int64_t>(dim) * s + d, f);
-      wall_force_[dim * w + d] -= f;
+      booking_.sums[1 + dim * w + d] -= f;
     }
     normal_force_[s] += fn_mag;
-    ++active_;
+    ++booking_.active;
   }
 }
 

@@ -10,6 +10,7 @@
 #include "contact/contact_surface.hpp"
 #include "contact/wall_extent.hpp"
 #include "core/cell_grid.hpp"
+#include "core/exact_sum.hpp"
 #include "core/energy_ledger.hpp"
 #include "core/time_table.hpp"
 #include "model/model.hpp"
@@ -100,6 +101,22 @@ class ContactSystem final : public TopologyListener {
   void set_tied_nodes(const std::vector<char>* tied) { tied_ = tied; }
 
   double friction_increment() const { return friction_work_; }  ///< dissipated in this call (J)
+
+  /// What the last call booked, for a decomposed run to combine over its ranks: in a subdomain
+  /// (Model::ghost_node) a pair is booked by the owner of its node and a wall force by the owner
+  /// of the node it pushes, so that the ranks' bookings add up to the whole model's. `sums` are
+  /// exact (the same bits in any order): friction, then the wall forces (dim per wall), then the
+  /// pair forces (dim per pair); `maxima` the deepest penetration and the bounds on ω² and on
+  /// the damping rate over the owned nodes; `active` the count of contacts.
+  struct Booking {
+    std::vector<ExactSum> sums;
+    std::array<double, 3> maxima{0, 0, 0};
+    std::int64_t active = 0;
+  };
+  Booking& booking() { return booking_; }
+  /// Takes `booking()` (combined over the ranks, or as the call left it) as the call's results:
+  /// friction_increment(), wall_forces(), pair_forces(), the maxima and the count.
+  void take_booking();
   /// Bound on the largest eigenvalue of M⁻¹C, C the contact dashpots of the last call (1/s):
   /// Gershgorin's row sums, as for the springs. The stable step of central difference with
   /// damping is 2/(γ/2 + √(γ²/4 + ω²)) (docs/theory/contact.md, "Normal damping").
@@ -162,6 +179,7 @@ class ContactSystem final : public TopologyListener {
   void add_facet_force(Model& model, std::size_t i, double dt, double stable_dt);
   void add_wall_forces(Model& model, std::size_t w, double time, double dt, double stable_dt);
   void add_row_stiffness(std::int32_t node, double stiffness, double damping = 0);
+  bool is_ghost(std::int32_t node) const { return ghost_ && ghost_[node]; }
 
   ContactSettings settings_;
   const std::vector<char>* tied_ = nullptr;
@@ -170,6 +188,8 @@ class ContactSystem final : public TopologyListener {
   ContactSurface surface_;
   std::vector<Hit> hits_;                // per surface node
   std::vector<double> normal_force_;     // per node: normal force across the interface, last call (N)
+  Booking booking_;                      // this call's sums over the owned nodes (take_booking)
+  const std::uint8_t* ghost_ = nullptr;  // Model::ghost_node of the last call, or null
   CellGrid grid_;                       // the facets near each node (the one broad phase)
   // Verlet list: per surface node (CSR), the facets whose grown box, grown again by skin_, held
   // the node when it was built at positions candidate_x_; valid until the bodies have moved by

@@ -65,18 +65,25 @@ ContactSurface extract_contact_surface(const Model& model) {
       }
     }
   }
-  // Keep the faces seen once, in the order they were first met (deterministic).
+  // Keep the faces seen once, in the order of their keys: the order does not then depend on how
+  // the elements are stored (a subdomain holds a colour's owned elements before its ghosts), so
+  // the sums over facets (tributary areas, node normals) and the ties of the search come out
+  // the same in every subdomain as in the whole model.
   std::vector<char> boundary(faces.size(), 0);
+  const auto& whole = model.boundary_faces;  // a subdomain's: the whole model's boundary
   for (const auto& [key, index] : seen)
-    if (index >= 0) boundary[index] = 1;
+    if (index >= 0) boundary[index] = whole.empty() || std::binary_search(whole.begin(), whole.end(), faces[index].id);
   const int dim = s.dim;
   // Tributary areas on the undeformed surface: they must not depend on when the surface was last
   // built (a restart rebuilds it), only on the topology.
   const double* X = model.nodes.x0.data();
   std::vector<double> area(model.nodes.count(), 0.0);
   std::vector<std::int32_t> part_of(model.nodes.count(), -1);
-  for (std::size_t f = 0; f < faces.size(); ++f) {
-    if (!boundary[f]) continue;
+  std::vector<std::size_t> kept;
+  for (std::size_t f = 0; f < faces.size(); ++f)
+    if (boundary[f]) kept.push_back(f);
+  std::sort(kept.begin(), kept.end(), [&](std::size_t a, std::size_t b) { return faces[a].id < faces[b].id; });
+  for (const std::size_t f : kept) {
     const Face& face = faces[f];
     auto emit = [&](std::int32_t a, std::int32_t b, std::int32_t c, int half = 0) {
       s.facets.push_back(a);

@@ -204,6 +204,9 @@ struct ContactState {
   /// value): a penalty that followed the current step would change with the motion of the
   /// critical element and bulk viscosity, and make contact chatter.
   std::vector<double> penalty_time_step;
+  /// Normal contact pressure per node, for frames (ContactSystem::nodal_pressure): derived, set
+  /// before outputs are written, so that a decomposed run gathers it with the rest.
+  std::vector<double> pressure;
 
   /// Node fields (sized by the contact on its first step; a node split off starts with none).
   template <class F>
@@ -213,6 +216,9 @@ struct ContactState {
     f(field("touching", Location::node, 0, Follow::fresh), touching);
     f(field("penetration_offset", Location::node, 0, Follow::fresh), penetration_offset);
     f(field("loaded_gap", Location::node, 0, Follow::fresh), loaded_gap);
+    FieldInfo derived = field("pressure", Location::node, 0, Follow::recompute);
+    derived.checkpoint = false;
+    f(derived, pressure);
   }
   template <class F>
   void visit_model_fields(F&& f) {
@@ -286,6 +292,11 @@ struct Model {
   /// (its owner's position and velocity replace its own after each step) but leaves the energy
   /// sums to its owner. Empty: every node is the model's own. Not a field: set on a cut model.
   std::vector<std::uint8_t> ghost_node;
+  /// In a subdomain, the keys (facet_key, half 0) of the whole model's boundary faces, sorted: a
+  /// face of a held element whose neighbour another rank holds is seen once here, but it is no
+  /// surface of the body, and contact must not find it (src/contact/contact_surface.hpp).
+  /// Empty: every face seen once is a boundary face. Not a field: set on a cut model.
+  std::vector<std::int64_t> boundary_faces;
 
   int dim() const { return nodes.dim; }
   std::size_t element_count() const;

@@ -55,6 +55,14 @@ class ThreadTeam::Member final : public Communicator {
     return all;
   }
 
+  std::vector<std::vector<double>> all_gather(const std::vector<double>& mine) override {
+    shared_.values[rank_] = mine;
+    wait();
+    std::vector<std::vector<double>> all = shared_.values;
+    wait();
+    return all;
+  }
+
   void exchange(const std::vector<int>& neighbours, const std::vector<std::vector<double>>& send,
                 std::vector<std::vector<double>>& receive) override {
     for (std::size_t i = 0; i < neighbours.size(); ++i) shared_.mail[rank_][neighbours[i]] = send[i];

@@ -25,6 +25,9 @@ class Communicator {
   /// Rank 0 receives every rank's `mine`, in rank order (its own first); the others get nothing
   /// back (a collective). What a decomposed run's outputs are written from.
   virtual std::vector<std::vector<double>> gather(const std::vector<double>& mine) = 0;
+  /// Every rank receives every rank's `mine`, in rank order (a collective): what a rank needs to
+  /// cut the whole model anew.
+  virtual std::vector<std::vector<double>> all_gather(const std::vector<double>& mine) = 0;
   /// Sends send[i] to rank neighbours[i] and receives receive[i] from it (a collective of the
   /// neighbours; both ends know each message's length, receive[i] is sized by the caller).
   virtual void exchange(const std::vector<int>& neighbours, const std::vector<std::vector<double>>& send,

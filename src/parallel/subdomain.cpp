@@ -1,15 +1,84 @@
 #include "parallel/subdomain.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
 
+#include "contact/contact_surface.hpp"
+#include "core/cell_grid.hpp"
 #include "model/remap.hpp"
 
 namespace shard {
 
+namespace {
+
+bool in_contact(const ContactHalo& halo, int part) {
+  return static_cast<std::size_t>(part) < halo.parts.size() && halo.parts[part];
+}
+
+/// The surface nodes of the halo's parts within its reach of a surface node that `rank` owns.
+std::vector<char> nodes_near_owned_surface(const Model& model, const ContactSurface& surface,
+                                           const std::vector<std::int32_t>& owner, int rank,
+                                           const ContactHalo& halo) {
+  const int dim = model.dim();
+  const double* X = model.nodes.x.data();
+  std::vector<double> mine;
+  for (std::size_t i = 0; i < surface.nodes.size(); ++i) {
+    const std::int32_t n = surface.nodes[i];
+    if (owner[n] == rank && in_contact(halo, surface.node_part[i])) mine.insert(mine.end(), X + dim * n, X + dim * (n + 1));
+  }
+  std::vector<char> near(model.nodes.count(), 0);
+  if (mine.empty() || !(halo.reach > 0)) return near;
+  const CellGrid grid(mine, dim, halo.reach);
+  const double reach2 = halo.reach * halo.reach;
+  for (std::size_t i = 0; i < surface.nodes.size(); ++i) {
+    const std::int32_t n = surface.nodes[i];
+    if (!in_contact(halo, surface.node_part[i])) continue;
+    grid.for_near(X + dim * n, [&](std::int32_t q) {
+      double d2 = 0;
+      for (int k = 0; k < dim; ++k) d2 += (X[dim * n + k] - mine[dim * q + k]) * (X[dim * n + k] - mine[dim * q + k]);
+      if (d2 <= reach2) near[n] = 1;
+    });
+  }
+  return near;
+}
+
+}  // namespace
+
+ContactHalo contact_halo(const Model& model, const std::vector<char>& part_pairs) {
+  ContactHalo halo;
+  const std::size_t np = model.parts.size();
+  halo.parts.assign(np, 0);
+  bool any = false;
+  for (std::size_t a = 0; a < np; ++a)
+    for (std::size_t b = 0; b < np; ++b)
+      if (a * np + b < part_pairs.size() && part_pairs[a * np + b]) halo.parts[a] = halo.parts[b] = 1, any = true;
+  if (!any) return ContactHalo{};
+  const ContactSurface surface = extract_contact_surface(model);
+  const int dim = model.dim();
+  const double* X = model.nodes.x.data();
+  double longest = 0;
+  for (std::size_t f = 0; f < surface.facet_count(); ++f) {
+    if (!halo.parts[surface.facet_part[f]]) continue;
+    for (int a = 0; a < dim; ++a)
+      for (int b = a + 1; b < dim; ++b) {
+        double d2 = 0;
+        for (int k = 0; k < dim; ++k) {
+          const double u = X[dim * surface.facets[dim * f + a] + k] - X[dim * surface.facets[dim * f + b] + k];
+          d2 += u * u;
+        }
+        longest = std::max(longest, std::sqrt(d2));
+      }
+  }
+  halo.allowed_motion = 0.5 * longest;
+  halo.reach = 9 * longest;
+  return halo;
+}
+
 LocalEntities local_entities(const Model& model, const ElementPartition& partition,
-                             const std::vector<std::int32_t>& owner, int rank) {
+                             const std::vector<std::int32_t>& owner, int rank, const ContactHalo* halo) {
   LocalEntities held;
   held.node.assign(model.nodes.count(), Holding::none);
   for (std::size_t p = 0; p < model.parts.size(); ++p) {
@@ -27,6 +96,21 @@ LocalEntities local_entities(const Model& model, const ElementPartition& partiti
       else
         continue;
       for (int a = 0; a < npe; ++a) held.node[nodes[a]] = owner[nodes[a]] == rank ? Holding::owned : Holding::ghost;
+    }
+  }
+  if (halo && !halo->parts.empty()) {
+    const std::vector<char> near = nodes_near_owned_surface(model, extract_contact_surface(model), owner, rank, *halo);
+    for (std::size_t p = 0; p < model.parts.size(); ++p) {
+      const Part& part = model.parts[p];
+      const int npe = part.type->nodes;
+      for (std::size_t e = 0; e < part.element_count(); ++e) {
+        const std::int32_t* nodes = &part.connectivity[npe * e];
+        if (held.element[p][e] != Holding::none || std::none_of(nodes, nodes + npe, [&](std::int32_t n) { return near[n]; }))
+          continue;
+        held.element[p][e] = Holding::ghost;
+        for (int a = 0; a < npe; ++a)
+          if (held.node[nodes[a]] == Holding::none) held.node[nodes[a]] = owner[nodes[a]] == rank ? Holding::owned : Holding::ghost;
+      }
     }
   }
   return held;
@@ -65,11 +149,11 @@ void check_decomposable(const Model& model) {
 GhostExchangePlan plan_ghost_exchange(const Model& model, const ElementPartition& partition,
                                       const std::vector<std::int32_t>& owner, int rank,
                                       const std::vector<std::int32_t>& global_node,
-                                      const std::vector<std::uint8_t>& node_owned) {
+                                      const std::vector<std::uint8_t>& node_owned, const ContactHalo* halo) {
   GhostExchangePlan plan;
   for (int q = 0; q < partition.ranks; ++q) {
     if (q == rank) continue;
-    const LocalEntities theirs = local_entities(model, partition, owner, q);
+    const LocalEntities theirs = local_entities(model, partition, owner, q, halo);
     std::vector<std::int32_t> send, receive;
     for (std::size_t i = 0; i < global_node.size(); ++i) {
       const auto g = static_cast<std::size_t>(global_node[i]);
@@ -86,12 +170,12 @@ GhostExchangePlan plan_ghost_exchange(const Model& model, const ElementPartition
 
 }  // namespace
 
-Subdomain make_subdomain(const Model& model, const ElementPartition& partition, int rank) {
+Subdomain make_subdomain(const Model& model, const ElementPartition& partition, int rank, const ContactHalo* halo) {
   check_decomposable(model);
   if (rank < 0 || rank >= partition.ranks || partition.rank.size() != model.parts.size())
     throw std::invalid_argument("make_subdomain: rank " + std::to_string(rank) + " outside the partition");
   const std::vector<std::int32_t> owner = node_owners(model, partition);
-  const LocalEntities held = local_entities(model, partition, owner, rank);
+  const LocalEntities held = local_entities(model, partition, owner, rank, halo);
 
   Subdomain sub;
   sub.rank = rank;
@@ -133,9 +217,13 @@ Subdomain make_subdomain(const Model& model, const ElementPartition& partition, 
     local.ghost_begin = std::move(ghost_begin[p]);
     local.ghost_begin.resize(local.colour_count());
   }
+  // The body's surface is the whole model's: the faces where the cut separates held elements
+  // from the rest are not contact faces.
+  sub.model.boundary_faces = extract_contact_surface(model).facet_id;
+  std::sort(sub.model.boundary_faces.begin(), sub.model.boundary_faces.end());
   sub.model.ghost_node.resize(sub.node_owned.size());
   for (std::size_t n = 0; n < sub.node_owned.size(); ++n) sub.model.ghost_node[n] = !sub.node_owned[n];
-  sub.ghosts = plan_ghost_exchange(model, partition, owner, rank, sub.global_node, sub.node_owned);
+  sub.ghosts = plan_ghost_exchange(model, partition, owner, rank, sub.global_node, sub.node_owned, halo);
   return sub;
 }
 
@@ -185,23 +273,29 @@ void gather_owned(const Subdomain& sub, Model& local, Model& whole) {
                       [&](auto&& f) { whole.parts[p].visit_fields(f); }, Location::element,
                       local.parts[p].element_count(), whole.parts[p].element_count(), sub.global_element[p],
                       sub.element_owned[p]);
+  // Contact's model-wide state is the same on every rank.
+  whole.contact.wall_offset = local.contact.wall_offset;
+  whole.contact.penalty_time_step = local.contact.penalty_time_step;
 }
 
 namespace {
 
-/// Calls f(info, values, holder) for every floating-point field of the nodes (holder −1), then
-/// of each part's elements (holder: the part), in one fixed order: the same on every rank.
+/// Calls f(info, values, holder) for every field of the nodes (holder −1), then of each part's
+/// elements (holder: the part), in one fixed order: the same on every rank. Left out: the ids and
+/// the indices of other entities, which a run without topology changes does not change. Integer
+/// fields (contact's `touching`, ...) travel as doubles, exact below 2^53.
 template <class F>
 void visit_gathered_fields(Model& model, F&& f) {
-  auto doubles = [&](Location location, int holder) {
+  auto changing = [&](Location location, int holder) {
     return [&f, location, holder](const FieldInfo& info, auto& values) {
-      if constexpr (std::is_same_v<std::decay_t<decltype(values)>, std::vector<double>>)
-        if (info.location == location) f(info, values, holder);
+      const bool index = info.follow == Follow::node_index || info.follow == Follow::particle_index ||
+                         info.follow == Follow::stable_id;
+      if (info.location == location && !index) f(info, values, holder);
     };
   };
-  model.visit_node_fields(doubles(Location::node, -1));
+  model.visit_node_fields(changing(Location::node, -1));
   for (std::size_t p = 0; p < model.parts.size(); ++p)
-    model.parts[p].visit_fields(doubles(Location::element, static_cast<int>(p)));
+    model.parts[p].visit_fields(changing(Location::element, static_cast<int>(p)));
 }
 
 }  // namespace
@@ -222,12 +316,19 @@ std::vector<double> pack_owned(const Subdomain& sub, Model& local) {
     for (auto e : elements[p]) packed.push_back(sub.global_element[p][e]);
   }
   // Then per field its components per entity and the owned entities' values.
-  visit_gathered_fields(local, [&](const FieldInfo&, std::vector<double>& values, int holder) {
+  visit_gathered_fields(local, [&](const FieldInfo&, auto& values, int holder) {
     const std::size_t count = holder < 0 ? local.nodes.count() : local.parts[holder].element_count();
     const auto& owned = holder < 0 ? nodes : elements[holder];
     const std::size_t comps = count == 0 ? 0 : values.size() / count;
     packed.push_back(static_cast<double>(comps));
-    for (auto i : owned) packed.insert(packed.end(), values.begin() + comps * i, values.begin() + comps * (i + 1));
+    for (auto i : owned)
+      for (std::size_t k = 0; k < comps; ++k) packed.push_back(static_cast<double>(values[comps * i + k]));
+  });
+  // The model-wide state of contact (the walls' displacements, the penalty's step): the same on
+  // every rank, each sends its own.
+  local.contact.visit_model_fields([&](const FieldInfo&, std::vector<double>& values) {
+    packed.push_back(static_cast<double>(values.size()));
+    packed.insert(packed.end(), values.begin(), values.end());
   });
   return packed;
 }
@@ -242,13 +343,18 @@ void unpack_owned(const std::vector<double>& packed, Model& whole) {
     list.resize(static_cast<std::size_t>(next()));
     for (auto& e : list) e = static_cast<std::size_t>(next());
   }
-  visit_gathered_fields(whole, [&](const FieldInfo& info, std::vector<double>& values, int holder) {
+  visit_gathered_fields(whole, [&](const FieldInfo& info, auto& values, int holder) {
+    using T = typename std::decay_t<decltype(values)>::value_type;
     const std::size_t count = holder < 0 ? whole.nodes.count() : whole.parts[holder].element_count();
     const auto& owned = holder < 0 ? nodes : elements[holder];
     const auto comps = static_cast<std::size_t>(next());
-    if (comps > 0 && values.size() != comps * count) values.assign(comps * count, info.initial);
+    if (comps > 0 && values.size() != comps * count) values.assign(comps * count, static_cast<T>(info.initial));
     for (auto i : owned)
-      for (std::size_t k = 0; k < comps; ++k) values[comps * i + k] = next();
+      for (std::size_t k = 0; k < comps; ++k) values[comps * i + k] = static_cast<T>(next());
+  });
+  whole.contact.visit_model_fields([&](const FieldInfo&, std::vector<double>& values) {
+    values.resize(static_cast<std::size_t>(next()));
+    for (double& v : values) v = next();
   });
   if (at != packed.size()) throw std::logic_error("unpack_owned: the array holds more than its fields");
 }

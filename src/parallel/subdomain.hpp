@@ -24,10 +24,29 @@ struct LocalEntities {
   std::vector<Holding> node;
 };
 
+/// What contact between parts needs a rank to hold beyond its ghost layer (docs/theory/
+/// domain_decomposition.md, "Contact between parts across ranks"): every surface node of a part
+/// in contact within `reach` of one of the rank's own surface nodes, with every element around
+/// it. A node's contact force then comes from pairs its rank holds whole: the nodes that press
+/// on its facets, each with every facet it could be found behind, its normal and its
+/// neighbourhood. That holds while no node has moved `allowed_motion` since the cut; then the
+/// model must be cut anew.
+struct ContactHalo {
+  std::vector<char> parts;     ///< per part: 1 where contact between parts (or self-contact) acts on it
+  double reach = 0;            ///< m
+  double allowed_motion = 0;   ///< m
+};
+
+/// The halo for the contact `part_pairs` (parts × parts, as ContactSettings::part_pairs) on
+/// `model` as it is now: with h the longest facet of the contact parts' surface and δ = h/2, a
+/// reach of 4(h + 2δ) + 2δ = 9h and an allowed motion δ. Empty parts: no contact between parts.
+ContactHalo contact_halo(const Model& model, const std::vector<char>& part_pairs);
+
 /// Owned: the rank's elements and the nodes it owns (node_owners). Ghost: the elements of other
-/// ranks that hold one of its nodes, and the nodes of its elements that other ranks own.
+/// ranks that hold one of its nodes, and the nodes of its elements that other ranks own; with a
+/// contact `halo`, also the elements around the surface nodes near the rank's own.
 LocalEntities local_entities(const Model& model, const ElementPartition& partition,
-                             const std::vector<std::int32_t>& owner, int rank);
+                             const std::vector<std::int32_t>& owner, int rank, const ContactHalo* halo = nullptr);
 
 /// The ghost nodes a rank receives and the owned nodes it sends, per neighbouring rank, as local
 /// node indices; both sides list a node pair in the same order (ascending index in the whole
@@ -55,9 +74,11 @@ struct Subdomain {
 };
 
 /// Cuts the part of `model` that rank `rank` holds out of a copy of it (apply_remap, keeping the
-/// held nodes and elements) and plans its ghost exchange. Particles, interfaces and contact are
-/// not yet decomposed: throws std::invalid_argument for a model that has any.
-Subdomain make_subdomain(const Model& model, const ElementPartition& partition, int rank);
+/// held nodes and elements) and plans its ghost exchange; with contact between parts, its `halo`
+/// too. Particles, interfaces and cracks are not yet decomposed: throws std::invalid_argument for
+/// a model that has any.
+Subdomain make_subdomain(const Model& model, const ElementPartition& partition, int rank,
+                         const ContactHalo* halo = nullptr);
 
 /// Writes what `sub` owns — every declared node and element field of its owned nodes and
 /// elements, as they are in `local` (the subdomain's model as its run has left it) — into `whole`,
@@ -66,8 +87,8 @@ Subdomain make_subdomain(const Model& model, const ElementPartition& partition, 
 /// (a rebalance, or another number of ranks). The topology must not have changed since the cut.
 void gather_owned(const Subdomain& sub, Model& local, Model& whole);
 
-/// gather_owned across processes: what `sub` owns of every floating-point node and element field
-/// of `local` (the rest of a cut model — ids, connectivity, colours — does not change), with
+/// gather_owned across processes: what `sub` owns of every node and element field of `local`
+/// but ids and indices (which a cut model does not change), and contact's model-wide state, with
 /// the owned entities' indices in the whole model, as one array to send to the rank that writes
 /// the outputs; unpack_owned writes such an array into `whole`.
 std::vector<double> pack_owned(const Subdomain& sub, Model& local);

@@ -261,19 +261,24 @@ void ExplicitSolver::sum_part_sums_over_ranks(std::vector<ForceSums>& part_sums)
   }
 }
 
-void ExplicitSolver::sum_advance_over_ranks(AdvanceSums& sums) {
+void ExplicitSolver::sum_advance_over_ranks(AdvanceSums& sums, ContactWork& contact) {
   // The step's energy sums, then the reactions and work of the node groups, in one message.
-  std::vector<ExactSum> all{sums.kinetic, sums.damp_back, sums.damp_ahead, sums.external_back, sums.external_ahead};
+  std::vector<ExactSum> all{sums.kinetic,          sums.damp_back,          sums.damp_ahead,
+                            sums.external_back,    sums.external_ahead,     contact.contact_back,
+                            contact.contact_ahead, contact.damping_back,    contact.damping_ahead};
   all.insert(all.end(), node_reaction_sums_.begin(), node_reaction_sums_.end());
   all.insert(all.end(), node_work_sums_.begin(), node_work_sums_.end());
   sum_over_ranks(all.data(), all.size());
   sums.kinetic = all[0], sums.damp_back = all[1], sums.damp_ahead = all[2];
   sums.external_back = all[3], sums.external_ahead = all[4];
+  contact.contact_back = all[5], contact.contact_ahead = all[6], contact.damping_back = all[7];
+  contact.damping_ahead = all[8];
+  constexpr std::size_t first = 9;
   const std::size_t r = node_reaction_sums_.size();
   node_reactions_.resize(r);
   node_work_.resize(node_work_sums_.size());
-  for (std::size_t i = 0; i < r; ++i) node_reactions_[i] = all[5 + i].value();
-  for (std::size_t i = 0; i < node_work_.size(); ++i) node_work_[i] = all[5 + r + i].value();
+  for (std::size_t i = 0; i < r; ++i) node_reactions_[i] = all[first + i].value();
+  for (std::size_t i = 0; i < node_work_.size(); ++i) node_work_[i] = all[first + r + i].value();
 }
 
 void ExplicitSolver::sum_over_ranks(ExactSum* sums, std::size_t count, std::int64_t* counts, std::size_t n_counts) {
@@ -357,13 +362,27 @@ void ExplicitSolver::compute_forces() {
     // Faces exposed by erosion or by an interface that opened may meet already pressed.
     contact_->set_eroded_surfaces(state_.eroded_elements > 0 || (cohesive_ && cohesive_->open_elements() > 0));
     contact_->set_tied_nodes(cohesive_ ? &cohesive_->tied_nodes() : nullptr);
+    // The penalty is built on the whole model's element step.
+    if (global_minimum_) global_minimum_(&total.stable_dt, 1);
     contact_->add_forces(model_, state_.time, state_.dt_half, total.stable_dt);
+    if (global_sum_) combine_contact_over_ranks();
     state_.energy[terms_.friction] += contact_->friction_increment();
     const auto& wf = contact_->wall_forces();
     state_.wall_force_on_bodies.assign(wf.size(), 0.0);
     for (std::size_t i = 0; i < wf.size(); ++i) state_.wall_force_on_bodies[i] = -wf[i];
   }
   state_.dt_next = choose_time_step(total.stable_dt, particle_dt);
+}
+
+void ExplicitSolver::combine_contact_over_ranks() {
+  ContactSystem::Booking& booked = contact_->booking();
+  sum_over_ranks(booked.sums.data(), booked.sums.size(), &booked.active, 1);
+  // Maxima as minima of their negatives: exact, as a minimum is.
+  double maxima[3];
+  for (int i = 0; i < 3; ++i) maxima[i] = -booked.maxima[i];
+  global_minimum_(maxima, 3);
+  for (int i = 0; i < 3; ++i) booked.maxima[i] = -maxima[i];
+  contact_->take_booking();
 }
 
 double ExplicitSolver::choose_time_step(double element_stable_dt, double particle_dt) {
@@ -441,27 +460,28 @@ void ExplicitSolver::apply_prescribed_velocities(const AdvanceCoefficients& c, E
   for (std::size_t i = 0; i < particle_reactions.size(); ++i) particle_reactions_[i] = particle_reactions[i].value();
 }
 
-void ExplicitSolver::book_contact_work(double dt_n, double d1, double d2, double back, double ahead,
-                                       double dt_next, double& contact_back, double& contact_ahead,
-                                       double& damping_back, double& damping_ahead, double& wall_back,
-                                       double& wall_ahead, double& particle_wall_back,
-                                       double& particle_wall_ahead) {
+void ExplicitSolver::book_contact_work(const AdvanceCoefficients& c, ContactWork& work, double& wall_back,
+                                       double& wall_ahead, double& particle_wall_back, double& particle_wall_ahead) {
   // Work of the contact forces on the nodes, and of moving rigid walls on the bodies they push
   // (F_wall→body · v_wall, external work); the particles' share of the walls' work is its own term.
   const int dim = model_.dim();
+  const double back = c.back, ahead = c.ahead, dt_next = c.dt_next;
   if (contact_) {
     const double* V = model_.nodes.v.data();
     const double* F = model_.nodes.force.data();
     const double* M = model_.nodes.mass.data();
-    auto new_velocity = [&](std::size_t dof, double m) { return (d1 * V[dof] + dt_n * (F[dof] / m)) * d2; };
+    const std::uint8_t* ghost = model_.ghost_node.empty() ? nullptr : model_.ghost_node.data();
+    auto new_velocity = [&](std::size_t dof, double m) { return (c.d1 * V[dof] + c.dt_n * (F[dof] / m)) * c.d2; };
     for (const auto& [dof, f] : contact_->applied_forces()) {
-      contact_back += f * back * V[dof];
-      contact_ahead += f * ahead * new_velocity(dof, M[dof / dim]);
+      if (ghost && ghost[dof / dim]) continue;  // its owner books the work
+      work.contact_back += f * back * V[dof];
+      work.contact_ahead += f * ahead * new_velocity(dof, M[dof / dim]);
     }
     // The dashpots' share of that work, over the same half steps: dissipated (contact_damping).
     for (const auto& [dof, f] : contact_->damping_forces()) {
-      damping_back -= f * back * V[dof];
-      damping_ahead -= f * ahead * new_velocity(dof, M[dof / dim]);
+      if (ghost && ghost[dof / dim]) continue;
+      work.damping_back -= f * back * V[dof];
+      work.damping_ahead -= f * ahead * new_velocity(dof, M[dof / dim]);
     }
   }
   const std::vector<RigidWall>* walls = contact_ ? &contact_->settings().walls
@@ -516,10 +536,9 @@ void ExplicitSolver::advance() {
     sums.external_back += f * c.back * V[dof];
     sums.external_ahead += f * c.ahead * ((c.d1 * V[dof] + c.dt_n * (F[dof] / m)) * c.d2);
   }
-  double contact_back = 0, contact_ahead = 0, wall_back = 0, wall_ahead = 0, pwall_back = 0, pwall_ahead = 0;
-  double dashpot_back = 0, dashpot_ahead = 0;
-  book_contact_work(c.dt_n, c.d1, c.d2, c.back, c.ahead, c.dt_next, contact_back, contact_ahead, dashpot_back,
-                    dashpot_ahead, wall_back, wall_ahead, pwall_back, pwall_ahead);
+  double wall_back = 0, wall_ahead = 0, pwall_back = 0, pwall_ahead = 0;
+  ContactWork contact_work;
+  book_contact_work(c, contact_work, wall_back, wall_ahead, pwall_back, pwall_ahead);
 
   // The nodes' gravity work adds to the external work.
   const std::int64_t bad_node = advance_points(moving_points(model_), c, sums, block_sums_);
@@ -539,7 +558,9 @@ void ExplicitSolver::advance() {
       throw RunError(out.str());
     }
   }
-  sum_advance_over_ranks(sums);
+  sum_advance_over_ranks(sums, contact_work);
+  const double contact_back = contact_work.contact_back.value(), contact_ahead = contact_work.contact_ahead.value();
+  const double dashpot_back = contact_work.damping_back.value(), dashpot_ahead = contact_work.damping_ahead.value();
   const double kinetic = sums.kinetic.value(), damp_back = sums.damp_back.value(),
                damp_ahead = sums.damp_ahead.value(), external_back = sums.external_back.value(),
                external_ahead = sums.external_ahead.value();

@@ -149,10 +149,15 @@ class ExplicitSolver : private TopologyListener {
   double choose_time_step(double element_dt, double particle_dt);
   /// External work of the prescribed velocities of the nodes and particles (back, ahead halves).
   void apply_prescribed_velocities(const AdvanceCoefficients& c, ExactSum& external_back, ExactSum& external_ahead);
-  void book_contact_work(double dt_n, double d1, double d2, double back, double ahead, double dt_next,
-                         double& contact_back, double& contact_ahead, double& damping_back, double& damping_ahead,
-                         double& wall_back, double& wall_ahead, double& particle_wall_back,
-                         double& particle_wall_ahead);
+  /// The work of the contact forces and of their dashpots on the nodes over the halves of the
+  /// step, summed exactly over the owned nodes (a decomposed run sums them over the ranks).
+  struct ContactWork {
+    ExactSum contact_back, contact_ahead, damping_back, damping_ahead;
+  };
+  void book_contact_work(const AdvanceCoefficients& c, ContactWork& work, double& wall_back, double& wall_ahead,
+                         double& particle_wall_back, double& particle_wall_ahead);
+  /// The contact's booking of this step (forces on walls and pairs, friction, maxima) over the ranks.
+  void combine_contact_over_ranks();
 
   Model& model_;
   const std::vector<std::unique_ptr<Material>>& materials_;
@@ -178,7 +183,7 @@ class ExplicitSolver : private TopologyListener {
   std::vector<ExactSum> node_reaction_sums_, node_work_sums_;
   /// The step's sums and the node groups' reactions and work over the ranks; then the latter
   /// as node_reactions_ and node_work_.
-  void sum_advance_over_ranks(AdvanceSums& sums);
+  void sum_advance_over_ranks(AdvanceSums& sums, ContactWork& contact);
   /// The prescribed degrees of freedom of the nodes and of each particle part, from their
   /// `prescribed` fields; rebuilt after every topology change.
   std::vector<PrescribedDof> node_dofs_;

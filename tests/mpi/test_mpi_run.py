@@ -6,8 +6,11 @@ history.csv, frames.pvd and every frame, resolved.yaml and checkpoint.bin; summa
 only in what describes the run rather than its result (wall time, speed, memory, ranks).
 Checked on the steel bar of examples/bar_impact/ in plane strain (tri3) on 1-4 ranks and in 3D
 (hex8 with one point and hourglass control) on 2 and 4 ranks, with 2 threads per rank once; a run
-checkpointed on 2 ranks and continued on 3 ends with the bytes of one straight through; a
-scenario with contact is refused before the run (exit status 2, saying what it cannot hold).
+checkpointed on 2 ranks and continued on 3 ends with the bytes of one straight through; the
+copper Taylor bar on its rigid anvil (a wall with friction) on 2 and 3 ranks; the cylinder on
+the plate (contact between parts, the model cut anew as it moves) on 2 and 3 ranks and from 2 to
+3 ranks across a restart; a scenario with discrete cracks is refused before the run (exit status
+2, saying what it cannot hold).
 
 Usage: test_mpi_run.py SHARD_EXECUTABLE MPIEXEC SOURCE_DIR WORK_DIR
 """
@@ -25,7 +28,7 @@ env = dict(os.environ, OMP_NUM_THREADS="1", OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALL
            OMPI_MCA_rmaps_base_oversubscribe="1")
 failures = []
 RUN_FACTS = {"wall_seconds", "element_steps_per_second", "particle_steps_per_second", "peak_memory_mb", "ranks",
-             "threads"}
+             "threads", "cuts"}
 
 
 def run(out, scenario, ranks=None, extra=(), threads=1):
@@ -89,10 +92,44 @@ if r1.returncode != 0 or r2.returncode != 0:
 else:
     same_outputs("hex8_serial", "hex8_restart", "hex8 on 2 ranks to 1.5 us, then 3")
 
+# A rigid wall with friction: the copper Taylor bar (hex8, Johnson-Cook) on its anvil, 5 us.
+taylor = os.path.join(source, "examples/taylor_bar/copper_3d.yaml")
+r = run("taylor_serial", taylor, extra=["--set", "analysis.end_time=5us"])
+if r.returncode != 0:
+    sys.exit(f"the Taylor bar in one process failed: {r.stderr}")
+for ranks in (2, 3):
+    r = run(f"taylor_np{ranks}", taylor, ranks, ["--set", "analysis.end_time=5us"])
+    if r.returncode != 0:
+        failures.append(f"the Taylor bar on {ranks} ranks failed ({r.returncode}): {r.stderr[-2000:]}")
+    else:
+        same_outputs("taylor_serial", f"taylor_np{ranks}", f"Taylor bar on its anvil, {ranks} ranks")
+
+# Contact between parts across the cut: the steel cylinder on the alumina plate (plane strain,
+# 25 912 tri3) to 3 us, cut anew as the cylinder moves; checkpointed on 2 ranks at 1.5 us and
+# continued on 3.
+cylinder = os.path.join(source, "examples/cylinder_on_plate/cylinder_on_plate.yaml")
+r = run("cylinder_serial", cylinder)
+if r.returncode != 0:
+    sys.exit(f"the cylinder on the plate in one process failed: {r.stderr}")
+for ranks in (2, 3):
+    r = run(f"cylinder_np{ranks}", cylinder, ranks)
+    if r.returncode != 0:
+        failures.append(f"the cylinder on the plate on {ranks} ranks failed ({r.returncode}): {r.stderr[-2000:]}")
+        continue
+    same_outputs("cylinder_serial", f"cylinder_np{ranks}", f"cylinder on the plate, {ranks} ranks")
+    if json.load(open(f"cylinder_np{ranks}/summary.json"))["cuts"] < 1:
+        failures.append(f"cylinder on the plate, {ranks} ranks: the model was never cut anew")
+r1 = run("cylinder_restart", cylinder, 2, ["--until", "1.5us"])
+r2 = run("cylinder_restart", cylinder, 3, ["--restart", "cylinder_restart/checkpoint.bin"])
+if r1.returncode != 0 or r2.returncode != 0:
+    failures.append(f"the cylinder's restart across rank counts failed: {r1.stderr[-1000:]} {r2.stderr[-1000:]}")
+else:
+    same_outputs("cylinder_serial", "cylinder_restart", "cylinder on the plate on 2 ranks to 1.5 us, then 3")
+
 # What a decomposed run cannot hold yet is said before the run, with exit status 2.
-r = run("refused", os.path.join(source, "examples/taylor_bar/copper_3d.yaml"), 2)
-if r.returncode != 2 or "cannot yet hold contact" not in r.stderr or os.path.exists("refused"):
-    failures.append(f"contact on 2 ranks: exit status {r.returncode}, said {r.stderr[:500]!r}")
+r = run("refused", os.path.join(source, "examples/sphere_on_alumina/sphere_on_alumina_300_cracks.yaml"), 2)
+if r.returncode != 2 or "cannot yet hold discrete cracks" not in r.stderr or os.path.exists("refused"):
+    failures.append(f"cracks on 2 ranks: exit status {r.returncode}, said {r.stderr[:500]!r}")
 
 for f in failures:
     print("FAIL:", f)

@@ -18,10 +18,12 @@
 #include <cstring>
 #include <numbers>
 
+#include "contact/contact.hpp"
 #include "parallel/communicator.hpp"
 #include "parallel/ghost_exchange.hpp"
 #include "parallel/partition.hpp"
 #include "parallel/subdomain.hpp"
+#include "support/contact_models.hpp"
 #include "support/decomposition_cases.hpp"
 
 namespace shard {
@@ -156,6 +158,174 @@ TEST(DomainDecomposition, RebalancingEverySevenStepsGivesTheSameBitsAsNever) {
     check_segmented_run(c, segments, [](const Model& m, std::size_t k) {
       return k % 2 == 0 ? partition_elements(m, 2) : scatter_elements(m, 2, 100 + k);
     });
+}
+
+/// A rigid wall under the model (y = 0, normal +y) that rises at 15 m/s into its bottom face, with
+/// Coulomb friction against the sideways motion; one material, no contact between parts.
+ContactSettings rising_wall(std::size_t parts) {
+  ContactSettings s;
+  s.part_pairs.assign(parts * parts, 0);
+  s.friction.assign(1, FrictionLaw{0.3, 0.25});
+  RigidWall wall;
+  wall.name = "floor";
+  wall.velocity[1] = TimeTable::constant(15.0);
+  wall.friction = {0.3, 0.25};
+  wall.parts.assign(parts, 1);
+  s.walls.push_back(wall);
+  return s;
+}
+
+TEST(DomainDecomposition, ARigidWallWithFrictionGivesTheSameBitsOnOneToFourRanks) {
+  // The wall acts on each node alone, so its owner has all of it; what the ranks must agree on
+  // is the penalty's step (the whole model's element step) and the sums: the wall's force, the
+  // friction and the contact work, booked by the owners of the nodes and summed exactly.
+  for (const Case& c : {kPlate, kHexBar}) {
+    ElasticRun whole = make_run(c);
+    const Model start = whole.model;
+    ContactSystem serial_contact(whole.model, rising_wall(whole.model.parts.size()), {0}, 1);
+    int friction = -1;
+    const Booked booked = run_steps(whole.model, whole.materials, whole.loads, whole.settings, kSteps,
+                                    [&](ExplicitSolver& solver) {
+                                      solver.attach_contact(&serial_contact);
+                                      friction = solver.state().energy.find("friction");
+                                    });
+    const double serial_wall_force = serial_contact.wall_forces()[1];
+    ASSERT_GT(booked.energies.at(static_cast<std::size_t>(friction)), 0) << c.name << ": the wall must slide";
+    ASSERT_LT(serial_wall_force, 0) << c.name << ": the wall must push";
+    for (int ranks = 2; ranks <= 4; ++ranks) {
+      const ElementPartition partition = partition_elements(start, ranks);
+      std::vector<Subdomain> subs;
+      for (int r = 0; r < ranks; ++r) subs.push_back(make_subdomain(start, partition, r));
+      std::vector<Model> finished(ranks);
+      std::vector<Booked> booked_by(ranks);
+      std::vector<double> wall_force(ranks);
+      ThreadTeam team(ranks);
+      team.run([&](Communicator& communicator) {
+        const int r = communicator.rank();
+        Model local = subs[r].model;
+        const auto materials = decomposition_materials();
+        GhostExchange exchange(subs[r].ghosts, communicator);
+        ContactSystem contact(local, rising_wall(local.parts.size()), {0}, 1);
+        booked_by[r] = run_steps(local, materials, whole.loads, whole.settings, kSteps, [&](ExplicitSolver& solver) {
+          solver.attach_contact(&contact);
+          join_decomposed_run(solver, exchange, communicator);
+        });
+        wall_force[r] = contact.wall_forces()[1];
+        finished[r] = std::move(local);
+      });
+      for (int r = 0; r < ranks; ++r) {
+        EXPECT_EQ(differences(subs[r], finished[r], whole.model), 0u) << c.name << ", rank " << r << " of " << ranks;
+        EXPECT_EQ(differences(booked_by[r], booked), 0u) << c.name << ", ledger of rank " << r << " of " << ranks;
+        EXPECT_TRUE(same_bits(wall_force[r], serial_wall_force)) << c.name << ", wall force on rank " << r;
+      }
+    }
+  }
+}
+
+/// A block of 8 × 4 tri3 driven down at 60 m/s from 20 µm above the middle of the distorted plate of kPlate,
+/// whose bottom is held: contact between the two parts with friction 0.2, the block a little off centre
+/// so that cuts by bisection run under the contact patch.
+ElasticRun block_on_plate() {
+  BoxMesh plate;
+  plate.element = "tri3";
+  plate.cells = {24, 8, 1};
+  plate.size = {0.3, 0.1, 1};
+  plate.distortion = 0.2;
+  Model model = make_box_model(Formulation::plane_strain, plate);
+  BoxMesh block = plate;
+  block.cells = {8, 4, 1};
+  block.size = {0.1, 0.05, 1};
+  block.seed = 777;
+  const std::size_t plate_nodes = model.nodes.count();
+  append_model(model, make_box_model(Formulation::plane_strain, block), {0.11, 0.10002, 0}, "block_", 0);
+  // Stable ids over both parts, as a scenario's model has them.
+  for (Part& part : model.parts) part.id.clear();
+  model.next_element_id = 0;
+  model.assign_ids();
+  for (std::size_t i = plate_nodes; i < model.nodes.count(); ++i) model.nodes.v[2 * i + 1] = -60.0;
+  ElasticRun run(std::move(model), kDensity, kYoungs, kPoisson);
+  run.prescribe("ymin", 0, 0.0);
+  run.prescribe("ymin", 1, 0.0);
+  run.prescribe("block_ymax", 1, -60.0);  // pressed on, so that the contact lasts
+  return run;
+}
+
+ContactSettings block_contact() { return all_pairs(2, 1, FrictionLaw{0.2, 0.2}); }
+
+/// `segments` runs of the block on the plate, each cut anew from the gathered whole model (by
+/// bisection on `ranks`, or at random), against the whole model run straight through: the owned
+/// state and every rank's ledger and pair force must have the bits of the whole run.
+void check_block_on_plate(int ranks, bool scattered, const std::vector<int>& segments) {
+  ElasticRun serial = block_on_plate();
+  Model whole = serial.model;
+  ContactSystem serial_contact(serial.model, block_contact(), {0, 0}, 1);
+  int total = 0;
+  for (int n : segments) total += n;
+  const Booked booked = run_steps(serial.model, serial.materials, serial.loads, serial.settings, total,
+                                  [&](ExplicitSolver& solver) { solver.attach_contact(&serial_contact); });
+  ASSERT_GT(serial_contact.active_contacts(), 10u) << "the block must press on the plate";
+  SolverState state;
+  std::vector<Booked> booked_by(ranks);
+  std::vector<double> pair_force(ranks);
+  double halo_ratio = 0;
+  for (std::size_t k = 0; k < segments.size(); ++k) {
+    const ElementPartition partition = scattered ? scatter_elements(whole, ranks, 40 + k) : partition_elements(whole, ranks);
+    const ContactHalo halo = contact_halo(whole, block_contact().part_pairs);
+    std::vector<Subdomain> subs;
+    for (int r = 0; r < ranks; ++r) subs.push_back(make_subdomain(whole, partition, r, &halo));
+    std::vector<Model> locals(ranks);
+    std::vector<double> moved(ranks, 0.0);
+    ThreadTeam team(ranks);
+    team.run([&](Communicator& communicator) {
+      const int r = communicator.rank();
+      locals[r] = subs[r].model;
+      const auto materials = decomposition_materials();
+      GhostExchange exchange(subs[r].ghosts, communicator);
+      ContactSystem contact(locals[r], block_contact(), {0, 0}, 1);
+      ExplicitSolver solver(locals[r], materials, serial.loads, serial.settings);
+      solver.attach_contact(&contact);
+      join_decomposed_run(solver, exchange, communicator);
+      if (k > 0) {
+        solver.state() = state;
+        solver.restored();
+      } else {
+        solver.initialise();
+      }
+      for (int s = 0; s < segments[k]; ++s) {
+        solver.compute_forces();
+        solver.advance();
+      }
+      for (std::size_t i = 0; i < locals[r].nodes.x.size(); ++i)
+        moved[r] = std::max(moved[r], std::abs(locals[r].nodes.x[i] - subs[r].model.nodes.x[i]));
+      booked_by[r] = {solver.state().energy.values(), solver.node_group_reactions(), solver.node_group_work(),
+                      solver.state().part_stored};
+      pair_force[r] = contact.pair_forces()[1];
+      if (r == 0) state = solver.state();
+    });
+    for (int r = 0; r < ranks; ++r) {
+      // The halo holds the pairs for this much motion only (a run cuts anew before it is used up).
+      ASSERT_LT(moved[r], halo.allowed_motion / std::sqrt(2.0)) << "segment " << k << " moved too far";
+      gather_owned(subs[r], locals[r], whole);
+      halo_ratio += static_cast<double>(subs[r].ghost_element_count()) / (ranks * segments.size() * subs[r].owned_element_count());
+    }
+  }
+  EXPECT_EQ(whole_differences(whole, serial.model), 0u) << ranks << " ranks" << (scattered ? ", scattered" : "");
+  for (int r = 0; r < ranks; ++r) {
+    EXPECT_EQ(differences(booked_by[r], booked), 0u) << "ledger of rank " << r << " of " << ranks;
+    EXPECT_TRUE(same_bits(pair_force[r], serial_contact.pair_forces()[1])) << "pair force on rank " << r;
+  }
+  std::printf("block on plate, %s on %d ranks, %zu segments: ghost/owned %.2f\n", scattered ? "scattered" : "RCB      ",
+              ranks, segments.size(), halo_ratio);
+}
+
+TEST(DomainDecomposition, ContactBetweenPartsGivesTheSameBitsOnOneToFourRanks) {
+  // Cut by bisection under the contact patch, cut anew from the gathered model every 50 steps,
+  // as a run does when its nodes have moved far enough.
+  for (int ranks = 1; ranks <= 4; ++ranks) check_block_on_plate(ranks, false, {50, 50, 50});
+}
+
+TEST(DomainDecomposition, ContactBetweenPartsOnARandomPartitionGivesTheSameBits) {
+  for (int ranks : {2, 3}) check_block_on_plate(ranks, true, {60, 60});
 }
 
 }  // namespace

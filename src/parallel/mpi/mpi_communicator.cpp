@@ -43,6 +43,19 @@ std::vector<std::vector<double>> MpiCommunicator::gather(const std::vector<doubl
   return all;
 }
 
+std::vector<std::vector<double>> MpiCommunicator::all_gather(const std::vector<double>& mine) {
+  const int n = static_cast<int>(mine.size());
+  std::vector<int> counts(size_), offsets(size_ + 1, 0);
+  check(MPI_Allgather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, comm_), "MPI_Allgather (sizes of the states)");
+  for (int r = 0; r < size_; ++r) offsets[r + 1] = offsets[r] + counts[r];
+  std::vector<double> flat(static_cast<std::size_t>(offsets.back()));
+  check(MPI_Allgatherv(mine.data(), n, MPI_DOUBLE, flat.data(), counts.data(), offsets.data(), MPI_DOUBLE, comm_),
+        "MPI_Allgatherv (the state to cut anew)");
+  std::vector<std::vector<double>> all;
+  for (int r = 0; r < size_; ++r) all.emplace_back(flat.begin() + offsets[r], flat.begin() + offsets[r + 1]);
+  return all;
+}
+
 void MpiCommunicator::exchange(const std::vector<int>& neighbours, const std::vector<std::vector<double>>& send,
                                std::vector<std::vector<double>>& receive) {
   // Receives first, then sends, then wait for all: no ordering between pairs of ranks needed.

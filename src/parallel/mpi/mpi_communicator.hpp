@@ -17,6 +17,7 @@ class MpiCommunicator final : public Communicator {
   void minimum(double* values, int count) override;
   void sum(std::int64_t* values, int count) override;
   std::vector<std::vector<double>> gather(const std::vector<double>& mine) override;
+  std::vector<std::vector<double>> all_gather(const std::vector<double>& mine) override;
   void exchange(const std::vector<int>& neighbours, const std::vector<std::vector<double>>& send,
                 std::vector<std::vector<double>>& receive) override;
 
