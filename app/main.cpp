@@ -72,7 +72,16 @@ checkpoint.bin (docs/outputs.md).
   --restart CHECKPOINT    continue OUTDIR/checkpoint.bin in the same OUTDIR
 
 Under mpirun (a build with MPI), the run is cut into one subdomain per rank and rank 0 writes
-the same outputs, byte for byte (docs/outputs.md, "Ranks").
+the same outputs, byte for byte (docs/outputs.md, "Ranks"):
+
+  --rebalance RATIO       cut anew, weighing each element by its rank's measured work, when the
+                          busiest rank's work passes RATIO times the mean (default 1.2; 0: never)
+  --rebalance-interval N  steps between those looks (default 100)
+  --partition HOW         how the model is cut: 'bisection' (recursive coordinate bisection,
+                          the default), 'graph' (METIS on the elements' dual graph, in a build
+                          with libmetis-dev), or 'random:SEED' (every element on a rank drawn from
+                          SEED and its id: the worst cut, to check that results do not depend on
+                          it); the outputs are the same bytes whichever
 
 Exit status: 0 success, 1 the run failed (outputs so far kept, summary.json says why),
 2 bad input (nothing written).
@@ -184,6 +193,34 @@ int shard_main(int argc, char** argv, shard::Communicator* ranks) {
           if (!(*options.until > 0) || !std::isfinite(*options.until))
             return usage_error("--until expects a time after the start (a positive, finite time such "
                                "as 20us), got '" + v + "'");
+        } else if (a == "--partition") {
+          const std::string v = value("--partition");
+          char* end = nullptr;
+          const unsigned long long seed = v.rfind("random:", 0) == 0 ? std::strtoull(v.c_str() + 7, &end, 10) : 0;
+          using P = shard::RunOptions::Partition;
+          if (v == "bisection" || v == "graph") {
+            options.partition = v == "graph" ? P::graph : P::bisection;
+          } else if (end && end != v.c_str() + 7 && *end == '\0' && v.find('-') == std::string::npos) {
+            options.partition = P::random;
+            options.partition_seed = seed;
+          } else {
+            return usage_error("--partition expects 'bisection', 'graph' or 'random:SEED' (SEED a whole number), got '" +
+                               v + "'");
+          }
+        } else if (a == "--rebalance") {
+          const std::string v = value("--rebalance");
+          char* end = nullptr;
+          const double ratio = std::strtod(v.c_str(), &end);
+          if (v.empty() || *end != '\0' || !(ratio == 0 || (ratio >= 1 && std::isfinite(ratio))))
+            return usage_error("--rebalance expects 0 (never) or a ratio of at least 1 (such as 1.2), got '" + v + "'");
+          options.rebalance_above = ratio;
+        } else if (a == "--rebalance-interval") {
+          const std::string v = value("--rebalance-interval");
+          char* end = nullptr;
+          const long n = std::strtol(v.c_str(), &end, 10);
+          if (*end != '\0' || n < 1 || n > 1000000000)
+            return usage_error("--rebalance-interval expects a whole number of steps >= 1, got '" + v + "'");
+          options.rebalance_interval = static_cast<int>(n);
         } else if (!a.empty() && a[0] == '-') return usage_error("unknown option '" + a + "'");
         else if (!scenario) scenario = a;
         else return usage_error("more than one scenario given ('" + *scenario + "', '" + a + "')");

@@ -37,6 +37,7 @@
 #include "fracture/fragments.hpp"
 #include "io/vtu_writer.hpp"
 #include "parallel/ghost_exchange.hpp"
+#include "parallel/graph_partition.hpp"
 #include "parallel/partition.hpp"
 #include "parallel/subdomain.hpp"
 
@@ -317,6 +318,46 @@ int cores_per_rank(const RunOptions& options) {
 }
 #endif
 
+/// The ranks of a decomposed run, with the wall time spent talking to them: a rank's own work is
+/// the rest, what rebalancing compares.
+class TimedRanks final : public Communicator {
+ public:
+  explicit TimedRanks(Communicator& inner) : inner_(inner) {}
+  int rank() const override { return inner_.rank(); }
+  int size() const override { return inner_.size(); }
+  void minimum(double* values, int count) override {
+    timed([&] { inner_.minimum(values, count); });
+  }
+  void sum(std::int64_t* values, int count) override {
+    timed([&] { inner_.sum(values, count); });
+  }
+  std::vector<std::vector<double>> gather(const std::vector<double>& mine) override {
+    std::vector<std::vector<double>> all;
+    timed([&] { all = inner_.gather(mine); });
+    return all;
+  }
+  std::vector<std::vector<double>> all_gather(const std::vector<double>& mine) override {
+    std::vector<std::vector<double>> all;
+    timed([&] { all = inner_.all_gather(mine); });
+    return all;
+  }
+  void exchange(const std::vector<int>& neighbours, const std::vector<std::vector<double>>& send,
+                std::vector<std::vector<double>>& receive) override {
+    timed([&] { inner_.exchange(neighbours, send, receive); });
+  }
+  double seconds() const { return seconds_; }
+
+ private:
+  template <class F>
+  void timed(F&& f) {
+    const auto start = std::chrono::steady_clock::now();
+    f();
+    seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  }
+  Communicator& inner_;
+  double seconds_ = 0;
+};
+
 /// One run: the simulation, its solver and its outputs (history, frames, checkpoints, summary).
 class RunDriver {
  public:
@@ -333,7 +374,11 @@ class RunDriver {
 #endif
     if (sc_.crash) crash_mass_per_length_ = crushed_mass_per_length();  // on the mesh as set up
     if (options_.restart) read_checkpoint(*options_.restart, sim_.model, solver_.state(), cursor_, fingerprint_);
-    if (options_.ranks) decompose();
+    if (ranks_) {
+      timed_ranks_ = std::make_unique<TimedRanks>(*ranks_);
+      ranks_ = timed_ranks_.get();
+      decompose();
+    }
     if (options_.restart) {
       // Cracks and erosion changed the mesh since set-up: every cache of the topology (the contact
       // surface, the prescribed degrees of freedom, the automata's pairs) follows the checkpoint.
@@ -416,7 +461,10 @@ class RunDriver {
   /// model read (or restored) whole is cut by recursive coordinate bisection, this rank keeps its
   /// subdomain to run and the whole model to gather the outputs into.
   void decompose() {
-    Communicator& ranks = *options_.ranks;
+    Communicator& ranks = *ranks_;
+    if (options_.partition == RunOptions::Partition::graph && !graph_partitioner_available())
+      throw InputError(shown_path(sc_.file), 0, "--partition",
+                       "graph: this build has no graph partitioner (install Debian's libmetis-dev and build again)");
     if (const std::string why = not_decomposable(); !why.empty())
       throw InputError(shown_path(sc_.file), 0, "mpirun",
                        "a run on " + std::to_string(ranks.size()) + " ranks cannot yet hold " + why +
@@ -428,15 +476,80 @@ class RunDriver {
   /// Cuts this rank's subdomain out of whole_ as it is now (recursive coordinate bisection; with
   /// contact between parts, the halo its pairs need) and makes it the solver's model.
   void cut_whole() {
-    Communicator& ranks = *options_.ranks;
-    const ElementPartition partition = partition_elements(whole_, ranks.size());
+    Communicator& ranks = *ranks_;
+    const auto* weights = weights_.empty() ? nullptr : &weights_;
+    switch (options_.partition) {
+      case RunOptions::Partition::random: partition_ = scatter_elements(whole_, ranks.size(), options_.partition_seed); break;
+      case RunOptions::Partition::graph: partition_ = partition_graph(whole_, ranks.size(), weights); break;
+      case RunOptions::Partition::bisection: partition_ = partition_elements(whole_, ranks.size(), weights); break;
+    }
     if (sim_.contact && sim_.contact->any_pairs()) halo_ = contact_halo(whole_, sim_.contact->part_pairs);
-    sub_ = make_subdomain(whole_, partition, ranks.rank(), halo_.parts.empty() ? nullptr : &halo_);
+    sub_ = make_subdomain(whole_, partition_, ranks.rank(), halo_.parts.empty() ? nullptr : &halo_);
     sim_.model = sub_->model;  // the solver's model, in place
     solver_.restored();        // every cache of the topology (the contact surface, ...) follows the cut
+    if (cracks_) solver_.remove_event(*cracks_);  // split on the whole model: grow_cracks_across_ranks
     if (exchange_) solver_.remove_event(*exchange_);
     exchange_ = std::make_unique<GhostExchange>(sub_->ghosts, ranks);
     join_decomposed_run(solver_, *exchange_, ranks);
+  }
+
+  /// Rebalancing: every rebalance_interval steps the ranks compare the wall time each spent on
+  /// its own work (not talking to the others) since the last look; when the busiest passes
+  /// rebalance_above times the mean, every element is weighed by its rank's work per weight and
+  /// the whole model, gathered, is cut anew by bisection of those weights. The times differ from
+  /// run to run, and so may the cuts; the results do not (a cut changes no value).
+  void rebalance_if_uneven() {
+    if (!sub_ || !(options_.rebalance_above > 0) || options_.partition == RunOptions::Partition::random) return;
+    if (options_.rebalance_interval < 1 || solver_.state().step % options_.rebalance_interval != 0) return;
+    const auto now = Clock::now();
+    // Rank 0's writing of the outputs is not work a cut could move.
+    const double work = std::chrono::duration<double>(now - work_since_).count() -
+                        (timed_ranks_->seconds() - talk_mark_) - (output_seconds_ - output_mark_);
+    const std::vector<std::vector<double>> times = ranks_->all_gather({std::max(0.0, work)});  // alike everywhere
+    work_since_ = Clock::now();
+    talk_mark_ = timed_ranks_->seconds();
+    output_mark_ = output_seconds_;
+    double most = 0, mean = 0;
+    for (const auto& t : times) most = std::max(most, t[0]), mean += t[0] / static_cast<double>(times.size());
+    if (!(mean > 0) || most <= options_.rebalance_above * mean) return;
+    // Each element's weight times its rank's work per unit of weight: the cost measured there.
+    const int n = ranks_->size();
+    if (weights_.size() != whole_.parts.size()) {
+      weights_.clear();
+      for (const Part& part : whole_.parts) weights_.emplace_back(part.element_count(), static_cast<double>(part.type->points));
+    }
+    std::vector<double> held(static_cast<std::size_t>(n), 0.0);
+    for (std::size_t p = 0; p < weights_.size(); ++p)
+      for (std::size_t e = 0; e < weights_[p].size(); ++e) held[partition_.rank[p][e]] += weights_[p][e];
+    for (std::size_t p = 0; p < weights_.size(); ++p)
+      for (std::size_t e = 0; e < weights_[p].size(); ++e) {
+        const auto r = static_cast<std::size_t>(partition_.rank[p][e]);
+        weights_[p][e] *= std::max(times[r][0], 1e-3 * mean) / held[r];
+      }
+    for (const auto& packed : ranks_->all_gather(pack_owned(*sub_, sim_.model))) unpack_owned(packed, whole_);
+    cut_whole();
+    ++rebalances_;
+    work_since_ = Clock::now();
+    talk_mark_ = timed_ranks_->seconds();
+    output_mark_ = output_seconds_;
+  }
+
+  /// Discrete cracks across ranks: which nodes split is decided on the whole model, by the rule
+  /// of one process, on every rank alike, and the model is then cut anew (docs/theory/
+  /// domain_decomposition.md, "Discrete cracks across ranks"). The ranks first agree whether
+  /// any point of a cracking part has reached the threshold (each holds its owned and ghost
+  /// elements with their owners' state): on most steps none has, and nothing is gathered.
+  void grow_cracks_across_ranks() {
+    if (!sub_ || !cracks_) return;
+    std::int64_t due = cracks_->may_split(sim_.model) ? 1 : 0;
+    ranks_->sum(&due, 1);
+    if (due == 0) return;
+    for (const auto& packed : ranks_->all_gather(pack_owned(*sub_, sim_.model))) unpack_owned(packed, whole_);
+    SolverState& s = solver_.state();
+    Topology untold;  // the solver's caches follow the new cut, not the whole model
+    cracks_->insert(whole_, s.energy, untold, s.time, &s.eroded_elements, &s.part_stored);
+    cut_whole();
+    ++cuts_;
   }
 
   /// Contact between parts across ranks: the halo holds every pair a rank's nodes take part in
@@ -444,7 +557,7 @@ class RunDriver {
   /// gathers the whole model and cuts it anew. The run goes on as it would have: every value is
   /// its owner's (docs/theory/domain_decomposition.md, "Contact between parts across ranks").
   void cut_anew_if_moved() {
-    if (!sub_ || halo_.parts.empty()) return;
+    if (!sub_ || halo_.parts.empty() || !(halo_.allowed_motion > 0)) return;
     const auto dim = static_cast<std::size_t>(dim_);
     const auto& x = sim_.model.nodes.x;
     const auto& at_cut = sub_->model.nodes.x;
@@ -456,9 +569,9 @@ class RunDriver {
       moved2 = std::max(moved2, d2);
     }
     double most = -std::sqrt(moved2);  // a maximum as the minimum of its negative: exact
-    options_.ranks->minimum(&most, 1);
+    ranks_->minimum(&most, 1);
     if (-most < halo_.allowed_motion) return;
-    for (const auto& packed : options_.ranks->all_gather(pack_owned(*sub_, sim_.model))) unpack_owned(packed, whole_);
+    for (const auto& packed : ranks_->all_gather(pack_owned(*sub_, sim_.model))) unpack_owned(packed, whole_);
     cut_whole();
     ++cuts_;
   }
@@ -467,9 +580,10 @@ class RunDriver {
   std::string not_decomposable() const {
     if (!sim_.model.particle_parts.empty()) return "particles";
     if (sim_.cohesive) return "cohesive interfaces";
-    if (sim_.cracking || cracks_) return "discrete cracks";
+    if (sim_.cracking && sim_.cracking->comminution) return "comminution (cracks that make debris particles)";
     if (remesher_) return "remeshing";
-    if (!sim_.events.empty()) return "step events (" + std::string(sim_.events.front()->name()) + ")";
+    for (const auto& event : sim_.events)
+      if (event.get() != cracks_) return "step events (" + std::string(event->name()) + ")";
     if (!sim_.probes.empty()) return "probes";
     if (sc_.crash) return "a crash report";
     for (const Part& part : sim_.model.parts) {
@@ -488,12 +602,13 @@ class RunDriver {
   template <class Write>
   void as_whole(Write&& write) {
     if (contact_) sim_.model.contact.pressure = contact_->nodal_pressure(sim_.model);
-    if (!options_.ranks) return write();
-    const auto owned = options_.ranks->gather(pack_owned(*sub_, sim_.model));
+    if (!ranks_) return write();
+    const auto owned = ranks_->gather(pack_owned(*sub_, sim_.model));
     if (!writes()) return;
     for (const auto& packed : owned) unpack_owned(packed, whole_);
     // The solver keeps its reference to sim_.model; the outputs read it, whole, for a moment.
     std::swap(sim_.model, whole_);
+    const auto start = Clock::now();
     try {
       write();
     } catch (...) {
@@ -501,6 +616,7 @@ class RunDriver {
       throw;
     }
     std::swap(sim_.model, whole_);
+    output_seconds_ += std::chrono::duration<double>(Clock::now() - start).count();
   }
 
   /// What the progress line says the run holds: crack-face nodes and fragments when parts crack,
@@ -508,9 +624,11 @@ class RunDriver {
   std::string held_counts() const {
     std::string out;
     if (cracks_) {
-      const auto faces = sim_.model.crack_face_nodes();
+      // A decomposed run's whole model is as the last split left it: cracks change nowhere else.
+      const Model& model = sub_ ? whole_ : sim_.model;
+      const auto faces = model.crack_face_nodes();
       out += "crack-face nodes " + std::to_string(std::count(faces.begin(), faces.end(), 1)) + "  fragments " +
-             std::to_string(find_fragments(sim_.model).list.size());
+             std::to_string(find_fragments(model).list.size());
     }
     std::size_t particles = 0;
     for (const auto& pp : sim_.model.particle_parts) particles += pp.count();
@@ -696,10 +814,15 @@ class RunDriver {
       const double dt_n = step == 0 ? 0.5 * s.dt_next : 0.5 * (s.dt_half + s.dt_next);
       book_forces(dt_n);
       solver_.advance();
+      grow_cracks_across_ranks();  // where the solver's crack event would have run
       take_remesh_notes();
       book_reactions(dt_n);
       if (row) {
-        if (writes()) write_history_row(t, step, dt_used);
+        if (writes()) {
+          const auto start = Clock::now();
+          write_history_row(t, step, dt_used);
+          output_seconds_ += std::chrono::duration<double>(Clock::now() - start).count();
+        }
         check_energy_balance(t, step);
         if (out.history_interval > 0)
           cursor_.next_history = static_cast<std::int64_t>(std::floor(t / out.history_interval * (1 + 1e-9))) + 1;
@@ -710,6 +833,7 @@ class RunDriver {
         throw RunError("reached analysis.max_steps = " + std::to_string(sc_.max_steps) + " at t = " +
                        format_time(s.time) + " before end_time = " + format_time(end));
       cut_anew_if_moved();
+      rebalance_if_uneven();
       if (checkpoint_or_stop()) break;
     }
   }
@@ -850,14 +974,14 @@ class RunDriver {
       const auto& pp = sim_.model.particle_parts[p];
       for (std::size_t i = 0; i < pp.count(); ++i) add(sim_.model.parts.size() + p, pp.mass[i], &pp.v[D * i]);
     }
-    if (options_.ranks) {
+    if (ranks_) {
       constexpr auto W = static_cast<std::size_t>(ExactSum::kWords);
       std::vector<std::int64_t> words(W * sums.size());
       for (std::size_t i = 0; i < sums.size(); ++i) {
         const auto w = sums[i].words();
         std::copy(w.begin(), w.end(), words.begin() + static_cast<std::ptrdiff_t>(W * i));
       }
-      options_.ranks->sum(words.data(), static_cast<int>(words.size()));
+      ranks_->sum(words.data(), static_cast<int>(words.size()));
       for (std::size_t i = 0; i < sums.size(); ++i) sums[i] = ExactSum::from_words(&words[W * i]);
     }
     std::vector<double> values(sums.size());
@@ -1028,7 +1152,9 @@ class RunDriver {
   /// The fragments now: their count, then per part the count of those holding its elements and
   /// the mass of the heaviest (a fragment that spans parts counts in each).
   void write_fragment_counts() {
-    const Fragments f = find_fragments(sim_.model);
+    // A decomposed run's whole model is as the last split left it: fragments and their masses
+    // change at splits alone.
+    const Fragments f = find_fragments(sub_ ? whole_ : sim_.model);
     history_ << ',' << f.list.size();
     std::vector<std::int64_t> count(f.element_fragment.size(), 0);
     std::vector<double> largest(f.element_fragment.size(), 0.0);
@@ -1154,7 +1280,7 @@ class RunDriver {
     j << "{\n  \"status\": " << json_string(status_) << ",\n  \"message\": " << json_string(message_)
       << ",\n  \"scenario\": " << json_string(sc_.file.string()) << ",\n  \"steps\": " << s.step
       << ",\n  \"end_time\": " << s.time - s.dt_half << ",\n  \"wall_seconds\": " << wall
-      << ",\n  \"threads\": " << threads_ << ",\n  \"ranks\": " << (options_.ranks ? options_.ranks->size() : 1) << ",\n  \"cuts\": " << cuts_ << ",\n  \"elements\": " << sim_.model.element_count()
+      << ",\n  \"threads\": " << threads_ << ",\n  \"ranks\": " << (ranks_ ? ranks_->size() : 1) << ",\n  \"cuts\": " << cuts_ << ",\n  \"rebalances\": " << rebalances_ << ",\n  \"elements\": " << sim_.model.element_count()
       << ",\n  \"nodes\": " << sim_.model.nodes.count() << ",\n  \"particles\": " << particles_
       << ",\n  \"element_steps_per_second\": " << (wall > 0 ? steps * elements / wall : 0.0)
       << ",\n  \"particle_steps_per_second\": "
@@ -1212,13 +1338,15 @@ class RunDriver {
   }
 
   const RunOptions& options_;
+  Communicator* ranks_ = options_.ranks;  ///< a decomposed run's ranks, timed (TimedRanks); null: one process
+  std::unique_ptr<TimedRanks> timed_ranks_;
   Prepared p_;
   Scenario& sc_;
   Simulation& sim_;
   std::unique_ptr<ExplicitSolver> solver_ptr_;
   ExplicitSolver& solver_;
   const ContactSystem* contact_;
-  const CrackGrowth* cracks_;
+  CrackGrowth* cracks_;
   RemeshEvent* remesher_ = nullptr;  ///< adaptive remeshing (null without)
   const std::string fingerprint_;
   const std::filesystem::path dir_, history_path_;
@@ -1263,6 +1391,12 @@ class RunDriver {
   Model whole_;
   std::unique_ptr<GhostExchange> exchange_;
   ContactHalo halo_;        ///< with contact between parts: what the cut holds for it
+  ElementPartition partition_;                ///< the last cut
+  std::vector<std::vector<double>> weights_;  ///< per part and element, after a rebalance: its measured cost
+  std::int64_t rebalances_ = 0;               ///< (summary.json)
+  Clock::time_point work_since_ = Clock::now();
+  double talk_mark_ = 0;
+  double output_seconds_ = 0, output_mark_ = 0;  ///< this rank's time writing outputs (not work)
   std::int64_t cuts_ = 0;   ///< times the model was cut anew as contact nodes moved (summary.json)
 };
 

@@ -1,6 +1,7 @@
 // The run loop: a scenario from start (or a checkpoint) to its end time, with outputs.
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -21,6 +22,17 @@ struct RunOptions {
   /// A decomposed run (mpirun): this process is one of these ranks; rank 0 writes the outputs.
   /// Null: one process.
   Communicator* ranks = nullptr;
+  /// A decomposed run: how the model is cut (--partition): recursive coordinate bisection, the
+  /// graph partitioner (METIS), or every element on a rank drawn from (partition_seed, its id),
+  /// the worst case for the ghost layers.
+  enum class Partition { bisection, graph, random };
+  Partition partition = Partition::bisection;
+  std::uint64_t partition_seed = 0;
+  /// A decomposed run: cut anew, each element weighed by its rank's measured work, when the
+  /// busiest rank's work over the last rebalance_interval steps passes this times the mean
+  /// (--rebalance; 0: never).
+  double rebalance_above = 1.2;
+  int rebalance_interval = 100;
 };
 
 struct RunSummary {

@@ -51,6 +51,7 @@ bool Model::has_cracks() const {
 
 std::vector<char> Model::crack_face_nodes() const {
   const std::size_t n = nodes.count();
+  if (whole_crack_faces.size() == n) return whole_crack_faces;
   std::vector<char> on_face(n, 0);
   if (!has_cracks()) return on_face;
   // The node of each id: ids are the indices until nodes are removed or reordered.

@@ -297,6 +297,11 @@ struct Model {
   /// surface of the body, and contact must not find it (src/contact/contact_surface.hpp).
   /// Empty: every face seen once is a boundary face. Not a field: set on a cut model.
   std::vector<std::int64_t> boundary_faces;
+  /// In a subdomain, per node, whether it lies on a crack face of the whole model
+  /// (crack_face_nodes of the whole): a node is flagged when a copy of it exists, and the copy
+  /// may lie on another rank. Empty: found from the model's own nodes. Not a field: set on a cut
+  /// model (cracks change the topology only between cuts).
+  std::vector<char> whole_crack_faces;
 
   int dim() const { return nodes.dim; }
   std::size_t element_count() const;

@@ -79,16 +79,17 @@ std::vector<std::int32_t> recursive_coordinate_bisection(const std::vector<Parti
   return rank;
 }
 
-ElementPartition partition_elements(const Model& model, int ranks) {
+ElementPartition partition_elements(const Model& model, int ranks, const std::vector<std::vector<double>>* weights) {
   const int dim = model.dim();
   std::vector<PartitionPoint> points;
-  for (const Part& part : model.parts) {
+  for (std::size_t q = 0; q < model.parts.size(); ++q) {
+    const Part& part = model.parts[q];
     const int npe = part.type->nodes;
     for (std::size_t e = 0; e < part.element_count(); ++e) {
       PartitionPoint p;
       for (int a = 0; a < npe; ++a)
         for (int k = 0; k < dim; ++k) p.x[k] += model.nodes.x[dim * part.connectivity[npe * e + a] + k] / npe;
-      p.weight = part.type->points;
+      p.weight = weights ? (*weights)[q][e] : part.type->points;
       p.id = part.id[e];
       points.push_back(p);
     }

@@ -34,8 +34,10 @@ struct ElementPartition {
 };
 
 /// The elements of every part cut by recursive coordinate bisection of their centroids (current
-/// positions), each weighted by its integration points.
-ElementPartition partition_elements(const Model& model, int ranks);
+/// positions), each weighted by its integration points, or by `weights` (per part and element:
+/// a rebalance weighs each element by the measured cost on its rank).
+ElementPartition partition_elements(const Model& model, int ranks,
+                                    const std::vector<std::vector<double>>* weights = nullptr);
 
 /// Every element on a rank drawn from a generator seeded with `seed` and the element's id: the
 /// worst case for the ghost layers, for tests.

@@ -18,24 +18,31 @@ bool in_contact(const ContactHalo& halo, int part) {
   return static_cast<std::size_t>(part) < halo.parts.size() && halo.parts[part];
 }
 
-/// The surface nodes of the halo's parts within its reach of a surface node that `rank` owns.
-std::vector<char> nodes_near_owned_surface(const Model& model, const ContactSurface& surface,
+/// Per node, 1 on a facet of a part in contact (a node two parts share counts if either facet does).
+std::vector<char> contact_surface_nodes(const Model& model, const ContactSurface& surface, const ContactHalo& halo) {
+  std::vector<char> on(model.nodes.count(), 0);
+  const int dim = model.dim();
+  for (std::size_t f = 0; f < surface.facet_count(); ++f)
+    if (in_contact(halo, surface.facet_part[f]))
+      for (int a = 0; a < dim; ++a) on[surface.facets[dim * f + a]] = 1;
+  return on;
+}
+
+/// The surface nodes of the halo's parts within its reach of such a node that `rank` owns.
+std::vector<char> nodes_near_owned_surface(const Model& model, const std::vector<char>& on_surface,
                                            const std::vector<std::int32_t>& owner, int rank,
                                            const ContactHalo& halo) {
   const int dim = model.dim();
   const double* X = model.nodes.x.data();
   std::vector<double> mine;
-  for (std::size_t i = 0; i < surface.nodes.size(); ++i) {
-    const std::int32_t n = surface.nodes[i];
-    if (owner[n] == rank && in_contact(halo, surface.node_part[i])) mine.insert(mine.end(), X + dim * n, X + dim * (n + 1));
-  }
+  for (std::size_t n = 0; n < on_surface.size(); ++n)
+    if (on_surface[n] && owner[n] == rank) mine.insert(mine.end(), X + dim * n, X + dim * (n + 1));
   std::vector<char> near(model.nodes.count(), 0);
   if (mine.empty() || !(halo.reach > 0)) return near;
   const CellGrid grid(mine, dim, halo.reach);
   const double reach2 = halo.reach * halo.reach;
-  for (std::size_t i = 0; i < surface.nodes.size(); ++i) {
-    const std::int32_t n = surface.nodes[i];
-    if (!in_contact(halo, surface.node_part[i])) continue;
+  for (std::size_t n = 0; n < on_surface.size(); ++n) {
+    if (!on_surface[n]) continue;
     grid.for_near(X + dim * n, [&](std::int32_t q) {
       double d2 = 0;
       for (int k = 0; k < dim; ++k) d2 += (X[dim * n + k] - mine[dim * q + k]) * (X[dim * n + k] - mine[dim * q + k]);
@@ -77,8 +84,11 @@ ContactHalo contact_halo(const Model& model, const std::vector<char>& part_pairs
   return halo;
 }
 
-LocalEntities local_entities(const Model& model, const ElementPartition& partition,
-                             const std::vector<std::int32_t>& owner, int rank, const ContactHalo* halo) {
+namespace {
+
+/// local_entities, with the contact surface nodes of the halo's parts found once per cut.
+LocalEntities held_entities(const Model& model, const ElementPartition& partition, const std::vector<std::int32_t>& owner,
+                            int rank, const ContactHalo* halo, const std::vector<char>* on_surface) {
   LocalEntities held;
   held.node.assign(model.nodes.count(), Holding::none);
   for (std::size_t p = 0; p < model.parts.size(); ++p) {
@@ -98,8 +108,8 @@ LocalEntities local_entities(const Model& model, const ElementPartition& partiti
       for (int a = 0; a < npe; ++a) held.node[nodes[a]] = owner[nodes[a]] == rank ? Holding::owned : Holding::ghost;
     }
   }
-  if (halo && !halo->parts.empty()) {
-    const std::vector<char> near = nodes_near_owned_surface(model, extract_contact_surface(model), owner, rank, *halo);
+  if (halo && !halo->parts.empty() && on_surface) {
+    const std::vector<char> near = nodes_near_owned_surface(model, *on_surface, owner, rank, *halo);
     for (std::size_t p = 0; p < model.parts.size(); ++p) {
       const Part& part = model.parts[p];
       const int npe = part.type->nodes;
@@ -114,6 +124,15 @@ LocalEntities local_entities(const Model& model, const ElementPartition& partiti
     }
   }
   return held;
+}
+
+}  // namespace
+
+LocalEntities local_entities(const Model& model, const ElementPartition& partition,
+                             const std::vector<std::int32_t>& owner, int rank, const ContactHalo* halo) {
+  std::vector<char> on_surface;
+  if (halo && !halo->parts.empty()) on_surface = contact_surface_nodes(model, extract_contact_surface(model), *halo);
+  return held_entities(model, partition, owner, rank, halo, &on_surface);
 }
 
 std::size_t Subdomain::owned_element_count() const {
@@ -136,7 +155,6 @@ void check_decomposable(const Model& model) {
     throw std::invalid_argument("domain decomposition: particles are not decomposed yet");
   if (model.cohesive.element_count() > 0)
     throw std::invalid_argument("domain decomposition: cohesive interfaces are not decomposed yet");
-  if (model.has_cracks()) throw std::invalid_argument("domain decomposition: cracked models are not decomposed yet");
   for (const Part& part : model.parts)
     if (part.volumetric == VolumetricTreatment::average_nodal_pressure)
       // Its nodal averages need every element around a ghost node, two layers deep.
@@ -149,11 +167,12 @@ void check_decomposable(const Model& model) {
 GhostExchangePlan plan_ghost_exchange(const Model& model, const ElementPartition& partition,
                                       const std::vector<std::int32_t>& owner, int rank,
                                       const std::vector<std::int32_t>& global_node,
-                                      const std::vector<std::uint8_t>& node_owned, const ContactHalo* halo) {
+                                      const std::vector<std::uint8_t>& node_owned, const ContactHalo* halo,
+                                      const std::vector<char>* on_surface) {
   GhostExchangePlan plan;
   for (int q = 0; q < partition.ranks; ++q) {
     if (q == rank) continue;
-    const LocalEntities theirs = local_entities(model, partition, owner, q, halo);
+    const LocalEntities theirs = held_entities(model, partition, owner, q, halo, on_surface);
     std::vector<std::int32_t> send, receive;
     for (std::size_t i = 0; i < global_node.size(); ++i) {
       const auto g = static_cast<std::size_t>(global_node[i]);
@@ -175,7 +194,10 @@ Subdomain make_subdomain(const Model& model, const ElementPartition& partition, 
   if (rank < 0 || rank >= partition.ranks || partition.rank.size() != model.parts.size())
     throw std::invalid_argument("make_subdomain: rank " + std::to_string(rank) + " outside the partition");
   const std::vector<std::int32_t> owner = node_owners(model, partition);
-  const LocalEntities held = local_entities(model, partition, owner, rank, halo);
+  const ContactSurface surface = extract_contact_surface(model);
+  std::vector<char> on_surface;
+  if (halo && !halo->parts.empty()) on_surface = contact_surface_nodes(model, surface, *halo);
+  const LocalEntities held = held_entities(model, partition, owner, rank, halo, &on_surface);
 
   Subdomain sub;
   sub.rank = rank;
@@ -219,11 +241,16 @@ Subdomain make_subdomain(const Model& model, const ElementPartition& partition, 
   }
   // The body's surface is the whole model's: the faces where the cut separates held elements
   // from the rest are not contact faces.
-  sub.model.boundary_faces = extract_contact_surface(model).facet_id;
+  sub.model.boundary_faces = surface.facet_id;
   std::sort(sub.model.boundary_faces.begin(), sub.model.boundary_faces.end());
+  if (model.has_cracks()) {
+    const std::vector<char> faces = model.crack_face_nodes();
+    sub.model.whole_crack_faces.resize(sub.global_node.size());
+    for (std::size_t i = 0; i < sub.global_node.size(); ++i) sub.model.whole_crack_faces[i] = faces[sub.global_node[i]];
+  }
   sub.model.ghost_node.resize(sub.node_owned.size());
   for (std::size_t n = 0; n < sub.node_owned.size(); ++n) sub.model.ghost_node[n] = !sub.node_owned[n];
-  sub.ghosts = plan_ghost_exchange(model, partition, owner, rank, sub.global_node, sub.node_owned, halo);
+  sub.ghosts = plan_ghost_exchange(model, partition, owner, rank, sub.global_node, sub.node_owned, halo, &on_surface);
   return sub;
 }
 

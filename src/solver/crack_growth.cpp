@@ -64,6 +64,15 @@ std::size_t CrackGrowth::insert(Model& model, EnergyLedger& energy, Topology& to
   return ins.new_node_count();
 }
 
+bool CrackGrowth::may_split(const Model& model) const {
+  for (std::size_t f = 0; f < fields_.size(); ++f) {
+    const Part& part = model.parts[fields_[f].part];
+    const PointFailureField field = failure_field_from_state(part, parts_[fields_[f].part].factor_index, normals_[f]);
+    if (max_point_factor(part, field) >= settings_.failure_threshold) return true;
+  }
+  return false;
+}
+
 std::int64_t CrackGrowth::comminute(Model& model, const CrackInsertion& ins, EnergyLedger& energy,
                                     std::vector<double>* part_stored) {
   std::int64_t count = 0;

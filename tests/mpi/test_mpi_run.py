@@ -9,8 +9,9 @@ Checked on the steel bar of examples/bar_impact/ in plane strain (tri3) on 1-4 r
 checkpointed on 2 ranks and continued on 3 ends with the bytes of one straight through; the
 copper Taylor bar on its rigid anvil (a wall with friction) on 2 and 3 ranks; the cylinder on
 the plate (contact between parts, the model cut anew as it moves) on 2 and 3 ranks and from 2 to
-3 ranks across a restart; a scenario with discrete cracks is refused before the run (exit status
-2, saying what it cannot hold).
+3 ranks across a restart, and rebalanced every 13 steps; the notched plate whose discrete crack
+cuts it in two on 2 and 4 ranks and on 3 ranks cut at random; a scenario with debris particles is refused before the run (exit status 2, saying what it
+cannot hold).
 
 Usage: test_mpi_run.py SHARD_EXECUTABLE MPIEXEC SOURCE_DIR WORK_DIR
 """
@@ -28,7 +29,7 @@ env = dict(os.environ, OMP_NUM_THREADS="1", OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALL
            OMPI_MCA_rmaps_base_oversubscribe="1")
 failures = []
 RUN_FACTS = {"wall_seconds", "element_steps_per_second", "particle_steps_per_second", "peak_memory_mb", "ranks",
-             "threads", "cuts"}
+             "threads", "cuts", "rebalances"}
 
 
 def run(out, scenario, ranks=None, extra=(), threads=1):
@@ -54,6 +55,16 @@ def same_outputs(a, b, what):
         elif not filecmp.cmp(os.path.join(a, name), os.path.join(b, name), shallow=False):
             failures.append(f"{what}: {name} differs")
     print(f"{what}: {len(names)} files compared")
+
+
+def restart_on_three(name, scenario, reference):
+    """Checkpointed on 2 ranks at 1.5 us, continued on 3 to the end: the bytes of one straight run."""
+    r1 = run(name, scenario, 2, ["--until", "1.5us"])
+    r2 = run(name, scenario, 3, ["--restart", f"{name}/checkpoint.bin"])
+    if r1.returncode != 0 or r2.returncode != 0:
+        failures.append(f"{name}: the restart across rank counts failed: {r1.stderr[-1000:]} {r2.stderr[-1000:]}")
+    else:
+        same_outputs(reference, name, f"{name}: 2 ranks to 1.5 us, then 3")
 
 
 shutil.rmtree(work, ignore_errors=True)
@@ -84,13 +95,7 @@ if r.returncode != 0:
 else:
     same_outputs("hex8_serial", "hex8_np2_threads2", "hex8 on 2 ranks of 2 threads")
 
-# Checkpointed on 2 ranks at 1.5 us, continued on 3 to the end: the bytes of one straight run.
-r1 = run("hex8_restart", bar_3d, 2, ["--until", "1.5us"])
-r2 = run("hex8_restart", bar_3d, 3, ["--restart", "hex8_restart/checkpoint.bin"])
-if r1.returncode != 0 or r2.returncode != 0:
-    failures.append(f"the restart across rank counts failed: {r1.stderr[-1000:]} {r2.stderr[-1000:]}")
-else:
-    same_outputs("hex8_serial", "hex8_restart", "hex8 on 2 ranks to 1.5 us, then 3")
+restart_on_three("hex8_restart", bar_3d, "hex8_serial")
 
 # A rigid wall with friction: the copper Taylor bar (hex8, Johnson-Cook) on its anvil, 5 us.
 taylor = os.path.join(source, "examples/taylor_bar/copper_3d.yaml")
@@ -119,17 +124,48 @@ for ranks in (2, 3):
     same_outputs("cylinder_serial", f"cylinder_np{ranks}", f"cylinder on the plate, {ranks} ranks")
     if json.load(open(f"cylinder_np{ranks}/summary.json"))["cuts"] < 1:
         failures.append(f"cylinder on the plate, {ranks} ranks: the model was never cut anew")
-r1 = run("cylinder_restart", cylinder, 2, ["--until", "1.5us"])
-r2 = run("cylinder_restart", cylinder, 3, ["--restart", "cylinder_restart/checkpoint.bin"])
-if r1.returncode != 0 or r2.returncode != 0:
-    failures.append(f"the cylinder's restart across rank counts failed: {r1.stderr[-1000:]} {r2.stderr[-1000:]}")
+# Cut by the graph partitioner (METIS, when the build has it) on 3 ranks: the same bytes.
+r = run("cylinder_graph", cylinder, 3, ["--partition", "graph"])
+if "no graph partitioner" in r.stderr:
+    print("cylinder on the plate, graph partition: this build has no METIS, not checked")
+elif r.returncode != 0:
+    failures.append(f"the cylinder cut by the graph partitioner failed ({r.returncode}): {r.stderr[-2000:]}")
 else:
-    same_outputs("cylinder_serial", "cylinder_restart", "cylinder on the plate on 2 ranks to 1.5 us, then 3")
+    same_outputs("cylinder_serial", "cylinder_graph", "cylinder on the plate, 3 ranks, graph partition")
+
+# Rebalanced every 13 steps (a ratio of 1 makes every look a new cut): the same bytes.
+r = run("cylinder_rebalanced", cylinder, 2, ["--rebalance", "1", "--rebalance-interval", "13"])
+if r.returncode != 0:
+    failures.append(f"the rebalanced cylinder on 2 ranks failed ({r.returncode}): {r.stderr[-2000:]}")
+else:
+    same_outputs("cylinder_serial", "cylinder_rebalanced", "cylinder on the plate, 2 ranks rebalanced every 13 steps")
+    if json.load(open("cylinder_rebalanced/summary.json"))["rebalances"] < 10:
+        failures.append("cylinder on the plate: fewer than 10 rebalances with --rebalance 1 every 13 steps")
+restart_on_three("cylinder_restart", cylinder, "cylinder_serial")
+
+# Discrete cracks: the notched plate pulled apart (3 045 tri3, rotating crack), to 22 us, when the
+# crack has run across it and cut it in two; bisection cuts the plate across the crack's path.
+notched = os.path.join(source, "tests/data/fracture/notched_plate_coarse.yaml")
+r = run("notched_serial", notched, extra=["--set", "analysis.end_time=22us"])
+if r.returncode != 0:
+    sys.exit(f"the notched plate in one process failed: {r.stderr}")
+with open("notched_serial/fragments.csv") as f:
+    if len(f.read().splitlines()) != 3:
+        failures.append("the notched plate did not break in two by 22 us: the case no longer tests cracks")
+# On 4 ranks bisection also cuts along the crack's path (y = 5 mm); on 3, every element on a
+# random rank.
+for ranks, how in ((2, []), (4, []), (3, ["--partition", "random:7"])):
+    name = f"notched_np{ranks}" + ("_random" if how else "")
+    r = run(name, notched, ranks, ["--set", "analysis.end_time=22us", *how])
+    if r.returncode != 0:
+        failures.append(f"the notched plate on {ranks} ranks {how} failed ({r.returncode}): {r.stderr[-2000:]}")
+    else:
+        same_outputs("notched_serial", name, f"notched plate cracking, {ranks} ranks {' '.join(how)}")
 
 # What a decomposed run cannot hold yet is said before the run, with exit status 2.
-r = run("refused", os.path.join(source, "examples/sphere_on_alumina/sphere_on_alumina_300_cracks.yaml"), 2)
-if r.returncode != 2 or "cannot yet hold discrete cracks" not in r.stderr or os.path.exists("refused"):
-    failures.append(f"cracks on 2 ranks: exit status {r.returncode}, said {r.stderr[:500]!r}")
+r = run("refused", os.path.join(source, "examples/sphere_on_alumina/sphere_on_alumina_500_debris.yaml"), 2)
+if r.returncode != 2 or "cannot yet hold" not in r.stderr or os.path.exists("refused"):
+    failures.append(f"debris particles on 2 ranks: exit status {r.returncode}, said {r.stderr[:500]!r}")
 
 for f in failures:
     print("FAIL:", f)

@@ -21,6 +21,7 @@
 #include "contact/contact.hpp"
 #include "parallel/communicator.hpp"
 #include "parallel/ghost_exchange.hpp"
+#include "parallel/graph_partition.hpp"
 #include "parallel/partition.hpp"
 #include "parallel/subdomain.hpp"
 #include "support/contact_models.hpp"
@@ -31,13 +32,16 @@ namespace {
 
 using namespace testing;
 
-void check_decomposed_run(const Case& c, int ranks, bool scattered) {
+enum class Cut { bisection, random, graph };
+
+void check_decomposed_run(const Case& c, int ranks, Cut how) {
   testing::ElasticRun whole = make_run(c);
   const Model start = whole.model;
   const Booked booked = run_steps(whole.model, whole.materials, whole.loads, whole.settings, kSteps);
 
-  const ElementPartition partition =
-      scattered ? scatter_elements(start, ranks, 2026) : partition_elements(start, ranks);
+  const ElementPartition partition = how == Cut::random ? scatter_elements(start, ranks, 2026)
+                                     : how == Cut::graph ? partition_graph(start, ranks)
+                                                         : partition_elements(start, ranks);
   std::vector<Subdomain> subs;
   for (int r = 0; r < ranks; ++r) subs.push_back(make_subdomain(start, partition, r));
   std::vector<Model> finished(ranks);
@@ -66,18 +70,35 @@ void check_decomposed_run(const Case& c, int ranks, bool scattered) {
   EXPECT_EQ(owned, whole.model.element_count());
   EXPECT_EQ(owned_nodes, whole.model.nodes.count());
   std::printf("%-5s %s on %d ranks: %zu elements, ghost/owned = %.3f\n", c.name,
-              scattered ? "scattered" : "RCB      ", ranks, owned, static_cast<double>(ghosts) / owned);
+              how == Cut::random ? "scattered" : how == Cut::graph ? "graph    " : "RCB      ", ranks, owned,
+              static_cast<double>(ghosts) / owned);
 }
 
 
 TEST(DomainDecomposition, OwnedStateIsBitIdenticalToTheWholeModelOnOneToFourRanks) {
   for (const Case& c : {kPlate, kTetBar, kHexBar})
-    for (int ranks = 1; ranks <= 4; ++ranks) check_decomposed_run(c, ranks, false);
+    for (int ranks = 1; ranks <= 4; ++ranks) check_decomposed_run(c, ranks, Cut::bisection);
 }
 
 TEST(DomainDecomposition, ARandomElementPartitionGivesTheSameBits) {
   for (const Case& c : {kPlate, kTetBar, kHexBar})
-    for (int ranks : {2, 3}) check_decomposed_run(c, ranks, true);
+    for (int ranks : {2, 3}) check_decomposed_run(c, ranks, Cut::random);
+}
+
+TEST(DomainDecomposition, AGraphPartitionGivesTheSameBitsAndBalancedParts) {
+  if (!graph_partitioner_available()) GTEST_SKIP() << "built without METIS (libmetis-dev)";
+  for (const Case& c : {kPlate, kTetBar, kHexBar})
+    for (int ranks = 2; ranks <= 4; ++ranks) {
+      check_decomposed_run(c, ranks, Cut::graph);
+      // METIS balances the integration points to within its default tolerance (3 %).
+      const Model m = make_run(c).model;
+      const ElementPartition cut = partition_graph(m, ranks);
+      std::vector<double> load(ranks, 0.0);
+      double total = 0;
+      for (std::size_t p = 0; p < m.parts.size(); ++p)
+        for (auto r : cut.rank[p]) load[r] += m.parts[p].type->points, total += m.parts[p].type->points;
+      EXPECT_LE(*std::max_element(load.begin(), load.end()), 1.05 * total / ranks) << c.name << " on " << ranks;
+    }
 }
 
 /// Runs `steps` steps of the subdomains `partition` cuts out of `whole`, from `state` (null: a new
