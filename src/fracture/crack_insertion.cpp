@@ -568,6 +568,49 @@ void record_crack_time(Model& model, std::span<const std::array<std::int32_t, 2>
 
 }  // namespace
 
+namespace {
+
+/// The failed nodes (F̄ ≥ threshold), the most failed first: the order the planner takes them in.
+std::vector<std::int32_t> failed_nodes(std::span<const double> nodal_factor, double threshold) {
+  std::vector<std::int32_t> failed;
+  for (std::size_t i = 0; i < nodal_factor.size(); ++i)
+    if (nodal_factor[i] >= threshold) failed.push_back(static_cast<std::int32_t>(i));
+  // The most failed node chooses first; its neighbours then continue its crack.
+  std::stable_sort(failed.begin(), failed.end(),
+                   [&](std::int32_t a, std::int32_t b) { return nodal_factor[a] > nodal_factor[b]; });
+  return failed;
+}
+
+}  // namespace
+
+bool cracks_would_change(Model& model, std::span<const CrackingPart> parts, std::span<const double> nodal_factor,
+                         std::span<const double> nodal_normal, const CrackInsertionSettings& settings) {
+  const std::vector<std::int32_t> failed = failed_nodes(nodal_factor, settings.failure_threshold);
+  if (failed.empty()) return false;
+  if (settings.min_fragment_elements > 1) return true;
+  std::vector<char> wanted(model.nodes.count(), 0);
+  for (const auto p : failed) wanted[p] = 1;
+  CrackInsertion out;
+  CrackPlanner planner(model, parts, std::move(wanted), settings.min_fragment_elements, out);
+  for (const std::int32_t p : failed) {
+    const std::size_t cracked_before = out.cracked_nodes.size();
+    planner.plan(p, &nodal_normal[2 * p]);
+    if (!out.opened_edges.empty()) return true;
+    // A node a crack passes through heals the failed elements around it.
+    for (std::size_t k = cracked_before; k < out.cracked_nodes.size(); ++k)
+      for (const std::int64_t g : planner.fans().elements_of(out.cracked_nodes[k])) {
+        const auto& offset = planner.fans().part_begin;
+        const std::size_t pi = std::upper_bound(offset.begin(), offset.end(), g) - offset.begin() - 1;
+        const CrackingPart& cp = parts[pi];
+        if (cp.cracks && cp.factor_index >= 0 &&
+            element_failed(model.parts[pi], static_cast<std::size_t>(g - offset[pi]), cp.factor_index,
+                           settings.failure_threshold))
+          return true;
+      }
+  }
+  return false;
+}
+
 CrackInsertion insert_cracks(Model& model, std::span<const CrackingPart> parts,
                              std::span<const double> nodal_factor, std::span<const double> nodal_normal,
                              const CrackInsertionSettings& settings) {
@@ -580,13 +623,8 @@ CrackInsertion insert_cracks(Model& model, std::span<const CrackingPart> parts,
   out.first_new_node = nn;
   const double threshold = settings.failure_threshold;
 
-  std::vector<std::int32_t> failed;
-  for (std::size_t i = 0; i < nn; ++i)
-    if (nodal_factor[i] >= threshold) failed.push_back(static_cast<std::int32_t>(i));
+  const std::vector<std::int32_t> failed = failed_nodes(nodal_factor, threshold);
   if (failed.empty()) return out;
-  // The most failed node chooses first; its neighbours then continue its crack.
-  std::stable_sort(failed.begin(), failed.end(),
-                   [&](std::int32_t a, std::int32_t b) { return nodal_factor[a] > nodal_factor[b]; });
 
   // The edges opened run from a failed node to a neighbour: those are all the nodes to look at.
   std::vector<char> wanted(nn, 0);

@@ -98,6 +98,17 @@ CrackInsertion insert_cracks(Model& model, std::span<const CrackingPart> parts,
                              std::span<const double> nodal_factor, std::span<const double> nodal_normal,
                              const CrackInsertionSettings& settings = {});
 
+/// Whether insert_cracks would change `model` (open an edge, or re-initialise a failed element
+/// around a node a crack already passes through), without changing it: the nodes are planned
+/// in the same order, and the answer is given at the first one that would. A subdomain of a
+/// decomposed run asks it of the nodes it holds, so that it gathers the whole model only when
+/// a split is due: a node's plan depends on its own star (which its owner holds whole), its
+/// normal and the edges opened before it, so the first node whose plan changes the whole
+/// model changes its owner's subdomain too. Needs min_fragment_elements ≤ 1 (the size of the
+/// pieces a crack cuts off is not local): with more, returns true whenever a node has failed.
+bool cracks_would_change(Model& model, std::span<const CrackingPart> parts, std::span<const double> nodal_factor,
+                         std::span<const double> nodal_normal, const CrackInsertionSettings& settings = {});
+
 /// The topological core: opens the given element edges (node pairs of edges shared by two live
 /// tri3 elements) and splits every node they touch into one node per wedge of its triangles
 /// that the opened and already free edges separate, as one remap applied to the model. Each new

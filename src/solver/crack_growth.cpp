@@ -64,13 +64,20 @@ std::size_t CrackGrowth::insert(Model& model, EnergyLedger& energy, Topology& to
   return ins.new_node_count();
 }
 
-bool CrackGrowth::may_split(const Model& model) const {
+bool CrackGrowth::may_split(Model& model) {
+  if (settings_.parts.empty()) return false;
+  bool any = false;
   for (std::size_t f = 0; f < fields_.size(); ++f) {
     const Part& part = model.parts[fields_[f].part];
-    const PointFailureField field = failure_field_from_state(part, parts_[fields_[f].part].factor_index, normals_[f]);
-    if (max_point_factor(part, field) >= settings_.failure_threshold) return true;
+    fields_[f].field = failure_field_from_state(part, parts_[fields_[f].part].factor_index, normals_[f]);
+    any = any || max_point_factor(part, fields_[f].field) >= settings_.failure_threshold;
   }
-  return false;
+  if (!any) return false;
+  nodal_failure_map(model, fields_, map_);
+  CrackInsertionSettings s;
+  s.failure_threshold = settings_.failure_threshold;
+  s.min_fragment_elements = settings_.min_fragment_elements;
+  return cracks_would_change(model, parts_, map_.factor, map_.direction, s);
 }
 
 std::int64_t CrackGrowth::comminute(Model& model, const CrackInsertion& ins, EnergyLedger& energy,

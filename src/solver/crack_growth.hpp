@@ -45,10 +45,10 @@ class CrackGrowth final : public StepEvent {
   /// counted in *eroded. Returns the number of nodes added.
   std::size_t insert(Model& model, EnergyLedger& energy, Topology& topology, double time,
                      std::int64_t* eroded = nullptr, std::vector<double>* part_stored = nullptr);
-  /// Whether insert() could split a node of `model` now: a point of a cracking part has reached
-  /// the threshold (no node can before one has: the nodal factor is a weighted mean). A
-  /// decomposed run asks each rank of its own elements before it gathers the whole model.
-  bool may_split(const Model& model) const;
+  /// Whether insert() would change `model` now (cracks_would_change, after the same checks):
+  /// a decomposed run asks each rank of its subdomain, and gathers the whole model to split it
+  /// only when one says yes (docs/theory/domain_decomposition.md, "Discrete cracks across ranks").
+  bool may_split(Model& model);
 
   std::int64_t inserted_nodes() const { return inserted_; }
   /// Elements that became particles instead of a crack cutting them off, since the start.

@@ -196,6 +196,9 @@ TEST(CrackInsertion, InteriorNodeOpensTwoEdges) {
   const std::int32_t c = node_id(n, 2, 2);
   const double mass_before = model.nodes.mass[c];
   FailedNodes failed(model, {c}, 1.0, 0.0);  // normal along x: the crack line is vertical
+  // The dry run a decomposed run asks first says what the insertion then does, and changes nothing.
+  EXPECT_TRUE(cracks_would_change(model, cracking(run), failed.factor, failed.normal));
+  EXPECT_EQ(model.nodes.count(), nodes_before);
   const auto ins = insert_cracks(model, cracking(run), failed.factor, failed.normal);
   ASSERT_EQ(ins.new_node_count(), 1u);
   EXPECT_EQ(model.nodes.count(), nodes_before + 1);
@@ -256,6 +259,7 @@ TEST(CrackInsertion, CrackLineAlongTheBoundaryDoesNotEnter) {
   const std::size_t nodes_before = run.model.nodes.count();
   const std::int32_t b = node_id(4, 2, 0);
   FailedNodes failed(run.model, {b}, 0.0, 1.0);  // crack line along y = 0, the free edge itself
+  EXPECT_FALSE(cracks_would_change(run.model, cracking(run), failed.factor, failed.normal));
   const auto ins = insert_cracks(run.model, cracking(run), failed.factor, failed.normal);
   EXPECT_EQ(run.model.nodes.count(), nodes_before);
   EXPECT_EQ(ins.skipped_nodes, std::vector<std::int32_t>{b});
