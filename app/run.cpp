@@ -591,8 +591,6 @@ class RunDriver {
       const bool erodes = rule.by_shape() || rule.state_index >= 0 ||
                           (rule.state_index == -1 && sim_.materials[part.material]->failure_state_index() >= 0);
       if (erodes) return "erosion (part '" + part.name + "')";
-      if (part.volumetric == VolumetricTreatment::average_nodal_pressure)
-        return "averaged nodal pressure (part '" + part.name + "')";
     }
     return "";
   }

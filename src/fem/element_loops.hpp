@@ -455,7 +455,7 @@ struct NodalAveragingScratch {
   Workspace elements;
   std::vector<double> node_rate, node_volume, node_pressure, pressure_shift;
 };
-NodalAveragingScratch nodal_scratch;
+thread_local NodalAveragingScratch nodal_scratch;  // one per thread: ranks run as threads in tests
 
 /// tri3 and tet4 with averaged nodal pressure (after Bonet & Burton 1998). With V_a = Σ_e V_e/n
 /// and V̇_a = Σ_e V_e tr D_e / n the nodal volume and its rate, each element takes the dilatation

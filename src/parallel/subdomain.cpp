@@ -86,6 +86,23 @@ ContactHalo contact_halo(const Model& model, const std::vector<char>& part_pairs
 
 namespace {
 
+/// Holds, as ghosts, every element not held yet that has a node marked in `around`, with its nodes.
+void hold_elements_around(const Model& model, const std::vector<char>& around, const std::vector<std::int32_t>& owner,
+                          int rank, LocalEntities& held) {
+  for (std::size_t p = 0; p < model.parts.size(); ++p) {
+    const Part& part = model.parts[p];
+    const int npe = part.type->nodes;
+    for (std::size_t e = 0; e < part.element_count(); ++e) {
+      const std::int32_t* nodes = &part.connectivity[npe * e];
+      if (held.element[p][e] != Holding::none || std::none_of(nodes, nodes + npe, [&](std::int32_t n) { return around[n]; }))
+        continue;
+      held.element[p][e] = Holding::ghost;
+      for (int a = 0; a < npe; ++a)
+        if (held.node[nodes[a]] == Holding::none) held.node[nodes[a]] = owner[nodes[a]] == rank ? Holding::owned : Holding::ghost;
+    }
+  }
+}
+
 /// local_entities, with the contact surface nodes of the halo's parts found once per cut.
 LocalEntities held_entities(const Model& model, const ElementPartition& partition, const std::vector<std::int32_t>& owner,
                             int rank, const ContactHalo* halo, const std::vector<char>* on_surface) {
@@ -108,21 +125,21 @@ LocalEntities held_entities(const Model& model, const ElementPartition& partitio
       for (int a = 0; a < npe; ++a) held.node[nodes[a]] = owner[nodes[a]] == rank ? Holding::owned : Holding::ghost;
     }
   }
-  if (halo && !halo->parts.empty() && on_surface) {
-    const std::vector<char> near = nodes_near_owned_surface(model, *on_surface, owner, rank, *halo);
-    for (std::size_t p = 0; p < model.parts.size(); ++p) {
-      const Part& part = model.parts[p];
-      const int npe = part.type->nodes;
-      for (std::size_t e = 0; e < part.element_count(); ++e) {
-        const std::int32_t* nodes = &part.connectivity[npe * e];
-        if (held.element[p][e] != Holding::none || std::none_of(nodes, nodes + npe, [&](std::int32_t n) { return near[n]; }))
-          continue;
-        held.element[p][e] = Holding::ghost;
-        for (int a = 0; a < npe; ++a)
-          if (held.node[nodes[a]] == Holding::none) held.node[nodes[a]] = owner[nodes[a]] == rank ? Holding::owned : Holding::ghost;
-      }
-    }
+  // Averaged nodal pressure (src/fem/element_loops.hpp): the force of a ghost-layer element
+  // takes the mean over its nodes of their sums of element pressures, so every element around
+  // those nodes needs its exact stress (a second layer); that stress is updated with the mean
+  // over its nodes of their sums of volume rates, so every element around the second layer's
+  // nodes is needed for its kinematics (a third layer).
+  const bool averages = std::any_of(model.parts.begin(), model.parts.end(), [](const Part& part) {
+    return part.volumetric == VolumetricTreatment::average_nodal_pressure;
+  });
+  for (int layer = 2; averages && layer <= 3; ++layer) {
+    std::vector<char> held_nodes(model.nodes.count(), 0);
+    for (std::size_t n = 0; n < held_nodes.size(); ++n) held_nodes[n] = held.node[n] != Holding::none;
+    hold_elements_around(model, held_nodes, owner, rank, held);
   }
+  if (halo && !halo->parts.empty() && on_surface)
+    hold_elements_around(model, nodes_near_owned_surface(model, *on_surface, owner, rank, *halo), owner, rank, held);
   return held;
 }
 
@@ -155,11 +172,6 @@ void check_decomposable(const Model& model) {
     throw std::invalid_argument("domain decomposition: particles are not decomposed yet");
   if (model.cohesive.element_count() > 0)
     throw std::invalid_argument("domain decomposition: cohesive interfaces are not decomposed yet");
-  for (const Part& part : model.parts)
-    if (part.volumetric == VolumetricTreatment::average_nodal_pressure)
-      // Its nodal averages need every element around a ghost node, two layers deep.
-      throw std::invalid_argument("domain decomposition: part '" + part.name +
-                                  "' averages its pressure over the nodes; that is not decomposed yet");
 }
 
 /// The ghost exchange of `rank`: per neighbour, the owned nodes it holds as ghosts and the ghost

@@ -7,7 +7,8 @@ only in what describes the run rather than its result (wall time, speed, memory,
 Checked on the steel bar of examples/bar_impact/ in plane strain (tri3) on 1-4 ranks and in 3D
 (hex8 with one point and hourglass control) on 2 and 4 ranks, with 2 threads per rank once; a run
 checkpointed on 2 ranks and continued on 3 ends with the bytes of one straight through; the
-copper Taylor bar on its rigid anvil (a wall with friction) on 2 and 3 ranks; the cylinder on
+copper Taylor bar on its rigid anvil (a wall with friction) on 2 and 3 ranks; the 4340 Taylor
+bar in axisymmetry with its pressure averaged over the nodes on 2 and 3 ranks; the cylinder on
 the plate (contact between parts, the model cut anew as it moves) on 2 and 3 ranks and from 2 to
 3 ranks across a restart, and rebalanced every 13 steps; the notched plate whose discrete crack
 cuts it in two on 2 and 4 ranks and on 3 ranks cut at random; a scenario with debris particles is refused before the run (exit status 2, saying what it
@@ -108,6 +109,19 @@ for ranks in (2, 3):
         failures.append(f"the Taylor bar on {ranks} ranks failed ({r.returncode}): {r.stderr[-2000:]}")
     else:
         same_outputs("taylor_serial", f"taylor_np{ranks}", f"Taylor bar on its anvil, {ranks} ranks")
+
+# Averaged nodal pressure (three ghost layers) with a wall: the 4340 steel Taylor bar in
+# axisymmetry (tri3), 10 us.
+steel = os.path.join(source, "examples/taylor_bar/steel_4340_axisymmetric.yaml")
+r = run("steel_serial", steel, extra=["--set", "analysis.end_time=10us"])
+if r.returncode != 0:
+    sys.exit(f"the axisymmetric Taylor bar in one process failed: {r.stderr}")
+for ranks in (2, 3):
+    r = run(f"steel_np{ranks}", steel, ranks, ["--set", "analysis.end_time=10us"])
+    if r.returncode != 0:
+        failures.append(f"the axisymmetric Taylor bar on {ranks} ranks failed ({r.returncode}): {r.stderr[-2000:]}")
+    else:
+        same_outputs("steel_serial", f"steel_np{ranks}", f"axisymmetric Taylor bar, averaged pressure, {ranks} ranks")
 
 # Contact between parts across the cut: the steel cylinder on the alumina plate (plane strain,
 # 25 912 tri3) to 3 us, cut anew as the cylinder moves; checkpointed on 2 ranks at 1.5 us and
