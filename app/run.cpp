@@ -38,6 +38,7 @@
 #include "io/vtu_writer.hpp"
 #include "parallel/ghost_exchange.hpp"
 #include "parallel/graph_partition.hpp"
+#include "parallel/timed_communicator.hpp"
 #include "parallel/partition.hpp"
 #include "parallel/subdomain.hpp"
 
@@ -318,46 +319,6 @@ int cores_per_rank(const RunOptions& options) {
 }
 #endif
 
-/// The ranks of a decomposed run, with the wall time spent talking to them: a rank's own work is
-/// the rest, what rebalancing compares.
-class TimedRanks final : public Communicator {
- public:
-  explicit TimedRanks(Communicator& inner) : inner_(inner) {}
-  int rank() const override { return inner_.rank(); }
-  int size() const override { return inner_.size(); }
-  void minimum(double* values, int count) override {
-    timed([&] { inner_.minimum(values, count); });
-  }
-  void sum(std::int64_t* values, int count) override {
-    timed([&] { inner_.sum(values, count); });
-  }
-  std::vector<std::vector<double>> gather(const std::vector<double>& mine) override {
-    std::vector<std::vector<double>> all;
-    timed([&] { all = inner_.gather(mine); });
-    return all;
-  }
-  std::vector<std::vector<double>> all_gather(const std::vector<double>& mine) override {
-    std::vector<std::vector<double>> all;
-    timed([&] { all = inner_.all_gather(mine); });
-    return all;
-  }
-  void exchange(const std::vector<int>& neighbours, const std::vector<std::vector<double>>& send,
-                std::vector<std::vector<double>>& receive) override {
-    timed([&] { inner_.exchange(neighbours, send, receive); });
-  }
-  double seconds() const { return seconds_; }
-
- private:
-  template <class F>
-  void timed(F&& f) {
-    const auto start = std::chrono::steady_clock::now();
-    f();
-    seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  }
-  Communicator& inner_;
-  double seconds_ = 0;
-};
-
 /// One run: the simulation, its solver and its outputs (history, frames, checkpoints, summary).
 class RunDriver {
  public:
@@ -375,7 +336,7 @@ class RunDriver {
     if (sc_.crash) crash_mass_per_length_ = crushed_mass_per_length();  // on the mesh as set up
     if (options_.restart) read_checkpoint(*options_.restart, sim_.model, solver_.state(), cursor_, fingerprint_);
     if (ranks_) {
-      timed_ranks_ = std::make_unique<TimedRanks>(*ranks_);
+      timed_ranks_ = std::make_unique<TimedCommunicator>(*ranks_);
       ranks_ = timed_ranks_.get();
       decompose();
     }
@@ -473,6 +434,12 @@ class RunDriver {
     cut_whole();
   }
 
+  /// Every rank's whole_ becomes the whole model's state now (a collective): what a new cut is
+  /// made from.
+  void gather_whole_everywhere() {
+    for (const auto& packed : ranks_->all_gather(pack_owned(*sub_, sim_.model))) unpack_owned(packed, whole_);
+  }
+
   /// Cuts this rank's subdomain out of whole_ as it is now (recursive coordinate bisection; with
   /// contact between parts, the halo its pairs need) and makes it the solver's model.
   void cut_whole() {
@@ -504,11 +471,9 @@ class RunDriver {
     const auto now = Clock::now();
     // Rank 0's writing of the outputs is not work a cut could move.
     const double work = std::chrono::duration<double>(now - work_since_).count() -
-                        (timed_ranks_->seconds() - talk_mark_) - (output_seconds_ - output_mark_);
+                        (timed_ranks_->seconds - talk_mark_) - (output_seconds_ - output_mark_);
     const std::vector<std::vector<double>> times = ranks_->all_gather({std::max(0.0, work)});  // alike everywhere
-    work_since_ = Clock::now();
-    talk_mark_ = timed_ranks_->seconds();
-    output_mark_ = output_seconds_;
+    start_work_clock();
     double most = 0, mean = 0;
     for (const auto& t : times) most = std::max(most, t[0]), mean += t[0] / static_cast<double>(times.size());
     if (!(mean > 0) || most <= options_.rebalance_above * mean) return;
@@ -526,11 +491,15 @@ class RunDriver {
         const auto r = static_cast<std::size_t>(partition_.rank[p][e]);
         weights_[p][e] *= std::max(times[r][0], 1e-3 * mean) / held[r];
       }
-    for (const auto& packed : ranks_->all_gather(pack_owned(*sub_, sim_.model))) unpack_owned(packed, whole_);
+    gather_whole_everywhere();
     cut_whole();
     ++rebalances_;
+    start_work_clock();  // the cut itself is not work either
+  }
+
+  void start_work_clock() {
     work_since_ = Clock::now();
-    talk_mark_ = timed_ranks_->seconds();
+    talk_mark_ = timed_ranks_->seconds;
     output_mark_ = output_seconds_;
   }
 
@@ -544,7 +513,7 @@ class RunDriver {
     std::int64_t due = cracks_->may_split(sim_.model) ? 1 : 0;
     ranks_->sum(&due, 1);
     if (due == 0) return;
-    for (const auto& packed : ranks_->all_gather(pack_owned(*sub_, sim_.model))) unpack_owned(packed, whole_);
+    gather_whole_everywhere();
     SolverState& s = solver_.state();
     Topology untold;  // the solver's caches follow the new cut, not the whole model
     cracks_->insert(whole_, s.energy, untold, s.time, &s.eroded_elements, &s.part_stored);
@@ -571,7 +540,7 @@ class RunDriver {
     double most = -std::sqrt(moved2);  // a maximum as the minimum of its negative: exact
     ranks_->minimum(&most, 1);
     if (-most < halo_.allowed_motion) return;
-    for (const auto& packed : ranks_->all_gather(pack_owned(*sub_, sim_.model))) unpack_owned(packed, whole_);
+    gather_whole_everywhere();
     cut_whole();
     ++cuts_;
   }
@@ -1336,8 +1305,8 @@ class RunDriver {
   }
 
   const RunOptions& options_;
-  Communicator* ranks_ = options_.ranks;  ///< a decomposed run's ranks, timed (TimedRanks); null: one process
-  std::unique_ptr<TimedRanks> timed_ranks_;
+  Communicator* ranks_ = options_.ranks;  ///< a decomposed run's ranks, timed (TimedCommunicator); null: one process
+  std::unique_ptr<TimedCommunicator> timed_ranks_;
   Prepared p_;
   Scenario& sc_;
   Simulation& sim_;

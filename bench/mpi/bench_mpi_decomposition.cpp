@@ -16,6 +16,7 @@
 #include "material/linear_elastic.hpp"
 #include "model/structured_mesh.hpp"
 #include "parallel/ghost_exchange.hpp"
+#include "parallel/timed_communicator.hpp"
 #include "parallel/mpi/mpi_communicator.hpp"
 #include "parallel/partition.hpp"
 #include "parallel/subdomain.hpp"
@@ -27,39 +28,6 @@ using namespace shard;
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-/// A Communicator that times what passes through it.
-class TimedCommunicator final : public Communicator {
- public:
-  explicit TimedCommunicator(Communicator& inner) : inner_(inner) {}
-  int rank() const override { return inner_.rank(); }
-  int size() const override { return inner_.size(); }
-  void minimum(double* values, int count) override {
-    const auto start = Clock::now();
-    inner_.minimum(values, count);
-    seconds += std::chrono::duration<double>(Clock::now() - start).count();
-  }
-  void sum(std::int64_t* values, int count) override {
-    const auto start = Clock::now();
-    inner_.sum(values, count);
-    seconds += std::chrono::duration<double>(Clock::now() - start).count();
-  }
-  std::vector<std::vector<double>> gather(const std::vector<double>& mine) override { return inner_.gather(mine); }
-  std::vector<std::vector<double>> all_gather(const std::vector<double>& mine) override {
-    return inner_.all_gather(mine);
-  }
-  void exchange(const std::vector<int>& neighbours, const std::vector<std::vector<double>>& send,
-                std::vector<std::vector<double>>& receive) override {
-    const auto start = Clock::now();
-    inner_.exchange(neighbours, send, receive);
-    seconds += std::chrono::duration<double>(Clock::now() - start).count();
-    for (const auto& m : send) bytes += 8.0 * static_cast<double>(m.size());
-  }
-  double seconds = 0, bytes = 0;
-
- private:
-  Communicator& inner_;
-};
 
 Model bar(const std::string& element) {
   BoxMesh box;
@@ -99,7 +67,7 @@ int main(int argc, char** argv) {
     solver.compute_forces();
     solver.advance();
   }
-  communicator.seconds = communicator.bytes = 0;
+  communicator.seconds = communicator.bytes_sent = 0;
   MPI_Barrier(MPI_COMM_WORLD);
   const auto start = Clock::now();
   for (int i = 0; i < steps; ++i) {
@@ -107,7 +75,7 @@ int main(int argc, char** argv) {
     solver.advance();
   }
   double figures[3] = {std::chrono::duration<double>(Clock::now() - start).count() / steps,
-                       communicator.seconds / steps, communicator.bytes / steps};
+                       communicator.seconds / steps, communicator.bytes_sent / steps};
   double slowest[3];
   MPI_Reduce(figures, slowest, 3, MPI_DOUBLE, MPI_MAX, 0, MPI_COMM_WORLD);
   long long counts[2] = {static_cast<long long>(sub.owned_element_count()),
