@@ -81,11 +81,21 @@ std::vector<double> ProbeOutput::values(const Model& model, const Simulation::Pr
   return v;
 }
 
-void ProbeOutput::sample(const Model& model, double t, std::vector<double>& next) {
+bool ProbeOutput::due(std::size_t p, double t, const std::vector<double>& next) const {
+  const double interval = probes_[p].interval;
+  return !(interval > 0 && t < next[p] * interval * (1 - 1e-9));
+}
+
+bool ProbeOutput::any_due(double t, std::vector<double>& next) const {
   next.resize(probes_.size(), 0.0);
+  for (std::size_t p = 0; p < probes_.size(); ++p)
+    if (due(p, t, next)) return true;
+  return false;
+}
+
+void ProbeOutput::sample(const Model& model, double t, const std::vector<double>& next) {
   for (std::size_t p = 0; p < probes_.size(); ++p) {
-    const double interval = probes_[p].interval;
-    if (interval > 0 && t < next[p] * interval * (1 - 1e-9)) continue;
+    if (!due(p, t, next)) continue;
     // 17 digits: every value reads back to the same double (the frames' nodal values, exactly).
     char buffer[40];
     std::snprintf(buffer, sizeof buffer, "%.17g", t);
@@ -95,7 +105,13 @@ void ProbeOutput::sample(const Model& model, double t, std::vector<double>& next
       files_[p] << buffer;
     }
     files_[p] << '\n';
-    if (interval > 0) next[p] = std::floor(t / interval * (1 + 1e-9)) + 1;
+  }
+}
+
+void ProbeOutput::advance(double t, std::vector<double>& next) const {
+  for (std::size_t p = 0; p < probes_.size(); ++p) {
+    const double interval = probes_[p].interval;
+    if (interval > 0 && due(p, t, next)) next[p] = std::floor(t / interval * (1 + 1e-9)) + 1;
   }
 }
 

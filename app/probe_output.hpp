@@ -16,16 +16,22 @@ class ProbeOutput {
 
   /// Opens the files: new with their header, or (restart) cut back to `bytes` and appended to.
   void open(bool restart, const std::vector<double>& bytes);
-  /// Writes a row for every probe due at t (`next`: each probe's index of its next row), from
-  /// the state the frames show: positions, velocities of the last half step, accelerations
-  /// force/mass at t, and the mean stress of the elements around each node.
-  void sample(const Model& model, double t, std::vector<double>& next);
+  /// Whether any probe is due at t (`next`: each probe's index of its next row, sized here).
+  bool any_due(double t, std::vector<double>& next) const;
+  /// Writes a row for every probe due at t, from the state the frames show: positions,
+  /// velocities of the last half step, accelerations force/mass at t, and the mean stress of the
+  /// elements around each node. A decomposed run samples its whole model, on the rank that writes.
+  void sample(const Model& model, double t, const std::vector<double>& next);
+  /// Moves each probe due at t on to its next row (on every rank of a decomposed run: they must
+  /// agree when to gather).
+  void advance(double t, std::vector<double>& next) const;
   /// Flushes the files and returns their sizes (for a checkpoint); throws OutputError when one
   /// could not be written.
   std::vector<double> sizes();
 
  private:
   std::vector<double> values(const Model& model, const Simulation::Probe& probe) const;
+  bool due(std::size_t p, double t, const std::vector<double>& next) const;
 
   const std::vector<Simulation::Probe>& probes_;
   std::filesystem::path dir_;

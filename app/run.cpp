@@ -31,6 +31,7 @@
 #include "io/frame_output.hpp"
 #include "io/output_file.hpp"
 #include "app/probe_output.hpp"
+#include "solver/erosion.hpp"
 #include "app/simulation.hpp"
 #include "io/particle_frame.hpp"
 #include "particle/mca_state.hpp"
@@ -431,6 +432,8 @@ class RunDriver {
                        "a run on " + std::to_string(ranks.size()) + " ranks cannot yet hold " + why +
                            ": run it as one process (without mpirun), with --threads");
     whole_ = std::move(sim_.model);
+    solver_.leave_eroded_elements();  // compact_eroded_across_ranks does it on the whole model
+    compacted_eroded_ = solver_.state().eroded_elements;
     cut_whole();
   }
 
@@ -450,7 +453,11 @@ class RunDriver {
       case RunOptions::Partition::graph: partition_ = partition_graph(whole_, ranks.size(), weights); break;
       case RunOptions::Partition::bisection: partition_ = partition_elements(whole_, ranks.size(), weights); break;
     }
-    if (sim_.contact && sim_.contact->any_pairs()) halo_ = contact_halo(whole_, sim_.contact->part_pairs);
+    if (sim_.contact && sim_.contact->any_pairs()) {
+      std::vector<char> eroding;
+      for (const Part& part : whole_.parts) eroding.push_back(erodes(part) ? 1 : 0);
+      halo_ = contact_halo(whole_, sim_.contact->part_pairs, eroding);
+    }
     sub_ = make_subdomain(whole_, partition_, ranks.rank(), halo_.parts.empty() ? nullptr : &halo_);
     sim_.model = sub_->model;  // the solver's model, in place
     solver_.restored();        // every cache of the topology (the contact surface, ...) follows the cut
@@ -553,22 +560,75 @@ class RunDriver {
     if (remesher_) return "remeshing";
     for (const auto& event : sim_.events)
       if (event.get() != cracks_) return "step events (" + std::string(event->name()) + ")";
-    if (!sim_.probes.empty()) return "probes";
-    if (sc_.crash) return "a crash report";
-    for (const Part& part : sim_.model.parts) {
-      const ErosionRule& rule = part.erosion;
-      const bool erodes = rule.by_shape() || rule.state_index >= 0 ||
-                          (rule.state_index == -1 && sim_.materials[part.material]->failure_state_index() >= 0);
-      if (erodes) return "erosion (part '" + part.name + "')";
-    }
+    for (const Part& part : sim_.model.parts)
+      if (erodes(part) && part.erosion.to_particles)
+        return "erosion into particles (part '" + part.name + "')";
     return "";
+  }
+
+  static std::vector<std::vector<std::int64_t>> element_ids(const Model& model) {
+    std::vector<std::vector<std::int64_t>> ids;
+    for (const Part& part : model.parts) ids.push_back(part.id);
+    return ids;
+  }
+
+  /// After elements left whole_ (`ids_before`: each part's element ids before), the rebalancing
+  /// weights of those left (a compaction keeps the order of the elements it leaves in a part).
+  void keep_weights_of_elements_left(const std::vector<std::vector<std::int64_t>>& ids_before) {
+    if (weights_.empty()) return;
+    for (std::size_t p = 0; p < weights_.size(); ++p) {
+      const auto& before = ids_before[p];
+      const auto& after = whole_.parts[p].id;
+      std::vector<double> kept;
+      kept.reserve(after.size());
+      std::size_t j = 0;
+      for (std::size_t i = 0; i < before.size() && j < after.size(); ++i)
+        if (before[i] == after[j]) kept.push_back(weights_[p][i]), ++j;
+      if (kept.size() != after.size()) kept.assign(after.size(), static_cast<double>(whole_.parts[p].type->points));
+      weights_[p] = std::move(kept);
+    }
+  }
+
+  /// Whether a part's elements may erode: by shape, or by a history variable of its rule or of
+  /// its material's failure.
+  bool erodes(const Part& part) const {
+    const ErosionRule& rule = part.erosion;
+    return rule.by_shape() || rule.state_index >= 0 ||
+           (rule.state_index == -1 && sim_.materials[part.material]->failure_state_index() >= 0);
+  }
+
+  /// Erosion across ranks: an element erodes on every rank that holds it (its state is its
+  /// owner's), and the ledger and the count of eroded elements are sums over the owners. At the
+  /// end of a step in which any element eroded, the eroded elements leave the whole model, by the
+  /// compaction of one process, and the model is cut anew (docs/theory/domain_decomposition.md,
+  /// "Erosion across ranks").
+  void compact_eroded_across_ranks() {
+    if (!sub_) return;
+    SolverState& s = solver_.state();
+    if (s.eroded_elements == compacted_eroded_) return;  // the count is the whole model's: alike everywhere
+    compacted_eroded_ = s.eroded_elements;
+    gather_whole_everywhere();
+    Topology untold;  // the solver's caches follow the new cut, not the whole model
+    EventContext context{s.step, s.time, s.eroded_elements, s.energy, untold, &s.part_stored};
+    const std::vector<std::vector<std::int64_t>> ids_before = element_ids(whole_);
+    whole_compaction_.run(whole_, context);
+    keep_weights_of_elements_left(ids_before);
+    cut_whole();
+    ++cuts_;
+  }
+
+  /// Runs `write` with sim_.model holding the whole model's state, the contact pressure included
+  /// (on_whole).
+  template <class Write>
+  void as_whole(Write&& write) {
+    if (contact_) sim_.model.contact.pressure = contact_->nodal_pressure(sim_.model);
+    on_whole(std::forward<Write>(write));
   }
 
   /// Runs `write` with sim_.model holding the whole model's state: in a decomposed run every rank
   /// sends what it owns to rank 0 (a collective), which writes; the others do nothing more.
   template <class Write>
-  void as_whole(Write&& write) {
-    if (contact_) sim_.model.contact.pressure = contact_->nodal_pressure(sim_.model);
+  void on_whole(Write&& write) {
     if (!ranks_) return write();
     const auto owned = ranks_->gather(pack_owned(*sub_, sim_.model));
     if (!writes()) return;
@@ -767,11 +827,15 @@ class RunDriver {
       const SolverState& s = solver_.state();
       const double t = s.time;
       const bool final = t >= end * (1 - 1e-12);
-      probes_.sample(sim_.model, t, cursor_.probe_next);  // the state the frames show
+      if (probes_.any_due(t, cursor_.probe_next)) {  // the state the frames show
+        on_whole([&] { probes_.sample(sim_.model, t, cursor_.probe_next); });
+        probes_.advance(t, cursor_.probe_next);
+      }
       const bool frame = final || due(t, cursor_.next_frame, out.frame_interval);
       const bool row = final || due(t, cursor_.next_history, out.history_interval);
       // With the velocities the frames show, before they move on.
       if (row) part_sums_ = part_sums();  // summed over the ranks: no gather for a row
+      if (row && sc_.crash) crash_stroke_ = crash_stroke();
       if (frame) as_whole([&] { write_frames(t); });
       if (frame) cursor_.next_frame = static_cast<std::int64_t>(std::floor(t / out.frame_interval * (1 + 1e-9))) + 1;
       const std::int64_t step = s.step;
@@ -782,6 +846,7 @@ class RunDriver {
       book_forces(dt_n);
       solver_.advance();
       grow_cracks_across_ranks();  // where the solver's crack event would have run
+      compact_eroded_across_ranks();  // and then its erosion event
       take_remesh_notes();
       book_reactions(dt_n);
       if (row) {
@@ -941,19 +1006,24 @@ class RunDriver {
       const auto& pp = sim_.model.particle_parts[p];
       for (std::size_t i = 0; i < pp.count(); ++i) add(sim_.model.parts.size() + p, pp.mass[i], &pp.v[D * i]);
     }
-    if (ranks_) {
-      constexpr auto W = static_cast<std::size_t>(ExactSum::kWords);
-      std::vector<std::int64_t> words(W * sums.size());
-      for (std::size_t i = 0; i < sums.size(); ++i) {
-        const auto w = sums[i].words();
-        std::copy(w.begin(), w.end(), words.begin() + static_cast<std::ptrdiff_t>(W * i));
-      }
-      ranks_->sum(words.data(), static_cast<int>(words.size()));
-      for (std::size_t i = 0; i < sums.size(); ++i) sums[i] = ExactSum::from_words(&words[W * i]);
-    }
+    sum_over_ranks(sums);
     std::vector<double> values(sums.size());
     for (std::size_t i = 0; i < sums.size(); ++i) values[i] = sums[i].value();
     return values;
+  }
+
+  /// Each exact sum of this process added up over the ranks of a decomposed run (a collective):
+  /// every rank then has the sums of one process, bit for bit.
+  void sum_over_ranks(std::vector<ExactSum>& sums) const {
+    if (!ranks_) return;
+    constexpr auto W = static_cast<std::size_t>(ExactSum::kWords);
+    std::vector<std::int64_t> words(W * sums.size());
+    for (std::size_t i = 0; i < sums.size(); ++i) {
+      const auto w = sums[i].words();
+      std::copy(w.begin(), w.end(), words.begin() + static_cast<std::ptrdiff_t>(W * i));
+    }
+    ranks_->sum(words.data(), static_cast<int>(words.size()));
+    for (std::size_t i = 0; i < sums.size(); ++i) sums[i] = ExactSum::from_words(&words[W * i]);
   }
 
   /// The part sums of the row: kinetic and internal energy, momentum and mean velocity of each part.
@@ -1106,7 +1176,7 @@ class RunDriver {
     std::size_t column = 0;
     if (sc_.crash) {
       write_number(mean_force(column++));
-      write_number(crash_stroke());
+      write_number(crash_stroke_);
     }
     for (; column < forces_.size(); ++column) write_number(mean_force(column));
     write_reactions();
@@ -1190,25 +1260,29 @@ class RunDriver {
   }
 
   /// The stroke: the stroke part's mean displacement (over its nodes, by mass) towards the wall.
+  /// Exact sums over the nodes this process owns, added up over the ranks (a collective).
   double crash_stroke() const {
     const RigidWall* wall = nullptr;
     const auto& walls = contact_ ? contact_->settings().walls : sim_.particle_contact->settings().walls;
     for (const auto& w : walls)
       if (w.name == sc_.crash->wall) wall = &w;
-    double sum = 0, mass = 0;
+    std::vector<ExactSum> sums(2);  // mass × displacement, mass
+    const auto& nodes = sim_.model.nodes;
+    const auto& ghost = sim_.model.ghost_node;  // empty in one process
     for (const Part& part : sim_.model.parts) {
       if (part.name != sc_.crash->stroke_part) continue;
-      std::vector<char> seen(sim_.model.nodes.count(), 0);
+      std::vector<char> seen(nodes.count(), 0);
       for (auto n : part.connectivity) {
-        if (seen[n]) continue;
+        if (seen[n] || (!ghost.empty() && ghost[n])) continue;
         seen[n] = 1;
-        const double m = sim_.model.nodes.mass[n];
-        for (int k = 0; k < dim_; ++k)
-          sum -= m * (sim_.model.nodes.x[dim_ * n + k] - sim_.model.nodes.x0[dim_ * n + k]) * wall->normal[k];
-        mass += m;
+        const double m = nodes.mass[n];
+        for (int k = 0; k < dim_; ++k) sums[0] += -m * (nodes.x[dim_ * n + k] - nodes.x0[dim_ * n + k]) * wall->normal[k];
+        sums[1] += m;
       }
     }
-    return mass > 0 ? sum / mass : 0.0;
+    sum_over_ranks(sums);
+    const double mass = sums[1].value();
+    return mass > 0 ? sums[0].value() / mass : 0.0;
   }
 
   /// Mass per unit length of the crushed part along the crash wall's normal, at the start.
@@ -1339,6 +1413,7 @@ class RunDriver {
     return ",\n  \"crash\": " + crash_json(r, *sc_.crash);
   }
   double crash_mass_per_length_ = 0;
+  double crash_stroke_ = 0;  ///< of the row being written, summed over the ranks
 
   std::string notes_json() const {
     std::string out = particle_step_note_.empty() ? "" : json_string(particle_step_note_);
@@ -1358,6 +1433,8 @@ class RunDriver {
   Model whole_;
   std::unique_ptr<GhostExchange> exchange_;
   ContactHalo halo_;        ///< with contact between parts: what the cut holds for it
+  ErosionCompaction whole_compaction_{sim_.materials};  ///< eroded elements out of whole_
+  std::int64_t compacted_eroded_ = 0;                    ///< the count of eroded elements at the last compaction
   ElementPartition partition_;                ///< the last cut
   std::vector<std::vector<double>> weights_;  ///< per part and element, after a rebalance: its measured cost
   std::int64_t rebalances_ = 0;               ///< (summary.json)

@@ -70,9 +70,9 @@ ContactSurface extract_contact_surface(const Model& model) {
   // the sums over facets (tributary areas, node normals) and the ties of the search come out
   // the same in every subdomain as in the whole model.
   std::vector<char> boundary(faces.size(), 0);
-  const auto& whole = model.boundary_faces;  // a subdomain's: the whole model's boundary
+  const auto& cut = model.cut_faces;  // a subdomain's faces at its cut
   for (const auto& [key, index] : seen)
-    if (index >= 0) boundary[index] = whole.empty() || std::binary_search(whole.begin(), whole.end(), faces[index].id);
+    if (index >= 0) boundary[index] = !std::binary_search(cut.begin(), cut.end(), faces[index].id);
   const int dim = s.dim;
   // Tributary areas on the undeformed surface: they must not depend on when the surface was last
   // built (a restart rebuilds it), only on the topology.

@@ -57,6 +57,19 @@ class CellGrid {
       for (std::int32_t q = begin_[slots[s]]; q < begin_[slots[s] + 1]; ++q) f(items_[q]);
   }
 
+  /// Whether pred(item) holds for an item entered in the cells around x, asking no more items
+  /// once it has.
+  template <class Pred>
+  bool any_near(const double* x, Pred&& pred) const {
+    if (begin_.empty()) return false;
+    std::size_t slots[27];
+    const int n = near_slots(x, slots);
+    for (int s = 0; s < n; ++s)
+      for (std::int32_t q = begin_[slots[s]]; q < begin_[slots[s] + 1]; ++q)
+        if (pred(items_[q])) return true;
+    return false;
+  }
+
  private:
   std::size_t hash(std::int64_t i, std::int64_t j, std::int64_t k) const {
     const std::uint64_t h = static_cast<std::uint64_t>(i) * 73856093u ^ static_cast<std::uint64_t>(j) * 19349663u ^

@@ -292,11 +292,12 @@ struct Model {
   /// (its owner's position and velocity replace its own after each step) but leaves the energy
   /// sums to its owner. Empty: every node is the model's own. Not a field: set on a cut model.
   std::vector<std::uint8_t> ghost_node;
-  /// In a subdomain, the keys (facet_key, half 0) of the whole model's boundary faces, sorted: a
-  /// face of a held element whose neighbour another rank holds is seen once here, but it is no
-  /// surface of the body, and contact must not find it (src/contact/contact_surface.hpp).
-  /// Empty: every face seen once is a boundary face. Not a field: set on a cut model.
-  std::vector<std::int64_t> boundary_faces;
+  /// In a subdomain, the keys (facet_key, half 0) of the faces at the cut, sorted: a face of a
+  /// held element whose neighbour another rank holds is seen once here, but it is no surface of
+  /// the body, and contact must not find it (src/contact/contact_surface.hpp). A face uncovered
+  /// by the erosion of a held element is. Empty: every face seen once is a boundary face. Not a
+  /// field: set on a cut model.
+  std::vector<std::int64_t> cut_faces;
   /// In a subdomain, per node, whether it lies on a crack face of the whole model
   /// (crack_face_nodes of the whole): a node is flagged when a copy of it exists, and the copy
   /// may lie on another rank. Empty: found from the model's own nodes. Not a field: set on a cut

@@ -133,6 +133,7 @@ std::vector<std::int32_t> node_owners(const Model& model, const ElementPartition
         }
       }
   }
+  for (auto& o : owner) o = std::max(o, 0);
   return owner;
 }
 

@@ -44,7 +44,8 @@ ElementPartition partition_elements(const Model& model, int ranks,
 ElementPartition scatter_elements(const Model& model, int ranks, std::uint64_t seed);
 
 /// The owner of each node: the rank of the element with the smallest stable id among those that
-/// hold it (−1 for a node no element holds).
+/// hold it; rank 0 for a node no element holds (one whose elements eroded: it flies on, and its
+/// kinetic energy is still the model's).
 std::vector<std::int32_t> node_owners(const Model& model, const ElementPartition& partition);
 
 }  // namespace shard

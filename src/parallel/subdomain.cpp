@@ -1,13 +1,16 @@
 #include "parallel/subdomain.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <map>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
 
 #include "contact/contact_surface.hpp"
 #include "core/cell_grid.hpp"
+#include "model/interaction_list.hpp"
 #include "model/remap.hpp"
 
 namespace shard {
@@ -18,13 +21,21 @@ bool in_contact(const ContactHalo& halo, int part) {
   return static_cast<std::size_t>(part) < halo.parts.size() && halo.parts[part];
 }
 
-/// Per node, 1 on a facet of a part in contact (a node two parts share counts if either facet does).
+bool eroding(const ContactHalo& halo, int part) {
+  return in_contact(halo, part) && static_cast<std::size_t>(part) < halo.eroding.size() && halo.eroding[part];
+}
+
+/// Per node, 1 where it is or may come to be on the surface of a part in contact: on a facet of
+/// such a part (a node two parts share counts if either facet does), or a node of one that erodes.
 std::vector<char> contact_surface_nodes(const Model& model, const ContactSurface& surface, const ContactHalo& halo) {
   std::vector<char> on(model.nodes.count(), 0);
   const int dim = model.dim();
   for (std::size_t f = 0; f < surface.facet_count(); ++f)
     if (in_contact(halo, surface.facet_part[f]))
       for (int a = 0; a < dim; ++a) on[surface.facets[dim * f + a]] = 1;
+  for (std::size_t p = 0; p < model.parts.size(); ++p)
+    if (eroding(halo, static_cast<int>(p)))
+      for (auto n : model.parts[p].connectivity) on[n] = 1;
   return on;
 }
 
@@ -43,10 +54,14 @@ std::vector<char> nodes_near_owned_surface(const Model& model, const std::vector
   const double reach2 = halo.reach * halo.reach;
   for (std::size_t n = 0; n < on_surface.size(); ++n) {
     if (!on_surface[n]) continue;
-    grid.for_near(X + dim * n, [&](std::int32_t q) {
+    if (owner[n] == rank) {  // one of its own
+      near[n] = 1;
+      continue;
+    }
+    near[n] = grid.any_near(X + dim * n, [&](std::int32_t q) {
       double d2 = 0;
       for (int k = 0; k < dim; ++k) d2 += (X[dim * n + k] - mine[dim * q + k]) * (X[dim * n + k] - mine[dim * q + k]);
-      if (d2 <= reach2) near[n] = 1;
+      return d2 <= reach2;
     });
   }
   return near;
@@ -54,7 +69,27 @@ std::vector<char> nodes_near_owned_surface(const Model& model, const std::vector
 
 }  // namespace
 
-ContactHalo contact_halo(const Model& model, const std::vector<char>& part_pairs) {
+namespace {
+
+/// The longest edge of face `face` (local node numbers) of an element with nodes `nodes`.
+double longest_edge(const double* X, int dim, const std::int32_t* nodes, const std::vector<int>& face) {
+  double longest = 0;
+  const std::size_t count = face.size();
+  for (std::size_t a = 0; a < count; ++a)
+    for (std::size_t b = a + 1; b < count; ++b) {
+      double d2 = 0;
+      for (int k = 0; k < dim; ++k) {
+        const double u = X[dim * nodes[face[a]] + k] - X[dim * nodes[face[b]] + k];
+        d2 += u * u;
+      }
+      longest = std::max(longest, std::sqrt(d2));
+    }
+  return longest;
+}
+
+}  // namespace
+
+ContactHalo contact_halo(const Model& model, const std::vector<char>& part_pairs, const std::vector<char>& eroding_parts) {
   ContactHalo halo;
   const std::size_t np = model.parts.size();
   halo.parts.assign(np, 0);
@@ -63,21 +98,25 @@ ContactHalo contact_halo(const Model& model, const std::vector<char>& part_pairs
     for (std::size_t b = 0; b < np; ++b)
       if (a * np + b < part_pairs.size() && part_pairs[a * np + b]) halo.parts[a] = halo.parts[b] = 1, any = true;
   if (!any) return ContactHalo{};
+  halo.eroding = eroding_parts;
   const ContactSurface surface = extract_contact_surface(model);
   const int dim = model.dim();
   const double* X = model.nodes.x.data();
   double longest = 0;
   for (std::size_t f = 0; f < surface.facet_count(); ++f) {
     if (!halo.parts[surface.facet_part[f]]) continue;
-    for (int a = 0; a < dim; ++a)
-      for (int b = a + 1; b < dim; ++b) {
-        double d2 = 0;
-        for (int k = 0; k < dim; ++k) {
-          const double u = X[dim * surface.facets[dim * f + a] + k] - X[dim * surface.facets[dim * f + b] + k];
-          d2 += u * u;
-        }
-        longest = std::max(longest, std::sqrt(d2));
-      }
+    std::vector<int> corners(static_cast<std::size_t>(dim));
+    for (int a = 0; a < dim; ++a) corners[a] = a;
+    longest = std::max(longest, longest_edge(X, dim, &surface.facets[dim * f], corners));
+  }
+  // Any face of an eroding part may become a facet.
+  for (std::size_t p = 0; p < np; ++p) {
+    if (!eroding(halo, static_cast<int>(p))) continue;
+    const Part& part = model.parts[p];
+    const int npe = part.type->nodes;
+    for (std::size_t e = 0; e < part.element_count(); ++e)
+      for (const auto& face : part.type->faces)
+        longest = std::max(longest, longest_edge(X, dim, &part.connectivity[npe * e], face));
   }
   halo.allowed_motion = 0.5 * longest;
   halo.reach = 9 * longest;
@@ -125,6 +164,10 @@ LocalEntities held_entities(const Model& model, const ElementPartition& partitio
       for (int a = 0; a < npe; ++a) held.node[nodes[a]] = owner[nodes[a]] == rank ? Holding::owned : Holding::ghost;
     }
   }
+  // A node no element holds (its elements eroded) is its owner's alone: any other node a rank
+  // owns, the element that gives it is held already.
+  for (std::size_t n = 0; n < held.node.size(); ++n)
+    if (held.node[n] == Holding::none && owner[n] == rank) held.node[n] = Holding::owned;
   // Averaged nodal pressure (src/fem/element_loops.hpp): the force of a ghost-layer element
   // takes the mean over its nodes of their sums of element pressures, so every element around
   // those nodes needs its exact stress (a second layer); that stress is updated with the mean
@@ -172,6 +215,37 @@ void check_decomposable(const Model& model) {
     throw std::invalid_argument("domain decomposition: particles are not decomposed yet");
   if (model.cohesive.element_count() > 0)
     throw std::invalid_argument("domain decomposition: cohesive interfaces are not decomposed yet");
+}
+
+/// The faces at the cut, as facet keys (sorted): of each held element, those it shares with an
+/// element the rank does not hold. Eroded elements have no faces.
+std::vector<std::int64_t> cut_faces(const Model& model, const LocalEntities& held) {
+  struct Seen {
+    std::int64_t key;
+    bool held;
+  };
+  std::map<std::array<std::int32_t, 4>, Seen> seen;
+  std::vector<std::int64_t> cut;
+  for (std::size_t p = 0; p < model.parts.size(); ++p) {
+    const Part& part = model.parts[p];
+    const int npe = part.type->nodes;
+    for (std::size_t e = 0; e < part.element_count(); ++e) {
+      if (!part.eroded.empty() && part.eroded[e]) continue;
+      const bool mine = held.element[p][e] != Holding::none;
+      for (std::size_t lf = 0; lf < part.type->faces.size(); ++lf) {
+        std::array<std::int32_t, 4> nodes{-1, -1, -1, -1};
+        const auto& local = part.type->faces[lf];
+        for (std::size_t i = 0; i < local.size(); ++i) nodes[i] = part.connectivity[npe * e + local[i]];
+        std::sort(nodes.begin(), nodes.end());
+        const Seen here{facet_key(part.id.empty() ? static_cast<std::int64_t>(e) : part.id[e], static_cast<int>(lf)), mine};
+        auto [it, first] = seen.emplace(nodes, here);
+        if (first || it->second.held == mine) continue;
+        cut.push_back(mine ? here.key : it->second.key);
+      }
+    }
+  }
+  std::sort(cut.begin(), cut.end());
+  return cut;
 }
 
 /// The ghost exchange of `rank`: per neighbour, the owned nodes it holds as ghosts and the ghost
@@ -252,9 +326,8 @@ Subdomain make_subdomain(const Model& model, const ElementPartition& partition, 
     local.ghost_begin.resize(local.colour_count());
   }
   // The body's surface is the whole model's: the faces where the cut separates held elements
-  // from the rest are not contact faces.
-  sub.model.boundary_faces = surface.facet_id;
-  std::sort(sub.model.boundary_faces.begin(), sub.model.boundary_faces.end());
+  // from the rest are not contact faces. A face a held element's erosion uncovers is.
+  sub.model.cut_faces = cut_faces(model, held);
   if (model.has_cracks()) {
     const std::vector<char> faces = model.crack_face_nodes();
     sub.model.whole_crack_faces.resize(sub.global_node.size());

@@ -30,17 +30,21 @@ struct LocalEntities {
 /// it. A node's contact force then comes from pairs its rank holds whole: the nodes that press
 /// on its facets, each with every facet it could be found behind, its normal and its
 /// neighbourhood. That holds while no node has moved `allowed_motion` since the cut; then the
-/// model must be cut anew.
+/// model must be cut anew. In a part that erodes any node may come to the surface in any step,
+/// so every node of it counts as a surface node ("Erosion across ranks").
 struct ContactHalo {
   std::vector<char> parts;     ///< per part: 1 where contact between parts (or self-contact) acts on it
+  std::vector<char> eroding;   ///< per part: 1 where its elements may erode (empty: none)
   double reach = 0;            ///< m
   double allowed_motion = 0;   ///< m
 };
 
 /// The halo for the contact `part_pairs` (parts × parts, as ContactSettings::part_pairs) on
-/// `model` as it is now: with h the longest facet of the contact parts' surface and δ = h/2, a
-/// reach of 4(h + 2δ) + 2δ = 9h and an allowed motion δ. Empty parts: no contact between parts.
-ContactHalo contact_halo(const Model& model, const std::vector<char>& part_pairs);
+/// `model` as it is now: with h the longest facet of the contact parts' surface (and of every
+/// face of an `eroding` part in contact) and δ = h/2, a reach of 4(h + 2δ) + 2δ = 9h and an
+/// allowed motion δ. Empty parts: no contact between parts.
+ContactHalo contact_halo(const Model& model, const std::vector<char>& part_pairs,
+                         const std::vector<char>& eroding = {});
 
 /// Owned: the rank's elements and the nodes it owns (node_owners). Ghost: the elements of other
 /// ranks that hold one of its nodes, and the nodes of its elements that other ranks own; with a

@@ -593,6 +593,12 @@ void ExplicitSolver::remove_event(const StepEvent& event) {
   events_.erase(std::remove(events_.begin(), events_.end(), &event), events_.end());
 }
 
+void ExplicitSolver::leave_eroded_elements() {
+  own_events_.erase(std::remove_if(own_events_.begin(), own_events_.end(),
+                                   [](const auto& e) { return dynamic_cast<ErosionCompaction*>(e.get()) != nullptr; }),
+                    own_events_.end());
+}
+
 void ExplicitSolver::run_events(StepEvent::Phase phase) {
   auto run = [&](StepEvent& event) {
     if (event.phase() != phase) return;

@@ -122,6 +122,9 @@ class ExplicitSolver : private TopologyListener {
     for (auto& t : event.energy_terms()) state_.energy.add(std::move(t));
   }
   void remove_event(const StepEvent& event);
+  /// Stops the solver compacting eroded elements itself: a decomposed run compacts the whole
+  /// model and cuts it anew instead (app/run.cpp).
+  void leave_eroded_elements();
   /// The hook through which every topology change goes (listeners may be added).
   Topology& topology() { return topology_; }
   const ContactSystem* contact() const { return contact_; }

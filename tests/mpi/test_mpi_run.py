@@ -7,11 +7,13 @@ only in what describes the run rather than its result (wall time, speed, memory,
 Checked on the steel bar of examples/bar_impact/ in plane strain (tri3) on 1-4 ranks and in 3D
 (hex8 with one point and hourglass control) on 2 and 4 ranks, with 2 threads per rank once; a run
 checkpointed on 2 ranks and continued on 3 ends with the bytes of one straight through; the
-copper Taylor bar on its rigid anvil (a wall with friction) on 2 and 3 ranks; the 4340 Taylor
+copper Taylor bar on its rigid anvil (a wall with friction), with probes and a crash report, on 2
+and 3 ranks; the 4340 Taylor
 bar in axisymmetry with its pressure averaged over the nodes on 2 and 3 ranks; the cylinder on
 the plate (contact between parts, the model cut anew as it moves) on 2 and 3 ranks and from 2 to
 3 ranks across a restart, and rebalanced every 13 steps; the notched plate whose discrete crack
-cuts it in two on 2 and 4 ranks and on 3 ranks cut at random; a scenario with debris particles is refused before the run (exit status 2, saying what it
+cuts it in two on 2 and 4 ranks and on 3 ranks cut at random; the rod perforating the plate with
+erosion on 2 ranks and on 3 cut at random; a scenario with debris particles is refused before the run (exit status 2, saying what it
 cannot hold).
 
 Usage: test_mpi_run.py SHARD_EXECUTABLE MPIEXEC SOURCE_DIR WORK_DIR
@@ -111,9 +113,18 @@ def serial_then_ranks(name, scenario, rank_counts, what, extra=()):
             same_outputs(f"{name}_serial", f"{name}_np{ranks}", f"{what}, {ranks} ranks")
 
 
-# A rigid wall with friction: the copper Taylor bar (hex8, Johnson-Cook) on its anvil, 5 us.
+# A rigid wall with friction: the copper Taylor bar (hex8, Johnson-Cook) on its anvil, 5 us, with
+# a crash report on the anvil and three probes: a node on the axis at the impact face, every
+# row; the impact face (its nodes on every rank) every microsecond; a symmetry face every step.
 serial_then_ranks("taylor", os.path.join(source, "examples/taylor_bar/copper_3d.yaml"), (2, 3),
-                  "the Taylor bar on its anvil", ["--set", "analysis.end_time=5us"])
+                  "the Taylor bar on its anvil, probes and a crash report",
+                  ["--set", "analysis.end_time=5us",
+                   "--set", "probes=[{name: tip, point: [0, 0, 0]}, {name: face, group: impact_face, interval: 1 us},"
+                            " {name: side, group: symmetry_x, interval: 0}]",
+                   "--set", "crash={wall: anvil, stroke_part: bar, crushed_part: bar}"])
+for probe in ("tip", "face", "side"):
+    if not os.path.exists(f"taylor_np3/probe_{probe}.csv"):
+        failures.append(f"the Taylor bar on 3 ranks wrote no probe_{probe}.csv")
 
 # Averaged nodal pressure (three ghost layers) with a wall: the 4340 steel Taylor bar in
 # axisymmetry (tri3), 10 us.
@@ -165,6 +176,20 @@ for ranks, how in ((2, []), (4, []), (3, ["--partition", "random:7"])):
         failures.append(f"the notched plate on {ranks} ranks {how} failed ({r.returncode}): {r.stderr[-2000:]}")
     else:
         same_outputs("notched_serial", name, f"notched plate cracking, {ranks} ranks {' '.join(how)}")
+
+# Erosion with contact: the rod through the plate (plane strain, Johnson-Cook damage, eroded
+# elements deleted), to 4 us, when some 30 elements have eroded: the whole model compacted and
+# cut anew after each step that eroded one, every node of the plate held as a surface node.
+perforation = os.path.join(source, "examples/plate_perforation/plate_perforation_delete.yaml")
+serial_then_ranks("perforation", perforation, (2,), "the rod through the plate, erosion",
+                  ["--set", "analysis.end_time=4us"])
+r = run("perforation_random", perforation, 3, ["--set", "analysis.end_time=4us", "--partition", "random:5"])
+if r.returncode != 0:
+    failures.append(f"the rod through the plate on 3 random ranks failed ({r.returncode}): {r.stderr[-2000:]}")
+else:
+    same_outputs("perforation_serial", "perforation_random", "the rod through the plate, 3 ranks at random")
+if json.load(open("perforation_serial/summary.json")).get("eroded_elements", 0) < 10:
+    failures.append("the rod through the plate: fewer than 10 elements eroded by 4 us: the case no longer tests erosion")
 
 # What a decomposed run cannot hold yet is said before the run, with exit status 2.
 r = run("refused", os.path.join(source, "examples/sphere_on_alumina/sphere_on_alumina_500_debris.yaml"), 2)

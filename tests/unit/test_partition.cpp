@@ -6,7 +6,9 @@
 #include <map>
 #include <random>
 
+#include "contact/contact_surface.hpp"
 #include "material/linear_elastic.hpp"
+#include "model/remap.hpp"
 #include "model/structured_mesh.hpp"
 #include "parallel/partition.hpp"
 #include "parallel/subdomain.hpp"
@@ -155,6 +157,85 @@ TEST(Subdomain, HoldsEveryElementOfItsNodesAndPlansASymmetricExchange) {
         for (std::size_t k = 0; k < receive.size(); ++k)
           EXPECT_EQ(q.global_node[receive[k]], r.global_node[r.ghosts.send[i][k]]);
       }
+  }
+}
+
+/// The facet keys of a surface, sorted, those of elements `keep` says yes to.
+template <class Keep>
+std::vector<std::int64_t> facet_keys(const ContactSurface& surface, Keep&& keep) {
+  std::vector<std::int64_t> keys;
+  for (auto id : surface.facet_id)
+    if (keep(id / 16)) keys.push_back(id);
+  std::sort(keys.begin(), keys.end());
+  return keys;
+}
+
+// A subdomain's contact surface is the whole model's surface on its elements: the faces at the
+// cut are not on it. When one of its elements erodes, the faces that uncovers are on it, as
+// they are on the whole model's, whether the element is owned or a ghost.
+TEST(Subdomain, ItsSurfaceIsTheWholeModelsOnItsElementsBeforeAndAfterAnElementErodes) {
+  Model model = plate();
+  const ElementPartition partition = partition_elements(model, 2);
+  for (int rank = 0; rank < 2; ++rank) {
+    Model whole = model;
+    Subdomain sub = make_subdomain(whole, partition, rank);
+    const Part& local = sub.model.parts[0];
+    auto held = [&](std::int64_t id) { return std::find(local.id.begin(), local.id.end(), id) != local.id.end(); };
+    EXPECT_EQ(facet_keys(extract_contact_surface(sub.model), held), facet_keys(extract_contact_surface(whole), held));
+    // An owned element inside the plate, and a ghost where the rank holds any.
+    std::vector<std::size_t> inside;
+    for (bool owned : {true, false})
+      for (std::size_t e = 0; e < local.element_count(); ++e) {
+        if (sub.element_owned[0][e] != owned) continue;
+        double c[2] = {0, 0};
+        for (int a = 0; a < 3; ++a)
+          for (int k = 0; k < 2; ++k) c[k] += sub.model.nodes.x[2 * local.connectivity[3 * e + a] + k] / 3;
+        if (!owned || (c[0] > 0.2 && c[0] < 0.8 && c[1] > 0.2 && c[1] < 0.8)) {
+          inside.push_back(e);
+          break;
+        }
+      }
+    ASSERT_GE(inside.size(), 1u) << "rank " << rank;
+    const std::size_t before = extract_contact_surface(sub.model).facet_count();
+    for (auto e : inside) {
+      sub.model.parts[0].eroded[e] = 1;
+      whole.parts[0].eroded[static_cast<std::size_t>(sub.global_element[0][e])] = 1;
+    }
+    const ContactSurface after = extract_contact_surface(sub.model);
+    EXPECT_EQ(facet_keys(after, held), facet_keys(extract_contact_surface(whole), held)) << "rank " << rank;
+    EXPECT_GT(after.facet_count(), before) << "rank " << rank << ": the holes' faces";
+  }
+}
+
+// A node whose elements all left the model (eroded and compacted) is owned by rank 0, which
+// holds it; no other rank does.
+TEST(Subdomain, ANodeNoElementHoldsIsOwnedAndHeldByRankZero) {
+  Model model = plate();
+  // A corner of the plate with one triangle, which is removed: its corner node is left alone.
+  const Part& part = model.parts[0];
+  std::vector<int> elements_at(model.nodes.count(), 0);
+  for (auto n : part.connectivity) ++elements_at[n];
+  std::size_t corner_node = model.nodes.count();
+  for (std::size_t n = 0; n < model.nodes.count(); ++n)
+    if (elements_at[n] == 1) corner_node = n;
+  ASSERT_LT(corner_node, model.nodes.count()) << "a corner with one triangle";
+  std::vector<std::uint8_t> keep(part.element_count(), 1);
+  for (std::size_t e = 0; e < part.element_count(); ++e)
+    for (int a = 0; a < 3; ++a)
+      if (static_cast<std::size_t>(part.connectivity[3 * e + a]) == corner_node) keep[e] = 0;
+  Remap remap;
+  remap.elements.emplace(0, EntityRemap::keeping(keep));
+  apply_remap(model, remap);
+  ASSERT_EQ(model.nodes.count(), 7u * 13u);
+  for (bool scattered : {false, true}) {
+    const ElementPartition partition = scattered ? scatter_elements(model, 3, 5) : partition_elements(model, 3);
+    EXPECT_EQ(node_owners(model, partition)[corner_node], 0);
+    for (int rank = 0; rank < 3; ++rank) {
+      const Subdomain sub = make_subdomain(model, partition, rank);
+      const auto at = std::find(sub.global_node.begin(), sub.global_node.end(), static_cast<std::int32_t>(corner_node));
+      EXPECT_EQ(at != sub.global_node.end(), rank == 0) << "rank " << rank;
+      if (at != sub.global_node.end()) EXPECT_TRUE(sub.node_owned[static_cast<std::size_t>(at - sub.global_node.begin())]);
+    }
   }
 }
 
