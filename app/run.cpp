@@ -555,14 +555,14 @@ class RunDriver {
   /// What a decomposed run cannot hold yet, or "".
   std::string not_decomposable() const {
     if (!sim_.model.particle_parts.empty()) return "particles";
-    if (sim_.cohesive) return "cohesive interfaces";
     if (sim_.cracking && sim_.cracking->comminution) return "comminution (cracks that make debris particles)";
     if (remesher_) return "remeshing";
     for (const auto& event : sim_.events)
       if (event.get() != cracks_) return "step events (" + std::string(event->name()) + ")";
-    for (const Part& part : sim_.model.parts)
-      if (erodes(part) && part.erosion.to_particles)
-        return "erosion into particles (part '" + part.name + "')";
+    for (const Part& part : sim_.model.parts) {
+      if (erodes(part) && part.erosion.to_particles) return "erosion into particles (part '" + part.name + "')";
+      if (erodes(part) && sim_.cohesive) return "erosion with cohesive interfaces (part '" + part.name + "')";
+    }
     return "";
   }
 

@@ -131,13 +131,18 @@ void add_turning_forces(const MidSurface& s, const double G[3], const std::int32
 
 }  // namespace
 
-void CohesiveInterfaces::drop_elements(Model& model, const std::vector<std::uint8_t>& keep, Work& work) {
+void CohesiveInterfaces::drop_elements(Model& model, const std::vector<std::uint8_t>& keep,
+                                       const std::vector<std::int32_t>& node_index, Work& work) {
   CohesiveElements& c = model.cohesive;
   const int k = c.nodes_per_face;
   const std::size_t ne = c.element_count();
+  const auto& ghost = model.nodes.count() == model.ghost_node.size() ? model.ghost_node : std::vector<std::uint8_t>{};
   std::size_t out = 0;
   for (std::size_t e = 0; e < ne; ++e) {
-    if (!keep[e]) {  // leaves with its neighbour: what it stored is released
+    if (!keep[e]) {  // leaves with its neighbour: what it stored is released, booked by its owner
+      const std::int64_t first = c.node_a[k * e];
+      const std::int32_t n = first >= 0 && static_cast<std::size_t>(first) < node_index.size() ? node_index[first] : -1;
+      if (!ghost.empty() && (n < 0 || ghost[n])) continue;
       for (int q = 0; q < k; ++q) {
         const std::size_t p = k * e + q;
         double stored = 0;
@@ -181,7 +186,7 @@ void CohesiveInterfaces::rebuild(Model& model, Work& work) {
     keep[e] = ok;
     any_gone = any_gone || !ok;
   }
-  if (any_gone) drop_elements(model, keep, work);
+  if (any_gone) drop_elements(model, keep, node_index, work);
   const std::size_t ne = c.element_count();
   node_a_.resize(ne * k);
   node_b_.resize(ne * k);
@@ -199,6 +204,12 @@ void CohesiveInterfaces::rebuild(Model& model, Work& work) {
     owner_part_b_[e] = lookup(part_of, c.owner_b[e]);
     owner_element_b_[e] = lookup(index_in, c.owner_b[e]);
   }
+  // In a subdomain an element is booked by the owner of its first node of side A.
+  owned_.clear();
+  if (model.ghost_node.size() == model.nodes.count() && !model.ghost_node.empty()) {
+    owned_.resize(ne);
+    for (std::size_t e = 0; e < ne; ++e) owned_[e] = !model.ghost_node[node_a_[k * e]];
+  }
 }
 
 // Work on the interface point p over the increment to the openings (Δn, Δs) with the tractions
@@ -207,15 +218,17 @@ void CohesiveInterfaces::rebuild(Model& model, Work& work) {
 // objective; t_s lies along the shear, so ∫ T·dΔ = ∫ t_n dΔn + t_s dΔs. Keeps them for the next
 // increment (separation and traction hold Δn, Δs, 0 and t_n, t_s, 0).
 void CohesiveInterfaces::book_increment(CohesiveElements& c, std::size_t p, double dn, double ds, double tn,
-                                        double ts, Work& work) {
+                                        double ts, Work* work) {
   const double w = c.weight[p];
   double* T_old = &c.traction[3 * p];
   double* d_old = &c.separation[3 * p];
   const double inc = 0.5 * (T_old[0] + tn) * (dn - d_old[0]) + 0.5 * (T_old[1] + ts) * (ds - d_old[1]);
   const double stored_old = 0.5 * (T_old[0] * d_old[0] + T_old[1] * d_old[1]);
   const double stored = 0.5 * (tn * dn + ts * ds);
-  work.work += inc * w;
-  work.released += (inc - (stored - stored_old)) * w;
+  if (work) {
+    work->work += inc * w;
+    work->released += (inc - (stored - stored_old)) * w;
+  }
   T_old[0] = tn;
   T_old[1] = ts;
   d_old[0] = dn;
@@ -225,7 +238,7 @@ void CohesiveInterfaces::book_increment(CohesiveElements& c, std::size_t p, doub
 // An open element's last increment: the traction of the step it opened in acted over the half
 // step after it, and ends at zero, so the trapezoid books that work and releases what the
 // points stored. Later calls find zero tractions and do nothing.
-void CohesiveInterfaces::close_open_element(Model& model, std::size_t e, Work& work) {
+void CohesiveInterfaces::close_open_element(Model& model, std::size_t e, Work* work) {
   CohesiveElements& c = model.cohesive;
   const int k = c.nodes_per_face;
   bool bearing = false;  // an element opened earlier has nothing left to book: no geometry needed
@@ -249,10 +262,11 @@ void CohesiveInterfaces::close_open_element(Model& model, std::size_t e, Work& w
 void CohesiveInterfaces::element_forces(Model& model, std::size_t e, Work& work) {
   CohesiveElements& c = model.cohesive;
   const int dim = model.dim(), k = c.nodes_per_face;
+  const bool mine = owned(e);
+  Work* book = mine ? &work : nullptr;
   if (c.open[e]) {
-    close_open_element(model, e, work);
-    failed_ += static_cast<std::size_t>(k);
-    ++open_;
+    close_open_element(model, e, book);
+    if (mine) failed_ += static_cast<std::size_t>(k), ++open_;
     return;
   }
   double* F = model.nodes.force.data();
@@ -271,7 +285,7 @@ void CohesiveInterfaces::element_forces(Model& model, std::size_t e, Work& work)
     cohesive_traction(law, zeta, o.dn, o.ds, h, tn, ts);
     c.max_separation[p] = h.max_separation;
     c.damage[p] = h.damage;
-    book_increment(c, p, o.dn, o.ds, tn, ts, work);
+    book_increment(c, p, o.dn, o.ds, tn, ts, book);
     const double w = c.weight[p];
     double T[3];
     for (int j = 0; j < 3; ++j) T[j] = tn * n[j] + (o.ds > 0 ? ts * o.shear[j] / o.ds : 0.0);
@@ -289,7 +303,8 @@ void CohesiveInterfaces::element_forces(Model& model, std::size_t e, Work& work)
   }
   add_turning_forces(surface, G, &node_a_[k * e], &node_b_[k * e], F);
   c.open[e] = all_failed ? 1 : 0;
-  for (int q = 0; q < k; ++q) (c.damage[k * e + q] >= 1.0 ? failed_ : intact_) += 1;
+  if (mine)
+    for (int q = 0; q < k; ++q) (c.damage[k * e + q] >= 1.0 ? failed_ : intact_) += 1;
 }
 
 CohesiveInterfaces::Work CohesiveInterfaces::add_forces(Model& model) {
@@ -312,14 +327,17 @@ CohesiveInterfaces::Work CohesiveInterfaces::add_forces(Model& model) {
   if (any_eroded) {  // rare: the list is built only then, not every step
     std::vector<std::uint8_t> keep(c.element_count());
     for (std::size_t e = 0; e < c.element_count(); ++e) keep[e] = !owner_eroded(e);
-    drop_elements(model, keep, work);
+    drop_elements(model, keep, index_of_ids(model.nodes.id, model.next_node_id), work);
     stale_ = true;
     rebuild(model, work);
   }
   // In element order, one thread: the same sums for any thread count.
   for (std::size_t e = 0; e < c.element_count(); ++e) element_forces(model, e, work);
+  // Over the owned nodes of a subdomain: a ghost node's row and lumped mass miss what other
+  // ranks hold.
+  const auto& ghost = model.ghost_node.size() == nn ? model.ghost_node : std::vector<std::uint8_t>{};
   for (std::size_t i = 0; i < nn; ++i)
-    if (row_[i] > 0) max_frequency2_ = std::max(max_frequency2_, row_[i] / model.nodes.mass[i]);
+    if (row_[i] > 0 && (ghost.empty() || !ghost[i])) max_frequency2_ = std::max(max_frequency2_, row_[i] / model.nodes.mass[i]);
   return work;
 }
 

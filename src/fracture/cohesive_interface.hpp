@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "core/energy_ledger.hpp"
+#include "core/exact_sum.hpp"
 #include "fracture/cohesive_law.hpp"
 #include "model/model.hpp"
 #include "model/remap.hpp"
@@ -28,10 +29,12 @@ class CohesiveInterfaces final : public TopologyListener {
   /// (internal −1, dissipated +1): what damage released of it.
   static std::vector<EnergyTerm> energy_terms();
 
-  /// Energy of one call (J).
+  /// Energy of one call (J), over the elements this process owns: every element in one process;
+  /// in a subdomain of a decomposed run, those whose first node of side A it owns. Exact sums,
+  /// which the ranks add up to the whole model's bits.
   struct Work {
-    double work = 0;      ///< done on the interfaces since the last call
-    double released = 0;  ///< released by damage (and by elements that left with their neighbour)
+    ExactSum work;      ///< done on the interfaces since the last call
+    ExactSum released;  ///< released by damage (and by elements that left with their neighbour)
   };
   /// Adds the interface forces at the positions x_n to model.nodes.force.
   Work add_forces(Model& model);
@@ -41,26 +44,36 @@ class CohesiveInterfaces final : public TopologyListener {
   /// Per node: 1 while an element that is not yet open holds it (contact leaves such a node to
   /// the interface), from the last call.
   const std::vector<char>& tied_nodes() const { return tied_; }
+  /// Points failed and intact, and elements failed at every point, whose faces the contact has
+  /// taken (from the last call): of the owned elements, until set_whole_model.
   std::size_t failed_points() const { return failed_; }
   std::size_t intact_points() const { return intact_; }
-  /// Elements failed at every point, whose faces the contact has taken (from the last call).
   std::size_t open_elements() const { return open_; }
+  /// A decomposed run, after add_forces: the counts summed over the ranks and the largest ω²
+  /// over them (each rank's over the nodes it owns).
+  void set_whole_model(std::size_t failed, std::size_t intact, std::size_t open, double max_frequency2) {
+    failed_ = failed, intact_ = intact, open_ = open, max_frequency2_ = max_frequency2;
+  }
   const std::vector<CohesiveLaw>& laws() const { return laws_; }
 
   void topology_changed(const Model&, const Remap&) override { stale_ = true; }
 
  private:
   void rebuild(Model& model, Work& work);
-  void drop_elements(Model& model, const std::vector<std::uint8_t>& keep, Work& work);
+  void drop_elements(Model& model, const std::vector<std::uint8_t>& keep, const std::vector<std::int32_t>& node_index,
+                     Work& work);
   void element_forces(Model& model, std::size_t e, Work& work);
-  void close_open_element(Model& model, std::size_t e, Work& work);
+  void close_open_element(Model& model, std::size_t e, Work* work);
+  /// Books the increment of point p; its energy into `work` (null: an element another rank owns).
   static void book_increment(CohesiveElements& c, std::size_t p, double dn, double ds, double tn, double ts,
-                             Work& work);
+                             Work* work);
+  bool owned(std::size_t e) const { return owned_.empty() || owned_[e]; }
 
   std::vector<CohesiveLaw> laws_;
   bool stale_ = true;
   std::vector<std::int32_t> node_a_, node_b_;  ///< indices of the node ids, per point
   std::vector<std::int32_t> owner_part_a_, owner_element_a_, owner_part_b_, owner_element_b_;
+  std::vector<char> owned_;  ///< per element, in a subdomain: 1 where this rank owns it (empty: all)
   std::vector<double> row_;
   std::vector<char> tied_;
   double max_frequency2_ = 0;

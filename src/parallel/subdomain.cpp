@@ -142,6 +142,44 @@ void hold_elements_around(const Model& model, const std::vector<char>& around, c
   }
 }
 
+/// Cohesive interfaces (docs/theory/domain_decomposition.md, "Cohesive interfaces across ranks"):
+/// every interface element with a node the rank holds, its nodes and the two elements it bounds.
+/// An owned node then has every interface element on it, and every held node of the ghost layer
+/// and of the contact halo its whole count of elements that tie it. An interface element is the
+/// rank's own where the rank owns its first node of side A.
+void hold_interfaces(const Model& model, const std::vector<std::int32_t>& owner, int rank, LocalEntities& held) {
+  const CohesiveElements& c = model.cohesive;
+  held.cohesive.assign(c.element_count(), Holding::none);
+  if (c.element_count() == 0) return;
+  std::vector<std::int32_t> node_of(static_cast<std::size_t>(model.next_node_id), -1);
+  for (std::size_t n = 0; n < model.nodes.count(); ++n) node_of[static_cast<std::size_t>(model.nodes.id[n])] = static_cast<std::int32_t>(n);
+  std::vector<std::pair<std::int32_t, std::int32_t>> element_of(static_cast<std::size_t>(model.next_element_id), {-1, -1});
+  for (std::size_t p = 0; p < model.parts.size(); ++p)
+    for (std::size_t e = 0; e < model.parts[p].id.size(); ++e)
+      element_of[static_cast<std::size_t>(model.parts[p].id[e])] = {static_cast<std::int32_t>(p), static_cast<std::int32_t>(e)};
+  const std::vector<Holding> before = held.node;  // the rule looks at the nodes held before it
+  const std::size_t k = static_cast<std::size_t>(c.nodes_per_face);
+  auto hold_node = [&](std::int32_t n) {
+    if (held.node[n] == Holding::none) held.node[n] = owner[n] == rank ? Holding::owned : Holding::ghost;
+  };
+  for (std::size_t e = 0; e < c.element_count(); ++e) {
+    bool touches = false;
+    for (std::size_t q = 0; q < k && !touches; ++q)
+      touches = before[node_of[c.node_a[k * e + q]]] != Holding::none || before[node_of[c.node_b[k * e + q]]] != Holding::none;
+    if (!touches) continue;
+    held.cohesive[e] = owner[node_of[c.node_a[k * e]]] == rank ? Holding::owned : Holding::ghost;
+    for (std::size_t q = 0; q < k; ++q) hold_node(node_of[c.node_a[k * e + q]]), hold_node(node_of[c.node_b[k * e + q]]);
+    for (const std::int64_t id : {c.owner_a[e], c.owner_b[e]}) {
+      const auto [p, i] = element_of[static_cast<std::size_t>(id)];
+      if (held.element[p][i] != Holding::none) continue;
+      held.element[p][i] = Holding::ghost;
+      const Part& part = model.parts[p];
+      const int npe = part.type->nodes;
+      for (int a = 0; a < npe; ++a) hold_node(part.connectivity[npe * static_cast<std::size_t>(i) + a]);
+    }
+  }
+}
+
 /// local_entities, with the contact surface nodes of the halo's parts found once per cut.
 LocalEntities held_entities(const Model& model, const ElementPartition& partition, const std::vector<std::int32_t>& owner,
                             int rank, const ContactHalo* halo, const std::vector<char>* on_surface) {
@@ -183,6 +221,7 @@ LocalEntities held_entities(const Model& model, const ElementPartition& partitio
   }
   if (halo && !halo->parts.empty() && on_surface)
     hold_elements_around(model, nodes_near_owned_surface(model, *on_surface, owner, rank, *halo), owner, rank, held);
+  hold_interfaces(model, owner, rank, held);
   return held;
 }
 
@@ -213,8 +252,25 @@ namespace {
 void check_decomposable(const Model& model) {
   if (!model.particle_parts.empty())
     throw std::invalid_argument("domain decomposition: particles are not decomposed yet");
-  if (model.cohesive.element_count() > 0)
-    throw std::invalid_argument("domain decomposition: cohesive interfaces are not decomposed yet");
+}
+
+/// Keeps of `sub`'s interface elements (a copy of the whole model's) those `held` says, in the
+/// whole model's order, and notes which are the rank's own.
+void cut_interfaces(Subdomain& sub, const LocalEntities& held) {
+  CohesiveElements& c = sub.model.cohesive;
+  const std::size_t ne = c.element_count();
+  std::size_t out = 0;
+  for (std::size_t e = 0; e < ne; ++e) {
+    if (held.cohesive[e] == Holding::none) continue;
+    sub.global_cohesive.push_back(static_cast<std::int32_t>(e));
+    sub.cohesive_owned.push_back(held.cohesive[e] == Holding::owned);
+    c.visit_fields([&](const std::string&, const FieldInfo&, auto& v) {
+      const std::size_t width = v.size() / ne;  // per element: 1, corners or 3 × corners
+      std::copy_n(v.begin() + width * e, width, v.begin() + width * out);
+    });
+    ++out;
+  }
+  if (ne > 0) c.visit_fields([&](const std::string&, const FieldInfo&, auto& v) { v.resize(v.size() / ne * out); });
 }
 
 /// The faces at the cut, as facet keys (sorted): of each held element, those it shares with an
@@ -319,6 +375,7 @@ Subdomain make_subdomain(const Model& model, const ElementPartition& partition, 
     cut.elements.emplace(static_cast<int>(p), EntityRemap::reorder(part.element_count(), global));
   }
   apply_remap(sub.model, cut);
+  cut_interfaces(sub, held);
   for (std::size_t p = 0; p < model.parts.size(); ++p) {
     // The cut may hold none of the last colours: the part then counts fewer.
     Part& local = sub.model.parts[p];
@@ -385,6 +442,20 @@ void gather_owned(const Subdomain& sub, Model& local, Model& whole) {
                       [&](auto&& f) { whole.parts[p].visit_fields(f); }, Location::element,
                       local.parts[p].element_count(), whole.parts[p].element_count(), sub.global_element[p],
                       sub.element_owned[p]);
+  // Interface elements: every field of the owned ones, into their places in the whole model.
+  CohesiveElements& from = local.cohesive;
+  CohesiveElements& to = whole.cohesive;
+  const std::size_t nl = from.element_count(), nw = to.element_count();
+  for (std::size_t e = 0; e < nl; ++e) {
+    if (!sub.cohesive_owned[e]) continue;
+    const auto g = static_cast<std::size_t>(sub.global_cohesive[e]);
+    from.visit_fields([&](const std::string& name, const FieldInfo&, auto& v) {
+      to.visit_fields([&](const std::string& whole_name, const FieldInfo&, auto& w) {
+        if constexpr (std::is_same_v<std::decay_t<decltype(v)>, std::decay_t<decltype(w)>>)
+          if (whole_name == name) std::copy_n(v.begin() + v.size() / nl * e, v.size() / nl, w.begin() + w.size() / nw * g);
+      });
+    });
+  }
   // Contact's model-wide state is the same on every rank.
   whole.contact.wall_offset = local.contact.wall_offset;
   whole.contact.penalty_time_step = local.contact.penalty_time_step;
@@ -442,6 +513,20 @@ std::vector<double> pack_owned(const Subdomain& sub, Model& local) {
     packed.push_back(static_cast<double>(values.size()));
     packed.insert(packed.end(), values.begin(), values.end());
   });
+  // The owned interface elements: their indices in the whole model, then field by field their
+  // values (integers exact as doubles).
+  CohesiveElements& c = local.cohesive;
+  std::vector<std::size_t> interfaces;
+  for (std::size_t e = 0; e < c.element_count(); ++e)
+    if (sub.cohesive_owned[e]) interfaces.push_back(e);
+  packed.push_back(static_cast<double>(interfaces.size()));
+  for (auto e : interfaces) packed.push_back(sub.global_cohesive[e]);
+  const std::size_t nl = c.element_count();
+  c.visit_fields([&](const std::string&, const FieldInfo&, auto& v) {
+    const std::size_t width = nl == 0 ? 0 : v.size() / nl;
+    for (auto e : interfaces)
+      for (std::size_t j = 0; j < width; ++j) packed.push_back(static_cast<double>(v[width * e + j]));
+  });
   return packed;
 }
 
@@ -467,6 +552,16 @@ void unpack_owned(const std::vector<double>& packed, Model& whole) {
   whole.contact.visit_model_fields([&](const FieldInfo&, std::vector<double>& values) {
     values.resize(static_cast<std::size_t>(next()));
     for (double& v : values) v = next();
+  });
+  CohesiveElements& c = whole.cohesive;
+  std::vector<std::size_t> interfaces(static_cast<std::size_t>(next()));
+  for (auto& e : interfaces) e = static_cast<std::size_t>(next());
+  const std::size_t nw = c.element_count();
+  c.visit_fields([&](const std::string&, const FieldInfo&, auto& v) {
+    using T = typename std::decay_t<decltype(v)>::value_type;
+    const std::size_t width = nw == 0 ? 0 : v.size() / nw;
+    for (auto e : interfaces)
+      for (std::size_t j = 0; j < width; ++j) v[width * e + j] = static_cast<T>(next());
   });
   if (at != packed.size()) throw std::logic_error("unpack_owned: the array holds more than its fields");
 }

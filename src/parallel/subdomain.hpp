@@ -22,6 +22,7 @@ enum class Holding : std::uint8_t { none, owned, ghost };
 struct LocalEntities {
   std::vector<std::vector<Holding>> element;
   std::vector<Holding> node;
+  std::vector<Holding> cohesive;  ///< per interface element (Model::cohesive)
 };
 
 /// What contact between parts needs a rank to hold beyond its ghost layer (docs/theory/
@@ -71,6 +72,8 @@ struct Subdomain {
   std::vector<std::vector<std::int32_t>> global_element;  ///< per part and local element
   std::vector<std::uint8_t> node_owned;                   ///< per local node: 1 if this rank owns it
   std::vector<std::vector<std::uint8_t>> element_owned;   ///< per part and local element
+  std::vector<std::int32_t> global_cohesive;              ///< per local interface element, its index in the whole model
+  std::vector<std::uint8_t> cohesive_owned;               ///< per local interface element: 1 if this rank books it
   GhostExchangePlan ghosts;
 
   std::size_t owned_element_count() const;
@@ -79,8 +82,7 @@ struct Subdomain {
 
 /// Cuts the part of `model` that rank `rank` holds out of a copy of it (apply_remap, keeping the
 /// held nodes and elements) and plans its ghost exchange; with contact between parts, its `halo`
-/// too. Particles, interfaces and cracks are not yet decomposed: throws std::invalid_argument for
-/// a model that has any.
+/// too. Particles are not yet decomposed: throws std::invalid_argument for a model that has any.
 Subdomain make_subdomain(const Model& model, const ElementPartition& partition, int rank,
                          const ContactHalo* halo = nullptr);
 

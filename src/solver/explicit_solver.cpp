@@ -344,9 +344,12 @@ void ExplicitSolver::compute_forces() {
   const double particle_dt = add_particle_forces();
   if (cohesive_) {
     // Interfaces before contact: contact leaves the nodes they still hold to them.
-    const CohesiveInterfaces::Work w = cohesive_->add_forces(model_);
-    state_.energy[terms_.cohesive_work] += w.work;
-    state_.energy[terms_.cohesive_released] += w.released;
+    CohesiveInterfaces::Work w = cohesive_->add_forces(model_);
+    if (global_sum_) combine_cohesive_over_ranks(w);
+    state_.energy[terms_.cohesive_work] += w.work.value();
+    state_.energy[terms_.cohesive_released] += w.released.value();
+    // The springs' step bound is built on the whole model's element step.
+    if (global_minimum_) global_minimum_(&total.stable_dt, 1);
   }
   applied_.clear();
   add_pressure_forces(model_, loads_, state_.time, applied_);
@@ -383,6 +386,21 @@ void ExplicitSolver::combine_contact_over_ranks() {
   global_minimum_(maxima, 3);
   for (int i = 0; i < 3; ++i) booked.maxima[i] = -maxima[i];
   contact_->take_booking();
+}
+
+void ExplicitSolver::combine_cohesive_over_ranks(CohesiveInterfaces::Work& w) {
+  // The owned elements' work and counts summed, the springs' largest ω² taken over the ranks (as
+  // the minimum of its negative: exact).
+  ExactSum sums[2] = {w.work, w.released};
+  std::int64_t counts[3] = {static_cast<std::int64_t>(cohesive_->failed_points()),
+                            static_cast<std::int64_t>(cohesive_->intact_points()),
+                            static_cast<std::int64_t>(cohesive_->open_elements())};
+  sum_over_ranks(sums, 2, counts, 3);
+  w.work = sums[0], w.released = sums[1];
+  double most = -cohesive_->max_frequency_squared();
+  if (global_minimum_) global_minimum_(&most, 1);
+  cohesive_->set_whole_model(static_cast<std::size_t>(counts[0]), static_cast<std::size_t>(counts[1]),
+                             static_cast<std::size_t>(counts[2]), -most);
 }
 
 double ExplicitSolver::choose_time_step(double element_stable_dt, double particle_dt) {

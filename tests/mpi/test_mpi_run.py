@@ -13,7 +13,8 @@ bar in axisymmetry with its pressure averaged over the nodes on 2 and 3 ranks; t
 the plate (contact between parts, the model cut anew as it moves) on 2 and 3 ranks and from 2 to
 3 ranks across a restart, and rebalanced every 13 steps; the notched plate whose discrete crack
 cuts it in two on 2 and 4 ranks and on 3 ranks cut at random; the rod perforating the plate with
-erosion on 2 ranks and on 3 cut at random; a scenario with debris particles is refused before the run (exit status 2, saying what it
+erosion on 2 ranks and on 3 cut at random; the four-ply laminate's cohesive interfaces, without
+erosion, on 2 ranks and on 3 and 4 cut at random; a scenario with debris particles is refused before the run (exit status 2, saying what it
 cannot hold).
 
 Usage: test_mpi_run.py SHARD_EXECUTABLE MPIEXEC SOURCE_DIR WORK_DIR
@@ -190,6 +191,25 @@ else:
     same_outputs("perforation_serial", "perforation_random", "the rod through the plate, 3 ranks at random")
 if json.load(open("perforation_serial/summary.json")).get("eroded_elements", 0) < 10:
     failures.append("the rod through the plate: fewer than 10 elements eroded by 4 us: the case no longer tests erosion")
+
+# Cohesive interfaces: the four-ply laminate crushed on its base (hex8, orthotropic ply damage,
+# interfaces between the plies and to the carriage, a crash report), without erosion, to 30 us,
+# by when 10 interface elements have opened; on 2 ranks, and on 3 and 4 cut at random.
+laminate = os.path.join(source, "tests/data/composite/laminate_crush.yaml")
+no_erosion = ["--set", "analysis.end_time=30us", "--set", "materials.ply.erosion=~",
+              "--set", "materials.ply.erosion_criterion=none"]
+serial_then_ranks("laminate", laminate, (2,), "the laminate's interfaces", no_erosion)
+for ranks in (3, 4):
+    r = run(f"laminate_random{ranks}", laminate, ranks, [*no_erosion, "--partition", f"random:{ranks}"])
+    if r.returncode != 0:
+        failures.append(f"the laminate on {ranks} random ranks failed ({r.returncode}): {r.stderr[-2000:]}")
+    else:
+        same_outputs("laminate_serial", f"laminate_random{ranks}", f"the laminate's interfaces, {ranks} ranks at random")
+with open("laminate_serial/history.csv") as f:
+    rows = f.read().splitlines()
+    header, last = rows[0].split(","), rows[-1].split(",")
+    if float(last[header.index("interface_elements_open")]) < 1:
+        failures.append("the laminate: no interface element open by 30 us: the case no longer tests failure")
 
 # What a decomposed run cannot hold yet is said before the run, with exit status 2.
 r = run("refused", os.path.join(source, "examples/sphere_on_alumina/sphere_on_alumina_500_debris.yaml"), 2)

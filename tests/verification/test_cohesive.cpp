@@ -176,14 +176,14 @@ TEST(CohesiveInterface, AnElementLeavesWithItsErodedNeighbourAndReleasesWhatItSt
   CohesiveInterfaces interfaces({table3()});
   const CohesiveInterfaces::Work first = interfaces.add_forces(model);
   const double stored = 0.5 * 1e15 * 30e-9 * 30e-9 * 1e-6;
-  EXPECT_NEAR(first.work, stored, 1e-9 * stored);  // 30 nm on millimetre coordinates: 1e-11 round-off
-  EXPECT_EQ(first.released, 0.0);
+  EXPECT_NEAR(first.work.value(), stored, 1e-9 * stored);  // 30 nm on millimetre coordinates: 1e-11 round-off
+  EXPECT_EQ(first.released.value(), 0.0);
   part.eroded[group[0] == 1 ? 0 : 1] = 1;  // the upper element fails
   const CohesiveInterfaces::Work second = interfaces.add_forces(model);
   EXPECT_EQ(model.cohesive.element_count(), 0u);
   EXPECT_EQ(model.cohesive.weight.size(), 0u);
-  EXPECT_NEAR(second.released, stored, 1e-9 * stored);
-  EXPECT_EQ(second.work, 0.0);
+  EXPECT_NEAR(second.released.value(), stored, 1e-9 * stored);
+  EXPECT_EQ(second.work.value(), 0.0);
 }
 
 // An element failed at every point opens: from the next call it carries nothing and holds no
@@ -204,21 +204,21 @@ TEST(CohesiveInterface, AnElementFailedEverywhereOpensToTheContactAndReleasesWha
   EXPECT_EQ(interfaces.failed_points(), 4u);
   // The jump to failure in one call: the work is closing only (no shear force once failed), and
   // the closed points still store it.
-  EXPECT_NEAR(first.work, bearing, 1e-6 * bearing);
-  EXPECT_NEAR(first.released, 0.0, 1e-9 * bearing);
+  EXPECT_NEAR(first.work.value(), bearing, 1e-6 * bearing);
+  EXPECT_NEAR(first.released.value(), 0.0, 1e-9 * bearing);
   place_upper(0.1e-3, -60e-9);  // pressed deeper: the contact's business now
   model.nodes.force.assign(model.nodes.force.size(), 0.0);
   const CohesiveInterfaces::Work second = interfaces.add_forces(model);
   // The bearing of the opening step acted over the half step after it: ½ K (30 nm)(30 nm) A more
   // work, and all of it released.
-  std::printf("[cohesive] opened: work %.4e + %.4e J, released %.4e J (bearing ½KΔ²A %.4e J)\n", first.work,
-              second.work, second.released, bearing);
-  EXPECT_NEAR(second.work, bearing, 1e-6 * bearing);
-  EXPECT_NEAR(first.released + second.released, first.work + second.work, 1e-9 * bearing);
+  std::printf("[cohesive] opened: work %.4e + %.4e J, released %.4e J (bearing ½KΔ²A %.4e J)\n", first.work.value(),
+              second.work.value(), second.released.value(), bearing);
+  EXPECT_NEAR(second.work.value(), bearing, 1e-6 * bearing);
+  EXPECT_NEAR(first.released.value() + second.released.value(), first.work.value() + second.work.value(), 1e-9 * bearing);
   for (double t : model.cohesive.traction) EXPECT_EQ(t, 0.0);
   const CohesiveInterfaces::Work third = interfaces.add_forces(model);
-  EXPECT_EQ(third.work, 0.0);
-  EXPECT_EQ(third.released, 0.0);
+  EXPECT_EQ(third.work.value(), 0.0);
+  EXPECT_EQ(third.released.value(), 0.0);
   EXPECT_EQ(interfaces.open_elements(), 1u);
   EXPECT_EQ(interfaces.failed_points(), 4u);  // still counted as failed
   for (char tied : interfaces.tied_nodes()) EXPECT_EQ(tied, 0);
@@ -258,8 +258,8 @@ TEST(CohesiveInterface, ATurningDamagedInterfaceTakesNoWorkAndHasNoMoment) {
       EXPECT_GT(model.cohesive.damage[0], 0.99);
       continue;  // the jump from rest to the slid state: not a turn
     }
-    work += w.work;
-    released += w.released;
+    work += w.work.value();
+    released += w.released.value();
     // Σ (x − c) × F about the centre, and Σ F
     double moment[3] = {0, 0, 0}, total[3] = {0, 0, 0};
     for (std::size_t n = 0; n < model.nodes.count(); ++n) {

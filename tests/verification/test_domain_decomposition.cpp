@@ -19,6 +19,8 @@
 #include <numbers>
 
 #include "contact/contact.hpp"
+#include "fracture/cohesive_interface.hpp"
+#include "fracture/interface_split.hpp"
 #include "parallel/communicator.hpp"
 #include "parallel/ghost_exchange.hpp"
 #include "parallel/graph_partition.hpp"
@@ -360,6 +362,99 @@ TEST(DomainDecomposition, ContactBetweenPartsGivesTheSameBitsOnOneToFourRanks) {
 
 TEST(DomainDecomposition, ContactBetweenPartsOnARandomPartitionGivesTheSameBits) {
   for (int ranks : {2, 3}) check_block_on_plate(ranks, true, {60, 60});
+}
+
+/// The plate of kPlate cut in four by cohesive interfaces across the middle of its length and of
+/// its height, weak enough (80 MPa, 400 J/m²) that the mix of modes the cases start in fails
+/// 50 of their 64 points and damages others within the run.
+ElasticRun plate_with_interfaces(CohesiveLaw& law) {
+  ElasticRun run = make_run(kPlate);
+  Model& model = run.model;
+  InterfaceLayout layout;
+  const Part& part = model.parts[0];
+  std::vector<int> group(part.element_count());
+  for (std::size_t e = 0; e < group.size(); ++e) {
+    double c[2] = {0, 0};
+    for (int a = 0; a < 3; ++a)
+      for (int k = 0; k < 2; ++k) c[k] += model.nodes.x0[2 * part.connectivity[3 * e + a] + k] / 3;
+    group[e] = (c[0] > 0.5 * kPlate.size[0] ? 1 : 0) + (c[1] > 0.5 * kPlate.size[1] ? 2 : 0);
+  }
+  layout.group.push_back(group);
+  for (int a = 0; a < 4; ++a)
+    for (int b = a + 1; b < 4; ++b) layout.law_of[{a, b}] = 0;
+  insert_cohesive_interfaces(model, layout);
+  law.normal_strength = law.shear_strength = 80e6;
+  law.mode_one_energy = law.mode_two_energy = 400;
+  law.stiffness = 5e13;
+  return run;
+}
+
+/// Every interface value of `a` and `b` with other bits (a length mismatch counts as all).
+std::size_t interface_differences(CohesiveElements& a, CohesiveElements& b) {
+  std::size_t differ = 0;
+  a.visit_fields([&](const std::string& name, const FieldInfo&, auto& u) {
+    b.visit_fields([&](const std::string& other, const FieldInfo&, auto& v) {
+      if constexpr (std::is_same_v<std::decay_t<decltype(u)>, std::decay_t<decltype(v)>>)
+        if (name == other) {
+          if (u.size() != v.size()) differ += u.size() + v.size() + 1;
+          else differ += static_cast<std::size_t>(std::memcmp(u.data(), v.data(), u.size() * sizeof(u[0])) != 0);
+        }
+    });
+  });
+  return differ;
+}
+
+// Cohesive interfaces across the cut: each rank holds every interface element on a node it
+// holds, with its nodes and the elements it bounds, and books the ones whose first node it owns.
+// Cut by bisection (across both interfaces on 4 ranks) and at random: the owned state, every
+// interface value gathered, and every rank's ledger (cohesive work and release included) with
+// the bits of the whole run.
+TEST(DomainDecomposition, CohesiveInterfacesGiveTheSameBitsOnOneToFourRanks) {
+  CohesiveLaw law;
+  ElasticRun whole = plate_with_interfaces(law);
+  const Model start = whole.model;
+  CohesiveInterfaces serial({law});
+  const Booked booked = run_steps(whole.model, whole.materials, whole.loads, whole.settings, kSteps,
+                                  [&](ExplicitSolver& solver) { solver.attach_cohesive(&serial); });
+  std::size_t failed = 0;
+  for (double d : whole.model.cohesive.damage) failed += d >= 1.0;
+  ASSERT_GT(failed, whole.model.cohesive.damage.size() / 10) << "the run must break a good part of the interfaces";
+  ASSERT_GT(serial.open_elements(), 0u);
+  for (const auto& [ranks, scattered] : std::vector<std::pair<int, bool>>{{1, false}, {2, false}, {3, false}, {4, false}, {2, true}, {3, true}}) {
+    const ElementPartition partition = scattered ? scatter_elements(start, ranks, 99) : partition_elements(start, ranks);
+    std::vector<Subdomain> subs;
+    for (int r = 0; r < ranks; ++r) subs.push_back(make_subdomain(start, partition, r));
+    std::vector<Model> finished(ranks);
+    std::vector<Booked> booked_by(ranks);
+    std::vector<std::size_t> open(ranks);
+    ThreadTeam team(ranks);
+    team.run([&](Communicator& communicator) {
+      const int r = communicator.rank();
+      Model local = subs[r].model;
+      const auto materials = decomposition_materials();
+      GhostExchange exchange(subs[r].ghosts, communicator);
+      CohesiveInterfaces interfaces({law});
+      booked_by[r] = run_steps(local, materials, whole.loads, whole.settings, kSteps, [&](ExplicitSolver& solver) {
+        solver.attach_cohesive(&interfaces);
+        join_decomposed_run(solver, exchange, communicator);
+      });
+      open[r] = interfaces.open_elements();
+      finished[r] = std::move(local);
+    });
+    Model gathered = start;
+    std::size_t held = 0;
+    for (int r = 0; r < ranks; ++r) {
+      EXPECT_EQ(differences(subs[r], finished[r], whole.model), 0u) << "rank " << r << " of " << ranks;
+      EXPECT_EQ(differences(booked_by[r], booked), 0u) << "ledger of rank " << r << " of " << ranks;
+      EXPECT_EQ(open[r], serial.open_elements()) << "the count of open elements, rank " << r << " of " << ranks;
+      gather_owned(subs[r], finished[r], gathered);
+      held += subs[r].global_cohesive.size();
+    }
+    EXPECT_EQ(interface_differences(gathered.cohesive, whole.model.cohesive), 0u) << ranks << " ranks";
+    std::printf("interfaces, %s on %d ranks: %zu of %zu points failed, interface elements held %.2f times\n",
+                scattered ? "scattered" : "RCB      ", ranks, failed, whole.model.cohesive.damage.size(),
+                static_cast<double>(held) / static_cast<double>(start.cohesive.element_count()));
+  }
 }
 
 }  // namespace
