@@ -1,10 +1,12 @@
 // The `shard` command line: run, check, reference, info.
 #include <cmath>
+#include <chrono>
 #include <cstdio>
 #include <cstring>
 #include <iostream>
 #include <optional>
 #include <string>
+#include <thread>
 #include <vector>
 
 #ifdef _OPENMP
@@ -256,19 +258,37 @@ int shard_main(int argc, char** argv, shard::Communicator* ranks) {
 /// is decomposed over the ranks (docs/theory/domain_decomposition.md).
 bool launched_by_mpirun() { return std::getenv("OMPI_COMM_WORLD_SIZE") || std::getenv("PMI_SIZE"); }
 
+/// Waits at most `seconds` for every rank to come here too, on `failures` (a communicator of its
+/// own, so that this meeting cannot be matched with a collective some rank is still held in).
+void meet_the_others(MPI_Comm failures, double seconds) {
+  MPI_Request request;
+  MPI_Ibarrier(failures, &request);
+  int done = 0;
+  for (const double start = MPI_Wtime(); !done && MPI_Wtime() - start < seconds;) {
+    MPI_Test(&request, &done, MPI_STATUS_IGNORE);
+    if (!done) std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  }
+}
+
 int main_on_ranks(int argc, char** argv) {
   int provided = 0;
   MPI_Init_thread(&argc, &argv, MPI_THREAD_FUNNELED, &provided);
+  MPI_Comm failures;
+  MPI_Comm_dup(MPI_COMM_WORLD, &failures);
   int code = kRunFailed;
   {
     shard::MpiCommunicator ranks;
     code = shard_main(argc, argv, &ranks);
-    // A rank that failed alone would leave the others waiting in a collective: end them all.
+    // A rank that failed alone would leave the others waiting in a collective: end them all. A
+    // run that failed on every rank at once (the energy watchdog) first lets rank 0 finish its
+    // summary.json: the ranks meet, and a rank that failed alone waits no more than 10 s.
     if (code == kRunFailed && ranks.size() > 1) {
       std::fflush(stderr);
+      meet_the_others(failures, 10.0);
       MPI_Abort(MPI_COMM_WORLD, code);
     }
   }
+  MPI_Comm_free(&failures);
   MPI_Finalize();
   return code;
 }

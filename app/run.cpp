@@ -31,6 +31,7 @@
 #include "io/frame_output.hpp"
 #include "io/output_file.hpp"
 #include "app/probe_output.hpp"
+#include "material/nonlocal.hpp"
 #include "solver/erosion.hpp"
 #include "app/simulation.hpp"
 #include "io/particle_frame.hpp"
@@ -404,8 +405,11 @@ class RunDriver {
     if (!writes()) throw e;
     history_.flush();
     // The whole model's counts for the summary (its state is that of the last gather; the other
-    // ranks may be gone).
-    if (sub_) std::swap(sim_.model, whole_);
+    // ranks may be gone), less what the subdomains' erosion took out since the cut.
+    if (sub_) {
+      if (any_unreported(reported_)) drop_unreported(whole_, reported_);
+      std::swap(sim_.model, whole_);
+    }
     try {
       write_summary();
     } catch (const OutputError& also) {
@@ -432,15 +436,48 @@ class RunDriver {
                        "a run on " + std::to_string(ranks.size()) + " ranks cannot yet hold " + why +
                            ": run it as one process (without mpirun), with --threads");
     whole_ = std::move(sim_.model);
-    solver_.leave_eroded_elements();  // compact_eroded_across_ranks does it on the whole model
-    compacted_eroded_ = solver_.state().eroded_elements;
+    if (cracks_) {
+      // Splits and erosion in the order of one process: both on the whole model.
+      solver_.leave_eroded_elements();  // compact_eroded_across_ranks does it
+      compacted_eroded_ = solver_.state().eroded_elements;
+    } else {
+      // Each subdomain's erosion event takes its eroded elements out; its lists follow.
+      follower_.driver = this;
+      solver_.topology().add(follower_);
+    }
     cut_whole();
   }
 
   /// Every rank's whole_ becomes the whole model's state now (a collective): what a new cut is
   /// made from.
   void gather_whole_everywhere() {
-    for (const auto& packed : ranks_->all_gather(pack_owned(*sub_, sim_.model))) unpack_owned(packed, whole_);
+    auto reported = element_flags(whole_);
+    for (const auto& packed : ranks_->all_gather(pack_owned(*sub_, sim_.model))) unpack_owned(packed, whole_, &reported);
+    if (!any_unreported(reported)) return;
+    const std::vector<std::vector<std::int64_t>> ids_before = element_ids(whole_);
+    drop_unreported(whole_, reported);
+    keep_weights_of_elements_left(ids_before);
+  }
+
+  static std::vector<std::vector<char>> element_flags(const Model& model) {
+    std::vector<std::vector<char>> flags;
+    for (const Part& part : model.parts) flags.emplace_back(part.element_count(), 0);
+    return flags;
+  }
+  static bool any_unreported(const std::vector<std::vector<char>>& reported) {
+    for (const auto& part : reported)
+      if (std::find(part.begin(), part.end(), 0) != part.end()) return true;
+    return false;
+  }
+  /// Takes out of `model` (the whole model) the elements no rank reported: those the subdomains'
+  /// erosion events removed since the cut. One remap that keeps the others in their order, as the
+  /// one-process event's remaps, step by step, would have.
+  static void drop_unreported(Model& model, const std::vector<std::vector<char>>& reported) {
+    Remap remap;
+    for (std::size_t p = 0; p < reported.size(); ++p)
+      if (std::find(reported[p].begin(), reported[p].end(), 0) != reported[p].end())
+        remap.elements.emplace(static_cast<int>(p), EntityRemap::keeping(std::vector<std::uint8_t>(reported[p].begin(), reported[p].end())));
+    apply_remap(model, remap);
   }
 
   /// Cuts this rank's subdomain out of whole_ as it is now (recursive coordinate bisection; with
@@ -560,7 +597,14 @@ class RunDriver {
     for (const auto& event : sim_.events)
       if (event.get() != cracks_) return "step events (" + std::string(event->name()) + ")";
     for (const Part& part : sim_.model.parts) {
+      // A point's average reaches points of elements a rank does not hold, in an order of its own.
+      const auto* nonlocal = dynamic_cast<const NonlocalAveraging*>(sim_.materials[part.material].get());
+      if (nonlocal && nonlocal->nonlocal_spec().length > 0)
+        return "a non-local average (part '" + part.name + "', nonlocal_length)";
       if (erodes(part) && part.erosion.to_particles) return "erosion into particles (part '" + part.name + "')";
+      // The outer ghost rings' state is not their owners' (section 12): it must not decide erosion.
+      if (erodes_by_state(part) && part.volumetric == VolumetricTreatment::average_nodal_pressure)
+        return "erosion by a history variable with averaged nodal pressure (part '" + part.name + "')";
       if (erodes(part) && sim_.cohesive) return "erosion with cohesive interfaces (part '" + part.name + "')";
     }
     return "";
@@ -591,19 +635,20 @@ class RunDriver {
 
   /// Whether a part's elements may erode: by shape, or by a history variable of its rule or of
   /// its material's failure.
-  bool erodes(const Part& part) const {
+  bool erodes(const Part& part) const { return part.erosion.by_shape() || erodes_by_state(part); }
+  bool erodes_by_state(const Part& part) const {
     const ErosionRule& rule = part.erosion;
-    return rule.by_shape() || rule.state_index >= 0 ||
-           (rule.state_index == -1 && sim_.materials[part.material]->failure_state_index() >= 0);
+    return rule.state_index >= 0 || (rule.state_index == -1 && sim_.materials[part.material]->failure_state_index() >= 0);
   }
 
   /// Erosion across ranks: an element erodes on every rank that holds it (its state is its
-  /// owner's), and the ledger and the count of eroded elements are sums over the owners. At the
-  /// end of a step in which any element eroded, the eroded elements leave the whole model, by the
-  /// compaction of one process, and the model is cut anew (docs/theory/domain_decomposition.md,
-  /// "Erosion across ranks").
+  /// owner's), and the ledger and the count of eroded elements are sums over the owners. Without
+  /// cracks each subdomain's erosion event takes them out of it (follower_); with cracks, which
+  /// split the whole model first, at the end of a step in which any element eroded the eroded
+  /// elements leave the whole model, by the compaction of one process, and the model is cut anew
+  /// (docs/theory/domain_decomposition.md, "Erosion across ranks").
   void compact_eroded_across_ranks() {
-    if (!sub_) return;
+    if (!sub_ || !cracks_) return;
     SolverState& s = solver_.state();
     if (s.eroded_elements == compacted_eroded_) return;  // the count is the whole model's: alike everywhere
     compacted_eroded_ = s.eroded_elements;
@@ -632,17 +677,26 @@ class RunDriver {
     if (!ranks_) return write();
     const auto owned = ranks_->gather(pack_owned(*sub_, sim_.model));
     if (!writes()) return;
-    for (const auto& packed : owned) unpack_owned(packed, whole_);
+    reported_ = element_flags(whole_);
+    for (const auto& packed : owned) unpack_owned(packed, whole_, &reported_);
+    // Elements erosion took out of the subdomains since the cut are still in whole_, whose
+    // indices the ranks send until the next cut: the outputs read a copy without them.
+    std::optional<Model> compacted;
+    if (any_unreported(reported_)) {
+      compacted = whole_;
+      drop_unreported(*compacted, reported_);
+    }
+    Model& shown = compacted ? *compacted : whole_;
     // The solver keeps its reference to sim_.model; the outputs read it, whole, for a moment.
-    std::swap(sim_.model, whole_);
+    std::swap(sim_.model, shown);
     const auto start = Clock::now();
     try {
       write();
     } catch (...) {
-      std::swap(sim_.model, whole_);
+      std::swap(sim_.model, shown);
       throw;
     }
-    std::swap(sim_.model, whole_);
+    std::swap(sim_.model, shown);
     output_seconds_ += std::chrono::duration<double>(Clock::now() - start).count();
   }
 
@@ -1433,7 +1487,16 @@ class RunDriver {
   Model whole_;
   std::unique_ptr<GhostExchange> exchange_;
   ContactHalo halo_;        ///< with contact between parts: what the cut holds for it
-  ErosionCompaction whole_compaction_{sim_.materials};  ///< eroded elements out of whole_
+  ErosionCompaction whole_compaction_{sim_.materials};  ///< eroded elements out of whole_ (with cracks)
+  /// Rank 0: per part and element of whole_, whether a rank reported it at the last gather.
+  std::vector<std::vector<char>> reported_;
+  /// Keeps sub_'s element lists with the solver's model when its erosion event removes elements.
+  struct CutFollower final : TopologyListener {
+    RunDriver* driver = nullptr;
+    void topology_changed(const Model&, const Remap& remap) override {
+      if (driver && driver->sub_) follow_removed_elements(*driver->sub_, driver->sim_.model, remap);
+    }
+  } follower_;
   std::int64_t compacted_eroded_ = 0;                    ///< the count of eroded elements at the last compaction
   ElementPartition partition_;                ///< the last cut
   std::vector<std::vector<double>> weights_;  ///< per part and element, after a rebalance: its measured cost

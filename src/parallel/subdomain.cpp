@@ -461,6 +461,33 @@ void gather_owned(const Subdomain& sub, Model& local, Model& whole) {
   whole.contact.penalty_time_step = local.contact.penalty_time_step;
 }
 
+void follow_removed_elements(Subdomain& sub, Model& local, const Remap& remap) {
+  if (remap.empty()) return;
+  if (remap.nodes || !remap.corners.empty() || !remap.particles.empty() || !remap.pairs.empty())
+    throw std::logic_error("follow_removed_elements: a subdomain's nodes or particles changed; change the whole model");
+  for (const auto& [p, change] : remap.elements) {
+    const auto part = static_cast<std::size_t>(p);
+    std::vector<std::int32_t> global;
+    std::vector<std::uint8_t> owned;
+    for (std::size_t i = 0; i < change.new_count(); ++i) {
+      if (!change.born.empty() && change.born[i])
+        throw std::logic_error("follow_removed_elements: elements were added to a subdomain; add them to the whole model");
+      const auto old = static_cast<std::size_t>(change.source[i]);
+      global.push_back(sub.global_element[part][old]);
+      owned.push_back(sub.element_owned[part][old]);
+    }
+    sub.global_element[part] = std::move(global);
+    sub.element_owned[part] = std::move(owned);
+    Part& mine = local.parts[part];
+    mine.ghost_begin.assign(mine.colour_count(), 0);
+    for (std::size_t c = 0; c < mine.colour_count(); ++c) {
+      auto g = mine.colour_begin[c];
+      while (g < mine.colour_begin[c + 1] && sub.element_owned[part][static_cast<std::size_t>(g)]) ++g;
+      mine.ghost_begin[c] = g;
+    }
+  }
+}
+
 namespace {
 
 /// Calls f(info, values, holder) for every field of the nodes (holder −1), then of each part's
@@ -530,15 +557,18 @@ std::vector<double> pack_owned(const Subdomain& sub, Model& local) {
   return packed;
 }
 
-void unpack_owned(const std::vector<double>& packed, Model& whole) {
+void unpack_owned(const std::vector<double>& packed, Model& whole, std::vector<std::vector<char>>* reported) {
   std::size_t at = 0;
   auto next = [&] { return packed.at(at++); };
   std::vector<std::size_t> nodes(static_cast<std::size_t>(next()));
   for (auto& n : nodes) n = static_cast<std::size_t>(next());
   std::vector<std::vector<std::size_t>> elements(whole.parts.size());
-  for (auto& list : elements) {
+  for (std::size_t p = 0; p < elements.size(); ++p) {
+    auto& list = elements[p];
     list.resize(static_cast<std::size_t>(next()));
     for (auto& e : list) e = static_cast<std::size_t>(next());
+    if (reported)
+      for (auto e : list) (*reported)[p][e] = 1;
   }
   visit_gathered_fields(whole, [&](const FieldInfo& info, auto& values, int holder) {
     using T = typename std::decay_t<decltype(values)>::value_type;

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "model/model.hpp"
+#include "model/remap.hpp"
 #include "parallel/partition.hpp"
 
 namespace shard {
@@ -93,11 +94,19 @@ Subdomain make_subdomain(const Model& model, const ElementPartition& partition, 
 /// (a rebalance, or another number of ranks). The topology must not have changed since the cut.
 void gather_owned(const Subdomain& sub, Model& local, Model& whole);
 
+/// After `local` (the subdomain's model as its run has it) lost elements by `remap` (erosion: its
+/// elements removed, nothing else changed), the subdomain's lists of its elements follow, and so
+/// does each part's ghost_begin (the owned elements of a colour still come first). Throws
+/// std::logic_error for any other change, which must be made on the whole model and cut anew.
+void follow_removed_elements(Subdomain& sub, Model& local, const Remap& remap);
+
 /// gather_owned across processes: what `sub` owns of every node and element field of `local`
 /// but ids and indices (which a cut model does not change), and contact's model-wide state, with
 /// the owned entities' indices in the whole model, as one array to send to the rank that writes
 /// the outputs; unpack_owned writes such an array into `whole`.
+/// With `reported` (per part and element of `whole`), unpack_owned marks the elements it wrote:
+/// after every rank's array, an element no rank reported has left the model on its rank (erosion).
 std::vector<double> pack_owned(const Subdomain& sub, Model& local);
-void unpack_owned(const std::vector<double>& packed, Model& whole);
+void unpack_owned(const std::vector<double>& packed, Model& whole, std::vector<std::vector<char>>* reported = nullptr);
 
 }  // namespace shard

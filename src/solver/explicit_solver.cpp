@@ -374,6 +374,8 @@ void ExplicitSolver::compute_forces() {
     state_.wall_force_on_bodies.assign(wf.size(), 0.0);
     for (std::size_t i = 0; i < wf.size(); ++i) state_.wall_force_on_bodies[i] = -wf[i];
   }
+  // Once elements erode, a rank may hold none that is live: the whole model's element step first.
+  if (global_minimum_ && state_.eroded_elements > 0) global_minimum_(&total.stable_dt, 1);
   state_.dt_next = choose_time_step(total.stable_dt, particle_dt);
 }
 

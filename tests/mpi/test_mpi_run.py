@@ -13,9 +13,11 @@ bar in axisymmetry with its pressure averaged over the nodes on 2 and 3 ranks; t
 the plate (contact between parts, the model cut anew as it moves) on 2 and 3 ranks and from 2 to
 3 ranks across a restart, and rebalanced every 13 steps; the notched plate whose discrete crack
 cuts it in two on 2 and 4 ranks and on 3 ranks cut at random; the rod perforating the plate with
-erosion on 2 ranks and on 3 cut at random; the four-ply laminate's cohesive interfaces, without
-erosion, on 2 ranks and on 3 and 4 cut at random; a scenario with debris particles is refused before the run (exit status 2, saying what it
-cannot hold).
+erosion on 2 ranks, on 3 cut at random, and from 2 to 3 ranks across a restart; the four-ply
+laminate's cohesive interfaces, without erosion, on 2 ranks and on 3 and 4 cut at random; a
+run stopped by the energy watchdog on 2 ranks writes the summary.json of one process; scenarios
+with debris particles, a non-local failure map, or erosion by damage with averaged nodal pressure
+are refused before the run (exit status 2, saying what they cannot hold).
 
 Usage: test_mpi_run.py SHARD_EXECUTABLE MPIEXEC SOURCE_DIR WORK_DIR
 """
@@ -61,10 +63,10 @@ def same_outputs(a, b, what):
     print(f"{what}: {len(names)} files compared")
 
 
-def restart_on_three(name, scenario, reference):
+def restart_on_three(name, scenario, reference, extra=()):
     """Checkpointed on 2 ranks at 1.5 us, continued on 3 to the end: the bytes of one straight run."""
-    r1 = run(name, scenario, 2, ["--until", "1.5us"])
-    r2 = run(name, scenario, 3, ["--restart", f"{name}/checkpoint.bin"])
+    r1 = run(name, scenario, 2, [*extra, "--until", "1.5us"])
+    r2 = run(name, scenario, 3, [*extra, "--restart", f"{name}/checkpoint.bin"])
     if r1.returncode != 0 or r2.returncode != 0:
         failures.append(f"{name}: the restart across rank counts failed: {r1.stderr[-1000:]} {r2.stderr[-1000:]}")
     else:
@@ -179,8 +181,9 @@ for ranks, how in ((2, []), (4, []), (3, ["--partition", "random:7"])):
         same_outputs("notched_serial", name, f"notched plate cracking, {ranks} ranks {' '.join(how)}")
 
 # Erosion with contact: the rod through the plate (plane strain, Johnson-Cook damage, eroded
-# elements deleted), to 4 us, when some 30 elements have eroded: the whole model compacted and
-# cut anew after each step that eroded one, every node of the plate held as a surface node.
+# elements deleted), to 4 us, when 146 elements have eroded: each subdomain takes its eroded
+# elements out, every node of the plate held as a surface node; checkpointed on 2 ranks at
+# 1.5 us and continued on 3.
 perforation = os.path.join(source, "examples/plate_perforation/plate_perforation_delete.yaml")
 serial_then_ranks("perforation", perforation, (2,), "the rod through the plate, erosion",
                   ["--set", "analysis.end_time=4us"])
@@ -189,6 +192,7 @@ if r.returncode != 0:
     failures.append(f"the rod through the plate on 3 random ranks failed ({r.returncode}): {r.stderr[-2000:]}")
 else:
     same_outputs("perforation_serial", "perforation_random", "the rod through the plate, 3 ranks at random")
+restart_on_three("perforation_restart", perforation, "perforation_serial", ["--set", "analysis.end_time=4us"])
 if json.load(open("perforation_serial/summary.json")).get("eroded_elements", 0) < 10:
     failures.append("the rod through the plate: fewer than 10 elements eroded by 4 us: the case no longer tests erosion")
 
@@ -215,6 +219,29 @@ with open("laminate_serial/history.csv") as f:
 r = run("refused", os.path.join(source, "examples/sphere_on_alumina/sphere_on_alumina_500_debris.yaml"), 2)
 if r.returncode != 2 or "cannot yet hold" not in r.stderr or os.path.exists("refused"):
     failures.append(f"debris particles on 2 ranks: exit status {r.returncode}, said {r.stderr[:500]!r}")
+
+# Averaged nodal pressure with erosion by damage: the outer ghost rings' state must not decide
+# erosion, refused.
+r = run("refused_anp", perforation, 2, ["--set", "parts.plate.volumetric=average_nodal_pressure"])
+if r.returncode != 2 or "averaged nodal pressure" not in r.stderr:
+    failures.append(f"erosion with averaged pressure on 2 ranks: exit status {r.returncode}, said {r.stderr[:500]!r}")
+
+# A run that fails on every rank at once (the energy watchdog, set to trip at once) ends on all,
+# and rank 0 writes the summary of one process first.
+tight = ["--set", "analysis.energy_error_limit=1e-15", "--set", "analysis.end_time=4us"]
+serial = run("watchdog_serial", perforation, extra=tight)
+decomposed = run("watchdog_np2", perforation, 2, tight)
+if serial.returncode == 0 or decomposed.returncode == 0:
+    failures.append("the energy watchdog at 1e-15 did not stop the perforation: the case no longer tests a failed run")
+elif not os.path.exists("watchdog_np2/summary.json"):
+    failures.append(f"a run failed on 2 ranks wrote no summary.json: {decomposed.stderr[-1000:]}")
+else:
+    same_outputs("watchdog_serial", "watchdog_np2", "a run stopped by the energy watchdog, 2 ranks")
+
+# A non-local failure map averages over points a rank may not hold: refused too.
+r = run("refused_nonlocal", notched, 2, ["--set", "materials.ceramic.nonlocal_length=1mm"])
+if r.returncode != 2 or "non-local average" not in r.stderr or os.path.exists("refused_nonlocal"):
+    failures.append(f"a non-local failure map on 2 ranks: exit status {r.returncode}, said {r.stderr[:500]!r}")
 
 for f in failures:
     print("FAIL:", f)

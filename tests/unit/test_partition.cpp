@@ -239,5 +239,46 @@ TEST(Subdomain, ANodeNoElementHoldsIsOwnedAndHeldByRankZero) {
   }
 }
 
+// A subdomain whose own erosion event removed elements (an owned one and a ghost in each colour
+// that has both) keeps its lists with its model: each element still names its place in the whole
+// model, its owner flag follows, and the owned elements of each colour are still the first. A
+// change of its nodes is the whole model's to make, and refused.
+TEST(Subdomain, FollowsTheElementsItsErosionRemoved) {
+  const Model model = plate();
+  const ElementPartition partition = partition_elements(model, 3);
+  for (int rank = 0; rank < 3; ++rank) {
+    Subdomain sub = make_subdomain(model, partition, rank);
+    Model local = sub.model;
+    const Part& part = local.parts[0];
+    std::vector<std::uint8_t> keep(part.element_count(), 1);
+    for (std::size_t c = 0; c < part.colour_count(); ++c) {
+      if (part.ghost_begin[c] > part.colour_begin[c]) keep[static_cast<std::size_t>(part.colour_begin[c])] = 0;
+      if (part.ghost_begin[c] < part.colour_begin[c + 1]) keep[static_cast<std::size_t>(part.ghost_begin[c])] = 0;
+    }
+    const auto removed_owned = [&] {
+      std::size_t n = 0;
+      for (std::size_t e = 0; e < keep.size(); ++e) n += !keep[e] && sub.element_owned[0][e];
+      return n;
+    }();
+    const std::size_t owned_before = sub.owned_element_count();
+    Remap remap;
+    remap.elements.emplace(0, EntityRemap::keeping(keep));
+    apply_remap(local, remap);
+    follow_removed_elements(sub, local, remap);
+    ASSERT_EQ(sub.global_element[0].size(), local.parts[0].element_count());
+    EXPECT_EQ(sub.owned_element_count(), owned_before - removed_owned);
+    const Part& after = local.parts[0];
+    for (std::size_t e = 0; e < after.element_count(); ++e)
+      EXPECT_EQ(after.id[e], model.parts[0].id[static_cast<std::size_t>(sub.global_element[0][e])]);
+    ASSERT_EQ(after.ghost_begin.size(), after.colour_count());
+    for (std::size_t c = 0; c < after.colour_count(); ++c)
+      for (auto e = after.colour_begin[c]; e < after.colour_begin[c + 1]; ++e)
+        EXPECT_EQ(sub.element_owned[0][static_cast<std::size_t>(e)], e < after.ghost_begin[c]) << "colour " << c;
+    Remap nodes;
+    nodes.nodes = EntityRemap::identity(local.nodes.count());
+    EXPECT_THROW(follow_removed_elements(sub, local, nodes), std::logic_error);
+  }
+}
+
 }  // namespace
 }  // namespace shard

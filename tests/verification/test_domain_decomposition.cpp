@@ -16,6 +16,8 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <functional>
+#include <memory>
 #include <numbers>
 
 #include "contact/contact.hpp"
@@ -211,6 +213,38 @@ ContactSettings rising_wall(std::size_t parts) {
   return s;
 }
 
+/// The subdomains `partition` cuts out of `start`, each run kSteps by its own solver on its own
+/// thread (ranks as threads). `attach(rank, local, solver)` gives a rank's solver what it needs
+/// (contact, interfaces) and returns what the rank reads back once its steps are done.
+struct RanksRun {
+  std::vector<Subdomain> subs;
+  std::vector<Model> finished;
+  std::vector<Booked> booked;
+};
+RanksRun run_on_ranks(const Model& start, const ElementPartition& partition, const ElasticRun& whole,
+                      const std::function<std::function<void()>(int, Model&, ExplicitSolver&)>& attach) {
+  const int ranks = partition.ranks;
+  RanksRun out;
+  for (int r = 0; r < ranks; ++r) out.subs.push_back(make_subdomain(start, partition, r));
+  out.finished.resize(ranks);
+  out.booked.resize(ranks);
+  ThreadTeam team(ranks);
+  team.run([&](Communicator& communicator) {
+    const int r = communicator.rank();
+    Model local = out.subs[r].model;
+    const auto materials = decomposition_materials();
+    GhostExchange exchange(out.subs[r].ghosts, communicator);
+    std::function<void()> read_back;
+    out.booked[r] = run_steps(local, materials, whole.loads, whole.settings, kSteps, [&](ExplicitSolver& solver) {
+      read_back = attach(r, local, solver);
+      join_decomposed_run(solver, exchange, communicator);
+    });
+    if (read_back) read_back();
+    out.finished[r] = std::move(local);
+  });
+  return out;
+}
+
 TEST(DomainDecomposition, ARigidWallWithFrictionGivesTheSameBitsOnOneToFourRanks) {
   // The wall acts on each node alone, so its owner has all of it; what the ranks must agree on
   // is the penalty's step (the whole model's element step) and the sums: the wall's force, the
@@ -229,29 +263,18 @@ TEST(DomainDecomposition, ARigidWallWithFrictionGivesTheSameBitsOnOneToFourRanks
     ASSERT_GT(booked.energies.at(static_cast<std::size_t>(friction)), 0) << c.name << ": the wall must slide";
     ASSERT_LT(serial_wall_force, 0) << c.name << ": the wall must push";
     for (int ranks = 2; ranks <= 4; ++ranks) {
-      const ElementPartition partition = partition_elements(start, ranks);
-      std::vector<Subdomain> subs;
-      for (int r = 0; r < ranks; ++r) subs.push_back(make_subdomain(start, partition, r));
-      std::vector<Model> finished(ranks);
-      std::vector<Booked> booked_by(ranks);
+      std::vector<std::unique_ptr<ContactSystem>> contacts(ranks);
       std::vector<double> wall_force(ranks);
-      ThreadTeam team(ranks);
-      team.run([&](Communicator& communicator) {
-        const int r = communicator.rank();
-        Model local = subs[r].model;
-        const auto materials = decomposition_materials();
-        GhostExchange exchange(subs[r].ghosts, communicator);
-        ContactSystem contact(local, rising_wall(local.parts.size()), {0}, 1);
-        booked_by[r] = run_steps(local, materials, whole.loads, whole.settings, kSteps, [&](ExplicitSolver& solver) {
-          solver.attach_contact(&contact);
-          join_decomposed_run(solver, exchange, communicator);
-        });
-        wall_force[r] = contact.wall_forces()[1];
-        finished[r] = std::move(local);
-      });
+      const RanksRun run = run_on_ranks(start, partition_elements(start, ranks), whole,
+                                        [&](int r, Model& local, ExplicitSolver& solver) -> std::function<void()> {
+                                          contacts[r] = std::make_unique<ContactSystem>(local, rising_wall(local.parts.size()),
+                                                                                        std::vector<int>{0}, 1);
+                                          solver.attach_contact(contacts[r].get());
+                                          return [&, r] { wall_force[r] = contacts[r]->wall_forces()[1]; };
+                                        });
       for (int r = 0; r < ranks; ++r) {
-        EXPECT_EQ(differences(subs[r], finished[r], whole.model), 0u) << c.name << ", rank " << r << " of " << ranks;
-        EXPECT_EQ(differences(booked_by[r], booked), 0u) << c.name << ", ledger of rank " << r << " of " << ranks;
+        EXPECT_EQ(differences(run.subs[r], run.finished[r], whole.model), 0u) << c.name << ", rank " << r << " of " << ranks;
+        EXPECT_EQ(differences(run.booked[r], booked), 0u) << c.name << ", ledger of rank " << r << " of " << ranks;
         EXPECT_TRUE(same_bits(wall_force[r], serial_wall_force)) << c.name << ", wall force on rank " << r;
       }
     }
@@ -422,33 +445,21 @@ TEST(DomainDecomposition, CohesiveInterfacesGiveTheSameBitsOnOneToFourRanks) {
   ASSERT_GT(serial.open_elements(), 0u);
   for (const auto& [ranks, scattered] : std::vector<std::pair<int, bool>>{{1, false}, {2, false}, {3, false}, {4, false}, {2, true}, {3, true}}) {
     const ElementPartition partition = scattered ? scatter_elements(start, ranks, 99) : partition_elements(start, ranks);
-    std::vector<Subdomain> subs;
-    for (int r = 0; r < ranks; ++r) subs.push_back(make_subdomain(start, partition, r));
-    std::vector<Model> finished(ranks);
-    std::vector<Booked> booked_by(ranks);
+    std::vector<std::unique_ptr<CohesiveInterfaces>> interfaces(ranks);
     std::vector<std::size_t> open(ranks);
-    ThreadTeam team(ranks);
-    team.run([&](Communicator& communicator) {
-      const int r = communicator.rank();
-      Model local = subs[r].model;
-      const auto materials = decomposition_materials();
-      GhostExchange exchange(subs[r].ghosts, communicator);
-      CohesiveInterfaces interfaces({law});
-      booked_by[r] = run_steps(local, materials, whole.loads, whole.settings, kSteps, [&](ExplicitSolver& solver) {
-        solver.attach_cohesive(&interfaces);
-        join_decomposed_run(solver, exchange, communicator);
-      });
-      open[r] = interfaces.open_elements();
-      finished[r] = std::move(local);
+    RanksRun run = run_on_ranks(start, partition, whole, [&](int r, Model&, ExplicitSolver& solver) -> std::function<void()> {
+      interfaces[r] = std::make_unique<CohesiveInterfaces>(std::vector<CohesiveLaw>{law});
+      solver.attach_cohesive(interfaces[r].get());
+      return [&, r] { open[r] = interfaces[r]->open_elements(); };
     });
     Model gathered = start;
     std::size_t held = 0;
     for (int r = 0; r < ranks; ++r) {
-      EXPECT_EQ(differences(subs[r], finished[r], whole.model), 0u) << "rank " << r << " of " << ranks;
-      EXPECT_EQ(differences(booked_by[r], booked), 0u) << "ledger of rank " << r << " of " << ranks;
+      EXPECT_EQ(differences(run.subs[r], run.finished[r], whole.model), 0u) << "rank " << r << " of " << ranks;
+      EXPECT_EQ(differences(run.booked[r], booked), 0u) << "ledger of rank " << r << " of " << ranks;
       EXPECT_EQ(open[r], serial.open_elements()) << "the count of open elements, rank " << r << " of " << ranks;
-      gather_owned(subs[r], finished[r], gathered);
-      held += subs[r].global_cohesive.size();
+      gather_owned(run.subs[r], run.finished[r], gathered);
+      held += run.subs[r].global_cohesive.size();
     }
     EXPECT_EQ(interface_differences(gathered.cohesive, whole.model.cohesive), 0u) << ranks << " ranks";
     std::printf("interfaces, %s on %d ranks: %zu of %zu points failed, interface elements held %.2f times\n",
