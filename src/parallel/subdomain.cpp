@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <map>
+#include <unordered_map>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
@@ -280,7 +280,17 @@ std::vector<std::int64_t> cut_faces(const Model& model, const LocalEntities& hel
     std::int64_t key;
     bool held;
   };
-  std::map<std::array<std::int32_t, 4>, Seen> seen;
+  struct NodesHash {
+    std::size_t operator()(const std::array<std::int32_t, 4>& k) const {
+      std::size_t h = 1469598103934665603ull;  // FNV-1a over the four corners
+      for (auto v : k) h = (h ^ static_cast<std::size_t>(v + 1)) * 1099511628211ull;
+      return h;
+    }
+  };
+  std::size_t faces = 0;
+  for (const Part& part : model.parts) faces += part.element_count() * part.type->faces.size();
+  std::unordered_map<std::array<std::int32_t, 4>, Seen, NodesHash> seen;
+  seen.reserve(faces / 2 + 1);  // most faces are seen twice
   std::vector<std::int64_t> cut;
   for (std::size_t p = 0; p < model.parts.size(); ++p) {
     const Part& part = model.parts[p];
