@@ -106,6 +106,14 @@ std::string rank_prefix(const shard::Communicator* ranks) {
   return ranks && ranks->size() > 1 ? "rank " + std::to_string(ranks->rank()) + ": " : "";
 }
 
+/// `text` as a whole number in [lo, hi], or nothing.
+std::optional<int> whole_number(const std::string& text, long lo, long hi) {
+  char* end = nullptr;
+  const long n = std::strtol(text.c_str(), &end, 10);
+  if (text.empty() || *end != '\0' || n < lo || n > hi) return std::nullopt;
+  return static_cast<int>(n);
+}
+
 int usage_error(const std::string& message) {
   std::fprintf(stderr, "shard: %s\nRun 'shard --help' for usage.\n", message.c_str());
   return kBadInput;
@@ -177,11 +185,9 @@ int shard_main(int argc, char** argv, shard::Communicator* ranks) {
         if (a == "-o" || a == "--output") output = value("-o");
         else if (a == "--threads") {
           const std::string v = value("--threads");
-          char* end = nullptr;
-          const long n = std::strtol(v.c_str(), &end, 10);
-          if (*end != '\0' || n < 1 || n > 1024)
-            return usage_error("--threads expects a whole number >= 1, got '" + v + "'");
-          options.threads = static_cast<int>(n);
+          const auto n = whole_number(v, 1, 1024);
+          if (!n) return usage_error("--threads expects a whole number >= 1, got '" + v + "'");
+          options.threads = *n;
         } else if (a == "--quiet" || a == "-q") options.quiet = true;
         else if (a == "--set") options.overrides.push_back(shard::parse_override(value("--set")));
         else if (a == "--restart") options.restart = value("--restart");
@@ -218,11 +224,9 @@ int shard_main(int argc, char** argv, shard::Communicator* ranks) {
           options.rebalance_above = ratio;
         } else if (a == "--rebalance-interval") {
           const std::string v = value("--rebalance-interval");
-          char* end = nullptr;
-          const long n = std::strtol(v.c_str(), &end, 10);
-          if (*end != '\0' || n < 1 || n > 1000000000)
-            return usage_error("--rebalance-interval expects a whole number of steps >= 1, got '" + v + "'");
-          options.rebalance_interval = static_cast<int>(n);
+          const auto n = whole_number(v, 1, 1000000000);
+          if (!n) return usage_error("--rebalance-interval expects a whole number of steps >= 1, got '" + v + "'");
+          options.rebalance_interval = *n;
         } else if (!a.empty() && a[0] == '-') return usage_error("unknown option '" + a + "'");
         else if (!scenario) scenario = a;
         else return usage_error("more than one scenario given ('" + *scenario + "', '" + a + "')");

@@ -453,10 +453,8 @@ class RunDriver {
   void gather_whole_everywhere() {
     auto reported = element_flags(whole_);
     for (const auto& packed : ranks_->all_gather(pack_owned(*sub_, sim_.model))) unpack_owned(packed, whole_, &reported);
-    if (!any_unreported(reported)) return;
-    const std::vector<std::vector<std::int64_t>> ids_before = element_ids(whole_);
-    drop_unreported(whole_, reported);
-    keep_weights_of_elements_left(ids_before);
+    reported_.clear();  // whole_ is the whole model's now: nothing left unreported
+    if (any_unreported(reported)) compact_whole([&] { drop_unreported(whole_, reported); });
   }
 
   static std::vector<std::vector<char>> element_flags(const Model& model) {
@@ -475,8 +473,7 @@ class RunDriver {
   static void drop_unreported(Model& model, const std::vector<std::vector<char>>& reported) {
     Remap remap;
     for (std::size_t p = 0; p < reported.size(); ++p)
-      if (std::find(reported[p].begin(), reported[p].end(), 0) != reported[p].end())
-        remap.elements.emplace(static_cast<int>(p), EntityRemap::keeping(std::vector<std::uint8_t>(reported[p].begin(), reported[p].end())));
+      remap.elements.emplace(static_cast<int>(p), EntityRemap::keeping({reported[p].begin(), reported[p].end()}));
     apply_remap(model, remap);
   }
 
@@ -610,15 +607,13 @@ class RunDriver {
     return "";
   }
 
-  static std::vector<std::vector<std::int64_t>> element_ids(const Model& model) {
-    std::vector<std::vector<std::int64_t>> ids;
-    for (const Part& part : model.parts) ids.push_back(part.id);
-    return ids;
-  }
-
-  /// After elements left whole_ (`ids_before`: each part's element ids before), the rebalancing
-  /// weights of those left (a compaction keeps the order of the elements it leaves in a part).
-  void keep_weights_of_elements_left(const std::vector<std::vector<std::int64_t>>& ids_before) {
+  /// Runs `take_out`, which removes elements from whole_ (keeping the order of those left in
+  /// each part), and carries the rebalancing weights of the elements left.
+  template <class TakeOut>
+  void compact_whole(TakeOut&& take_out) {
+    std::vector<std::vector<std::int64_t>> ids_before;
+    for (const Part& part : whole_.parts) ids_before.push_back(part.id);
+    take_out();
     if (weights_.empty()) return;
     for (std::size_t p = 0; p < weights_.size(); ++p) {
       const auto& before = ids_before[p];
@@ -655,9 +650,7 @@ class RunDriver {
     gather_whole_everywhere();
     Topology untold;  // the solver's caches follow the new cut, not the whole model
     EventContext context{s.step, s.time, s.eroded_elements, s.energy, untold, &s.part_stored};
-    const std::vector<std::vector<std::int64_t>> ids_before = element_ids(whole_);
-    whole_compaction_.run(whole_, context);
-    keep_weights_of_elements_left(ids_before);
+    compact_whole([&] { whole_compaction_.run(whole_, context); });
     cut_whole();
     ++cuts_;
   }
@@ -1488,7 +1481,8 @@ class RunDriver {
   std::unique_ptr<GhostExchange> exchange_;
   ContactHalo halo_;        ///< with contact between parts: what the cut holds for it
   ErosionCompaction whole_compaction_{sim_.materials};  ///< eroded elements out of whole_ (with cracks)
-  /// Rank 0: per part and element of whole_, whether a rank reported it at the last gather.
+  /// Rank 0: per part and element of whole_, whether a rank reported it at the last gather for
+  /// an output (empty once a cut has made whole_ the whole model's again).
   std::vector<std::vector<char>> reported_;
   /// Keeps sub_'s element lists with the solver's model when its erosion event removes elements.
   struct CutFollower final : TopologyListener {

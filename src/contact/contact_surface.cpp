@@ -19,19 +19,17 @@ struct Face {
   std::int64_t id;                     // owning element's stable id × 16 + local face × 2
 };
 
-struct Key {
-  std::array<std::int32_t, 4> sorted;
-  bool operator==(const Key& o) const { return sorted == o.sorted; }
-};
-struct KeyHash {
-  std::size_t operator()(const Key& k) const {
-    std::size_t h = 1469598103934665603ull;
-    for (auto v : k.sorted) h = (h ^ static_cast<std::size_t>(v + 1)) * 1099511628211ull;
-    return h;
-  }
-};
-
 }  // namespace
+
+FaceNodes face_nodes(const Part& part, std::size_t e, std::size_t local_face) {
+  FaceNodes k;
+  const auto& local = part.type->faces[local_face];
+  const std::size_t npe = static_cast<std::size_t>(part.type->nodes);
+  for (std::size_t i = 0; i < local.size(); ++i) k.sorted[i] = part.connectivity[npe * e + local[i]];
+  // All four slots: the unused ones (−1) sort first alike for every face of that size.
+  std::sort(k.sorted.begin(), k.sorted.end());
+  return k;
+}
 
 bool ContactSurface::are_neighbours(std::size_t surface_node, std::int32_t node) const {
   const auto* b = neighbours.data() + neighbour_begin[surface_node];
@@ -43,7 +41,7 @@ ContactSurface extract_contact_surface(const Model& model) {
   ContactSurface s;
   s.dim = model.dim();
   std::vector<Face> faces;
-  std::unordered_map<Key, int, KeyHash> seen;  // face key → index in faces, or -1 if shared
+  std::unordered_map<FaceNodes, int, FaceNodesHash> seen;  // face key → index in faces, or -1 if shared
   for (std::size_t p = 0; p < model.parts.size(); ++p) {
     const Part& part = model.parts[p];
     const int npe = part.type->nodes;
@@ -56,10 +54,7 @@ ContactSurface extract_contact_surface(const Model& model) {
         const std::int64_t owner = part.id.empty() ? static_cast<std::int64_t>(e) : part.id[e];
         Face f{{-1, -1, -1, -1}, count, static_cast<std::int32_t>(p), facet_key(owner, static_cast<int>(lf))};
         for (int i = 0; i < count; ++i) f.nodes[i] = cn[local[i]];
-        Key k{f.nodes};
-        // All four slots: the unused ones (−1) sort first alike for every face of that size.
-        std::sort(k.sorted.begin(), k.sorted.end());
-        auto [it, inserted] = seen.emplace(k, static_cast<int>(faces.size()));
+        auto [it, inserted] = seen.emplace(face_nodes(part, e, lf), static_cast<int>(faces.size()));
         if (inserted) faces.push_back(f);
         else it->second = -1;
       }

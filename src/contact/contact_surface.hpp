@@ -2,6 +2,8 @@
 // Rebuilt from the connectivity whenever the topology changes (cracks, erosion, remeshing).
 #pragma once
 
+#include <array>
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -36,5 +38,21 @@ struct ContactSurface {
 };
 
 ContactSurface extract_contact_surface(const Model& model);
+
+/// An element face by its corners, sorted (the unused slots, −1, first): the same key for the two
+/// elements that share the face, whatever its orientation in each.
+struct FaceNodes {
+  std::array<std::int32_t, 4> sorted{-1, -1, -1, -1};
+  bool operator==(const FaceNodes&) const = default;
+};
+struct FaceNodesHash {
+  std::size_t operator()(const FaceNodes& k) const {
+    std::size_t h = 1469598103934665603ull;  // FNV-1a over the four corners
+    for (auto v : k.sorted) h = (h ^ static_cast<std::size_t>(v + 1)) * 1099511628211ull;
+    return h;
+  }
+};
+/// The key of local face `local_face` of element e of `part`.
+FaceNodes face_nodes(const Part& part, std::size_t e, std::size_t local_face);
 
 }  // namespace shard

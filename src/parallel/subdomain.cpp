@@ -280,31 +280,19 @@ std::vector<std::int64_t> cut_faces(const Model& model, const LocalEntities& hel
     std::int64_t key;
     bool held;
   };
-  struct NodesHash {
-    std::size_t operator()(const std::array<std::int32_t, 4>& k) const {
-      std::size_t h = 1469598103934665603ull;  // FNV-1a over the four corners
-      for (auto v : k) h = (h ^ static_cast<std::size_t>(v + 1)) * 1099511628211ull;
-      return h;
-    }
-  };
   std::size_t faces = 0;
   for (const Part& part : model.parts) faces += part.element_count() * part.type->faces.size();
-  std::unordered_map<std::array<std::int32_t, 4>, Seen, NodesHash> seen;
+  std::unordered_map<FaceNodes, Seen, FaceNodesHash> seen;
   seen.reserve(faces / 2 + 1);  // most faces are seen twice
   std::vector<std::int64_t> cut;
   for (std::size_t p = 0; p < model.parts.size(); ++p) {
     const Part& part = model.parts[p];
-    const int npe = part.type->nodes;
     for (std::size_t e = 0; e < part.element_count(); ++e) {
       if (!part.eroded.empty() && part.eroded[e]) continue;
       const bool mine = held.element[p][e] != Holding::none;
       for (std::size_t lf = 0; lf < part.type->faces.size(); ++lf) {
-        std::array<std::int32_t, 4> nodes{-1, -1, -1, -1};
-        const auto& local = part.type->faces[lf];
-        for (std::size_t i = 0; i < local.size(); ++i) nodes[i] = part.connectivity[npe * e + local[i]];
-        std::sort(nodes.begin(), nodes.end());
         const Seen here{facet_key(part.id.empty() ? static_cast<std::int64_t>(e) : part.id[e], static_cast<int>(lf)), mine};
-        auto [it, first] = seen.emplace(nodes, here);
+        auto [it, first] = seen.emplace(face_nodes(part, e, lf), here);
         if (first || it->second.held == mine) continue;
         cut.push_back(mine ? here.key : it->second.key);
       }

@@ -341,6 +341,9 @@ void ExplicitSolver::compute_forces() {
     // part at the end of the step (ErosionEvent).
     topology_.changed(model_, Remap{});
   }
+  // A decomposed run: the whole model's element step, before the interfaces' and contact's
+  // bounds are built on it, and once elements erode (a rank may then hold none that is live).
+  if (global_minimum_ && (cohesive_ || contact_ || state_.eroded_elements > 0)) global_minimum_(&total.stable_dt, 1);
   const double particle_dt = add_particle_forces();
   if (cohesive_) {
     // Interfaces before contact: contact leaves the nodes they still hold to them.
@@ -348,8 +351,6 @@ void ExplicitSolver::compute_forces() {
     if (global_sum_) combine_cohesive_over_ranks(w);
     state_.energy[terms_.cohesive_work] += w.work.value();
     state_.energy[terms_.cohesive_released] += w.released.value();
-    // The springs' step bound is built on the whole model's element step.
-    if (global_minimum_) global_minimum_(&total.stable_dt, 1);
   }
   applied_.clear();
   add_pressure_forces(model_, loads_, state_.time, applied_);
@@ -365,8 +366,7 @@ void ExplicitSolver::compute_forces() {
     // Faces exposed by erosion or by an interface that opened may meet already pressed.
     contact_->set_eroded_surfaces(state_.eroded_elements > 0 || (cohesive_ && cohesive_->open_elements() > 0));
     contact_->set_tied_nodes(cohesive_ ? &cohesive_->tied_nodes() : nullptr);
-    // The penalty is built on the whole model's element step.
-    if (global_minimum_) global_minimum_(&total.stable_dt, 1);
+    // The penalty is built on the whole model's element step (agreed above).
     contact_->add_forces(model_, state_.time, state_.dt_half, total.stable_dt);
     if (global_sum_) combine_contact_over_ranks();
     state_.energy[terms_.friction] += contact_->friction_increment();
@@ -374,8 +374,6 @@ void ExplicitSolver::compute_forces() {
     state_.wall_force_on_bodies.assign(wf.size(), 0.0);
     for (std::size_t i = 0; i < wf.size(); ++i) state_.wall_force_on_bodies[i] = -wf[i];
   }
-  // Once elements erode, a rank may hold none that is live: the whole model's element step first.
-  if (global_minimum_ && state_.eroded_elements > 0) global_minimum_(&total.stable_dt, 1);
   state_.dt_next = choose_time_step(total.stable_dt, particle_dt);
 }
 
