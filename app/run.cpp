@@ -35,6 +35,7 @@
 #include "solver/erosion.hpp"
 #include "app/simulation.hpp"
 #include "io/particle_frame.hpp"
+#include "particle/mca_contact_update.hpp"
 #include "particle/mca_state.hpp"
 #include "fracture/fragments.hpp"
 #include "io/vtu_writer.hpp"
@@ -326,7 +327,7 @@ class RunDriver {
  public:
   RunDriver(const std::filesystem::path& file, const RunOptions& options)
       : options_(options), p_(prepare(file, options.overrides)), sc_(p_.scenario), sim_(p_.sim), solver_ptr_(make_solver(sim_)),
-        solver_(*solver_ptr_), contact_(solver_.contact()), cracks_(sim_.crack_growth()), remesher_(sim_.remeshing()),
+        solver_(*solver_ptr_), contact_(solver_.contact()), cracks_(sim_.crack_growth()), automata_contacts_(sim_.find_event<MCAContactUpdate>()), remesher_(sim_.remeshing()),
         fingerprint_(fingerprint_of(sc_)), dir_(options.output_dir), history_path_(dir_ / "history.csv"),
         dim_(sim_.model.dim()), pvd_(dir_ / "frames.pvd"), probes_(sim_.probes, dir_, dim_),
         progress_(options.quiet || !writes(options), sc_.output.log_interval, sc_.end_time) {
@@ -436,6 +437,11 @@ class RunDriver {
                        "a run on " + std::to_string(ranks.size()) + " ranks cannot yet hold " + why +
                            ": run it as one process (without mpirun), with --threads");
     whole_ = std::move(sim_.model);
+    // A checkpoint read fills the contact list's arrays; its keys follow them only when the
+    // solver is told of the restart, after the cut, which reads the keys.
+    whole_.particle_contacts.restored();
+    // The skin of one process, from the smallest radius of the whole model.
+    if (sim_.particle_contact) sim_.particle_contact->fix_skin(sim_.particle_contact->skin(whole_));
     if (cracks_) {
       // Splits and erosion in the order of one process: both on the whole model.
       solver_.leave_eroded_elements();  // compact_eroded_across_ranks does it
@@ -452,9 +458,16 @@ class RunDriver {
   /// made from.
   void gather_whole_everywhere() {
     auto reported = element_flags(whole_);
-    for (const auto& packed : ranks_->all_gather(pack_owned(*sub_, sim_.model))) unpack_owned(packed, whole_, &reported);
+    unpack_ranks(ranks_->all_gather(pack_owned(*sub_, sim_.model)), reported);
     reported_.clear();  // whole_ is the whole model's now: nothing left unreported
     if (any_unreported(reported)) compact_whole([&] { drop_unreported(whole_, reported); });
+  }
+
+  /// Writes every rank's array of what it owns (pack_owned) into whole_, marking the elements
+  /// reported; the contacts of particles are the ranks' alone.
+  void unpack_ranks(const std::vector<std::vector<double>>& arrays, std::vector<std::vector<char>>& reported) {
+    whole_.particle_contacts.clear();
+    for (const auto& packed : arrays) unpack_owned(packed, whole_, &reported);
   }
 
   static std::vector<std::vector<char>> element_flags(const Model& model) {
@@ -492,10 +505,13 @@ class RunDriver {
       for (const Part& part : whole_.parts) eroding.push_back(erodes(part) ? 1 : 0);
       halo_ = contact_halo(whole_, sim_.contact->part_pairs, eroding);
     }
-    sub_ = make_subdomain(whole_, partition_, ranks.rank(), halo_.parts.empty() ? nullptr : &halo_);
+    if (sim_.particle_contact) hold_particles_in_reach();
+    const bool halo = !halo_.parts.empty() || !halo_.particle_parts.empty();
+    sub_ = make_subdomain(whole_, partition_, ranks.rank(), halo ? &halo_ : nullptr);
     sim_.model = sub_->model;  // the solver's model, in place
     solver_.restored();        // every cache of the topology (the contact surface, ...) follows the cut
     if (cracks_) solver_.remove_event(*cracks_);  // split on the whole model: grow_cracks_across_ranks
+    if (automata_contacts_) solver_.remove_event(*automata_contacts_);  // update_automata_contacts_across_ranks
     if (exchange_) solver_.remove_event(*exchange_);
     exchange_ = std::make_unique<GhostExchange>(sub_->ghosts, ranks);
     join_decomposed_run(solver_, *exchange_, ranks);
@@ -508,6 +524,9 @@ class RunDriver {
   /// run to run, and so may the cuts; the results do not (a cut changes no value).
   void rebalance_if_uneven() {
     if (!sub_ || !(options_.rebalance_above > 0) || options_.partition == RunOptions::Partition::random) return;
+    // The weights are the elements'; a cut of particles in contact must fall where their list
+    // is built again (cut_anew_for_particle_list).
+    if (!whole_.particle_parts.empty()) return;
     if (options_.rebalance_interval < 1 || solver_.state().step % options_.rebalance_interval != 0) return;
     const auto now = Clock::now();
     // Rank 0's writing of the outputs is not work a cut could move.
@@ -562,6 +581,60 @@ class RunDriver {
     ++cuts_;
   }
 
+  /// The automata's search for new contacts across ranks: it changes the pairs, so it runs on the
+  /// whole model, gathered, where and when one process runs it (after the forces of a step whose
+  /// number is a multiple of a part's contact_update_interval), and the model is then cut anew:
+  /// the particles go to the ranks their positions now give them (docs/theory/
+  /// domain_decomposition.md, "Particles and bonded automata across ranks").
+  void update_automata_contacts_across_ranks() {
+    if (!sub_ || !automata_contacts_) return;
+    SolverState& s = solver_.state();
+    const bool due = std::any_of(whole_.particle_parts.begin(), whole_.particle_parts.end(), [&](const ParticlePart& pp) {
+      const int every = pp.contact_update_interval;
+      return find_mca_state(pp) && every > 0 && s.step > 0 && s.step % every == 0;
+    });
+    if (!due) return;  // the step and the intervals are alike everywhere
+    gather_whole_everywhere();
+    // The solver's caches follow the new cut, not the whole model; a search that changed no pair
+    // (alike on every rank) leaves the cut as it was.
+    struct : TopologyListener {
+      bool changed = false;
+      void topology_changed(const Model&, const Remap&) override { changed = true; }
+    } pairs;
+    Topology untold;
+    untold.add(pairs);
+    EventContext context{s.step, s.time, s.eroded_elements, s.energy, untold, &s.part_stored};
+    automata_contacts_->run(whole_, context);
+    if (!pairs.changed) return;
+    cut_whole();
+    ++cuts_;
+  }
+
+  /// Contact of particles across ranks: each rank holds every particle in contact within twice
+  /// the largest radius and the skin of one it owns, every contact its list can hold until the
+  /// list is built again (docs/theory/domain_decomposition.md, "Discrete elements across ranks").
+  void hold_particles_in_reach() {
+    const ParticleContact& contact = *sim_.particle_contact;
+    halo_.particle_parts.assign(whole_.particle_parts.size(), 0);
+    for (std::size_t p = 0; p < whole_.particle_parts.size(); ++p) halo_.particle_parts[p] = contact.takes_part(p);
+    halo_.particle_reach = contact.reach(whole_);
+  }
+
+  /// The list of particle contacts is built again once a particle or a wall has moved half its
+  /// skin, on every rank alike (each looks at the particles it holds; the ranks agree): the model
+  /// is gathered and cut anew first, the particles going to the ranks their positions now give
+  /// them, and each rank's list is built from the particles within reach of its own. Between two
+  /// builds the list, and so the particles each rank needs, do not change.
+  void cut_anew_for_particle_list() {
+    if (!sub_ || !sim_.particle_contact) return;
+    double due = sim_.particle_contact->list_due(sim_.model) ? -1.0 : 0.0;
+    ranks_->minimum(&due, 1);
+    if (due == 0) return;
+    gather_whole_everywhere();
+    cut_whole();
+    ++cuts_;
+  }
+
   /// Contact between parts across ranks: the halo holds every pair a rank's nodes take part in
   /// while no node has moved more than its allowed motion since the cut; once one has, every rank
   /// gathers the whole model and cuts it anew. The run goes on as it would have: every value is
@@ -588,11 +661,20 @@ class RunDriver {
 
   /// What a decomposed run cannot hold yet, or "".
   std::string not_decomposable() const {
-    if (!sim_.model.particle_parts.empty()) return "particles";
+    if (sim_.particle_contact && !sim_.model.particle_parts.empty()) {
+      // The cuts of particles in contact fall where their list is built again; the mesh's own
+      // cuts (contact between parts, cracks, erosion) would fall elsewhere.
+      if (!sim_.model.parts.empty()) return "contact of particles in a model with elements";
+      if (automata_contacts_) return "the automata's contact update with contact of particles";
+    }
+    // The search runs between a step's forces and its advance, which a new cut of a mesh would
+    // disturb (its loads' lists are local); the automata alone have nothing of the kind.
+    if (automata_contacts_ && !sim_.model.parts.empty()) return "the automata's contact update in a model with elements";
     if (sim_.cracking && sim_.cracking->comminution) return "comminution (cracks that make debris particles)";
     if (remesher_) return "remeshing";
     for (const auto& event : sim_.events)
-      if (event.get() != cracks_) return "step events (" + std::string(event->name()) + ")";
+      if (event.get() != cracks_ && event.get() != automata_contacts_)
+        return "step events (" + std::string(event->name()) + ")";
     for (const Part& part : sim_.model.parts) {
       // A point's average reaches points of elements a rank does not hold, in an order of its own.
       const auto* nonlocal = dynamic_cast<const NonlocalAveraging*>(sim_.materials[part.material].get());
@@ -671,7 +753,7 @@ class RunDriver {
     const auto owned = ranks_->gather(pack_owned(*sub_, sim_.model));
     if (!writes()) return;
     reported_ = element_flags(whole_);
-    for (const auto& packed : owned) unpack_owned(packed, whole_, &reported_);
+    unpack_ranks(owned, reported_);
     // Elements erosion took out of the subdomains since the cut are still in whole_, whose
     // indices the ranks send until the next cut: the outputs read a copy without them.
     std::optional<Model> compacted;
@@ -705,7 +787,7 @@ class RunDriver {
              std::to_string(find_fragments(model).list.size());
     }
     std::size_t particles = 0;
-    for (const auto& pp : sim_.model.particle_parts) particles += pp.count();
+    for (const auto& pp : (sub_ ? whole_ : sim_.model).particle_parts) particles += pp.count();  // not the ghosts
     if (particles > 0) out += (out.empty() ? "" : "  ") + std::string("particles ") + std::to_string(particles);
     return out;
   }
@@ -867,7 +949,10 @@ class RunDriver {
     const auto& out = sc_.output;
     const double end = sc_.end_time;
     while (true) {
-      if (!forces_ready_) solver_.compute_forces();
+      if (!forces_ready_) {
+        cut_anew_for_particle_list();
+        solver_.compute_forces();
+      }
       forces_ready_ = false;
       note_particle_step();
       note_cohesive_step();
@@ -891,12 +976,14 @@ class RunDriver {
       // clears the forces it applied in this step.
       const double dt_n = step == 0 ? 0.5 * s.dt_next : 0.5 * (s.dt_half + s.dt_next);
       book_forces(dt_n);
+      update_automata_contacts_across_ranks();  // where the solver's event would have run
       solver_.advance();
       grow_cracks_across_ranks();  // where the solver's crack event would have run
       compact_eroded_across_ranks();  // and then its erosion event
       take_remesh_notes();
       book_reactions(dt_n);
       if (row) {
+        particle_row_ = particle_row_sums();  // after the step's debris, summed over the ranks
         if (writes()) {
           const auto start = Clock::now();
           write_history_row(t, step, dt_used);
@@ -1007,10 +1094,18 @@ class RunDriver {
       for (const auto* values : {&contact_->pair_forces(), &contact_->wall_forces()})
         f.insert(f.end(), values->begin(), values->end());
     if (sim_.particle_contact) {
-      const auto& w = sim_.particle_contact->wall_forces();
+      const auto w = particle_wall_forces();
       for (std::size_t i = 0; i < sim_.particle_contact->settings().walls.size() * dim_; ++i)
         f.push_back(i < w.size() ? w[i] : 0.0);
     }
+  }
+
+  /// The force of the particles on each wall (dim per wall) at the last forces, summed over the
+  /// ranks of a decomposed run.
+  std::vector<double> particle_wall_forces() const {
+    std::vector<double> f = solver_.state().particle_wall_force_on_bodies;
+    for (double& v : f) v = -v;
+    return f;
   }
 
   /// Books the forces of step n over Δt_n = ½(Δt_n−1/2 + Δt_n+1/2), the span the central
@@ -1051,12 +1146,60 @@ class RunDriver {
       if (owner[i] >= 0 && (ghost.empty() || !ghost[i])) add(static_cast<std::size_t>(owner[i]), nodes.mass[i], &nodes.v[D * i]);
     for (std::size_t p = 0; p < sim_.model.particle_parts.size(); ++p) {
       const auto& pp = sim_.model.particle_parts[p];
-      for (std::size_t i = 0; i < pp.count(); ++i) add(sim_.model.parts.size() + p, pp.mass[i], &pp.v[D * i]);
+      for (std::size_t i = 0; i < pp.count(); ++i)
+        if (pp.owns(i)) add(sim_.model.parts.size() + p, pp.mass[i], &pp.v[D * i]);
     }
     sum_over_ranks(sums);
     std::vector<double> values(sums.size());
     for (std::size_t i = 0; i < sums.size(); ++i) values[i] = sums[i].value();
     return values;
+  }
+
+  /// The particle columns of a history row, exact sums over the particles and pairs this process
+  /// books (a decomposed run adds them up over its ranks): per region of automata the mean
+  /// displacement of its members, then per particle part its linked pairs (automata) or its
+  /// particles and their mass (plain particles).
+  std::vector<double> particle_row_sums() {
+    const auto D = static_cast<std::size_t>(dim_);
+    std::vector<ExactSum> sums;
+    std::vector<double> members;
+    for (const auto& g : sim_.loads.particle_groups) {
+      const auto& pp = sim_.model.particle_parts[g.part];
+      const auto& set = pp.find_set(g.name)->members;
+      ExactSum u[3], count;
+      for (auto a : set) {
+        if (!pp.owns(static_cast<std::size_t>(a))) continue;
+        count += 1.0;
+        // x_old holds the positions at t_n once the step has advanced to t_n+1.
+        for (std::size_t k = 0; k < D; ++k) u[k] += pp.x_old[D * a + k] - pp.x0[D * a + k];
+      }
+      sums.insert(sums.end(), u, u + D);
+      sums.push_back(count);
+    }
+    for (const auto& pp : sim_.model.particle_parts) {
+      ExactSum first, second;
+      if (const MCAState* automata = find_mca_state(pp)) {
+        const PairList& pairs = automata->pairs;
+        for (std::size_t p = 0; p < pairs.count(); ++p)
+          if (pp.owns(static_cast<std::size_t>(pairs.i[p])) && pairs.state_of(p) == PairState::linked) first += 1.0;
+      } else {
+        for (std::size_t i = 0; i < pp.count(); ++i)
+          if (pp.owns(i)) first += 1.0, second += pp.mass[i];
+      }
+      sums.push_back(first);
+      sums.push_back(second);
+    }
+    sum_over_ranks(sums);
+    std::vector<double> row;
+    std::size_t at = 0;
+    for (std::size_t gi = 0; gi < sim_.loads.particle_groups.size(); ++gi, at += D + 1)
+      for (std::size_t k = 0; k < D; ++k) row.push_back(sums[at + k].value() / sums[at + D].value());
+    for (const auto& pp : sim_.model.particle_parts) {
+      row.push_back(sums[at++].value());
+      if (!find_mca_state(pp)) row.push_back(sums[at].value());
+      ++at;
+    }
+    return row;
   }
 
   /// Each exact sum of this process added up over the ranks of a decomposed run (a collective):
@@ -1182,33 +1325,20 @@ class RunDriver {
     history_ << buffer;
     for (double v : s.energy.column_values()) write_number(v);
     const auto& reactions = solver_.particle_group_reactions();
+    const double* particle_row = particle_row_.data();  // particle_row_sums, in its order
     for (std::size_t gi = 0; gi < sim_.loads.particle_groups.size(); ++gi) {
-      const auto& g = sim_.loads.particle_groups[gi];
-      const auto& pp = sim_.model.particle_parts[g.part];
       for (int k = 0; k < dim_; ++k) write_number(reactions.empty() ? 0.0 : reactions[6 * gi + k]);
-      // x_old holds the positions at t_n once the step has advanced to t_n+1.
-      const auto& members = pp.find_set(g.name)->members;
-      for (int k = 0; k < dim_; ++k) {
-        double u = 0;
-        for (auto a : members) u += pp.x_old[dim_ * a + k] - pp.x0[dim_ * a + k];
-        write_number(u / static_cast<double>(members.size()));
-      }
+      for (int k = 0; k < dim_; ++k) write_number(*particle_row++);
     }
     for (const auto& pp : sim_.model.particle_parts) {
-      // Pairs still fully linked (k_link = 1); the bonds broken so far are the drop from row 1.
-      std::int64_t linked = 0;
-      const MCAState* automata = find_mca_state(pp);
-      if (!automata) {
+      if (find_mca_state(pp)) {
+        // Pairs still fully linked (k_link = 1); the bonds broken so far are the drop from row 1.
+        history_ << ',' << static_cast<std::int64_t>(*particle_row++);
+      } else {
         // Plain particles: how many there are, and their mass.
-        double mass = 0;
-        for (double m : pp.mass) mass += m;
-        history_ << ',' << pp.count();
-        write_number(mass);
-        continue;
+        history_ << ',' << static_cast<std::int64_t>(*particle_row++);
+        write_number(*particle_row++);
       }
-      const PairList& pairs = automata->pairs;
-      for (std::size_t p = 0; p < pairs.count(); ++p) linked += pairs.state_of(p) == PairState::linked;
-      history_ << ',' << linked;
     }
     if (cracks_) write_fragment_counts();
     if (remesher_)
@@ -1302,7 +1432,7 @@ class RunDriver {
           for (int k = 0; k < dim_; ++k) f -= forces[dim_ * w + k] * walls[w].normal[k];
     };
     if (contact_) add(contact_->settings().walls, contact_->wall_forces());
-    if (sim_.particle_contact) add(sim_.particle_contact->settings().walls, sim_.particle_contact->wall_forces());
+    if (sim_.particle_contact) add(sim_.particle_contact->settings().walls, particle_wall_forces());
     return sc_.crash->scale * f;
   }
 
@@ -1435,6 +1565,7 @@ class RunDriver {
   ExplicitSolver& solver_;
   const ContactSystem* contact_;
   CrackGrowth* cracks_;
+  MCAContactUpdate* automata_contacts_;  ///< the automata's contact update (null without)
   RemeshEvent* remesher_ = nullptr;  ///< adaptive remeshing (null without)
   const std::string fingerprint_;
   const std::filesystem::path dir_, history_path_;
@@ -1449,6 +1580,7 @@ class RunDriver {
   bool particle_step_noted_ = false, cohesive_step_noted_ = false;
   bool forces_ready_ = false;  // the first step's forces, computed before the outputs opened
   std::vector<double> part_sums_;  // of the row being written (part_sums)
+  std::vector<double> particle_row_;  // of the row being written (particle_row_sums)
   std::vector<std::string> notes_;  ///< further notes for summary.json
   std::vector<double> forces_;      ///< the force columns of the last step (force_columns)
 

@@ -31,18 +31,6 @@ std::string shown_path(const std::filesystem::path& file) {
   return full;
 }
 
-RemeshEvent* Simulation::remeshing() {
-  for (auto& e : events)
-    if (auto* r = dynamic_cast<RemeshEvent*>(e.get())) return r;
-  return nullptr;
-}
-
-CrackGrowth* Simulation::crack_growth() {
-  for (auto& e : events)
-    if (auto* c = dynamic_cast<CrackGrowth*>(e.get())) return c;
-  return nullptr;
-}
-
 std::unique_ptr<ExplicitSolver> make_solver(Simulation& sim) {
   auto solver = std::make_unique<ExplicitSolver>(sim.model, sim.materials, sim.loads, sim.settings);
   solver->attach_contact(sim.contact_system ? &*sim.contact_system : nullptr);

@@ -48,10 +48,16 @@ struct Simulation {
   std::map<std::string, ParticleSample> samples;
 
   std::vector<int> part_materials() const;
-  /// The crack growth event, if the scenario has one.
-  CrackGrowth* crack_growth();
-  /// The remeshing event, if the scenario has one.
-  RemeshEvent* remeshing();
+  /// The step event of type Event (crack growth, remeshing, the automata's contact update), if
+  /// the scenario has one.
+  template <class Event>
+  Event* find_event() {
+    for (auto& e : events)
+      if (auto* found = dynamic_cast<Event*>(e.get())) return found;
+    return nullptr;
+  }
+  CrackGrowth* crack_growth() { return find_event<CrackGrowth>(); }
+  RemeshEvent* remeshing() { return find_event<RemeshEvent>(); }
 };
 
 /// The solver of a simulation, with its contact and events attached.

@@ -6,7 +6,6 @@
 #include <stdexcept>
 #include <unordered_map>
 
-#include "core/deterministic_sum.hpp"
 
 namespace shard {
 
@@ -67,10 +66,6 @@ void closest_on_triangle(const double* a, const double* b, const double* c, cons
 /// circumference: L / 2ρ of them; 0 for a particle that is not a ring.
 double ring_scale(const ParticlePart& part, std::size_t i) {
   return part.ring_length[i] > 0 ? part.ring_length[i] / (2 * part.radius[i]) : 0.0;
-}
-
-bool takes_part(const ParticleContactSettings& s, std::size_t part) {
-  return s.parts.empty() || (part < s.parts.size() && s.parts[part]);
 }
 
 /// The axis of an axisymmetric model as a plane: r = 0, facing the material.
@@ -227,6 +222,29 @@ bool ParticleContact::walls_only(std::int32_t part) const {
   return p < settings_.walls_only.size() && settings_.walls_only[p];
 }
 
+double ParticleContact::skin(const Model& model) const {
+  if (settings_.skin > 0) return settings_.skin;
+  double r_min = std::numeric_limits<double>::infinity();
+  for (std::size_t p = 0; p < model.particle_parts.size(); ++p)
+    if (takes_part(p))
+      for (const double r : model.particle_parts[p].radius) r_min = std::min(r_min, r);
+  return std::isfinite(r_min) ? 0.1 * r_min : 0.0;
+}
+
+double ParticleContact::reach(const Model& model) const {
+  double r_max = 0;
+  for (std::size_t p = 0; p < model.particle_parts.size(); ++p)
+    if (takes_part(p))
+      for (const double r : model.particle_parts[p].radius) r_max = std::max(r_max, r);
+  return 2 * r_max + skin(model);
+}
+
+bool ParticleContact::list_due(Model& model) {
+  if (stale_) return false;
+  gather(model);
+  return list_is_stale(model);
+}
+
 void ParticleContact::rebuild_list(Model& model) {
   // The taking particles, flat, in part order.
   part_of_.clear();
@@ -236,7 +254,7 @@ void ParticleContact::rebuild_list(Model& model) {
     for (const std::int64_t id : part.id) id_end = std::max(id_end, id + 1);
   flat_of_id_.assign(static_cast<std::size_t>(id_end), -1);
   for (std::size_t p = 0; p < model.particle_parts.size(); ++p) {
-    if (!takes_part(settings_, p)) continue;
+    if (!takes_part(p)) continue;
     const ParticlePart& part = model.particle_parts[p];
     for (std::size_t j = 0; j < part.count(); ++j) {
       flat_of_id_.at(static_cast<std::size_t>(part.id[j])) = static_cast<std::int32_t>(part_of_.size());
@@ -252,20 +270,21 @@ void ParticleContact::rebuild_list(Model& model) {
   mass_.resize(n);
   ring_scale_.resize(n);
   newborn_.resize(n);
+  owned_.resize(n);
   std::vector<std::int64_t> ids(n);
-  double r_min = std::numeric_limits<double>::infinity(), r_max = 0;
+  double r_max = 0;
   for (std::size_t i = 0; i < n; ++i) {
     const ParticlePart& part = model.particle_parts[part_of_[i]];
     radius_[i] = part.radius[index_in_part_[i]];
     mass_[i] = part.mass[index_in_part_[i]];
     ring_scale_[i] = ring_scale(part, index_in_part_[i]);
     newborn_[i] = part.newborn[index_in_part_[i]];
+    owned_[i] = part.owns(static_cast<std::size_t>(index_in_part_[i]));
     ids[i] = part.id[index_in_part_[i]];
-    r_min = std::min(r_min, radius_[i]);
     r_max = std::max(r_max, radius_[i]);
   }
   gather(model);
-  skin_ = settings_.skin > 0 ? settings_.skin : (n > 0 ? 0.1 * r_min : 0.0);
+  skin_ = skin(model);
 
   std::vector<InteractionKey> candidates;
   if (n > 0) {
@@ -293,12 +312,18 @@ void ParticleContact::rebuild_list(Model& model) {
     }
   facet_candidates(model, ids, r_max, candidates);
   // A contact still carrying force whose partner is gone (a facet of an element that eroded or
-  // converted, a particle removed) leaves with its stored energy: booked as dissipated.
+  // converted, a particle removed) leaves with its stored energy: booked as dissipated. (Not
+  // across ranks: no particle and no facet leaves a decomposed run's model.)
   InteractionList& list = model.particle_contacts;
   const std::size_t tail = settings_.law->history_size;
   std::vector<std::pair<InteractionKey, double>> loaded;
-  for (std::size_t k = 0; k < list.size(); ++k)
-    if (list.history(k)[tail + 3] != 0) loaded.emplace_back(list.key(k), list.history(k)[tail + 3]);
+  for (std::size_t k = 0; k < list.size(); ++k) {
+    // Booked by the owner of its first particle (by every process if that particle is gone).
+    const auto id = static_cast<std::size_t>(list.key(k).first);
+    const std::int32_t first = id < flat_of_id_.size() ? flat_of_id_[id] : -1;
+    if (list.history(k)[tail + 3] != 0 && (first < 0 || owned_[first]))
+      loaded.emplace_back(list.key(k), list.history(k)[tail + 3]);
+  }
   list.update(std::move(candidates));
   for (const auto& [key, stored] : loaded)
     if (list.find(key) < 0) released_ += stored;
@@ -426,7 +451,7 @@ void ParticleContact::evaluate_contacts(Model& model, double time, double dt) {
     geometry(model, k, wall_origin, ev.c);
     double* tail = history.data() + law_slots;
     const bool fresh = tail[0] == 0 && tail[1] == 0 && tail[2] == 0 && tail[3] == 0 && tail[4] == 0;
-    if (ev.c.overlap > 0) ++active;
+    if (ev.c.overlap > 0 && owned_[a]) ++active;
     if (fresh && ev.c.overlap > 0 && (newborn_[a] || (b >= 0 && newborn_[b]))) tail[4] = ev.c.overlap;
     if (tail[4] > 0) {
       // A particle made overlapping its neighbours (a converted element's points) starts
@@ -631,7 +656,7 @@ void ParticleContact::add_facet_reactions(Model& model) const {
   }
 }
 
-void ParticleContact::scatter(Model& model) {
+void ParticleContact::scatter(Model& model, std::vector<ExactSum>& wall_force) {
   const std::size_t n = part_of_.size();
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
@@ -656,29 +681,34 @@ void ParticleContact::scatter(Model& model) {
       p.torque[j] += t[2];
     }
   }
-  // The listed walls' share, in list order (the axis reports none).
+  // The listed walls' share of the contacts this process books (the axis reports none).
   const int dim = model.dim();
-  wall_force_.assign(settings_.walls.size() * dim, 0.0);
+  wall_force.assign(settings_.walls.size() * dim, ExactSum());
   const auto walls = static_cast<std::int32_t>(settings_.walls.size());
   for (std::size_t k = 0; k < first_.size(); ++k)
-    if (second_[k] < 0 && second_[k] >= -walls && acting_[k])
-      for (int q = 0; q < dim; ++q) wall_force_[dim * static_cast<std::size_t>(-1 - second_[k]) + q] -= force_[3 * k + q];
+    if (second_[k] < 0 && second_[k] >= -walls && acting_[k] && owned_[first_[k]])
+      for (int q = 0; q < dim; ++q) wall_force[dim * static_cast<std::size_t>(-1 - second_[k]) + q] += -force_[3 * k + q];
 }
 
 ParticleContactWork ParticleContact::add_forces(Model& model, double time, double dt) {
   if (!stale_) gather(model);
   if (list_is_stale(model)) rebuild_list(model);
   evaluate_contacts(model, time, dt);
-  scatter(model);
+  ParticleContactWork work;
+  scatter(model, work.wall_force);
   add_facet_reactions(model);
   // Particles are newborn for their first evaluation only.
   if (std::find(newborn_.begin(), newborn_.end(), 1) != newborn_.end()) {
     std::fill(newborn_.begin(), newborn_.end(), 0);
     for (std::size_t p = 0; p < model.particle_parts.size(); ++p)
-      if (takes_part(settings_, p)) std::fill(model.particle_parts[p].newborn.begin(), model.particle_parts[p].newborn.end(), 0);
+      if (takes_part(p)) std::fill(model.particle_parts[p].newborn.begin(), model.particle_parts[p].newborn.end(), 0);
   }
-  const ParticleContactWork work{deterministic_sum(stored_), deterministic_sum(dissipated_) + released_};
+  for (std::size_t k = 0; k < first_.size(); ++k)
+    if (acting_[k] && owned_[first_[k]]) work.stored += stored_[k], work.dissipated += dissipated_[k];
+  work.dissipated += released_;
   released_ = 0;
+  wall_force_.resize(work.wall_force.size());
+  for (std::size_t i = 0; i < wall_force_.size(); ++i) wall_force_[i] = work.wall_force[i].value();
   return work;
 }
 

@@ -20,6 +20,7 @@
 #include "contact/contact_surface.hpp"
 #include "contact/pair_law.hpp"
 #include "core/cell_grid.hpp"
+#include "core/exact_sum.hpp"
 #include "core/energy_ledger.hpp"
 #include "model/model.hpp"
 #include "model/topology.hpp"
@@ -50,12 +51,15 @@ struct ParticleContactSettings {
   bool axis = false;
 };
 
-/// What the contacts did in one evaluation.
+/// What the contacts did in one evaluation: exact sums over the contacts this process books (of
+/// a particle it owns, ParticlePart::ghost), which a decomposed run adds up over its ranks.
 struct ParticleContactWork {
-  double stored = 0;       ///< elastic energy in the contacts now (J)
+  ExactSum stored;  ///< elastic energy in the contacts now (J)
   /// Dissipated by damping and sliding over the last increment (J): the work the contact forces
   /// took from the bodies less the growth of the stored energy.
-  double dissipated = 0;
+  ExactSum dissipated;
+  /// Force of the particles on each listed wall (dim per wall, N).
+  std::vector<ExactSum> wall_force;
 };
 
 class ParticleContact final : public TopologyListener {
@@ -72,14 +76,31 @@ class ParticleContact final : public TopologyListener {
   /// Adds contact forces and torques at t_n to the particles' force and torque; `dt` is the
   /// increment the tangential springs advance by (t_n−1 → t_n). Call after the particle models.
   ParticleContactWork add_forces(Model& model, double time, double dt);
-  /// Force of the particles on each wall at the last call (dim per wall).
+  /// Force of the particles on each wall at the last call (dim per wall), of the contacts this
+  /// process books (the solver's state has the sum over the ranks).
   const std::vector<double>& wall_forces() const { return wall_force_; }
+  /// Whether the next add_forces builds its list again because a particle or a wall has moved
+  /// half the skin since the last build (a decomposed run cuts the model anew then, on every
+  /// rank alike); false when it builds it again for a topology change, which every rank has too.
+  bool list_due(Model& model);
+  /// The neighbour-list skin for `model`: the settings', or a tenth of its smallest radius.
+  double skin(const Model& model) const;
+  /// Twice the largest radius and the skin: no contact a list of `model` holds is longer.
+  double reach(const Model& model) const;
+  /// Whether the particles of particle part `part` take part.
+  bool takes_part(std::size_t part) const {
+    return settings_.parts.empty() || (part < settings_.parts.size() && settings_.parts[part]);
+  }
+  /// Keeps the skin at `value` from now on, whatever particles a model holds (a subdomain holds
+  /// some of them: its smallest radius is not the whole model's).
+  void fix_skin(double value) { settings_.skin = value; }
   /// The stable step of the stiffest contact in the neighbour list (every pair that can touch
   /// before the list is built again; computed once per list), times the safety factor. Call
   /// after add_forces.
   double stable_time_step(const Model& model);
   const ParticleContactSettings& settings() const { return settings_; }
-  /// Contacts (pairs and wall contacts that overlap, whether or not they carry force) at the last call.
+  /// Contacts (pairs and wall contacts that overlap, whether or not they carry force) this process
+  /// books, at the last call.
   std::size_t active_contacts() const { return active_; }
 
   void topology_changed(const Model&, const Remap&) override {
@@ -123,7 +144,9 @@ class ParticleContact final : public TopologyListener {
   void geometry(const Model& model, std::size_t k, const std::vector<double>& wall_origin, ContactKinematics& c);
   /// The outward normal of facet f (not normalised).
   std::array<double, 3> facet_outward(const Model& model, std::size_t f) const;
-  void scatter(Model& model);
+  /// The contacts' forces and torques onto the particles; the walls' share of the contacts this
+  /// process books into `wall_force`.
+  void scatter(Model& model, std::vector<ExactSum>& wall_force);
 
   ParticleContactSettings settings_;
   // Flat copies of the taking particles, 3 slots per vector whatever the dimension.
@@ -132,6 +155,7 @@ class ParticleContact final : public TopologyListener {
   std::vector<double> ring_scale_;  ///< per flat particle: L / 2ρ of a ring (0: not a ring)
   std::vector<double> axis_params_;  ///< the wall parameters without friction, for the axis
   std::vector<std::uint8_t> newborn_;
+  std::vector<std::uint8_t> owned_;  ///< per flat particle: 1 if this process books its contacts
   std::vector<double> x_at_build_, wall_offset_at_build_;
   std::vector<std::int32_t> flat_of_id_;  ///< particle id → flat index (−1: not taking part)
   // Per listed interaction: flat indices (b = −1 − wall for a wall), and per step the force on

@@ -26,6 +26,26 @@ void InteractionList::update(std::vector<InteractionKey> candidates) {
   store_key_arrays();
 }
 
+void InteractionList::absorb(const std::vector<InteractionKey>& keys, const std::vector<double>& history) {
+  const std::size_t h = static_cast<std::size_t>(history_size_);
+  std::vector<InteractionKey> merged;
+  std::vector<double> values;
+  merged.reserve(keys_.size() + keys.size());
+  values.reserve(history_.size() + history.size());
+  std::size_t a = 0, b = 0;
+  while (a < keys_.size() || b < keys.size()) {
+    const bool take_new = b < keys.size() && (a == keys_.size() || !(keys_[a] < keys[b]));
+    if (take_new && a < keys_.size() && keys_[a] == keys[b]) ++a;  // the new history replaces the old
+    merged.push_back(take_new ? keys[b] : keys_[a]);
+    const double* from = take_new ? history.data() + b * h : history_.data() + a * h;
+    values.insert(values.end(), from, from + h);
+    take_new ? ++b : ++a;
+  }
+  keys_ = std::move(merged);
+  history_ = std::move(values);
+  store_key_arrays();
+}
+
 void InteractionList::store_key_arrays() {
   kinds_.resize(keys_.size());
   firsts_.resize(keys_.size());

@@ -6,6 +6,7 @@
 // order, so a sweep over the list is the same for any thread count and after a restart.
 #pragma once
 
+#include <algorithm>
 #include <compare>
 #include <cstdint>
 #include <span>
@@ -50,6 +51,26 @@ class InteractionList {
   /// allowed): each keeps the history it had if it was in the list, a new one starts at zero, one
   /// no longer a candidate leaves with its history (the contact has opened).
   void update(std::vector<InteractionKey> candidates);
+
+  /// Keeps the interactions whose key `keep` accepts, in their order, with their history.
+  template <class Keep>
+  void keep_if(Keep&& keep) {
+    const std::size_t h = static_cast<std::size_t>(history_size_);
+    std::size_t out = 0;
+    for (std::size_t k = 0; k < keys_.size(); ++k) {
+      if (!keep(keys_[k])) continue;
+      keys_[out] = keys_[k];
+      std::copy_n(history_.begin() + k * h, h, history_.begin() + out * h);
+      ++out;
+    }
+    keys_.resize(out);
+    history_.resize(out * h);
+    store_key_arrays();
+  }
+  /// Takes in `keys` (sorted) with their `history` (history_size() values each): a key already
+  /// listed takes the new history, the others are merged in key order.
+  void absorb(const std::vector<InteractionKey>& keys, const std::vector<double>& history);
+  void clear() { keep_if([](const InteractionKey&) { return false; }); }
 
   /// Its arrays for checkpoints (src/model/fields.hpp); Location::model: they follow no remap.
   template <class Visitor>

@@ -24,6 +24,18 @@ std::int32_t ParticlePart::add_particles(std::size_t n) {
   return first;
 }
 
+std::array<const std::vector<std::int32_t>*, 2> ParticlePart::pair_ends() const {
+  std::array<const std::vector<std::int32_t>*, 2> ends{nullptr, nullptr};
+  if (!model) return ends;
+  int e = 0;
+  // Visiting hands out the arrays for writing; they are only read here.
+  model->visit_fields([&](const FieldInfo& info, FieldArray a) {
+    if (info.location == Location::pair && info.follow == Follow::particle_index && e < 2)
+      if (auto* v = std::get_if<std::vector<std::int32_t>*>(&a)) ends[e++] = *v;
+  });
+  return ends;
+}
+
 std::int32_t ParticlePart::add_particle(const double* position, double particle_radius, int particle_material) {
   const std::int32_t i = add_particles(1);
   for (int a = 0; a < dim; ++a) x[static_cast<std::size_t>(dim) * i + a] = position[a];

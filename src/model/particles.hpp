@@ -7,6 +7,7 @@
 // prescribed motion (src/solver/).
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <limits>
@@ -16,6 +17,7 @@
 #include <variant>
 #include <vector>
 
+#include "core/exact_sum.hpp"
 #include "model/fields.hpp"
 
 namespace shard {
@@ -27,17 +29,19 @@ using FieldArray = std::variant<std::vector<double>*, std::vector<std::int64_t>*
                                 std::vector<std::int16_t>*, std::vector<std::uint8_t>*>;
 using FieldCallback = std::function<void(const FieldInfo&, FieldArray)>;
 
-/// What one force evaluation of a particle model did (J).
+/// What one force evaluation of a particle model did (J): exact sums over the particles and pairs
+/// this process books (ParticlePart::ghost), which a decomposed run adds up over its ranks.
 struct ParticleWork {
-  double plastic = 0;   ///< plastic work of the particles (their stresses' return)
-  double fracture = 0;  ///< released by breaking bonds
-  double friction = 0;  ///< dissipated by sliding contacts
+  ExactSum plastic;   ///< plastic work of the particles (their stresses' return)
+  ExactSum fracture;  ///< released by breaking bonds
+  ExactSum friction;  ///< dissipated by sliding contacts
   /// The elastic energy the model stores after these forces (J), when the evaluation gives it
-  /// on the way (it then equals stored_energy() to the bit); NaN when it does not.
-  double stored = std::numeric_limits<double>::quiet_NaN();
+  /// on the way (has_stored; it then equals stored_energy() to the bit).
+  ExactSum stored;
+  bool has_stored = false;
   /// Work of forces the model does not derive from what it stores, beyond that store (the
   /// automata's many-body term, docs/theory/mca.md section 9): booked so that the balance closes.
-  double many_body_work = 0;
+  ExactSum many_body_work;
 };
 
 /// The interaction model of a particle part (the MCA bonds and many-body law today; contact laws
@@ -57,8 +61,8 @@ class ParticleModel {
   /// Forces and torques on the particles at the end of the increment [t_n−1, t_n] (positions
   /// x_old → x, rotation increments dtheta over dt); `first_step`: no stress history yet.
   virtual ParticleWork forces(ParticlePart& part, double dt, bool first_step) = 0;
-  /// The elastic energy the model stores now (J).
-  virtual double stored_energy(const ParticlePart& part) const = 0;
+  /// The elastic energy the model stores now (J), of the particles and pairs this process books.
+  virtual ExactSum stored_energy(const ParticlePart& part) const = 0;
   /// The stable step of the model's interactions before any safety factor (s).
   virtual double stable_time_step(const ParticlePart& part) const = 0;
   virtual std::size_t pair_count() const = 0;
@@ -128,8 +132,18 @@ struct ParticlePart {
   /// Not checkpointed: recomputed from the same pairs.
   double stable_time_step = 0;
   ParticleModelHolder model;
+  /// Per particle, non-zero for a ghost of a subdomain (src/parallel/subdomain.hpp): held to give
+  /// the rank's own particles their forces, moved, but left out of every energy and reaction
+  /// sum, which its owner books; its state is its owner's after every step. A pair is booked by
+  /// the rank that owns its first particle. Empty: every particle is this process's own. Not a
+  /// declared field: a cut sets it, and no remap happens between cuts.
+  std::vector<std::uint8_t> ghost;
+
+  /// Whether particle i is booked here (not a ghost).
+  bool owns(std::size_t i) const { return ghost.size() != count() || !ghost[i]; }
 
   std::size_t count() const { return radius.size(); }
+  std::size_t pair_count() const { return model ? model->pair_count() : 0; }
   int rot_dim() const { return dim == 2 ? 1 : 3; }
   double coord(std::size_t i, int a) const { return x[static_cast<std::size_t>(dim) * i + a]; }
   const ParticleSet* find_set(const std::string& set_name) const;
@@ -137,6 +151,9 @@ struct ParticlePart {
   std::int32_t add_particle(const double* position, double particle_radius, int particle_material);
   /// Appends n particles at rest at the origin in one remap; returns the index of the first.
   std::int32_t add_particles(std::size_t n);
+  /// The particle indices of the two ends of every pair of the model (its first two pair fields
+  /// that follow particle indices); null where the model has none.
+  std::array<const std::vector<std::int32_t>*, 2> pair_ends() const;
 
   /// The generic per-particle fields.
   template <class F>

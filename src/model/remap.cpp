@@ -282,7 +282,7 @@ void apply_particle_remap(ParticlePart& part, const EntityRemap* particles, cons
                           std::int64_t* next_id) {
   std::vector<std::int32_t> new_of_old;
   EntityRemap derived;
-  const std::size_t pair_count = part.model ? part.model->pair_count() : 0;
+  const std::size_t pair_count = part.pair_count();
   if (particles) {
     validate(*particles, part.count(), "particles");
     for_location(part, Location::particle, [&](const FieldInfo& info, auto& a) {
@@ -293,14 +293,9 @@ void apply_particle_remap(ParticlePart& part, const EntityRemap* particles, cons
     if (!pairs && pair_count > 0) {
       // The pairs of two continued particles are kept, in their order.
       std::vector<std::uint8_t> keep(pair_count, 1);
-      std::vector<std::int32_t> ends[2];
-      int e = 0;
-      for_location(part, Location::pair, [&](const FieldInfo& info, auto& a) {
-        if constexpr (std::is_same_v<std::decay_t<decltype(a)>, std::vector<std::int32_t>>)
-          if (info.follow == Follow::particle_index && e < 2) ends[e++] = a;
-      });
-      for (int k = 0; k < e; ++k)
-        for (std::size_t p = 0; p < pair_count; ++p) keep[p] = keep[p] && new_of_old[ends[k][p]] >= 0;
+      for (const std::vector<std::int32_t>* end : part.pair_ends())
+        if (end)
+          for (std::size_t p = 0; p < pair_count; ++p) keep[p] = keep[p] && new_of_old[(*end)[p]] >= 0;
       derived = EntityRemap::keeping(keep);
       pairs = &derived;
     }

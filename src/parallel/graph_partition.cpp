@@ -16,8 +16,9 @@ namespace shard {
 bool graph_partitioner_available() { return true; }
 
 ElementPartition partition_graph(const Model& model, int ranks, const std::vector<std::vector<double>>* weights) {
-  ElementPartition partition{ranks, {}};
+  ElementPartition partition{ranks, {}, {}};
   for (const Part& part : model.parts) partition.rank.emplace_back(part.element_count(), 0);
+  partition_particles(model, partition);  // particles have no graph: bisection of their positions
   if (ranks <= 1) return partition;
   // The mesh as METIS reads it: every element's nodes, all parts in a row.
   std::vector<idx_t> eptr{0}, eind, vwgt;

@@ -19,7 +19,8 @@ namespace shard {
 bool graph_partitioner_available();
 
 /// The elements of every part cut by METIS' k-way partition of the dual graph, each element
-/// weighted by its integration points or by `weights` (per part and element). Throws
+/// weighted by its integration points or by `weights` (per part and element); the particles, which
+/// have no graph, by recursive coordinate bisection of their own (partition_particles). Throws
 /// std::runtime_error in a build without METIS, or when METIS fails.
 ElementPartition partition_graph(const Model& model, int ranks,
                                  const std::vector<std::vector<double>>* weights = nullptr);

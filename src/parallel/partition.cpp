@@ -68,6 +68,28 @@ void bisect(const std::vector<PartitionPoint>& points, std::vector<std::int32_t>
   bisect(points, order, cut, end, dim, first_rank + lower, parts - lower, rank);
 }
 
+/// The particles of every particle part as points of weight one; their ids are set apart from
+/// the elements' (bit 62), so that a tie between an element and a particle breaks one way.
+void add_particle_points(const Model& model, std::vector<PartitionPoint>& points) {
+  for (const ParticlePart& part : model.particle_parts)
+    for (std::size_t i = 0; i < part.count(); ++i) {
+      PartitionPoint p;
+      for (int k = 0; k < part.dim; ++k) p.x[k] = part.coord(i, k);
+      p.id = part.id[i] | (std::int64_t{1} << 62);
+      points.push_back(p);
+    }
+}
+
+/// The particles' ranks from `flat`, the ranks of the points add_particle_points gave from `next` on.
+void take_particle_ranks(const Model& model, const std::vector<std::int32_t>& flat, std::size_t next,
+                         ElementPartition& partition) {
+  for (const ParticlePart& part : model.particle_parts) {
+    const auto first = flat.begin() + static_cast<std::ptrdiff_t>(next);
+    partition.particle_rank.emplace_back(first, first + static_cast<std::ptrdiff_t>(part.count()));
+    next += part.count();
+  }
+}
+
 }  // namespace
 
 std::vector<std::int32_t> recursive_coordinate_bisection(const std::vector<PartitionPoint>& points, int dim,
@@ -94,25 +116,41 @@ ElementPartition partition_elements(const Model& model, int ranks, const std::ve
       points.push_back(p);
     }
   }
+  add_particle_points(model, points);
   const std::vector<std::int32_t> flat = recursive_coordinate_bisection(points, dim, ranks);
-  ElementPartition partition{ranks, {}};
+  ElementPartition partition{ranks, {}, {}};
   std::size_t next = 0;
   for (const Part& part : model.parts) {
     const auto first = flat.begin() + static_cast<std::ptrdiff_t>(next);
     partition.rank.emplace_back(first, first + static_cast<std::ptrdiff_t>(part.element_count()));
     next += part.element_count();
   }
+  take_particle_ranks(model, flat, next, partition);
   return partition;
 }
 
+void partition_particles(const Model& model, ElementPartition& partition) {
+  std::vector<PartitionPoint> points;
+  add_particle_points(model, points);
+  partition.particle_rank.clear();
+  take_particle_ranks(model, recursive_coordinate_bisection(points, model.dim(), partition.ranks), 0, partition);
+}
+
 ElementPartition scatter_elements(const Model& model, int ranks, std::uint64_t seed) {
-  ElementPartition partition{ranks, {}};
+  ElementPartition partition{ranks, {}, {}};
   for (const Part& part : model.parts) {
     auto& rank = partition.rank.emplace_back(part.element_count());
     for (std::size_t e = 0; e < part.element_count(); ++e) {
       // Keyed by (seed, id): the same element lands on the same rank whatever its index.
       std::mt19937_64 draw(seed ^ (0x9e3779b97f4a7c15ULL * static_cast<std::uint64_t>(part.id[e] + 1)));
       rank[e] = static_cast<std::int32_t>(draw() % static_cast<std::uint64_t>(ranks));
+    }
+  }
+  for (const ParticlePart& part : model.particle_parts) {
+    auto& rank = partition.particle_rank.emplace_back(part.count());
+    for (std::size_t i = 0; i < part.count(); ++i) {
+      std::mt19937_64 draw(~seed ^ (0x9e3779b97f4a7c15ULL * static_cast<std::uint64_t>(part.id[i] + 1)));
+      rank[i] = static_cast<std::int32_t>(draw() % static_cast<std::uint64_t>(ranks));
     }
   }
   return partition;

@@ -27,21 +27,28 @@ struct PartitionPoint {
 std::vector<std::int32_t> recursive_coordinate_bisection(const std::vector<PartitionPoint>& points, int dim,
                                                          int parts);
 
-/// The rank of every element of every part (rank[part][element]).
+/// The rank of every element of every part (rank[part][element]) and of every particle of every
+/// particle part (particle_rank[particle part][particle]: its owner).
 struct ElementPartition {
   int ranks = 1;
   std::vector<std::vector<std::int32_t>> rank;
+  std::vector<std::vector<std::int32_t>> particle_rank;
 };
 
-/// The elements of every part cut by recursive coordinate bisection of their centroids (current
-/// positions), each weighted by its integration points, or by `weights` (per part and element:
-/// a rebalance weighs each element by the measured cost on its rank).
+/// The elements of every part and the particles of every particle part cut together by recursive
+/// coordinate bisection of the elements' centroids and the particles' positions (current), each
+/// element weighted by its integration points, or by `weights` (per part and element: a rebalance
+/// weighs each element by the measured cost on its rank), each particle by one.
 ElementPartition partition_elements(const Model& model, int ranks,
                                     const std::vector<std::vector<double>>* weights = nullptr);
 
-/// Every element on a rank drawn from a generator seeded with `seed` and the element's id: the
+/// Every element and particle on a rank drawn from a generator seeded with `seed` and its id: the
 /// worst case for the ghost layers, for tests.
 ElementPartition scatter_elements(const Model& model, int ranks, std::uint64_t seed);
+
+/// The particles of every particle part alone cut by recursive coordinate bisection of their
+/// positions (into partition.particle_rank): for a partition of the elements made otherwise.
+void partition_particles(const Model& model, ElementPartition& partition);
 
 /// The owner of each node: the rank of the element with the smallest stable id among those that
 /// hold it; rank 0 for a node no element holds (one whose elements eroded: it flies on, and its

@@ -180,6 +180,73 @@ void hold_interfaces(const Model& model, const std::vector<std::int32_t>& owner,
   }
 }
 
+bool in_particle_contact(const ContactHalo& halo, std::size_t part) {
+  return part < halo.particle_parts.size() && halo.particle_parts[part];
+}
+
+/// The particles in contact of particles within the halo's particle reach of one the rank owns
+/// (marked owned in `held` already) become ghosts.
+void hold_particles_near(const Model& model, const ContactHalo& halo, std::vector<std::vector<Holding>>& held) {
+  auto position = [](const ParticlePart& part, std::size_t i) {
+    std::array<double, 3> x{0, 0, 0};
+    for (int k = 0; k < part.dim; ++k) x[k] = part.coord(i, k);
+    return x;
+  };
+  std::vector<double> mine;
+  for (std::size_t pp = 0; pp < model.particle_parts.size(); ++pp)
+    for (std::size_t i = 0; in_particle_contact(halo, pp) && i < held[pp].size(); ++i)
+      if (held[pp][i] == Holding::owned) {
+        const auto x = position(model.particle_parts[pp], i);
+        mine.insert(mine.end(), x.begin(), x.end());
+      }
+  if (mine.empty() || !(halo.particle_reach > 0)) return;
+  const CellGrid grid(mine, 3, halo.particle_reach);
+  const double reach2 = halo.particle_reach * halo.particle_reach;
+  for (std::size_t pp = 0; pp < model.particle_parts.size(); ++pp)
+    for (std::size_t i = 0; in_particle_contact(halo, pp) && i < held[pp].size(); ++i) {
+      if (held[pp][i] != Holding::none) continue;
+      const auto x = position(model.particle_parts[pp], i);
+      const bool near = grid.any_near(x.data(), [&](std::int32_t q) {
+        double d2 = 0;
+        for (int k = 0; k < 3; ++k) d2 += (x[k] - mine[3 * q + k]) * (x[k] - mine[3 * q + k]);
+        return d2 <= reach2;
+      });
+      if (near) held[pp][i] = Holding::ghost;
+    }
+}
+
+/// Per particle part: owned, the particles `partition` gives the rank; ghosts, with contact of
+/// particles every particle in it within the halo's reach, and then the partners of the held
+/// particles in the pairs of the part's model (a first layer) and their partners (a second). An owned
+/// particle's force comes from its pairs alone, but the automata's plastic return corrects a pair
+/// with the averaged stress of both its automata, which sums over all the pairs of each: every
+/// pair of the first layer must be held, whose far ends are the second.
+void hold_particles(const Model& model, const ElementPartition& partition, int rank, const ContactHalo* halo,
+                    LocalEntities& held) {
+  for (std::size_t pp = 0; pp < model.particle_parts.size(); ++pp) {
+    const ParticlePart& part = model.particle_parts[pp];
+    auto& mine = held.particle.emplace_back(part.count(), Holding::none);
+    for (std::size_t i = 0; i < part.count(); ++i)
+      if (partition.particle_rank[pp][i] == rank) mine[i] = Holding::owned;
+  }
+  if (halo && !halo->particle_parts.empty()) hold_particles_near(model, *halo, held.particle);
+  for (std::size_t pp = 0; pp < model.particle_parts.size(); ++pp) {
+    auto& mine = held.particle[pp];
+    const ParticlePart& part = model.particle_parts[pp];
+    const auto [first, second] = part.pair_ends();
+    if (!first || !second) continue;
+    for (int layer = 1; layer <= 2; ++layer) {
+      std::vector<char> was(part.count());
+      for (std::size_t i = 0; i < part.count(); ++i) was[i] = mine[i] != Holding::none;
+      for (std::size_t p = 0; p < first->size(); ++p) {
+        const auto a = static_cast<std::size_t>((*first)[p]), b = static_cast<std::size_t>((*second)[p]);
+        if (was[a] && mine[b] == Holding::none) mine[b] = Holding::ghost;
+        if (was[b] && mine[a] == Holding::none) mine[a] = Holding::ghost;
+      }
+    }
+  }
+}
+
 /// local_entities, with the contact surface nodes of the halo's parts found once per cut.
 LocalEntities held_entities(const Model& model, const ElementPartition& partition, const std::vector<std::int32_t>& owner,
                             int rank, const ContactHalo* halo, const std::vector<char>* on_surface) {
@@ -222,6 +289,7 @@ LocalEntities held_entities(const Model& model, const ElementPartition& partitio
   if (halo && !halo->parts.empty() && on_surface)
     hold_elements_around(model, nodes_near_owned_surface(model, *on_surface, owner, rank, *halo), owner, rank, held);
   hold_interfaces(model, owner, rank, held);
+  hold_particles(model, partition, rank, halo, held);
   return held;
 }
 
@@ -249,9 +317,11 @@ std::size_t Subdomain::ghost_element_count() const {
 
 namespace {
 
-void check_decomposable(const Model& model) {
-  if (!model.particle_parts.empty())
-    throw std::invalid_argument("domain decomposition: particles are not decomposed yet");
+void check_decomposable(const Model& model, const ElementPartition& partition) {
+  bool fits = partition.particle_rank.size() == model.particle_parts.size();
+  for (std::size_t pp = 0; fits && pp < model.particle_parts.size(); ++pp)
+    fits = partition.particle_rank[pp].size() == model.particle_parts[pp].count();
+  if (!fits) throw std::invalid_argument("make_subdomain: the partition does not give every particle a rank");
 }
 
 /// Keeps of `sub`'s interface elements (a copy of the whole model's) those `held` says, in the
@@ -302,35 +372,117 @@ std::vector<std::int64_t> cut_faces(const Model& model, const LocalEntities& hel
   return cut;
 }
 
+/// A rank's particle lists for neighbour `q`, per particle part: the owned particles q holds as
+/// ghosts and the ghosts q owns; the pairs whose first particle is owned here that q holds, and
+/// those whose first particle is a ghost q owns. All in ascending index of the whole model.
+void plan_particle_exchange(const Model& model, const ElementPartition& partition, const LocalEntities& theirs,
+                            int q, const Subdomain& sub, GhostExchangePlan::Lists (&lists)[4]) {
+  for (std::size_t pp = 0; pp < model.particle_parts.size(); ++pp) {
+    for (auto& list : lists) list.emplace_back();
+    const auto& global = sub.global_particle[pp];
+    for (std::size_t i = 0; i < global.size(); ++i) {
+      const auto g = static_cast<std::size_t>(global[i]);
+      if (sub.particle_owned[pp][i] && theirs.particle[pp][g] == Holding::ghost) lists[0].back().push_back(static_cast<std::int32_t>(i));
+      if (!sub.particle_owned[pp][i] && partition.particle_rank[pp][g] == q) lists[1].back().push_back(static_cast<std::int32_t>(i));
+    }
+    const auto [first, second] = model.particle_parts[pp].pair_ends();
+    for (std::size_t k = 0; k < sub.global_pair[pp].size(); ++k) {
+      const auto p = static_cast<std::size_t>(sub.global_pair[pp][k]);
+      const auto a = static_cast<std::size_t>((*first)[p]), b = static_cast<std::size_t>((*second)[p]);
+      const bool they_hold = theirs.particle[pp][a] != Holding::none && theirs.particle[pp][b] != Holding::none;
+      if (sub.pair_owned[pp][k] && they_hold) lists[2].back().push_back(static_cast<std::int32_t>(k));
+      if (!sub.pair_owned[pp][k] && partition.particle_rank[pp][a] == q) lists[3].back().push_back(static_cast<std::int32_t>(k));
+    }
+  }
+}
+
+bool all_empty(const GhostExchangePlan::Lists& lists) {
+  return std::all_of(lists.begin(), lists.end(), [](const auto& list) { return list.empty(); });
+}
+
 /// The ghost exchange of `rank`: per neighbour, the owned nodes it holds as ghosts and the ghost
-/// nodes it owns, both in ascending index of the whole model (local indices keep that order).
+/// nodes it owns, both in ascending index of the whole model (local indices keep that order), and
+/// the particles and pairs likewise.
 GhostExchangePlan plan_ghost_exchange(const Model& model, const ElementPartition& partition,
-                                      const std::vector<std::int32_t>& owner, int rank,
-                                      const std::vector<std::int32_t>& global_node,
-                                      const std::vector<std::uint8_t>& node_owned, const ContactHalo* halo,
-                                      const std::vector<char>* on_surface) {
+                                      const std::vector<std::int32_t>& owner, int rank, const Subdomain& sub,
+                                      const ContactHalo* halo, const std::vector<char>* on_surface) {
   GhostExchangePlan plan;
   for (int q = 0; q < partition.ranks; ++q) {
     if (q == rank) continue;
     const LocalEntities theirs = held_entities(model, partition, owner, q, halo, on_surface);
     std::vector<std::int32_t> send, receive;
-    for (std::size_t i = 0; i < global_node.size(); ++i) {
-      const auto g = static_cast<std::size_t>(global_node[i]);
-      if (node_owned[i] && theirs.node[g] == Holding::ghost) send.push_back(static_cast<std::int32_t>(i));
-      if (!node_owned[i] && owner[g] == q) receive.push_back(static_cast<std::int32_t>(i));
+    for (std::size_t i = 0; i < sub.global_node.size(); ++i) {
+      const auto g = static_cast<std::size_t>(sub.global_node[i]);
+      if (sub.node_owned[i] && theirs.node[g] == Holding::ghost) send.push_back(static_cast<std::int32_t>(i));
+      if (!sub.node_owned[i] && owner[g] == q) receive.push_back(static_cast<std::int32_t>(i));
     }
-    if (send.empty() && receive.empty()) continue;
+    GhostExchangePlan::Lists particles[4];
+    plan_particle_exchange(model, partition, theirs, q, sub, particles);
+    if (send.empty() && receive.empty() && std::all_of(std::begin(particles), std::end(particles), all_empty)) continue;
     plan.neighbours.push_back(q);
     plan.send.push_back(std::move(send));
     plan.receive.push_back(std::move(receive));
+    plan.send_particles.push_back(std::move(particles[0]));
+    plan.receive_particles.push_back(std::move(particles[1]));
+    plan.send_pairs.push_back(std::move(particles[2]));
+    plan.receive_pairs.push_back(std::move(particles[3]));
   }
   return plan;
+}
+
+/// Per stable particle id, how the rank holds the particle (absent: not at all).
+std::unordered_map<std::int64_t, Holding> holding_by_id(const Model& model, const std::vector<std::vector<Holding>>& held) {
+  std::unordered_map<std::int64_t, Holding> by_id;
+  for (std::size_t pp = 0; pp < model.particle_parts.size(); ++pp)
+    for (std::size_t i = 0; i < held[pp].size(); ++i)
+      if (held[pp][i] != Holding::none) by_id.emplace(model.particle_parts[pp].id[i], held[pp][i]);
+  return by_id;
+}
+
+/// Keeps of the contacts of particles (a copy of the whole model's list) those whose particles
+/// the rank holds, with their history: its own contacts' histories are their owners', and a
+/// new list keeps them.
+void keep_held_interactions(const Model& model, const LocalEntities& held, InteractionList& list) {
+  if (list.size() == 0) return;
+  const auto by_id = holding_by_id(model, held.particle);
+  list.keep_if([&](const InteractionKey& key) {
+    const bool second = key.kind != InteractionKind::particle_particle || by_id.count(key.second) > 0;
+    return by_id.count(key.first) > 0 && second;
+  });
+}
+
+/// Keeps of `sub`'s particle parts (the whole model's, cut by `cut`) those `held` says, and
+/// notes which particles and pairs are the rank's own; sets each part's ghost marks.
+void cut_particles(const Model& model, const LocalEntities& held, Subdomain& sub, Remap& cut) {
+  for (std::size_t pp = 0; pp < model.particle_parts.size(); ++pp) {
+    const ParticlePart& part = model.particle_parts[pp];
+    std::vector<std::uint8_t> keep(part.count());
+    auto& global = sub.global_particle.emplace_back();
+    auto& owned = sub.particle_owned.emplace_back();
+    for (std::size_t i = 0; i < part.count(); ++i) {
+      keep[i] = held.particle[pp][i] != Holding::none;
+      if (!keep[i]) continue;
+      global.push_back(static_cast<std::int32_t>(i));
+      owned.push_back(held.particle[pp][i] == Holding::owned);
+    }
+    cut.particles.emplace(static_cast<int>(pp), EntityRemap::keeping(keep));
+    // The pairs of two held particles stay, in their order (apply_particle_remap).
+    auto& pairs = sub.global_pair.emplace_back();
+    auto& pairs_owned = sub.pair_owned.emplace_back();
+    const auto [first, second] = part.pair_ends();
+    for (std::size_t p = 0; first && second && p < first->size(); ++p) {
+      const auto a = static_cast<std::size_t>((*first)[p]), b = static_cast<std::size_t>((*second)[p]);
+      if (!keep[a] || !keep[b]) continue;
+      pairs.push_back(static_cast<std::int32_t>(p));
+      pairs_owned.push_back(held.particle[pp][a] == Holding::owned);
+    }
+  }
 }
 
 }  // namespace
 
 Subdomain make_subdomain(const Model& model, const ElementPartition& partition, int rank, const ContactHalo* halo) {
-  check_decomposable(model);
+  check_decomposable(model, partition);
   if (rank < 0 || rank >= partition.ranks || partition.rank.size() != model.parts.size())
     throw std::invalid_argument("make_subdomain: rank " + std::to_string(rank) + " outside the partition");
   const std::vector<std::int32_t> owner = node_owners(model, partition);
@@ -372,7 +524,14 @@ Subdomain make_subdomain(const Model& model, const ElementPartition& partition, 
     }
     cut.elements.emplace(static_cast<int>(p), EntityRemap::reorder(part.element_count(), global));
   }
+  cut_particles(model, held, sub, cut);
   apply_remap(sub.model, cut);
+  keep_held_interactions(model, held, sub.model.particle_contacts);
+  for (std::size_t pp = 0; pp < sub.particle_owned.size(); ++pp) {
+    ParticlePart& part = sub.model.particle_parts[pp];
+    part.ghost.resize(part.count());
+    for (std::size_t i = 0; i < part.count(); ++i) part.ghost[i] = !sub.particle_owned[pp][i];
+  }
   cut_interfaces(sub, held);
   for (std::size_t p = 0; p < model.parts.size(); ++p) {
     // The cut may hold none of the last colours: the part then counts fewer.
@@ -390,73 +549,8 @@ Subdomain make_subdomain(const Model& model, const ElementPartition& partition, 
   }
   sub.model.ghost_node.resize(sub.node_owned.size());
   for (std::size_t n = 0; n < sub.node_owned.size(); ++n) sub.model.ghost_node[n] = !sub.node_owned[n];
-  sub.ghosts = plan_ghost_exchange(model, partition, owner, rank, sub.global_node, sub.node_owned, halo, &on_surface);
+  sub.ghosts = plan_ghost_exchange(model, partition, owner, rank, sub, halo, &on_surface);
   return sub;
-}
-
-namespace {
-
-/// Copies entity local_index[i]'s values of `from` to entity whole_index[i] of `to`, for the
-/// entities with owned[i], `to` first sized for `whole_count` entities if it is not.
-template <class T>
-void copy_owned(const FieldInfo& info, const std::vector<T>& from, std::vector<T>& to, std::size_t local_count,
-                std::size_t whole_count, const std::vector<std::int32_t>& whole_index,
-                const std::vector<std::uint8_t>& owned) {
-  if (from.empty() || local_count == 0) return;
-  const std::size_t comps = info.components > 0 ? static_cast<std::size_t>(info.components) : from.size() / local_count;
-  if (to.size() != comps * whole_count) to.assign(comps * whole_count, static_cast<T>(info.initial));
-  for (std::size_t i = 0; i < local_count; ++i) {
-    if (!owned[i]) continue;
-    const std::size_t g = static_cast<std::size_t>(whole_index[i]);
-    std::copy(from.begin() + comps * i, from.begin() + comps * (i + 1), to.begin() + comps * g);
-  }
-}
-
-/// Calls copy_owned for every field of `visit_local` (a holder's field visitor) with the field of
-/// the same name of `visit_whole`.
-template <class VisitLocal, class VisitWhole>
-void copy_owned_fields(VisitLocal&& visit_local, VisitWhole&& visit_whole, Location location, std::size_t local_count,
-                       std::size_t whole_count, const std::vector<std::int32_t>& whole_index,
-                       const std::vector<std::uint8_t>& owned) {
-  visit_local([&](const FieldInfo& info, auto& from) {
-    // Indices into other entities are local; the topology has not changed, so the whole
-    // model's own are right.
-    if (info.location != location || info.follow == Follow::node_index || info.follow == Follow::particle_index)
-      return;
-    visit_whole([&](const FieldInfo& whole_info, auto& to) {
-      if constexpr (std::is_same_v<std::decay_t<decltype(from)>, std::decay_t<decltype(to)>>)
-        if (whole_info.name == info.name) copy_owned(info, from, to, local_count, whole_count, whole_index, owned);
-    });
-  });
-}
-
-}  // namespace
-
-void gather_owned(const Subdomain& sub, Model& local, Model& whole) {
-  copy_owned_fields([&](auto&& f) { local.visit_node_fields(f); }, [&](auto&& f) { whole.visit_node_fields(f); },
-                    Location::node, local.nodes.count(), whole.nodes.count(), sub.global_node, sub.node_owned);
-  for (std::size_t p = 0; p < whole.parts.size(); ++p)
-    copy_owned_fields([&](auto&& f) { local.parts[p].visit_fields(f); },
-                      [&](auto&& f) { whole.parts[p].visit_fields(f); }, Location::element,
-                      local.parts[p].element_count(), whole.parts[p].element_count(), sub.global_element[p],
-                      sub.element_owned[p]);
-  // Interface elements: every field of the owned ones, into their places in the whole model.
-  CohesiveElements& from = local.cohesive;
-  CohesiveElements& to = whole.cohesive;
-  const std::size_t nl = from.element_count(), nw = to.element_count();
-  for (std::size_t e = 0; e < nl; ++e) {
-    if (!sub.cohesive_owned[e]) continue;
-    const auto g = static_cast<std::size_t>(sub.global_cohesive[e]);
-    from.visit_fields([&](const std::string& name, const FieldInfo&, auto& v) {
-      to.visit_fields([&](const std::string& whole_name, const FieldInfo&, auto& w) {
-        if constexpr (std::is_same_v<std::decay_t<decltype(v)>, std::decay_t<decltype(w)>>)
-          if (whole_name == name) std::copy_n(v.begin() + v.size() / nl * e, v.size() / nl, w.begin() + w.size() / nw * g);
-      });
-    });
-  }
-  // Contact's model-wide state is the same on every rank.
-  whole.contact.wall_offset = local.contact.wall_offset;
-  whole.contact.penalty_time_step = local.contact.penalty_time_step;
 }
 
 void follow_removed_elements(Subdomain& sub, Model& local, const Remap& remap) {
@@ -488,48 +582,138 @@ void follow_removed_elements(Subdomain& sub, Model& local, const Remap& remap) {
 
 namespace {
 
-/// Calls f(info, values, holder) for every field of the nodes (holder −1), then of each part's
-/// elements (holder: the part), in one fixed order: the same on every rank. Left out: the ids and
-/// the indices of other entities, which a run without topology changes does not change. Integer
-/// fields (contact's `touching`, ...) travel as doubles, exact below 2^53.
+/// The entities a gathered field belongs to: the nodes, a part's elements, a particle part's
+/// particles or its pairs.
+struct Holder {
+  enum Kind { nodes, elements, particles, pairs } kind;
+  std::size_t index = 0;  ///< the part or particle part
+};
+
+std::size_t entity_count(const Model& model, Holder h) {
+  switch (h.kind) {
+    case Holder::nodes: return model.nodes.count();
+    case Holder::elements: return model.parts[h.index].element_count();
+    case Holder::particles: return model.particle_parts[h.index].count();
+    case Holder::pairs: {
+      const ParticlePart& part = model.particle_parts[h.index];
+      return part.pair_count();
+    }
+  }
+  return 0;
+}
+
+/// Calls f(info, values, holder) for every field of the nodes, then of each part's elements,
+/// then of each particle part's particles and pairs, in one fixed order: the same on every rank.
+/// Left out: the ids and the indices of other entities, which a run without topology changes
+/// does not change, and model-wide arrays. Integer fields (contact's `touching`, a pair's state,
+/// ...) travel as doubles, exact below 2^53.
 template <class F>
 void visit_gathered_fields(Model& model, F&& f) {
-  auto changing = [&](Location location, int holder) {
+  auto changing = [&](Location location, Holder holder) {
     return [&f, location, holder](const FieldInfo& info, auto& values) {
       const bool index = info.follow == Follow::node_index || info.follow == Follow::particle_index ||
                          info.follow == Follow::stable_id;
       if (info.location == location && !index) f(info, values, holder);
     };
   };
-  model.visit_node_fields(changing(Location::node, -1));
+  model.visit_node_fields(changing(Location::node, {Holder::nodes}));
   for (std::size_t p = 0; p < model.parts.size(); ++p)
-    model.parts[p].visit_fields(changing(Location::element, static_cast<int>(p)));
+    model.parts[p].visit_fields(changing(Location::element, {Holder::elements, p}));
+  for (std::size_t p = 0; p < model.particle_parts.size(); ++p) {
+    model.particle_parts[p].visit_all_fields(changing(Location::particle, {Holder::particles, p}));
+    model.particle_parts[p].visit_all_fields(changing(Location::pair, {Holder::pairs, p}));
+  }
+}
+
+/// Indices of entities per holder: of the nodes, per part of its elements, per particle part of
+/// its particles and of its pairs.
+struct EntityLists {
+  std::vector<std::size_t> nodes;
+  std::vector<std::vector<std::size_t>> elements, particles, pairs;
+  std::vector<std::size_t>& of(Holder h) {
+    switch (h.kind) {
+      case Holder::nodes: return nodes;
+      case Holder::elements: return elements[h.index];
+      case Holder::particles: return particles[h.index];
+      case Holder::pairs: break;
+    }
+    return pairs[h.index];
+  }
+  /// Every list in the fixed order of the packed array.
+  template <class F>
+  void each(F&& f) {
+    f(nodes, Holder{Holder::nodes});
+    for (std::size_t p = 0; p < elements.size(); ++p) f(elements[p], Holder{Holder::elements, p});
+    for (std::size_t p = 0; p < particles.size(); ++p) {
+      f(particles[p], Holder{Holder::particles, p});
+      f(pairs[p], Holder{Holder::pairs, p});
+    }
+  }
+};
+
+/// The local indices of what `sub` owns, and their indices in the whole model.
+void owned_entities(const Subdomain& sub, EntityLists& local, EntityLists& whole) {
+  auto add = [](const std::vector<std::uint8_t>& owned, const std::vector<std::int32_t>& global,
+                std::vector<std::size_t>& mine, std::vector<std::size_t>& theirs) {
+    for (std::size_t i = 0; i < owned.size(); ++i)
+      if (owned[i]) mine.push_back(i), theirs.push_back(static_cast<std::size_t>(global[i]));
+  };
+  add(sub.node_owned, sub.global_node, local.nodes, whole.nodes);
+  for (auto* lists : {&local, &whole}) {
+    lists->elements.resize(sub.element_owned.size());
+    lists->particles.resize(sub.particle_owned.size());
+    lists->pairs.resize(sub.pair_owned.size());
+  }
+  for (std::size_t p = 0; p < sub.element_owned.size(); ++p)
+    add(sub.element_owned[p], sub.global_element[p], local.elements[p], whole.elements[p]);
+  for (std::size_t p = 0; p < sub.particle_owned.size(); ++p) {
+    add(sub.particle_owned[p], sub.global_particle[p], local.particles[p], whole.particles[p]);
+    add(sub.pair_owned[p], sub.global_pair[p], local.pairs[p], whole.pairs[p]);
+  }
+}
+
+/// Appends the contacts of particles whose first particle `sub` owns: their count, then per
+/// contact its key (kind, first id, second) and its history (ids exact as doubles below 2^53).
+void pack_owned_interactions(const Subdomain& sub, Model& local, std::vector<double>& packed) {
+  std::unordered_map<std::int64_t, bool> owned;
+  for (std::size_t pp = 0; pp < sub.particle_owned.size(); ++pp)
+    for (std::size_t i = 0; i < sub.particle_owned[pp].size(); ++i)
+      if (sub.particle_owned[pp][i]) owned.emplace(local.particle_parts[pp].id[i], true);
+  InteractionList& list = local.particle_contacts;
+  std::vector<std::size_t> mine;
+  for (std::size_t k = 0; k < list.size(); ++k)
+    if (owned.count(list.key(k).first)) mine.push_back(k);
+  packed.push_back(static_cast<double>(mine.size()));
+  for (auto k : mine) {
+    const InteractionKey& key = list.key(k);
+    packed.push_back(static_cast<double>(key.kind));
+    packed.push_back(static_cast<double>(key.first));
+    packed.push_back(static_cast<double>(key.second));
+    const auto history = list.history(k);
+    packed.insert(packed.end(), history.begin(), history.end());
+  }
 }
 
 }  // namespace
 
+void gather_owned(const Subdomain& sub, Model& local, Model& whole) { unpack_owned(pack_owned(sub, local), whole); }
+
 std::vector<double> pack_owned(const Subdomain& sub, Model& local) {
-  // Indices first (exact as doubles below 2^53): the owned nodes, then each part's owned elements.
+  // Indices first (exact as doubles below 2^53): the owned nodes, each part's owned elements,
+  // each particle part's owned particles and pairs, as indices of the whole model.
+  EntityLists mine, theirs;
+  owned_entities(sub, mine, theirs);
   std::vector<double> packed;
-  std::vector<std::size_t> nodes;
-  std::vector<std::vector<std::size_t>> elements(local.parts.size());
-  for (std::size_t i = 0; i < sub.node_owned.size(); ++i)
-    if (sub.node_owned[i]) nodes.push_back(i);
-  packed.push_back(static_cast<double>(nodes.size()));
-  for (auto i : nodes) packed.push_back(sub.global_node[i]);
-  for (std::size_t p = 0; p < local.parts.size(); ++p) {
-    for (std::size_t e = 0; e < sub.element_owned[p].size(); ++e)
-      if (sub.element_owned[p][e]) elements[p].push_back(e);
-    packed.push_back(static_cast<double>(elements[p].size()));
-    for (auto e : elements[p]) packed.push_back(sub.global_element[p][e]);
-  }
+  theirs.each([&](const std::vector<std::size_t>& list, Holder) {
+    packed.push_back(static_cast<double>(list.size()));
+    for (auto i : list) packed.push_back(static_cast<double>(i));
+  });
   // Then per field its components per entity and the owned entities' values.
-  visit_gathered_fields(local, [&](const FieldInfo&, auto& values, int holder) {
-    const std::size_t count = holder < 0 ? local.nodes.count() : local.parts[holder].element_count();
-    const auto& owned = holder < 0 ? nodes : elements[holder];
+  visit_gathered_fields(local, [&](const FieldInfo&, auto& values, Holder holder) {
+    const std::size_t count = entity_count(local, holder);
     const std::size_t comps = count == 0 ? 0 : values.size() / count;
     packed.push_back(static_cast<double>(comps));
-    for (auto i : owned)
+    for (auto i : mine.of(holder))
       for (std::size_t k = 0; k < comps; ++k) packed.push_back(static_cast<double>(values[comps * i + k]));
   });
   // The model-wide state of contact (the walls' displacements, the penalty's step): the same on
@@ -552,29 +736,30 @@ std::vector<double> pack_owned(const Subdomain& sub, Model& local) {
     for (auto e : interfaces)
       for (std::size_t j = 0; j < width; ++j) packed.push_back(static_cast<double>(v[width * e + j]));
   });
+  pack_owned_interactions(sub, local, packed);
   return packed;
 }
 
 void unpack_owned(const std::vector<double>& packed, Model& whole, std::vector<std::vector<char>>* reported) {
   std::size_t at = 0;
   auto next = [&] { return packed.at(at++); };
-  std::vector<std::size_t> nodes(static_cast<std::size_t>(next()));
-  for (auto& n : nodes) n = static_cast<std::size_t>(next());
-  std::vector<std::vector<std::size_t>> elements(whole.parts.size());
-  for (std::size_t p = 0; p < elements.size(); ++p) {
-    auto& list = elements[p];
+  EntityLists lists;
+  lists.elements.resize(whole.parts.size());
+  lists.particles.resize(whole.particle_parts.size());
+  lists.pairs.resize(whole.particle_parts.size());
+  lists.each([&](std::vector<std::size_t>& list, Holder) {
     list.resize(static_cast<std::size_t>(next()));
-    for (auto& e : list) e = static_cast<std::size_t>(next());
-    if (reported)
-      for (auto e : list) (*reported)[p][e] = 1;
-  }
-  visit_gathered_fields(whole, [&](const FieldInfo& info, auto& values, int holder) {
+    for (auto& i : list) i = static_cast<std::size_t>(next());
+  });
+  if (reported)
+    for (std::size_t p = 0; p < lists.elements.size(); ++p)
+      for (auto e : lists.elements[p]) (*reported)[p][e] = 1;
+  visit_gathered_fields(whole, [&](const FieldInfo& info, auto& values, Holder holder) {
     using T = typename std::decay_t<decltype(values)>::value_type;
-    const std::size_t count = holder < 0 ? whole.nodes.count() : whole.parts[holder].element_count();
-    const auto& owned = holder < 0 ? nodes : elements[holder];
+    const std::size_t count = entity_count(whole, holder);
     const auto comps = static_cast<std::size_t>(next());
     if (comps > 0 && values.size() != comps * count) values.assign(comps * count, static_cast<T>(info.initial));
-    for (auto i : owned)
+    for (auto i : lists.of(holder))
       for (std::size_t k = 0; k < comps; ++k) values[comps * i + k] = static_cast<T>(next());
   });
   whole.contact.visit_model_fields([&](const FieldInfo&, std::vector<double>& values) {
@@ -591,6 +776,15 @@ void unpack_owned(const std::vector<double>& packed, Model& whole, std::vector<s
     for (auto e : interfaces)
       for (std::size_t j = 0; j < width; ++j) v[width * e + j] = static_cast<T>(next());
   });
+  // The contacts of particles the rank owns, merged into the whole model's list.
+  InteractionList& list = whole.particle_contacts;
+  std::vector<InteractionKey> keys(static_cast<std::size_t>(next()));
+  std::vector<double> history;
+  for (auto& key : keys) {
+    key = {static_cast<InteractionKind>(next()), static_cast<std::int64_t>(next()), static_cast<std::int64_t>(next())};
+    for (int j = 0; j < list.history_size(); ++j) history.push_back(next());
+  }
+  if (!keys.empty()) list.absorb(keys, history);
   if (at != packed.size()) throw std::logic_error("unpack_owned: the array holds more than its fields");
 }
 

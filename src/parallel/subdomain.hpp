@@ -24,6 +24,7 @@ struct LocalEntities {
   std::vector<std::vector<Holding>> element;
   std::vector<Holding> node;
   std::vector<Holding> cohesive;  ///< per interface element (Model::cohesive)
+  std::vector<std::vector<Holding>> particle;  ///< per particle part and particle
 };
 
 /// What contact between parts needs a rank to hold beyond its ghost layer (docs/theory/
@@ -39,6 +40,12 @@ struct ContactHalo {
   std::vector<char> eroding;   ///< per part: 1 where its elements may erode (empty: none)
   double reach = 0;            ///< m
   double allowed_motion = 0;   ///< m
+  /// Per particle part: 1 where its particles take part in contact of particles (discrete
+  /// elements, src/contact/particle_contact.hpp); empty: none. A rank holds every such particle
+  /// within `particle_reach` of one it owns: twice the largest radius and the neighbour list's
+  /// skin, every contact an owned particle's list can hold until the list is built again.
+  std::vector<char> particle_parts;
+  double particle_reach = 0;  ///< m
 };
 
 /// The halo for the contact `part_pairs` (parts × parts, as ContactSettings::part_pairs) on
@@ -56,11 +63,16 @@ LocalEntities local_entities(const Model& model, const ElementPartition& partiti
 
 /// The ghost nodes a rank receives and the owned nodes it sends, per neighbouring rank, as local
 /// node indices; both sides list a node pair in the same order (ascending index in the whole
-/// model), so a message is a plain array.
+/// model), so a message is a plain array. Particles and their pairs likewise, per neighbour and
+/// particle part: the state of a ghost particle, and of a pair whose first particle is a ghost,
+/// is its owner's after every step.
 struct GhostExchangePlan {
+  using Lists = std::vector<std::vector<std::int32_t>>;  ///< per particle part: local indices
   std::vector<int> neighbours;                     ///< ascending
   std::vector<std::vector<std::int32_t>> send;     ///< per neighbour: owned nodes it holds as ghosts
   std::vector<std::vector<std::int32_t>> receive;  ///< per neighbour: ghost nodes it owns
+  std::vector<Lists> send_particles, receive_particles;  ///< per neighbour
+  std::vector<Lists> send_pairs, receive_pairs;          ///< per neighbour, by their first particle
 };
 
 struct Subdomain {
@@ -75,6 +87,10 @@ struct Subdomain {
   std::vector<std::vector<std::uint8_t>> element_owned;   ///< per part and local element
   std::vector<std::int32_t> global_cohesive;              ///< per local interface element, its index in the whole model
   std::vector<std::uint8_t> cohesive_owned;               ///< per local interface element: 1 if this rank books it
+  /// Per particle part and local particle: its index in the whole model, and 1 if this rank owns
+  /// it; per particle part and local pair the same (a pair is owned with its first particle).
+  std::vector<std::vector<std::int32_t>> global_particle, global_pair;
+  std::vector<std::vector<std::uint8_t>> particle_owned, pair_owned;
   GhostExchangePlan ghosts;
 
   std::size_t owned_element_count() const;
@@ -82,16 +98,20 @@ struct Subdomain {
 };
 
 /// Cuts the part of `model` that rank `rank` holds out of a copy of it (apply_remap, keeping the
-/// held nodes and elements) and plans its ghost exchange; with contact between parts, its `halo`
-/// too. Particles are not yet decomposed: throws std::invalid_argument for a model that has any.
+/// held nodes, elements and particles) and plans its ghost exchange; with contact between parts,
+/// its `halo` too. A particle part holds its owned particles, with contact of particles those
+/// within the halo's particle reach, their partners in the pairs of its model and the partners'
+/// partners (docs/theory/domain_decomposition.md, sections 16 and 17).
 Subdomain make_subdomain(const Model& model, const ElementPartition& partition, int rank,
                          const ContactHalo* halo = nullptr);
 
-/// Writes what `sub` owns — every declared node and element field of its owned nodes and
-/// elements, as they are in `local` (the subdomain's model as its run has left it) — into `whole`,
-/// the model it was cut from; model-wide arrays are left as `whole` has them. After every rank
-/// has written, `whole` is the state of the whole model, to be output, checkpointed or cut again
-/// (a rebalance, or another number of ranks). The topology must not have changed since the cut.
+/// Writes what `sub` owns — as unpack_owned(pack_owned(sub, local), whole): every declared field
+/// of its owned nodes, elements, particles and pairs as they are in `local` (the subdomain's
+/// model as its run has left it), contact's model-wide state, its interface elements, and its
+/// contacts of particles merged into `whole`'s list — into `whole`, the model it was cut from.
+/// After every rank has written (`whole`'s list of particle contacts cleared first), `whole` is
+/// the state of the whole model, to be output, checkpointed or cut again (a rebalance, or
+/// another number of ranks). The topology must not have changed since the cut.
 void gather_owned(const Subdomain& sub, Model& local, Model& whole);
 
 /// After `local` (the subdomain's model as its run has it) lost elements by `remap` (erosion: its
@@ -100,12 +120,15 @@ void gather_owned(const Subdomain& sub, Model& local, Model& whole);
 /// std::logic_error for any other change, which must be made on the whole model and cut anew.
 void follow_removed_elements(Subdomain& sub, Model& local, const Remap& remap);
 
-/// gather_owned across processes: what `sub` owns of every node and element field of `local`
+/// gather_owned across processes: what `sub` owns of every node, element, particle and pair field of `local`
 /// but ids and indices (which a cut model does not change), and contact's model-wide state, with
 /// the owned entities' indices in the whole model, as one array to send to the rank that writes
 /// the outputs; unpack_owned writes such an array into `whole`.
 /// With `reported` (per part and element of `whole`), unpack_owned marks the elements it wrote:
 /// after every rank's array, an element no rank reported has left the model on its rank (erosion).
+/// The contacts of particles travel too: those whose first particle the rank owns, merged into
+/// `whole`'s list (the histories of contacts already listed replaced): clear that list before
+/// the ranks' arrays are unpacked, so that a contact that opened leaves it.
 std::vector<double> pack_owned(const Subdomain& sub, Model& local);
 void unpack_owned(const std::vector<double>& packed, Model& whole, std::vector<std::vector<char>>* reported = nullptr);
 

@@ -23,6 +23,7 @@
 
 #include "core/deterministic_sum.hpp"
 #include "core/error.hpp"
+#include "core/exact_sum.hpp"
 
 namespace shard {
 
@@ -524,13 +525,12 @@ void finish_pair(const ParticlePart& pt, const MCAState& ps, PairList& P, std::s
 }
 
 /// Pass A over pairs [p0, p1): see the file comment. sums: [0] friction, [1] breaking, [2] work
-/// of the many-body term.
+/// of the many-body term, of the pairs this process books (the first automaton its own).
 template <int D>
 void pair_pass(const ParticlePart& pt, MCAState& ps, const std::vector<double>& x_old, const std::vector<double>& dth,
-               double dt, const MCAScratch& s, std::size_t p0, std::size_t p1, double* sums) {
+               double dt, const MCAScratch& s, std::size_t p0, std::size_t p1, ExactSum* sums) {
   constexpr int R = D == 2 ? 1 : 3;
   PairList& P = ps.pairs;
-  double friction = 0, breaking = 0, many_body = 0;
   for (std::size_t p = p0; p < p1; ++p) {
     const int i = P.i[p], j = P.j[p];
     const PairEnds e{i, j, s.shear[pt.material[i]], s.shear[pt.material[j]], pt.radius[i], pt.radius[j],
@@ -543,14 +543,15 @@ void pair_pass(const ParticlePart& pt, MCAState& ps, const std::vector<double>& 
     const double shear_k = 2 * e.Gi * e.Gj / (e.Gj * e.Ri + e.Gi * e.Rj);  // Δτ per Δl, eq. (13) split as (8)
     double slip[3] = {0, 0, 0}, tc_old[3] = {0, 0, 0};  // tangential displacement, contact shear before
     update_shear<D>(P, p, m, e, s, dth, shear_k, slip, tc_old);
-    many_body += update_central(P, p, m.dr, k_old, e, ps, s);
+    double friction = 0, breaking = 0, many_body = update_central(P, p, m.dr, k_old, e, ps, s);
     if (P.state_of(p) == PairState::breaking) break_gradually<D>(ps, P, p, *law, m.ln, dt, e);
-    if (P.k_link[p] < 1) friction += limit_contact_shear<R>(P, p, law ? law->friction : 0.0, slip, tc_old, shear_k);
+    if (P.k_link[p] < 1) friction = limit_contact_shear<R>(P, p, law ? law->friction : 0.0, slip, tc_old, shear_k);
     finish_pair<D>(pt, ps, P, p, m, e, s, k_old, breaking, many_body);
+    if (!pt.owns(static_cast<std::size_t>(i))) continue;  // its first automaton's owner books it
+    sums[0] += friction;
+    sums[1] += breaking;
+    sums[2] += many_body;
   }
-  sums[0] = friction;
-  sums[1] = breaking;
-  sums[2] = many_body;
 }
 
 /// Averaged stress of eq. (3) (in-plane only in 2D) from the pair forces.
@@ -693,9 +694,10 @@ double correct_plastic_pair(const ParticlePart& pt, MCAState& ps, std::size_t p,
   return before - after;
 }
 
-/// B and C over all automata and pairs; plastic_pairs[b]: the plastic work of pair block b.
+/// B and C over all automata and pairs; plastic_pairs[b]: the plastic work of pair block b (the
+/// pairs this process books).
 template <int D>
-void plastic_return(const ParticlePart& pt, MCAState& ps, MCAScratch& s, std::vector<double>& plastic_pairs) {
+void plastic_return(const ParticlePart& pt, MCAState& ps, MCAScratch& s, std::vector<ExactSum>& plastic_pairs) {
   const std::size_t n = pt.count(), np = ps.pairs.count();
   const std::size_t nba = (n + kBlock - 1) / kBlock, nbp = (np + kBlock - 1) / kBlock;
   s.return_factor.assign(n, 1.0);
@@ -705,8 +707,10 @@ void plastic_return(const ParticlePart& pt, MCAState& ps, MCAScratch& s, std::ve
     for (std::size_t i = b * kBlock; i < std::min(n, (b + 1) * kBlock); ++i) return_automaton<D>(pt, ps, i, s);
 #pragma omp parallel for schedule(static)
   for (std::size_t b = 0; b < nbp; ++b)
-    for (std::size_t p = b * kBlock; p < std::min(np, (b + 1) * kBlock); ++p)
-      plastic_pairs[b] += correct_plastic_pair<D>(pt, ps, p, s);
+    for (std::size_t p = b * kBlock; p < std::min(np, (b + 1) * kBlock); ++p) {
+      const double plastic = correct_plastic_pair<D>(pt, ps, p, s);
+      if (pt.owns(static_cast<std::size_t>(ps.pairs.i[p]))) plastic_pairs[b] += plastic;
+    }
 }
 
 /// D. Gather for automaton i: force and torque of eq. (1), averaged stress (3), mean (4),
@@ -755,18 +759,20 @@ void gather_automaton(ParticlePart& pt, MCAState& ps, std::size_t i, bool first_
   ps.stress_int[i] = stress_intensity(st);
 }
 
-/// The energy the automata store after the step, in two flat passes over automata and pairs (as
-/// mca_elastic_energy, into the scratch that persists from step to step: this pass vectorises,
-/// where the same arithmetic inside pass A would not).
-double stored_energy_after_step(const ParticlePart& pt, const MCAState& ps, MCAScratch& s) {
+/// The energy the automata and pairs this process books store (per automaton, then per pair,
+/// into `e`, sized here), summed exactly: the same bits however the automata are shared out.
+ExactSum stored_energy_sum(const ParticlePart& pt, const MCAState& ps, const double* many_body, const double* bulk,
+                           const double* shear, std::vector<double>& e) {
   const std::size_t n = pt.count(), np = ps.pairs.count();
-  s.energy.resize(n + np);
-  double* e = s.energy.data();
+  e.resize(n + np);
 #pragma omp parallel for schedule(static)
-  for (std::size_t i = 0; i < n; ++i) e[i] = automaton_energy(pt, ps, i, s.many_body.data(), s.bulk.data());
+  for (std::size_t i = 0; i < n; ++i) e[i] = pt.owns(i) ? automaton_energy(pt, ps, i, many_body, bulk) : 0.0;
 #pragma omp parallel for schedule(static)
-  for (std::size_t p = 0; p < np; ++p) e[n + p] = pair_stored_energy(pt, ps, p, s.many_body.data(), s.shear.data());
-  return deterministic_sum(s.energy);
+  for (std::size_t p = 0; p < np; ++p)
+    e[n + p] = pt.owns(static_cast<std::size_t>(ps.pairs.i[p])) ? pair_stored_energy(pt, ps, p, many_body, shear) : 0.0;
+  ExactSum sum;
+  for (const double v : e) sum += v;
+  return sum;
 }
 
 template <int D>
@@ -778,13 +784,13 @@ MCADissipation forces_impl(ParticlePart& pt, MCAState& ps, const std::vector<dou
 
   // A. pairs
   const std::size_t nbp = (np + kBlock - 1) / kBlock;
-  std::vector<double> pair_sums(3 * nbp, 0.0);
+  std::vector<ExactSum> pair_sums(3 * nbp);
 #pragma omp parallel for schedule(static)
   for (std::size_t b = 0; b < nbp; ++b)
     pair_pass<D>(pt, ps, x_old, dth, dt, s, b * kBlock, std::min(np, (b + 1) * kBlock), &pair_sums[3 * b]);
 
   // B, C. plastic return
-  std::vector<double> plastic_pairs(nbp, 0.0);
+  std::vector<ExactSum> plastic_pairs(nbp);
   if (any_plastic) plastic_return<D>(pt, ps, s, plastic_pairs);
 
   // D. gather
@@ -798,10 +804,11 @@ MCADissipation forces_impl(ParticlePart& pt, MCAState& ps, const std::vector<dou
     out.friction += pair_sums[3 * b];
     out.breaking += pair_sums[3 * b + 1];
     out.many_body += pair_sums[3 * b + 2];
+    out.plastic += plastic_pairs[b];
   }
-  out.many_body -= deterministic_sum(s.energy_change);
-  for (std::size_t b = 0; b < nbp; ++b) out.plastic += plastic_pairs[b];
-  out.stored = stored_energy_after_step(pt, ps, s);
+  for (std::size_t i = 0; i < n; ++i)
+    if (pt.owns(i)) out.many_body += -s.energy_change[i];
+  out.stored = stored_energy_sum(pt, ps, s.many_body.data(), s.bulk.data(), s.shear.data(), s.energy);
   return out;
 }
 
@@ -815,21 +822,16 @@ MCADissipation mca_forces(ParticlePart& pt, double dt, bool first_step) {
                      : forces_impl<3>(pt, ps, pt.x_old, pt.dtheta, dt, first_step, ps.scratch);
 }
 
-double mca_elastic_energy(const ParticlePart& pt) {
+ExactSum mca_elastic_energy(const ParticlePart& pt) {
   const MCAState& ps = mca_state(pt);
-  const std::size_t n = pt.count(), np = ps.pairs.count();
   std::vector<double> c(ps.materials.size()), K(ps.materials.size()), G(ps.materials.size());
   for (std::size_t m = 0; m < c.size(); ++m) {
     c[m] = many_body_coefficient(ps.materials[m], ps.dim, ps.plane);
     K[m] = many_body_bulk(ps.materials[m], c[m], ps.dim);
     G[m] = ps.materials[m].shear_modulus();
   }
-  std::vector<double> e(n + np);
-#pragma omp parallel for schedule(static)
-  for (std::size_t i = 0; i < n; ++i) e[i] = automaton_energy(pt, ps, i, c.data(), K.data());
-#pragma omp parallel for schedule(static)
-  for (std::size_t p = 0; p < np; ++p) e[n + p] = pair_stored_energy(pt, ps, p, c.data(), G.data());
-  return deterministic_sum(e);
+  std::vector<double> e;
+  return stored_energy_sum(pt, ps, c.data(), K.data(), G.data(), e);
 }
 
 double mca_stable_time_step(const ParticlePart& pt) {

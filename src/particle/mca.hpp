@@ -7,19 +7,22 @@
 
 #include <vector>
 
+#include "core/exact_sum.hpp"
+
 #include "particle/mca_state.hpp"
 
 namespace shard {
 
-/// Energy dissipated during one force evaluation (J).
+/// Energy dissipated during one force evaluation (J), summed exactly over the automata and pairs
+/// this process books (ParticlePart::ghost): a decomposed run adds its ranks' sums.
 struct MCADissipation {
-  double plastic = 0;   ///< Wilkins return, Σ V σ_pl Δε_p
-  double breaking = 0;  ///< elastic energy released when k_link drops
-  double friction = 0;  ///< Amontons sliding of unlinked pairs
-  double stored = 0;    ///< the elastic energy after the step, = mca_elastic_energy() to the bit
+  ExactSum plastic;   ///< Wilkins return, Σ V σ_pl Δε_p
+  ExactSum breaking;  ///< elastic energy released when k_link drops
+  ExactSum friction;  ///< Amontons sliding of unlinked pairs
+  ExactSum stored;    ///< the elastic energy after the step, = mca_elastic_energy() to the bit
   /// Work of the many-body term of eq. (2) on the pairs over the step, less the change of the
   /// many-body energy `stored` includes: what the term did beyond its store (section 9).
-  double many_body = 0;
+  ExactSum many_body;
 };
 
 /// Pair and automaton forces for the configuration at the end of a step: the automata moved
@@ -30,8 +33,9 @@ struct MCADissipation {
 MCADissipation mca_forces(ParticlePart& part, double dt, bool first_step);
 
 /// Elastic energy stored (J): the pairs' central and shear springs, the many-body energy of each
-/// automaton and the relative-rotation springs of eq. (14) (docs/theory/mca.md, section 9).
-double mca_elastic_energy(const ParticlePart& part);
+/// automaton and the relative-rotation springs of eq. (14) (docs/theory/mca.md, section 9); of
+/// the automata and pairs this process books.
+ExactSum mca_elastic_energy(const ParticlePart& part);
 
 /// Stable time step of velocity Verlet for the current pairs (before a safety factor):
 /// 2/ω_max with ω_max² bounded per automaton by the sum of its pair stiffnesses.

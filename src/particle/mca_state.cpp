@@ -137,10 +137,10 @@ void MCAState::after_change(const ParticlePart&) { build_adjacency(); }
 
 ParticleWork MCAState::forces(ParticlePart& part, double dt, bool first_step) {
   const MCADissipation d = mca_forces(part, dt, first_step);
-  return {d.plastic, d.breaking, d.friction, d.stored, d.many_body};
+  return {d.plastic, d.breaking, d.friction, d.stored, true, d.many_body};
 }
 
-double MCAState::stored_energy(const ParticlePart& part) const { return mca_elastic_energy(part); }
+ExactSum MCAState::stored_energy(const ParticlePart& part) const { return mca_elastic_energy(part); }
 
 double MCAState::stable_time_step(const ParticlePart& part) const { return mca_stable_time_step(part); }
 

@@ -177,7 +177,7 @@ class MCAState final : public ParticleModel {
   void visit_fields(const FieldCallback& f) override;
   void after_change(const ParticlePart& part) override;
   ParticleWork forces(ParticlePart& part, double dt, bool first_step) override;
-  double stored_energy(const ParticlePart& part) const override;
+  ExactSum stored_energy(const ParticlePart& part) const override;
   double stable_time_step(const ParticlePart& part) const override;
   std::size_t pair_count() const override { return pairs.count(); }
 

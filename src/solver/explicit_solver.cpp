@@ -179,15 +179,15 @@ void ExplicitSolver::initialise() {
       throw RunError(out.str());
     }
   }
-  ExactSum node_kinetic = kinetic_energy(moving_points(model_));
-  sum_over_ranks(&node_kinetic, 1);
-  double kinetic = node_kinetic.value();
   for (std::size_t p = 0; p < model_.particle_parts.size(); ++p) {
     const MovingPoints points = moving_points(model_.particle_parts[p]);
     for (const auto& c : particle_dofs_[p])
       dof_of(points, c).velocity = loads_.tables[loads_.prescriptions[c.prescription].table].at(0.0);
   }
-  for (const ParticlePart& pp : model_.particle_parts) kinetic += kinetic_energy(pp);
+  ExactSum exact_kinetic = kinetic_energy(moving_points(model_));
+  for (const ParticlePart& pp : model_.particle_parts) exact_kinetic += kinetic_energy(pp);
+  sum_over_ranks(&exact_kinetic, 1);
+  const double kinetic = exact_kinetic.value();
   EnergyLedger ledger = std::move(state_.energy);  // the registered terms stay
   ledger.clear();
   state_ = SolverState{};
@@ -268,6 +268,7 @@ void ExplicitSolver::sum_advance_over_ranks(AdvanceSums& sums, ContactWork& cont
                             contact.contact_ahead, contact.damping_back,    contact.damping_ahead};
   all.insert(all.end(), node_reaction_sums_.begin(), node_reaction_sums_.end());
   all.insert(all.end(), node_work_sums_.begin(), node_work_sums_.end());
+  all.insert(all.end(), particle_reaction_sums_.begin(), particle_reaction_sums_.end());
   sum_over_ranks(all.data(), all.size());
   sums.kinetic = all[0], sums.damp_back = all[1], sums.damp_ahead = all[2];
   sums.external_back = all[3], sums.external_ahead = all[4];
@@ -279,6 +280,9 @@ void ExplicitSolver::sum_advance_over_ranks(AdvanceSums& sums, ContactWork& cont
   node_work_.resize(node_work_sums_.size());
   for (std::size_t i = 0; i < r; ++i) node_reactions_[i] = all[first + i].value();
   for (std::size_t i = 0; i < node_work_.size(); ++i) node_work_[i] = all[first + r + i].value();
+  const std::size_t w = first + r + node_work_.size();
+  particle_reactions_.resize(particle_reaction_sums_.size());
+  for (std::size_t i = 0; i < particle_reactions_.size(); ++i) particle_reactions_[i] = all[w + i].value();
 }
 
 void ExplicitSolver::sum_over_ranks(ExactSum* sums, std::size_t count, std::int64_t* counts, std::size_t n_counts) {
@@ -297,33 +301,48 @@ void ExplicitSolver::sum_over_ranks(ExactSum* sums, std::size_t count, std::int6
 
 double ExplicitSolver::add_particle_forces() {
   // Particle parts: forces at t_n, the dissipation of the increment, the stored elastic energy
-  // (a state function) and each part's limit on the next step.
+  // (a state function) and each part's limit on the next step. The sums are exact, over the
+  // particles and pairs this process books: a decomposed run adds them up over its ranks.
   auto& E = state_.energy;
   double particle_dt = std::numeric_limits<double>::infinity();
-  double particle_elastic = 0;
-  state_.particle_part_stored.assign(model_.particle_parts.size(), 0.0);
-  for (std::size_t ip = 0; ip < model_.particle_parts.size(); ++ip) {
+  const std::size_t parts = model_.particle_parts.size();
+  constexpr std::size_t kTerms = 5;  // plastic, fracture, friction, many-body work, stored
+  std::vector<ExactSum> sums(kTerms * parts);
+  for (std::size_t ip = 0; ip < parts; ++ip) {
     ParticlePart& pp = model_.particle_parts[ip];
-    const ParticleWork d = particle_forces(pp, state_.step, state_.dt_half, settings_.gravity);
-    // The pair forces did the plastic and breaking work beyond what they store: stress work.
-    E[terms_.stress_work] += d.plastic + d.fracture;
-    E[terms_.plastic] += d.plastic;
-    E[terms_.fracture] += d.fracture;
-    E[terms_.particle_friction] += d.friction;
-    if (terms_.particle_many_body >= 0) E[terms_.particle_many_body] += d.many_body_work;
-    if (pp.model) state_.particle_part_stored[ip] = std::isnan(d.stored) ? pp.model->stored_energy(pp) : d.stored;
-    particle_elastic += state_.particle_part_stored[ip];
+    ParticleWork d = particle_forces(pp, state_.step, state_.dt_half, settings_.gravity);
+    if (pp.model && !d.has_stored) d.stored = pp.model->stored_energy(pp);
+    ExactSum* s = &sums[kTerms * ip];
+    s[0] = d.plastic, s[1] = d.fracture, s[2] = d.friction, s[3] = d.many_body_work, s[4] = d.stored;
     if (pp.count() > 0) particle_dt = std::min(particle_dt, particle_time_step_limit(pp));
+  }
+  if (parts > 0) sum_over_ranks(sums.data(), sums.size());
+  state_.particle_part_stored.assign(parts, 0.0);
+  double particle_elastic = 0;
+  for (std::size_t ip = 0; ip < parts; ++ip) {
+    const ExactSum* s = &sums[kTerms * ip];
+    const double plastic = s[0].value(), fracture = s[1].value();
+    // The pair forces did the plastic and breaking work beyond what they store: stress work.
+    E[terms_.stress_work] += plastic + fracture;
+    E[terms_.plastic] += plastic;
+    E[terms_.fracture] += fracture;
+    E[terms_.particle_friction] += s[2].value();
+    if (terms_.particle_many_body >= 0) E[terms_.particle_many_body] += s[3].value();
+    state_.particle_part_stored[ip] = s[4].value();
+    particle_elastic += state_.particle_part_stored[ip];
   }
   E[terms_.particle_elastic] = particle_elastic;
   if (particle_contact_) {
     // Contacts of particles come after the models' forces (which start from zero).
+    // Exact sums over the contacts this process books: a decomposed run adds them up.
     const ParticleContactWork w = particle_contact_->add_forces(model_, state_.time, state_.dt_half);
-    E[terms_.particle_contact_elastic] = w.stored;
-    E[terms_.particle_contact_dissipation] += w.dissipated;
-    const auto& wf = particle_contact_->wall_forces();
-    state_.particle_wall_force_on_bodies.assign(wf.size(), 0.0);
-    for (std::size_t i = 0; i < wf.size(); ++i) state_.particle_wall_force_on_bodies[i] = -wf[i];
+    std::vector<ExactSum> sums{w.stored, w.dissipated};
+    sums.insert(sums.end(), w.wall_force.begin(), w.wall_force.end());
+    sum_over_ranks(sums.data(), sums.size());
+    E[terms_.particle_contact_elastic] = sums[0].value();
+    E[terms_.particle_contact_dissipation] += sums[1].value();
+    state_.particle_wall_force_on_bodies.assign(w.wall_force.size(), 0.0);
+    for (std::size_t i = 0; i < w.wall_force.size(); ++i) state_.particle_wall_force_on_bodies[i] = -sums[2 + i].value();
     particle_dt = std::min(particle_dt, particle_contact_->stable_time_step(model_));
   }
   return particle_dt;
@@ -470,12 +489,10 @@ void ExplicitSolver::apply_prescribed_velocities(const AdvanceCoefficients& c, E
   node_work_sums_.assign(2 * loads_.node_groups.size(), ExactSum());
   apply_prescribed(moving_points(model_), node_dofs_, loads_, c, t_half, external_back, external_ahead,
                    &node_reaction_sums_, &node_work_sums_);
-  std::vector<ExactSum> particle_reactions(6 * loads_.particle_groups.size());
+  particle_reaction_sums_.assign(6 * loads_.particle_groups.size(), ExactSum());
   for (std::size_t p = 0; p < model_.particle_parts.size(); ++p)
     apply_prescribed(moving_points(model_.particle_parts[p]), particle_dofs_[p], loads_, c, t_half, external_back,
-                     external_ahead, &particle_reactions);
-  particle_reactions_.resize(particle_reactions.size());
-  for (std::size_t i = 0; i < particle_reactions.size(); ++i) particle_reactions_[i] = particle_reactions[i].value();
+                     external_ahead, &particle_reaction_sums_);
 }
 
 void ExplicitSolver::book_contact_work(const AdvanceCoefficients& c, ContactWork& work, double& wall_back,

@@ -184,7 +184,7 @@ class ExplicitSolver : private TopologyListener {
   void sum_over_ranks(ExactSum* sums, std::size_t count, std::int64_t* counts = nullptr, std::size_t n_counts = 0);
   void combine_cohesive_over_ranks(CohesiveInterfaces::Work& w);
   std::vector<double> particle_reactions_, node_reactions_, node_work_;
-  std::vector<ExactSum> node_reaction_sums_, node_work_sums_;
+  std::vector<ExactSum> node_reaction_sums_, node_work_sums_, particle_reaction_sums_;
   /// The step's sums and the node groups' reactions and work over the ranks; then the latter
   /// as node_reactions_ and node_work_.
   void sum_advance_over_ranks(AdvanceSums& sums, ContactWork& contact);

@@ -38,6 +38,7 @@ MovingPoints moving_points(ParticlePart& part) {
   p.omega = part.omega.data();
   p.torque = part.torque.data();
   p.inertia = part.inertia.data();
+  if (part.ghost.size() == part.count() && !part.ghost.empty()) p.ghost = part.ghost.data();
   p.dtheta = part.dtheta.data();
   p.x_old = part.x_old.data();
   p.block = 1024;
@@ -217,19 +218,19 @@ ExactSum kinetic_energy(const MovingPoints& nodes) {
   return kinetic;
 }
 
-double kinetic_energy(const ParticlePart& part) {
+ExactSum kinetic_energy(const ParticlePart& part) {
   const std::size_t n = part.count();
   const int D = part.dim, R = part.rot_dim();
-  std::vector<double> e(n);
   auto dot = [](const double* a, int w) {
     double s = 0;
     for (int k = 0; k < w; ++k) s += a[k] * a[k];
     return s;
   };
-#pragma omp parallel for schedule(static)
+  ExactSum kinetic;
   for (std::size_t i = 0; i < n; ++i)
-    e[i] = 0.5 * part.mass[i] * dot(&part.v[D * i], D) + 0.5 * part.inertia[i] * dot(&part.omega[R * i], R);
-  return deterministic_sum(e);
+    if (part.owns(i))
+      kinetic += 0.5 * part.mass[i] * dot(&part.v[D * i], D) + 0.5 * part.inertia[i] * dot(&part.omega[R * i], R);
+  return kinetic;
 }
 
 }  // namespace shard

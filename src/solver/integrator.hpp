@@ -94,7 +94,7 @@ std::int64_t advance_points(const MovingPoints& p, const AdvanceCoefficients& c,
 
 /// Kinetic energy of the nodes (the initial energy of a run), ghosts left out, summed exactly.
 ExactSum kinetic_energy(const MovingPoints& nodes);
-/// Kinetic energy of a particle part, translation and rotation, in blocks of 2048.
-double kinetic_energy(const ParticlePart& part);
+/// Kinetic energy of a particle part, translation and rotation, ghosts left out, summed exactly.
+ExactSum kinetic_energy(const ParticlePart& part);
 
 }  // namespace shard

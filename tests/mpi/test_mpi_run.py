@@ -14,7 +14,11 @@ the plate (contact between parts, the model cut anew as it moves) on 2 and 3 ran
 3 ranks across a restart, and rebalanced every 13 steps; the notched plate whose discrete crack
 cuts it in two on 2 and 4 ranks and on 3 ranks cut at random; the rod perforating the plate with
 erosion on 2 ranks, on 3 cut at random, and from 2 to 3 ranks across a restart; the four-ply
-laminate's cohesive interfaces, without erosion, on 2 ranks and on 3 and 4 cut at random; a
+laminate's cohesive interfaces, without erosion, on 2 ranks and on 3 and 4 cut at random; the
+bonded automata of the MCA tension test, with contact updates, on 2 and 4 ranks, on 3 at random and
+from 2 to 3 ranks across a restart, and the TiC-NiCr beam to 0.05 us on 3 ranks at random; the
+column of grains settling in its box (discrete elements, cut anew whenever their list is built
+again) on 2 ranks, on 3 at random and from 2 to 3 ranks across a restart; a
 run stopped by the energy watchdog on 2 ranks writes the summary.json of one process; scenarios
 with debris particles, a non-local failure map, or erosion by damage with averaged nodal pressure
 are refused before the run (exit status 2, saying what they cannot hold).
@@ -63,14 +67,14 @@ def same_outputs(a, b, what):
     print(f"{what}: {len(names)} files compared")
 
 
-def restart_on_three(name, scenario, reference, extra=()):
-    """Checkpointed on 2 ranks at 1.5 us, continued on 3 to the end: the bytes of one straight run."""
-    r1 = run(name, scenario, 2, [*extra, "--until", "1.5us"])
+def restart_on_three(name, scenario, reference, extra=(), until="1.5us"):
+    """Checkpointed on 2 ranks at `until`, continued on 3 to the end: the bytes of one straight run."""
+    r1 = run(name, scenario, 2, [*extra, "--until", until])
     r2 = run(name, scenario, 3, [*extra, "--restart", f"{name}/checkpoint.bin"])
     if r1.returncode != 0 or r2.returncode != 0:
         failures.append(f"{name}: the restart across rank counts failed: {r1.stderr[-1000:]} {r2.stderr[-1000:]}")
     else:
-        same_outputs(reference, name, f"{name}: 2 ranks to 1.5 us, then 3")
+        same_outputs(reference, name, f"{name}: 2 ranks to {until}, then 3")
 
 
 shutil.rmtree(work, ignore_errors=True)
@@ -114,6 +118,16 @@ def serial_then_ranks(name, scenario, rank_counts, what, extra=()):
             failures.append(f"{what} on {ranks} ranks failed ({r.returncode}): {r.stderr[-2000:]}")
         else:
             same_outputs(f"{name}_serial", f"{name}_np{ranks}", f"{what}, {ranks} ranks")
+
+
+def random_ranks(name, scenario, ranks, seed, reference, what, extra=()):
+    """The scenario on `ranks` ranks, every element and particle on a rank drawn from `seed`: the
+    bytes of `reference`."""
+    r = run(name, scenario, ranks, [*extra, "--partition", f"random:{seed}"])
+    if r.returncode != 0:
+        failures.append(f"{what} on {ranks} random ranks failed ({r.returncode}): {r.stderr[-2000:]}")
+    else:
+        same_outputs(reference, name, f"{what}, {ranks} ranks at random")
 
 
 # A rigid wall with friction: the copper Taylor bar (hex8, Johnson-Cook) on its anvil, 5 us, with
@@ -214,6 +228,46 @@ with open("laminate_serial/history.csv") as f:
     header, last = rows[0].split(","), rows[-1].split(",")
     if float(last[header.index("interface_elements_open")]) < 1:
         failures.append("the laminate: no interface element open by 30 us: the case no longer tests failure")
+
+# Bonded automata across the cut: the MCA sample pulled apart until it breaks (plane strain, 246
+# automata, Drucker-Prager bonds), 120 ns, searching for new contacts every 20 steps (each search
+# that changes the pairs gathers the automata and cuts them anew by their positions); on 2 and 4
+# ranks, on 3 at random, and from 2 to 3 ranks across a restart at 60 ns.
+tension = os.path.join(source, "examples/mca_virtual_tests/tension_2d.yaml")
+updates = ["--set", "analysis.end_time=120ns", "--set", "particles.sample.contact_update_interval=20"]
+serial_then_ranks("tension", tension, (2, 4), "the MCA sample in tension, contact updates", updates)
+random_ranks("tension_random", tension, 3, 11, "tension_serial", "the MCA sample in tension", updates)
+restart_on_three("tension_restart", tension, "tension_serial", updates, until="60ns")
+if os.path.exists("tension_np2/summary.json") and json.load(open("tension_np2/summary.json"))["cuts"] < 1:
+    failures.append("the MCA sample on 2 ranks: no contact update changed the pairs, none was cut anew")
+with open("tension_serial/history.csv") as f:
+    rows = f.read().splitlines()
+    header = rows[0].split(",")
+    column = header.index("linked_bonds_sample")
+    # A crack across the sample's 20 um breaks a row of about 20 bonds (43 of 674 break).
+    if float(rows[1].split(",")[column]) - float(rows[-1].split(",")[column]) < 20:
+        failures.append("the MCA sample in tension: fewer than 20 bonds broke: the case no longer tests breaking")
+# Plastic binder and brittle carbide: the TiC-NiCr beam in three-point bending, to 0.05 us, on 3
+# ranks at random.
+tic_nicr = os.path.join(source, "examples/mca_tic_nicr_bending/tic_nicr_st0900.yaml")
+serial = run("tic_nicr_serial", tic_nicr, extra=["--set", "analysis.end_time=0.05us"])
+r = run("tic_nicr_random", tic_nicr, 3, ["--set", "analysis.end_time=0.05us", "--partition", "random:3"])
+if serial.returncode != 0 or r.returncode != 0:
+    failures.append(f"the TiC-NiCr beam failed ({serial.returncode}, {r.returncode}): {r.stderr[-2000:]}")
+else:
+    same_outputs("tic_nicr_serial", "tic_nicr_random", "the TiC-NiCr beam, 3 ranks at random")
+
+# Discrete elements across the cut: the column of 897 grains settling in its box (plane strain,
+# linear springs, three walls), 20 ms; each time the neighbour list is built again the grains
+# are gathered and cut anew by their positions (43 times): on 2 ranks, on 3 at random, and from
+# 2 to 3 ranks across a restart at 10 ms.
+granular = os.path.join(source, "examples/granular_column/settle.yaml")
+settle = ["--set", "analysis.end_time=20ms"]
+serial_then_ranks("granular", granular, (2,), "the settling grains", settle)
+random_ranks("granular_random", granular, 3, 4, "granular_serial", "the settling grains", settle)
+restart_on_three("granular_restart", granular, "granular_serial", settle, until="10ms")
+if os.path.exists("granular_np2/summary.json") and json.load(open("granular_np2/summary.json"))["cuts"] < 10:
+    failures.append("the settling grains on 2 ranks: fewer than 10 new cuts: the case no longer moves the grains across cuts")
 
 # What a decomposed run cannot hold yet is said before the run, with exit status 2.
 r = run("refused", os.path.join(source, "examples/sphere_on_alumina/sphere_on_alumina_500_debris.yaml"), 2)

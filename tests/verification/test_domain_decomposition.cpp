@@ -19,8 +19,10 @@
 #include <functional>
 #include <memory>
 #include <numbers>
+#include <random>
 
 #include "contact/contact.hpp"
+#include "contact/particle_contact.hpp"
 #include "fracture/cohesive_interface.hpp"
 #include "fracture/interface_split.hpp"
 #include "parallel/communicator.hpp"
@@ -30,6 +32,7 @@
 #include "parallel/subdomain.hpp"
 #include "support/contact_models.hpp"
 #include "support/decomposition_cases.hpp"
+#include "support/mca_samples.hpp"
 
 namespace shard {
 namespace {
@@ -222,10 +225,11 @@ struct RanksRun {
   std::vector<Booked> booked;
 };
 RanksRun run_on_ranks(const Model& start, const ElementPartition& partition, const ElasticRun& whole,
-                      const std::function<std::function<void()>(int, Model&, ExplicitSolver&)>& attach) {
+                      const std::function<std::function<void()>(int, Model&, ExplicitSolver&)>& attach,
+                      const ContactHalo* halo = nullptr) {
   const int ranks = partition.ranks;
   RanksRun out;
-  for (int r = 0; r < ranks; ++r) out.subs.push_back(make_subdomain(start, partition, r));
+  for (int r = 0; r < ranks; ++r) out.subs.push_back(make_subdomain(start, partition, r, halo));
   out.finished.resize(ranks);
   out.booked.resize(ranks);
   ThreadTeam team(ranks);
@@ -465,6 +469,192 @@ TEST(DomainDecomposition, CohesiveInterfacesGiveTheSameBitsOnOneToFourRanks) {
     std::printf("interfaces, %s on %d ranks: %zu of %zu points failed, interface elements held %.2f times\n",
                 scattered ? "scattered" : "RCB      ", ranks, failed, whole.model.cohesive.damage.size(),
                 static_cast<double>(held) / static_cast<double>(start.cohesive.element_count()));
+  }
+}
+
+/// A plane-strain model of one particle part and no elements, run step by step.
+ElasticRun plane_particles(ParticlePart part) {
+  Model model;
+  model.formulation = Formulation::plane_strain;
+  model.nodes.dim = 2;
+  model.particle_parts.push_back(std::move(part));
+  ElasticRun run(std::move(model), kDensity, kYoungs, kPoisson);
+  run.settings.end_time = 1e30;
+  return run;
+}
+
+/// A plane-strain block of bonded automata (hexagonal packing of 1 mm automata, 24 × 10 mm: 294), plastic,
+/// with Drucker–Prager bonds, started in a stretch along x and a bending shear, under gravity and
+/// mass damping: within kSteps bonds break and automata yield.
+ElasticRun bonded_automata() {
+  MCAMaterial m = mca_steel_like();
+  m.yield_stress = 100e6;
+  m.hardening = 5e9;
+  ParticlePart ps = mca_box(Lattice::hexagonal_2d, 1e-3, 24, 10, 0, {m});
+  bond_drucker_prager(ps, 160e6, 2000e6, 3000);
+  ps.time_step_safety = 0.5;
+  ps.x0 = ps.x;
+  ps.prescribed.assign(ps.count() * static_cast<std::size_t>(ps.dim + ps.rot_dim()), -1);
+  for (std::size_t i = 0; i < ps.count(); ++i) {
+    const double x = ps.coord(i, 0) / 24e-3;
+    ps.v[2 * i] = 20 * (x - 0.5);
+    ps.v[2 * i + 1] = 5 * std::sin(std::numbers::pi * x);
+    ps.omega[i] = 200 * x;
+  }
+  ElasticRun run = plane_particles(std::move(ps));
+  run.settings.mass_damping = 200;
+  run.settings.gravity = {0, -9.81e4, 0};
+  return run;
+}
+
+/// The values of every particle and pair field of two particle parts of the same size that differ
+/// in any bit (a field of another size counts as all of it).
+std::size_t particle_differences(ParticlePart& a, ParticlePart& b) {
+  std::size_t differ = 0;
+  a.visit_all_fields([&](const FieldInfo& info, auto& va) {
+    b.visit_all_fields([&](const FieldInfo& other, auto& vb) {
+      if constexpr (std::is_same_v<std::decay_t<decltype(va)>, std::decay_t<decltype(vb)>>) {
+        if (other.name != info.name || other.location != info.location) return;
+        if (va.size() != vb.size()) {
+          differ += std::max(va.size(), vb.size()) + 1;
+          return;
+        }
+        for (std::size_t k = 0; k < va.size(); ++k) differ += std::memcmp(&va[k], &vb[k], sizeof va[k]) != 0;
+      }
+    });
+  });
+  return differ;
+}
+
+// Bonded automata across the cut: each rank holds its automata, their partners and the partners'
+// partners, and takes the state of every ghost automaton and of every pair whose first automaton
+// is a ghost from its owner after each step. Cut by bisection and at random: every field of every
+// automaton and pair gathered, and every rank's ledger, with the bits of the whole run.
+TEST(DomainDecomposition, BondedAutomataGiveTheSameBitsOnOneToFourRanks) {
+  ElasticRun whole = bonded_automata();
+  const Model start = whole.model;
+  const Booked booked = run_steps(whole.model, whole.materials, whole.loads, whole.settings, kSteps);
+  ParticlePart& serial = whole.model.particle_parts[0];
+  const PairList& pairs = mca_state(serial).pairs;
+  std::size_t broken = 0, yielded = 0;
+  for (std::size_t p = 0; p < pairs.count(); ++p) broken += pairs.k_link[p] < 1;
+  for (double ep : mca_state(serial).plastic_strain) yielded += ep > 0;
+  ASSERT_GT(broken, pairs.count() / 20) << "the run must break bonds";
+  ASSERT_GT(yielded, serial.count() / 20) << "the run must yield automata";
+  for (const auto& [ranks, scattered] : std::vector<std::pair<int, bool>>{{1, false}, {2, false}, {3, false}, {4, false}, {2, true}, {3, true}}) {
+    const ElementPartition partition = scattered ? scatter_elements(start, ranks, 5) : partition_elements(start, ranks);
+    RanksRun run = run_on_ranks(start, partition, whole, [](int, Model&, ExplicitSolver&) { return std::function<void()>{}; });
+    Model gathered = start;
+    std::size_t held = 0, owned = 0;
+    for (int r = 0; r < ranks; ++r) {
+      EXPECT_EQ(differences(run.booked[r], booked), 0u) << "ledger of rank " << r << " of " << ranks;
+      gather_owned(run.subs[r], run.finished[r], gathered);
+      held += run.subs[r].global_particle[0].size();
+      for (auto o : run.subs[r].particle_owned[0]) owned += o;
+    }
+    EXPECT_EQ(owned, serial.count()) << "every automaton owned once, " << ranks << " ranks";
+    EXPECT_EQ(particle_differences(gathered.particle_parts[0], serial), 0u) << ranks << " ranks";
+    std::printf("automata, %s on %d ranks: %zu of %zu bonds broken, %zu of %zu automata yielded, held %.2f times\n",
+                scattered ? "scattered" : "RCB      ", ranks, broken, pairs.count(), yielded, serial.count(),
+                static_cast<double>(held) / static_cast<double>(serial.count()));
+  }
+}
+
+/// Discrete elements: 300 discs of 0.9–1 mm radius (drawn from a fixed seed) 1.95 mm apart, many
+/// pressed into their neighbours, in a box of three walls, thrown about at up to 0.5 m/s under
+/// gravity, linear springs with damping and friction between them and against the walls; the
+/// neighbour list's skin (3 mm) holds for the run.
+ElasticRun tumbling_grains() {
+  ParticlePart grains;
+  grains.name = "grains";
+  grains.dim = 2;
+  grains.add_particles(300);
+  std::mt19937_64 draw(2026);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  for (std::size_t i = 0; i < grains.count(); ++i) {
+    const double r = (0.9 + 0.1 * unit(draw)) * 1e-3;
+    grains.x[2 * i] = (1.2 + 1.95 * static_cast<double>(i % 20)) * 1e-3;
+    grains.x[2 * i + 1] = (1.2 + 1.95 * static_cast<double>(i / 20)) * 1e-3;
+    grains.radius[i] = r;
+    grains.mass[i] = 2500 * std::numbers::pi * r * r * 1e-3;
+    grains.inertia[i] = 0.5 * grains.mass[i] * r * r;
+    grains.v[2 * i] = unit(draw) - 0.5;
+    grains.v[2 * i + 1] = unit(draw) - 0.5;
+  }
+  grains.x0 = grains.x;
+  grains.x_old = grains.x;
+  ElasticRun run = plane_particles(std::move(grains));
+  run.settings.gravity = {0, -981, 0};
+  return run;
+}
+
+ParticleContactSettings grain_contact() {
+  ParticleContactSettings s;
+  s.law = find_pair_law("linear_spring");
+  s.params = pair_law_parameters(*s.law, {{"modulus", 1e8}, {"restitution", 0.3}, {"friction", 0.5}});
+  s.skin = 3e-3;
+  for (const auto& [point, normal] : std::vector<std::pair<std::array<double, 3>, std::array<double, 3>>>{
+           {{0, 0.5e-3, 0}, {0, 1, 0}}, {{0.5e-3, 0, 0}, {1, 0, 0}}, {{40e-3, 0, 0}, {-1, 0, 0}}}) {
+    RigidWall wall;
+    wall.point = point;
+    wall.normal = normal;
+    s.walls.push_back(wall);
+  }
+  return s;
+}
+
+// Discrete elements across the cut: each rank holds every disc within twice the largest radius
+// and the skin of one it owns (ContactHalo::particle_reach), every contact of its own discs'
+// list; the contacts are booked by the owner of their first disc. Cut by bisection and at random:
+// every field of every disc gathered, every contact's history gathered, and every rank's ledger
+// (the contacts' stored and dissipated energy, the walls' work) with the bits of the whole run.
+TEST(DomainDecomposition, DiscreteElementsGiveTheSameBitsOnOneToFourRanks) {
+  ElasticRun whole = tumbling_grains();
+  const Model start = whole.model;
+  ParticleContact serial_contact(grain_contact());
+  const Booked booked = run_steps(whole.model, whole.materials, whole.loads, whole.settings, kSteps,
+                                  [&](ExplicitSolver& solver) { solver.attach_particle_contact(&serial_contact); });
+  ParticlePart& serial = whole.model.particle_parts[0];
+  double moved = 0;
+  for (std::size_t i = 0; i < serial.count(); ++i)
+    moved = std::max(moved, std::hypot(serial.x[2 * i] - serial.x0[2 * i], serial.x[2 * i + 1] - serial.x0[2 * i + 1]));
+  ASSERT_LT(2 * moved, 3e-3) << "a disc moved half the skin: the list was built again, which the test does not cut for";
+  ASSERT_GT(serial_contact.active_contacts(), serial.count() / 10) << "the discs must touch";
+  ContactHalo halo;
+  halo.particle_parts = {1};
+  halo.particle_reach = serial_contact.reach(start);
+  for (const auto& [ranks, scattered] : std::vector<std::pair<int, bool>>{{1, false}, {2, false}, {3, false}, {4, false}, {2, true}, {3, true}}) {
+    const ElementPartition partition = scattered ? scatter_elements(start, ranks, 8) : partition_elements(start, ranks);
+    std::vector<std::unique_ptr<ParticleContact>> contacts(ranks);
+    std::vector<std::size_t> active(ranks);
+    RanksRun run = run_on_ranks(start, partition, whole, [&](int r, Model&, ExplicitSolver& solver) -> std::function<void()> {
+      contacts[r] = std::make_unique<ParticleContact>(grain_contact());
+      solver.attach_particle_contact(contacts[r].get());
+      return [&, r] { active[r] = contacts[r]->active_contacts(); };
+    }, &halo);
+    Model gathered = start;
+    gathered.particle_contacts = InteractionList(whole.model.particle_contacts.history_size());
+    std::size_t held = 0, touching = 0;
+    for (int r = 0; r < ranks; ++r) {
+      EXPECT_EQ(differences(run.booked[r], booked), 0u) << "ledger of rank " << r << " of " << ranks;
+      gather_owned(run.subs[r], run.finished[r], gathered);
+      held += run.subs[r].global_particle[0].size();
+      touching += active[r];
+    }
+    EXPECT_EQ(touching, serial_contact.active_contacts()) << "contacts booked once, " << ranks << " ranks";
+    EXPECT_EQ(particle_differences(gathered.particle_parts[0], serial), 0u) << ranks << " ranks";
+    InteractionList& mine = gathered.particle_contacts;
+    InteractionList& theirs = whole.model.particle_contacts;
+    ASSERT_EQ(mine.size(), theirs.size()) << ranks << " ranks";
+    std::size_t differ = 0;
+    for (std::size_t k = 0; k < mine.size(); ++k) {
+      differ += !(mine.key(k) == theirs.key(k));
+      for (std::size_t j = 0; j < mine.history(k).size(); ++j) differ += !same_bits(mine.history(k)[j], theirs.history(k)[j]);
+    }
+    EXPECT_EQ(differ, 0u) << "contact histories, " << ranks << " ranks";
+    std::printf("discs, %s on %d ranks: %zu contacts touching, %zu listed, discs held %.2f times\n",
+                scattered ? "scattered" : "RCB      ", ranks, touching, theirs.size(),
+                static_cast<double>(held) / static_cast<double>(serial.count()));
   }
 }
 
