@@ -505,7 +505,7 @@ class RunDriver {
       for (const Part& part : whole_.parts) eroding.push_back(erodes(part) ? 1 : 0);
       halo_ = contact_halo(whole_, sim_.contact->part_pairs, eroding);
     }
-    if (sim_.particle_contact) hold_particles_in_reach();
+    if (sim_.particle_contact || automata_contacts_) hold_particles_in_reach();
     const bool halo = !halo_.parts.empty() || !halo_.particle_parts.empty();
     sub_ = make_subdomain(whole_, partition_, ranks.rank(), halo ? &halo_ : nullptr);
     sim_.model = sub_->model;  // the solver's model, in place
@@ -594,6 +594,14 @@ class RunDriver {
       return find_mca_state(pp) && every > 0 && s.step > 0 && s.step % every == 0;
     });
     if (!due) return;  // the step and the intervals are alike everywhere
+    // Each rank holds every automaton that could touch one of its own: if no rank's own would
+    // gain or lose a pair, the search changes nothing, and nothing is gathered.
+    std::int64_t changes = 0;
+    for (const ParticlePart& pp : sim_.model.particle_parts)
+      if (searches_contacts(pp) && s.step % pp.contact_update_interval == 0 && contacts_would_change(pp, pp.contact_skin))
+        changes = 1;
+    ranks_->sum(&changes, 1);
+    if (changes == 0) return;
     gather_whole_everywhere();
     // The solver's caches follow the new cut, not the whole model; a search that changed no pair
     // (alike on every rank) leaves the cut as it was.
@@ -613,11 +621,54 @@ class RunDriver {
   /// Contact of particles across ranks: each rank holds every particle in contact within twice
   /// the largest radius and the skin of one it owns, every contact its list can hold until the
   /// list is built again (docs/theory/domain_decomposition.md, "Discrete elements across ranks").
+  /// Automata that search for contacts: every automaton within twice the largest radius and
+  /// twice their allowed motion of one it owns, every one that could come to touch it before
+  /// the model is cut anew (cut_anew_if_automata_moved).
   void hold_particles_in_reach() {
-    const ParticleContact& contact = *sim_.particle_contact;
     halo_.particle_parts.assign(whole_.particle_parts.size(), 0);
-    for (std::size_t p = 0; p < whole_.particle_parts.size(); ++p) halo_.particle_parts[p] = contact.takes_part(p);
-    halo_.particle_reach = contact.reach(whole_);
+    halo_.particle_reach = 0;
+    automata_allowed_motion_ = std::numeric_limits<double>::infinity();
+    for (std::size_t p = 0; p < whole_.particle_parts.size(); ++p) {
+      const ParticlePart& part = whole_.particle_parts[p];
+      if (sim_.particle_contact && sim_.particle_contact->takes_part(p)) {
+        halo_.particle_parts[p] = 1;
+        halo_.particle_reach = std::max(halo_.particle_reach, sim_.particle_contact->reach(whole_));
+      }
+      if (!searches_contacts(part) || part.count() == 0) continue;
+      halo_.particle_parts[p] = 1;
+      const auto [smallest, largest] = std::minmax_element(part.radius.begin(), part.radius.end());
+      automata_allowed_motion_ = std::min(automata_allowed_motion_, 0.5 * *smallest);
+      halo_.particle_reach = std::max(halo_.particle_reach, 2 * *largest + 2 * automata_allowed_motion_);
+    }
+  }
+
+  static bool searches_contacts(const ParticlePart& part) {
+    return find_mca_state(part) && part.contact_update_interval > 0;
+  }
+
+  /// The automata that search for contacts hold every automaton that could touch one of their
+  /// rank's own while none has moved its allowed motion since the cut; once one has, the model is
+  /// cut anew (a cut changes no value).
+  void cut_anew_if_automata_moved() {
+    if (!sub_ || !automata_contacts_ || !std::isfinite(automata_allowed_motion_)) return;
+    double moved2 = 0;
+    for (std::size_t p = 0; p < sim_.model.particle_parts.size(); ++p) {
+      const ParticlePart& now = sim_.model.particle_parts[p];
+      const ParticlePart& at_cut = sub_->model.particle_parts[p];
+      if (!searches_contacts(now)) continue;
+      for (std::size_t i = 0; i < now.count(); ++i) {
+        if (!now.owns(i)) continue;
+        double d2 = 0;
+        for (int k = 0; k < now.dim; ++k) d2 += (now.coord(i, k) - at_cut.coord(i, k)) * (now.coord(i, k) - at_cut.coord(i, k));
+        moved2 = std::max(moved2, d2);
+      }
+    }
+    double most = -std::sqrt(moved2);  // a maximum as the minimum of its negative: exact
+    ranks_->minimum(&most, 1);
+    if (-most < automata_allowed_motion_) return;
+    gather_whole_everywhere();
+    cut_whole();
+    ++cuts_;
   }
 
   /// The list of particle contacts is built again once a particle or a wall has moved half its
@@ -999,6 +1050,7 @@ class RunDriver {
         throw RunError("reached analysis.max_steps = " + std::to_string(sc_.max_steps) + " at t = " +
                        format_time(s.time) + " before end_time = " + format_time(end));
       cut_anew_if_moved();
+      cut_anew_if_automata_moved();
       rebalance_if_uneven();
       if (checkpoint_or_stop()) break;
     }
@@ -1566,6 +1618,8 @@ class RunDriver {
   const ContactSystem* contact_;
   CrackGrowth* cracks_;
   MCAContactUpdate* automata_contacts_;  ///< the automata's contact update (null without)
+  /// How far an automaton that searches for contacts may move before the model is cut anew (m).
+  double automata_allowed_motion_ = std::numeric_limits<double>::infinity();
   RemeshEvent* remesher_ = nullptr;  ///< adaptive remeshing (null without)
   const std::string fingerprint_;
   const std::filesystem::path dir_, history_path_;

@@ -215,9 +215,10 @@ void hold_particles_near(const Model& model, const ContactHalo& halo, std::vecto
     }
 }
 
-/// Per particle part: owned, the particles `partition` gives the rank; ghosts, with contact of
-/// particles every particle in it within the halo's reach, and then the partners of the held
-/// particles in the pairs of the part's model (a first layer) and their partners (a second). An owned
+/// Per particle part: owned, the particles `partition` gives the rank; ghosts, every particle of
+/// the halo's parts within its reach of an owned one (contact of particles, the automata's
+/// search for contacts), and the partners of the owned particles in the pairs of the part's model
+/// (a first layer) and their partners (a second). An owned
 /// particle's force comes from its pairs alone, but the automata's plastic return corrects a pair
 /// with the averaged stress of both its automata, which sums over all the pairs of each: every
 /// pair of the first layer must be held, whose far ends are the second.
@@ -229,21 +230,27 @@ void hold_particles(const Model& model, const ElementPartition& partition, int r
     for (std::size_t i = 0; i < part.count(); ++i)
       if (partition.particle_rank[pp][i] == rank) mine[i] = Holding::owned;
   }
+  // The pair layers grow from the owned particles alone (those near them need no state).
+  std::vector<std::vector<char>> layered;
+  for (const auto& mine : held.particle) {
+    auto& in = layered.emplace_back(mine.size());
+    for (std::size_t i = 0; i < mine.size(); ++i) in[i] = mine[i] == Holding::owned;
+  }
   if (halo && !halo->particle_parts.empty()) hold_particles_near(model, *halo, held.particle);
   for (std::size_t pp = 0; pp < model.particle_parts.size(); ++pp) {
     auto& mine = held.particle[pp];
-    const ParticlePart& part = model.particle_parts[pp];
-    const auto [first, second] = part.pair_ends();
+    const auto [first, second] = model.particle_parts[pp].pair_ends();
     if (!first || !second) continue;
     for (int layer = 1; layer <= 2; ++layer) {
-      std::vector<char> was(part.count());
-      for (std::size_t i = 0; i < part.count(); ++i) was[i] = mine[i] != Holding::none;
+      const std::vector<char> was = layered[pp];
       for (std::size_t p = 0; p < first->size(); ++p) {
         const auto a = static_cast<std::size_t>((*first)[p]), b = static_cast<std::size_t>((*second)[p]);
-        if (was[a] && mine[b] == Holding::none) mine[b] = Holding::ghost;
-        if (was[b] && mine[a] == Holding::none) mine[a] = Holding::ghost;
+        if (was[a]) layered[pp][b] = 1;
+        if (was[b]) layered[pp][a] = 1;
       }
     }
+    for (std::size_t i = 0; i < mine.size(); ++i)
+      if (layered[pp][i] && mine[i] == Holding::none) mine[i] = Holding::ghost;
   }
 }
 

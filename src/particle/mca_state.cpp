@@ -32,6 +32,28 @@ double largest_size(const ParticlePart& p) {
   return dmax;
 }
 
+/// Whether unlinked pair p has separated by more than the skin (it carries no force).
+bool drifted_apart(const ParticlePart& part, const PairList& P, std::size_t p, double skin) {
+  if (P.state_of(p) != PairState::unlinked) return false;
+  const int a = P.i[p], b = P.j[p];
+  const double gap = std::sqrt(distance2(part, a, b)) - 0.5 * (2 * part.radius[a] + 2 * part.radius[b]);
+  return gap > skin;
+}
+
+/// Whether automata i and j overlap.
+bool overlapping(const ParticlePart& part, std::size_t i, std::size_t j) {
+  const double reach = 0.5 * (2 * part.radius[i] + 2 * part.radius[j]);
+  return distance2(part, i, j) < reach * reach;
+}
+
+/// The pairs' ends (i < j), sorted, to look pairs up.
+std::vector<std::pair<int, int>> sorted_pairs(const PairList& P) {
+  std::vector<std::pair<int, int>> existing(P.count());
+  for (std::size_t p = 0; p < P.count(); ++p) existing[p] = {P.i[p], P.j[p]};
+  std::sort(existing.begin(), existing.end());
+  return existing;
+}
+
 /// Appends `found` pairs (i < j, in that order) as born pairs of one remap of the part's pairs,
 /// then gives them their state: r0 and area as given, stress-free, the bond law of their materials.
 void add_pairs(ParticlePart& part, const std::vector<std::pair<int, int>>& found, const std::vector<double>& r0,
@@ -289,6 +311,24 @@ void bond_neighbours(ParticlePart& part, double tolerance) {
   add_pairs(part, found, r0, area, PairState::linked);
 }
 
+bool contacts_would_change(const ParticlePart& part, double skin) {
+  const PairList& P = mca_state(part).pairs;
+  for (std::size_t p = 0; p < P.count(); ++p)
+    if (part.owns(static_cast<std::size_t>(P.i[p])) && drifted_apart(part, P, p, skin)) return true;
+  const std::vector<std::pair<int, int>> existing = sorted_pairs(P);
+  const CellGrid grid(part.x, part.dim, largest_size(part));
+  for (std::size_t i = 0; i < part.count(); ++i) {
+    if (!part.owns(i)) continue;
+    const bool found = grid.any_near(&part.x[part.dim * i], [&](std::int32_t j) {
+      const auto a = static_cast<int>(std::min<std::size_t>(i, j)), b = static_cast<int>(std::max<std::size_t>(i, j));
+      return a != b && overlapping(part, i, static_cast<std::size_t>(j)) &&
+             !std::binary_search(existing.begin(), existing.end(), std::pair<int, int>(a, b));
+    });
+    if (found) return true;
+  }
+  return false;
+}
+
 std::size_t update_contacts(ParticlePart& part, double skin, const std::function<void(const EntityRemap&)>& announce) {
   MCAState& s = mca_state(part);
   PairList& P = s.pairs;
@@ -297,27 +337,19 @@ std::size_t update_contacts(ParticlePart& part, double skin, const std::function
   std::vector<std::uint8_t> keep(P.count(), 1);
   bool any_dropped = false;
   for (std::size_t p = 0; p < P.count(); ++p) {
-    if (P.state_of(p) != PairState::unlinked) continue;
-    const int a = P.i[p], b = P.j[p];
-    const double gap = std::sqrt(distance2(part, a, b)) - 0.5 * (2 * part.radius[a] + 2 * part.radius[b]);
-    if (gap > skin) {
-      keep[p] = 0;
-      any_dropped = true;
-    }
+    if (!drifted_apart(part, P, p, skin)) continue;
+    keep[p] = 0;
+    any_dropped = true;
   }
   EntityRemap change = EntityRemap::keeping(keep);
   if (any_dropped) apply_particle_remap(part, nullptr, &change, nullptr);
-  // Existing pairs, to skip them.
-  std::vector<std::pair<int, int>> existing(P.count());
-  for (std::size_t p = 0; p < P.count(); ++p) existing[p] = {P.i[p], P.j[p]};
-  std::sort(existing.begin(), existing.end());
+  const std::vector<std::pair<int, int>> existing = sorted_pairs(P);  // to skip them
   const CellGrid grid(part.x, part.dim, largest_size(part));
   std::vector<std::pair<int, int>> found;
   for (std::size_t i = 0; i < n; ++i)
     grid.for_near(&part.x[part.dim * i], [&](std::int32_t j) {
       if (j <= static_cast<int>(i)) return;
-      const double reach = 0.5 * (2 * part.radius[i] + 2 * part.radius[j]);
-      if (distance2(part, i, j) < reach * reach &&
+      if (overlapping(part, i, static_cast<std::size_t>(j)) &&
           !std::binary_search(existing.begin(), existing.end(), std::pair<int, int>(static_cast<int>(i), j)))
         found.emplace_back(static_cast<int>(i), j);
     });

@@ -208,6 +208,11 @@ void bond_neighbours(ParticlePart& part, double tolerance);
 /// `apply`, so that every cache follows); broken bonds keep their state. Returns the pairs added.
 std::size_t update_contacts(ParticlePart& part, double skin,
                             const std::function<void(const EntityRemap& pairs)>& apply);
+/// Whether update_contacts would change a pair of an automaton this process owns: an unlinked
+/// pair whose first automaton it owns has drifted apart, or one of its automata overlaps another
+/// it holds with which it has no pair. A decomposed run asks every rank, each holding every
+/// automaton that could come to touch one of its own, before it gathers the model to search.
+bool contacts_would_change(const ParticlePart& part, double skin);
 
 /// σ_pl(ε_p): the current radius of the von Mises circle for accumulated plastic strain ε_p.
 double yield_radius(const MCAMaterial& m, double plastic_strain);

@@ -16,7 +16,8 @@ cuts it in two on 2 and 4 ranks and on 3 ranks cut at random; the rod perforatin
 erosion on 2 ranks, on 3 cut at random, and from 2 to 3 ranks across a restart; the four-ply
 laminate's cohesive interfaces, without erosion, on 2 ranks and on 3 and 4 cut at random; the
 bonded automata of the MCA tension test, with contact updates, on 2 and 4 ranks, on 3 at random and
-from 2 to 3 ranks across a restart, and the TiC-NiCr beam to 0.05 us on 3 ranks at random; the
+from 2 to 3 ranks across a restart, and pulled at 100 m/s on 3 ranks (cut anew as its automata
+move), and the TiC-NiCr beam to 0.05 us on 3 ranks at random; the
 column of grains settling in its box (discrete elements, cut anew whenever their list is built
 again) on 2 ranks, on 3 at random and from 2 to 3 ranks across a restart; a
 run stopped by the energy watchdog on 2 ranks writes the summary.json of one process; scenarios
@@ -247,6 +248,15 @@ with open("tension_serial/history.csv") as f:
     # A crack across the sample's 20 um breaks a row of about 20 bonds (43 of 674 break).
     if float(rows[1].split(",")[column]) - float(rows[-1].split(",")[column]) < 20:
         failures.append("the MCA sample in tension: fewer than 20 bonds broke: the case no longer tests breaking")
+# Automata that move across the cut: the same sample pulled at 100 m/s to 40 ns, searching every
+# 10 steps; each rank holds the automata that could touch its own, and the model is cut anew once
+# one has moved half the smallest radius (and whenever a search changes a pair): on 3 ranks.
+fast = ["--set", "analysis.end_time=40ns", "--set", "particles.sample.contact_update_interval=10", "--set",
+        "particle_boundary_conditions=[{name: left, part: sample, region: {side: x_min}, fix: [x]}, {name: right, "
+        "part: sample, region: {side: x_max}, velocity: {x: [[0, 0], [5 ns, 100 m/s], [120 ns, 100 m/s]]}}]"]
+serial_then_ranks("fast_tension", tension, (3,), "the MCA sample pulled at 100 m/s", fast)
+if os.path.exists("fast_tension_np3/summary.json") and json.load(open("fast_tension_np3/summary.json"))["cuts"] < 5:
+    failures.append("the MCA sample pulled at 100 m/s on 3 ranks: fewer than 5 new cuts: its automata no longer cross")
 # Plastic binder and brittle carbide: the TiC-NiCr beam in three-point bending, to 0.05 us, on 3
 # ranks at random.
 tic_nicr = os.path.join(source, "examples/mca_tic_nicr_bending/tic_nicr_st0900.yaml")
