@@ -299,28 +299,46 @@ void ExplicitSolver::sum_over_ranks(ExactSum* sums, std::size_t count, std::int6
   std::copy(words.begin() + static_cast<std::ptrdiff_t>(W * count), words.end(), counts);
 }
 
+namespace {
+constexpr std::size_t kParticleTerms = 5;  // per part: plastic, fracture, friction, many-body work, stored
+}  // namespace
+
 double ExplicitSolver::add_particle_forces() {
   // Particle parts: forces at t_n, the dissipation of the increment, the stored elastic energy
-  // (a state function) and each part's limit on the next step. The sums are exact, over the
-  // particles and pairs this process books: a decomposed run adds them up over its ranks.
-  auto& E = state_.energy;
+  // (a state function) and each part's limit on the next step; then the contacts of particles,
+  // which come after the models' forces (those start from zero). The sums are exact, over the
+  // particles, pairs and contacts this process books: a decomposed run adds them up over its
+  // ranks, in one message per step.
   double particle_dt = std::numeric_limits<double>::infinity();
   const std::size_t parts = model_.particle_parts.size();
-  constexpr std::size_t kTerms = 5;  // plastic, fracture, friction, many-body work, stored
-  std::vector<ExactSum> sums(kTerms * parts);
+  std::vector<ExactSum> sums(kParticleTerms * parts);
   for (std::size_t ip = 0; ip < parts; ++ip) {
     ParticlePart& pp = model_.particle_parts[ip];
     ParticleWork d = particle_forces(pp, state_.step, state_.dt_half, settings_.gravity);
     if (pp.model && !d.has_stored) d.stored = pp.model->stored_energy(pp);
-    ExactSum* s = &sums[kTerms * ip];
+    ExactSum* s = &sums[kParticleTerms * ip];
     s[0] = d.plastic, s[1] = d.fracture, s[2] = d.friction, s[3] = d.many_body_work, s[4] = d.stored;
     if (pp.count() > 0) particle_dt = std::min(particle_dt, particle_time_step_limit(pp));
   }
-  if (parts > 0) sum_over_ranks(sums.data(), sums.size());
+  if (particle_contact_) {
+    const ParticleContactWork w = particle_contact_->add_forces(model_, state_.time, state_.dt_half);
+    sums.push_back(w.stored);
+    sums.push_back(w.dissipated);
+    sums.insert(sums.end(), w.wall_force.begin(), w.wall_force.end());
+    particle_dt = std::min(particle_dt, particle_contact_->stable_time_step(model_));
+  }
+  if (!sums.empty()) sum_over_ranks(sums.data(), sums.size());
+  book_particle_sums(sums);
+  return particle_dt;
+}
+
+void ExplicitSolver::book_particle_sums(const std::vector<ExactSum>& sums) {
+  auto& E = state_.energy;
+  const std::size_t parts = model_.particle_parts.size();
   state_.particle_part_stored.assign(parts, 0.0);
   double particle_elastic = 0;
   for (std::size_t ip = 0; ip < parts; ++ip) {
-    const ExactSum* s = &sums[kTerms * ip];
+    const ExactSum* s = &sums[kParticleTerms * ip];
     const double plastic = s[0].value(), fracture = s[1].value();
     // The pair forces did the plastic and breaking work beyond what they store: stress work.
     E[terms_.stress_work] += plastic + fracture;
@@ -332,20 +350,12 @@ double ExplicitSolver::add_particle_forces() {
     particle_elastic += state_.particle_part_stored[ip];
   }
   E[terms_.particle_elastic] = particle_elastic;
-  if (particle_contact_) {
-    // Contacts of particles come after the models' forces (which start from zero).
-    // Exact sums over the contacts this process books: a decomposed run adds them up.
-    const ParticleContactWork w = particle_contact_->add_forces(model_, state_.time, state_.dt_half);
-    std::vector<ExactSum> sums{w.stored, w.dissipated};
-    sums.insert(sums.end(), w.wall_force.begin(), w.wall_force.end());
-    sum_over_ranks(sums.data(), sums.size());
-    E[terms_.particle_contact_elastic] = sums[0].value();
-    E[terms_.particle_contact_dissipation] += sums[1].value();
-    state_.particle_wall_force_on_bodies.assign(w.wall_force.size(), 0.0);
-    for (std::size_t i = 0; i < w.wall_force.size(); ++i) state_.particle_wall_force_on_bodies[i] = -sums[2 + i].value();
-    particle_dt = std::min(particle_dt, particle_contact_->stable_time_step(model_));
-  }
-  return particle_dt;
+  if (!particle_contact_) return;
+  const std::size_t c = kParticleTerms * parts, walls = sums.size() - c - 2;
+  E[terms_.particle_contact_elastic] = sums[c].value();
+  E[terms_.particle_contact_dissipation] += sums[c + 1].value();
+  state_.particle_wall_force_on_bodies.assign(walls, 0.0);
+  for (std::size_t i = 0; i < walls; ++i) state_.particle_wall_force_on_bodies[i] = -sums[c + 2 + i].value();
 }
 
 void ExplicitSolver::compute_forces() {

@@ -149,6 +149,8 @@ class ExplicitSolver : private TopologyListener {
   void run_events(StepEvent::Phase phase);
   void add_element_forces(ForceSums& total);
   double add_particle_forces();
+  /// Books the particle sums add_particle_forces gathered (summed over the ranks).
+  void book_particle_sums(const std::vector<ExactSum>& sums);
   double choose_time_step(double element_dt, double particle_dt);
   /// External work of the prescribed velocities of the nodes and particles (back, ahead halves).
   void apply_prescribed_velocities(const AdvanceCoefficients& c, ExactSum& external_back, ExactSum& external_ahead);
