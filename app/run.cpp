@@ -436,14 +436,14 @@ class RunDriver {
       throw InputError(shown_path(sc_.file), 0, "mpirun",
                        "a run on " + std::to_string(ranks.size()) + " ranks cannot yet hold " + why +
                            ": run it as one process (without mpirun), with --threads");
+    const bool debris = makes_debris();
     whole_ = std::move(sim_.model);
     // A checkpoint read fills the contact list's arrays; its keys follow them only when the
     // solver is told of the restart, after the cut, which reads the keys.
     whole_.particle_contacts.restored();
-    // The skin of one process, from the smallest radius of the whole model.
-    if (sim_.particle_contact) sim_.particle_contact->fix_skin(sim_.particle_contact->skin(whole_));
-    if (cracks_) {
-      // Splits and erosion in the order of one process: both on the whole model.
+    if (cracks_ || debris) {
+      // Splits, erosion and conversion in the order of one process: on the whole model, whose
+      // particle ids are then those of one process.
       solver_.leave_eroded_elements();  // compact_eroded_across_ranks does it
       compacted_eroded_ = solver_.state().eroded_elements;
     } else {
@@ -505,6 +505,8 @@ class RunDriver {
       for (const Part& part : whole_.parts) eroding.push_back(erodes(part) ? 1 : 0);
       halo_ = contact_halo(whole_, sim_.contact->part_pairs, eroding);
     }
+    // The skin of one process, from the smallest radius of the whole model (debris changes it).
+    if (sim_.particle_contact) sim_.particle_contact->fix_skin(sim_.particle_contact->own_skin(whole_));
     if (sim_.particle_contact || automata_contacts_) hold_particles_in_reach();
     const bool halo = !halo_.parts.empty() || !halo_.particle_parts.empty();
     sub_ = make_subdomain(whole_, partition_, ranks.rank(), halo ? &halo_ : nullptr);
@@ -525,7 +527,7 @@ class RunDriver {
   void rebalance_if_uneven() {
     if (!sub_ || !(options_.rebalance_above > 0) || options_.partition == RunOptions::Partition::random) return;
     // The weights are the elements'; a cut of particles in contact must fall where their list
-    // is built again (cut_anew_for_particle_list).
+    // is built again (build_particle_list_when_due).
     if (!whole_.particle_parts.empty()) return;
     if (options_.rebalance_interval < 1 || solver_.state().step % options_.rebalance_interval != 0) return;
     const auto now = Clock::now();
@@ -621,18 +623,26 @@ class RunDriver {
   /// Contact of particles across ranks: each rank holds every particle in contact within twice
   /// the largest radius and the skin of one it owns, every contact its list can hold until the
   /// list is built again (docs/theory/domain_decomposition.md, "Discrete elements across ranks").
+  /// Particles against the mesh: the facets and particles of ContactHalo::particle_facet_reach.
   /// Automata that search for contacts: every automaton within twice the largest radius and
   /// twice their allowed motion of one it owns, every one that could come to touch it before
   /// the model is cut anew (cut_anew_if_automata_moved).
   void hold_particles_in_reach() {
+    if (sim_.particle_contact) {
+      // The margin: the largest radius (ten lists' worth of motion for particles of one size),
+      // at least the skin.
+      const double skin = sim_.particle_contact->skin(whole_);
+      particle_margin_ = std::max(skin, 0.5 * (sim_.particle_contact->reach(whole_) - skin));
+    }
     halo_.particle_parts.assign(whole_.particle_parts.size(), 0);
     halo_.particle_reach = 0;
+    halo_.particle_facet_reach = 0;
     automata_allowed_motion_ = std::numeric_limits<double>::infinity();
     for (std::size_t p = 0; p < whole_.particle_parts.size(); ++p) {
       const ParticlePart& part = whole_.particle_parts[p];
       if (sim_.particle_contact && sim_.particle_contact->takes_part(p)) {
         halo_.particle_parts[p] = 1;
-        halo_.particle_reach = std::max(halo_.particle_reach, sim_.particle_contact->reach(whole_));
+        halo_.particle_reach = std::max(halo_.particle_reach, sim_.particle_contact->reach(whole_) + particle_margin_);
       }
       if (!searches_contacts(part) || part.count() == 0) continue;
       halo_.particle_parts[p] = 1;
@@ -640,6 +650,14 @@ class RunDriver {
       automata_allowed_motion_ = std::min(automata_allowed_motion_, 0.5 * *smallest);
       halo_.particle_reach = std::max(halo_.particle_reach, 2 * *largest + 2 * automata_allowed_motion_);
     }
+    // Particles against the boundary facets: the facets and particles each rank's own need.
+    bool particles = false;
+    for (std::size_t p = 0; p < whole_.particle_parts.size(); ++p)
+      particles = particles || (sim_.particle_contact && sim_.particle_contact->takes_part(p) && whole_.particle_parts[p].count() > 0);
+    if (particles && sim_.particle_contact->settings().mesh && !whole_.parts.empty())
+      halo_.particle_facet_reach = particle_facet_reach(whole_, 0.5 * (sim_.particle_contact->reach(whole_) - sim_.particle_contact->skin(whole_)),
+                                                        sim_.particle_contact->skin(whole_)) +
+                                   particle_margin_;
   }
 
   static bool searches_contacts(const ParticlePart& part) {
@@ -671,19 +689,45 @@ class RunDriver {
     ++cuts_;
   }
 
-  /// The list of particle contacts is built again once a particle or a wall has moved half its
-  /// skin, on every rank alike (each looks at the particles it holds; the ranks agree): the model
-  /// is gathered and cut anew first, the particles going to the ranks their positions now give
-  /// them, and each rank's list is built from the particles within reach of its own. Between two
-  /// builds the list, and so the particles each rank needs, do not change.
-  void cut_anew_for_particle_list() {
+  /// The list of particle contacts is built again once a particle, a wall or a facet has moved
+  /// half its skin, on every rank alike (each looks at what it holds; the ranks agree), from what
+  /// each rank holds: every particle and facet within reach of its own, with a margin for the
+  /// motion since the cut (particle_margin_). Once a particle or a node has moved half that
+  /// margin, the model is gathered and cut anew first, the particles going to the ranks their
+  /// positions now give them. Between two builds the list, and so what each rank needs, does not
+  /// change.
+  void build_particle_list_when_due() {
     if (!sub_ || !sim_.particle_contact) return;
-    double due = sim_.particle_contact->list_due(sim_.model) ? -1.0 : 0.0;
-    ranks_->minimum(&due, 1);
-    if (due == 0) return;
+    double due_and_moved[2] = {sim_.particle_contact->list_due(sim_.model) ? -1.0 : 0.0, -largest_move_since_cut()};
+    ranks_->minimum(due_and_moved, 2);  // a maximum as the minimum of its negative: exact
+    if (due_and_moved[0] == 0) return;
+    if (-due_and_moved[1] < 0.5 * particle_margin_) {
+      sim_.particle_contact->expire_list();
+      return;
+    }
     gather_whole_everywhere();
     cut_whole();
     ++cuts_;
+  }
+
+  /// The largest distance an owned particle in contact or an owned node has moved since the cut.
+  double largest_move_since_cut() const {
+    double moved2 = 0;
+    auto grow = [&moved2](const double* now, const double* then, int dim) {
+      double d2 = 0;
+      for (int k = 0; k < dim; ++k) d2 += (now[k] - then[k]) * (now[k] - then[k]);
+      moved2 = std::max(moved2, d2);
+    };
+    for (std::size_t p = 0; p < sim_.model.particle_parts.size(); ++p) {
+      const ParticlePart& now = sim_.model.particle_parts[p];
+      if (!sim_.particle_contact->takes_part(p)) continue;
+      for (std::size_t i = 0; i < now.count(); ++i)
+        if (now.owns(i)) grow(&now.x[now.dim * i], &sub_->model.particle_parts[p].x[now.dim * i], now.dim);
+    }
+    if (halo_.particle_facet_reach > 0)
+      for (std::size_t n = 0; n < sub_->node_owned.size(); ++n)
+        if (sub_->node_owned[n]) grow(&sim_.model.nodes.x[dim_ * n], &sub_->model.nodes.x[dim_ * n], dim_);
+    return std::sqrt(moved2);
   }
 
   /// Contact between parts across ranks: the halo holds every pair a rank's nodes take part in
@@ -712,12 +756,8 @@ class RunDriver {
 
   /// What a decomposed run cannot hold yet, or "".
   std::string not_decomposable() const {
-    if (sim_.particle_contact && !sim_.model.particle_parts.empty()) {
-      // The cuts of particles in contact fall where their list is built again; the mesh's own
-      // cuts (contact between parts, cracks, erosion) would fall elsewhere.
-      if (!sim_.model.parts.empty()) return "contact of particles in a model with elements";
-      if (automata_contacts_) return "the automata's contact update with contact of particles";
-    }
+    if (sim_.particle_contact && !sim_.model.particle_parts.empty() && automata_contacts_)
+      return "the automata's contact update with contact of particles";
     // The search runs between a step's forces and its advance, which a new cut of a mesh would
     // disturb (its loads' lists are local); the automata alone have nothing of the kind.
     if (automata_contacts_ && !sim_.model.parts.empty()) return "the automata's contact update in a model with elements";
@@ -731,7 +771,6 @@ class RunDriver {
       const auto* nonlocal = dynamic_cast<const NonlocalAveraging*>(sim_.materials[part.material].get());
       if (nonlocal && nonlocal->nonlocal_spec().length > 0)
         return "a non-local average (part '" + part.name + "', nonlocal_length)";
-      if (erodes(part) && part.erosion.to_particles) return "erosion into particles (part '" + part.name + "')";
       // The outer ghost rings' state is not their owners' (section 12): it must not decide erosion.
       if (erodes_by_state(part) && part.volumetric == VolumetricTreatment::average_nodal_pressure)
         return "erosion by a history variable with averaged nodal pressure (part '" + part.name + "')";
@@ -771,12 +810,13 @@ class RunDriver {
 
   /// Erosion across ranks: an element erodes on every rank that holds it (its state is its
   /// owner's), and the ledger and the count of eroded elements are sums over the owners. Without
-  /// cracks each subdomain's erosion event takes them out of it (follower_); with cracks, which
-  /// split the whole model first, at the end of a step in which any element eroded the eroded
-  /// elements leave the whole model, by the compaction of one process, and the model is cut anew
-  /// (docs/theory/domain_decomposition.md, "Erosion across ranks").
+  /// cracks or debris each subdomain's erosion event takes them out of it (follower_); with
+  /// cracks (which split the whole model first) or debris (whose particles take the ids of one
+  /// process), at the end of a step in which any element eroded the eroded elements leave the
+  /// whole model, or become particles, by the compaction of one process, and the model is cut
+  /// anew (docs/theory/domain_decomposition.md, sections 14 and 18).
   void compact_eroded_across_ranks() {
-    if (!sub_ || !cracks_) return;
+    if (!sub_ || !(cracks_ || makes_debris())) return;
     SolverState& s = solver_.state();
     if (s.eroded_elements == compacted_eroded_) return;  // the count is the whole model's: alike everywhere
     compacted_eroded_ = s.eroded_elements;
@@ -1001,7 +1041,7 @@ class RunDriver {
     const double end = sc_.end_time;
     while (true) {
       if (!forces_ready_) {
-        cut_anew_for_particle_list();
+        build_particle_list_when_due();
         solver_.compute_forces();
       }
       forces_ready_ = false;
@@ -1677,6 +1717,7 @@ class RunDriver {
       if (driver && driver->sub_) follow_removed_elements(*driver->sub_, driver->sim_.model, remap);
     }
   } follower_;
+  double particle_margin_ = 0;  ///< m: added to the reaches of particles in contact; a cut serves while nothing moved half of it
   std::int64_t compacted_eroded_ = 0;                    ///< the count of eroded elements at the last compaction
   ElementPartition partition_;                ///< the last cut
   std::vector<std::vector<double>> weights_;  ///< per part and element, after a rebalance: its measured cost

@@ -222,7 +222,9 @@ bool ParticleContact::walls_only(std::int32_t part) const {
   return p < settings_.walls_only.size() && settings_.walls_only[p];
 }
 
-double ParticleContact::skin(const Model& model) const {
+double ParticleContact::skin(const Model& model) const { return fixed_skin_ > 0 ? fixed_skin_ : own_skin(model); }
+
+double ParticleContact::own_skin(const Model& model) const {
   if (settings_.skin > 0) return settings_.skin;
   double r_min = std::numeric_limits<double>::infinity();
   for (std::size_t p = 0; p < model.particle_parts.size(); ++p)

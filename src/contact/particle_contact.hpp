@@ -83,17 +83,23 @@ class ParticleContact final : public TopologyListener {
   /// half the skin since the last build (a decomposed run cuts the model anew then, on every
   /// rank alike); false when it builds it again for a topology change, which every rank has too.
   bool list_due(Model& model);
-  /// The neighbour-list skin for `model`: the settings', or a tenth of its smallest radius.
+  /// Builds the list again at the next add_forces, as if it were due (a decomposed run: another
+  /// rank's particles or facets have moved half the skin).
+  void expire_list() { stale_ = true; }
+  /// The neighbour-list skin for `model`: the one fix_skin set, else the settings', else a tenth
+  /// of its smallest radius.
   double skin(const Model& model) const;
+  /// The skin one process would take for `model`, whatever fix_skin set.
+  double own_skin(const Model& model) const;
   /// Twice the largest radius and the skin: no contact a list of `model` holds is longer.
   double reach(const Model& model) const;
   /// Whether the particles of particle part `part` take part.
   bool takes_part(std::size_t part) const {
     return settings_.parts.empty() || (part < settings_.parts.size() && settings_.parts[part]);
   }
-  /// Keeps the skin at `value` from now on, whatever particles a model holds (a subdomain holds
-  /// some of them: its smallest radius is not the whole model's).
-  void fix_skin(double value) { settings_.skin = value; }
+  /// Keeps the skin at `value` (> 0; 0: no longer fixed), whatever particles a model holds (a
+  /// subdomain holds some of them: its smallest radius is not the whole model's).
+  void fix_skin(double value) { fixed_skin_ = value; }
   /// The stable step of the stiffest contact in the neighbour list (every pair that can touch
   /// before the list is built again; computed once per list), times the safety factor. Call
   /// after add_forces.
@@ -177,6 +183,7 @@ class ParticleContact final : public TopologyListener {
   std::vector<double> facet_weights_, facet_q_;
   std::vector<std::uint8_t> facet_suppressed_;
   double skin_ = 0;
+  double fixed_skin_ = 0;  ///< fix_skin's (0: none)
   double released_ = 0;  ///< stored energy of contacts whose partner left the model (J)
   double stable_dt_ = 0;
   bool stale_ = true;

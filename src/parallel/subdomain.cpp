@@ -123,6 +123,17 @@ ContactHalo contact_halo(const Model& model, const std::vector<char>& part_pairs
   return halo;
 }
 
+double particle_facet_reach(const Model& model, double r_max, double skin) {
+  const ContactSurface surface = extract_contact_surface(model);
+  const int dim = model.dim();
+  std::vector<int> corners(static_cast<std::size_t>(dim));
+  for (int a = 0; a < dim; ++a) corners[a] = a;
+  double longest = 0;
+  for (std::size_t f = 0; f < surface.facet_count(); ++f)
+    longest = std::max(longest, longest_edge(model.nodes.x.data(), dim, &surface.facets[dim * f], corners));
+  return r_max + skin + longest;
+}
+
 namespace {
 
 /// Holds, as ghosts, every element not held yet that has a node marked in `around`, with its nodes.
@@ -215,6 +226,69 @@ void hold_particles_near(const Model& model, const ContactHalo& halo, std::vecto
     }
 }
 
+/// Per node, 1 where it is a corner of a boundary facet: what particles touch.
+std::vector<char> boundary_facet_nodes(const Model& model, const ContactSurface& surface) {
+  std::vector<char> on(model.nodes.count(), 0);
+  for (const std::int32_t n : surface.facets) on[n] = 1;
+  return on;
+}
+
+/// Whether x (3 coordinates) lies within `reach` of one of `points` (3 each), found in `grid`.
+bool within_reach(const CellGrid& grid, const std::vector<double>& points, double reach, const double* x) {
+  return grid.any_near(x, [&](std::int32_t q) {
+    double d2 = 0;
+    for (int k = 0; k < 3; ++k) d2 += (x[k] - points[3 * q + k]) * (x[k] - points[3 * q + k]);
+    return d2 <= reach * reach;
+  });
+}
+
+/// Contact of particles against the boundary facets (ContactHalo::particle_facet_reach, d): an
+/// owned particle's contacts need every facet within its reach; an owned boundary node's force
+/// needs every particle that can touch one of its facets (within d of it), and each such
+/// particle every facet it touches (the features it touches are chosen among them), which lie
+/// within 2d of the node. The elements around those facets' nodes are held with their nodes.
+void hold_near_boundary(const Model& model, const ContactHalo& halo, const std::vector<char>& boundary,
+                        const std::vector<std::int32_t>& owner, int rank, LocalEntities& held) {
+  const double d = halo.particle_facet_reach;
+  const int dim = model.dim();
+  auto node_x = [&](std::size_t n) {
+    std::array<double, 3> x{0, 0, 0};
+    for (int k = 0; k < dim; ++k) x[k] = model.nodes.x[dim * n + k];
+    return x;
+  };
+  std::vector<double> own_nodes, own_particles;
+  for (std::size_t n = 0; n < boundary.size(); ++n)
+    if (boundary[n] && owner[n] == rank) {
+      const auto x = node_x(n);
+      own_nodes.insert(own_nodes.end(), x.begin(), x.end());
+    }
+  for (std::size_t pp = 0; pp < model.particle_parts.size(); ++pp)
+    for (std::size_t i = 0; in_particle_contact(halo, pp) && i < held.particle[pp].size(); ++i)
+      if (held.particle[pp][i] == Holding::owned)
+        for (int k = 0; k < 3; ++k) own_particles.push_back(k < model.particle_parts[pp].dim ? model.particle_parts[pp].coord(i, k) : 0.0);
+  std::vector<char> around(model.nodes.count(), 0);
+  if (!own_nodes.empty()) {
+    const CellGrid near_nodes(own_nodes, 3, d), far_from_nodes(own_nodes, 3, 2 * d);
+    for (std::size_t pp = 0; pp < model.particle_parts.size(); ++pp) {
+      const ParticlePart& part = model.particle_parts[pp];
+      for (std::size_t i = 0; in_particle_contact(halo, pp) && i < part.count(); ++i) {
+        std::array<double, 3> x{0, 0, 0};
+        for (int k = 0; k < part.dim; ++k) x[k] = part.coord(i, k);
+        if (held.particle[pp][i] == Holding::none && within_reach(near_nodes, own_nodes, d, x.data()))
+          held.particle[pp][i] = Holding::ghost;
+      }
+    }
+    for (std::size_t n = 0; n < boundary.size(); ++n)
+      if (boundary[n]) around[n] = within_reach(far_from_nodes, own_nodes, 2 * d, node_x(n).data());
+  }
+  if (!own_particles.empty()) {
+    const CellGrid near_particles(own_particles, 3, d);
+    for (std::size_t n = 0; n < boundary.size(); ++n)
+      if (boundary[n] && !around[n]) around[n] = within_reach(near_particles, own_particles, d, node_x(n).data());
+  }
+  hold_elements_around(model, around, owner, rank, held);
+}
+
 /// Per particle part: owned, the particles `partition` gives the rank; ghosts, every particle of
 /// the halo's parts within its reach of an owned one (contact of particles, the automata's
 /// search for contacts), and the partners of the owned particles in the pairs of the part's model
@@ -256,7 +330,8 @@ void hold_particles(const Model& model, const ElementPartition& partition, int r
 
 /// local_entities, with the contact surface nodes of the halo's parts found once per cut.
 LocalEntities held_entities(const Model& model, const ElementPartition& partition, const std::vector<std::int32_t>& owner,
-                            int rank, const ContactHalo* halo, const std::vector<char>* on_surface) {
+                            int rank, const ContactHalo* halo, const std::vector<char>* on_surface,
+                            const std::vector<char>* boundary) {
   LocalEntities held;
   held.node.assign(model.nodes.count(), Holding::none);
   for (std::size_t p = 0; p < model.parts.size(); ++p) {
@@ -295,8 +370,9 @@ LocalEntities held_entities(const Model& model, const ElementPartition& partitio
   }
   if (halo && !halo->parts.empty() && on_surface)
     hold_elements_around(model, nodes_near_owned_surface(model, *on_surface, owner, rank, *halo), owner, rank, held);
-  hold_interfaces(model, owner, rank, held);
   hold_particles(model, partition, rank, halo, held);
+  if (halo && halo->particle_facet_reach > 0 && boundary) hold_near_boundary(model, *halo, *boundary, owner, rank, held);
+  hold_interfaces(model, owner, rank, held);
   return held;
 }
 
@@ -304,9 +380,13 @@ LocalEntities held_entities(const Model& model, const ElementPartition& partitio
 
 LocalEntities local_entities(const Model& model, const ElementPartition& partition,
                              const std::vector<std::int32_t>& owner, int rank, const ContactHalo* halo) {
-  std::vector<char> on_surface;
-  if (halo && !halo->parts.empty()) on_surface = contact_surface_nodes(model, extract_contact_surface(model), *halo);
-  return held_entities(model, partition, owner, rank, halo, &on_surface);
+  std::vector<char> on_surface, boundary;
+  if (halo && (!halo->parts.empty() || halo->particle_facet_reach > 0)) {
+    const ContactSurface surface = extract_contact_surface(model);
+    if (!halo->parts.empty()) on_surface = contact_surface_nodes(model, surface, *halo);
+    if (halo->particle_facet_reach > 0) boundary = boundary_facet_nodes(model, surface);
+  }
+  return held_entities(model, partition, owner, rank, halo, &on_surface, &boundary);
 }
 
 std::size_t Subdomain::owned_element_count() const {
@@ -412,11 +492,12 @@ bool all_empty(const GhostExchangePlan::Lists& lists) {
 /// the particles and pairs likewise.
 GhostExchangePlan plan_ghost_exchange(const Model& model, const ElementPartition& partition,
                                       const std::vector<std::int32_t>& owner, int rank, const Subdomain& sub,
-                                      const ContactHalo* halo, const std::vector<char>* on_surface) {
+                                      const ContactHalo* halo, const std::vector<char>* on_surface,
+                                      const std::vector<char>* boundary) {
   GhostExchangePlan plan;
   for (int q = 0; q < partition.ranks; ++q) {
     if (q == rank) continue;
-    const LocalEntities theirs = held_entities(model, partition, owner, q, halo, on_surface);
+    const LocalEntities theirs = held_entities(model, partition, owner, q, halo, on_surface, boundary);
     std::vector<std::int32_t> send, receive;
     for (std::size_t i = 0; i < sub.global_node.size(); ++i) {
       const auto g = static_cast<std::size_t>(sub.global_node[i]);
@@ -496,7 +577,9 @@ Subdomain make_subdomain(const Model& model, const ElementPartition& partition, 
   const ContactSurface surface = extract_contact_surface(model);
   std::vector<char> on_surface;
   if (halo && !halo->parts.empty()) on_surface = contact_surface_nodes(model, surface, *halo);
-  const LocalEntities held = held_entities(model, partition, owner, rank, halo, &on_surface);
+  std::vector<char> boundary;
+  if (halo && halo->particle_facet_reach > 0) boundary = boundary_facet_nodes(model, surface);
+  const LocalEntities held = held_entities(model, partition, owner, rank, halo, &on_surface, &boundary);
 
   Subdomain sub;
   sub.rank = rank;
@@ -556,7 +639,7 @@ Subdomain make_subdomain(const Model& model, const ElementPartition& partition, 
   }
   sub.model.ghost_node.resize(sub.node_owned.size());
   for (std::size_t n = 0; n < sub.node_owned.size(); ++n) sub.model.ghost_node[n] = !sub.node_owned[n];
-  sub.ghosts = plan_ghost_exchange(model, partition, owner, rank, sub, halo, &on_surface);
+  sub.ghosts = plan_ghost_exchange(model, partition, owner, rank, sub, halo, &on_surface, &boundary);
   return sub;
 }
 

@@ -46,6 +46,12 @@ struct ContactHalo {
   /// skin, every contact an owned particle's list can hold until the list is built again.
   std::vector<char> particle_parts;
   double particle_reach = 0;  ///< m
+  /// With contact of particles against the finite-element boundary: d = R_max + skin + h, with
+  /// h the longest boundary facet edge; 0: particles touch no facet. A rank holds every element
+  /// around a boundary node within d of a particle it owns (every facet that particle can touch)
+  /// or within 2d of a boundary node it owns, and every particle within d of such a node (every
+  /// particle that can touch that node's facets, with every other facet it touches).
+  double particle_facet_reach = 0;  ///< m
 };
 
 /// The halo for the contact `part_pairs` (parts × parts, as ContactSettings::part_pairs) on
@@ -54,6 +60,10 @@ struct ContactHalo {
 /// allowed motion δ. Empty parts: no contact between parts.
 ContactHalo contact_halo(const Model& model, const std::vector<char>& part_pairs,
                          const std::vector<char>& eroding = {});
+
+/// ContactHalo::particle_facet_reach on `model` for particles of radius up to `r_max` and a
+/// neighbour list of skin `skin`: r_max + skin + the longest edge of its boundary facets.
+double particle_facet_reach(const Model& model, double r_max, double skin);
 
 /// Owned: the rank's elements and the nodes it owns (node_owners). Ghost: the elements of other
 /// ranks that hold one of its nodes, and the nodes of its elements that other ranks own; with a

@@ -658,5 +658,119 @@ TEST(DomainDecomposition, DiscreteElementsGiveTheSameBitsOnOneToFourRanks) {
   }
 }
 
+
+/// Discs against a mesh: the distorted tri3 plate of block_on_plate (24 × 8 cells, 0.3 × 0.1 m,
+/// its bottom held), with two rows of 8 mm discs on its top, the lower pressed 0.5 mm into it, the
+/// upper 0.2 mm into the lower, thrown down at 5 m/s with a drawn sideways velocity: linear
+/// springs with friction between the discs and against the plate's boundary facets (the facets'
+/// nodes take the reactions); the list's skin (8 mm) holds for the run.
+ElasticRun discs_on_plate() {
+  BoxMesh plate;
+  plate.element = "tri3";
+  plate.cells = {24, 8, 1};
+  plate.size = {0.3, 0.1, 1};
+  plate.distortion = 0.2;
+  Model model = make_box_model(Formulation::plane_strain, plate);
+  ParticlePart discs;
+  discs.name = "discs";
+  discs.dim = 2;
+  discs.add_particles(35);
+  std::mt19937_64 draw(77);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  const double r = 8e-3;
+  for (std::size_t i = 0; i < discs.count(); ++i) {
+    const bool upper = i >= 18;
+    const double column = static_cast<double>(upper ? i - 18 : i);
+    discs.x[2 * i] = 0.012 + 0.0162 * column + (upper ? 0.0081 : 0.0);
+    // An upper disc sits on the two below it, 0.2 mm into each.
+    const double above = upper ? std::sqrt((2 * r - 0.2e-3) * (2 * r - 0.2e-3) - 0.0081 * 0.0081) : 0.0;
+    discs.x[2 * i + 1] = 0.1 + r - 0.5e-3 + above;
+    discs.radius[i] = r;
+    discs.mass[i] = 2500 * std::numbers::pi * r * r * model.thickness;
+    discs.inertia[i] = 0.5 * discs.mass[i] * r * r;
+    discs.v[2 * i] = 2 * (unit(draw) - 0.5);
+    discs.v[2 * i + 1] = -5;
+  }
+  discs.x0 = discs.x;
+  discs.x_old = discs.x;
+  model.particle_parts.push_back(std::move(discs));
+  model.assign_ids();
+  ElasticRun run(std::move(model), kDensity, kYoungs, kPoisson);
+  run.prescribe("ymin", 0, 0.0);
+  run.prescribe("ymin", 1, 0.0);
+  return run;
+}
+
+ParticleContactSettings disc_contact() {
+  ParticleContactSettings s;
+  s.law = find_pair_law("linear_spring");
+  s.params = pair_law_parameters(*s.law, {{"modulus", 1e11}, {"restitution", 0.5}, {"friction", 0.3}});
+  s.skin = 8e-3;
+  return s;
+}
+
+// Discs against the mesh across the cut: a rank holds the facets every disc it owns can touch,
+// the discs that can touch a facet of a node it owns, and every facet those discs touch
+// (ContactHalo::particle_facet_reach). Cut by bisection and at random: every node, element and
+// disc field gathered, every contact's history, and every rank's ledger with the bits of the
+// whole run.
+TEST(DomainDecomposition, DiscsOnAMeshGiveTheSameBitsOnOneToFourRanks) {
+  ElasticRun whole = discs_on_plate();
+  const Model start = whole.model;
+  ParticleContact serial_contact(disc_contact());
+  const Booked booked = run_steps(whole.model, whole.materials, whole.loads, whole.settings, kSteps,
+                                  [&](ExplicitSolver& solver) { solver.attach_particle_contact(&serial_contact); });
+  double moved = 0;
+  for (std::size_t i = 0; i < start.nodes.x.size(); ++i) moved = std::max(moved, std::abs(whole.model.nodes.x[i] - start.nodes.x[i]));
+  const ParticlePart& serial = whole.model.particle_parts[0];
+  for (std::size_t i = 0; i < serial.x.size(); ++i) moved = std::max(moved, std::abs(serial.x[i] - start.particle_parts[0].x[i]));
+  ASSERT_LT(std::sqrt(2.0) * moved, 4e-3) << "a disc or a node moved half the skin: the list was built again";
+  std::size_t on_facets = 0;
+  for (std::size_t k = 0; k < whole.model.particle_contacts.size(); ++k)
+    on_facets += whole.model.particle_contacts.key(k).kind == InteractionKind::particle_facet;
+  ASSERT_GT(on_facets, 18u) << "the lower discs must be listed against the plate";
+  ASSERT_GT(serial_contact.active_contacts(), 18u) << "the discs must touch";
+  ContactHalo halo;
+  halo.particle_parts = {1};
+  halo.particle_reach = serial_contact.reach(start);
+  halo.particle_facet_reach = particle_facet_reach(start, 8e-3, disc_contact().skin);
+  ASSERT_NEAR(halo.particle_facet_reach, 8e-3 + 8e-3 + 0.3 / 24, 0.2 * 0.3 / 24) << "r + skin + a distorted cell's edge";
+  for (const auto& [ranks, scattered] : std::vector<std::pair<int, bool>>{{1, false}, {2, false}, {3, false}, {4, false}, {2, true}, {3, true}}) {
+    const ElementPartition partition = scattered ? scatter_elements(start, ranks, 11) : partition_elements(start, ranks);
+    std::vector<std::unique_ptr<ParticleContact>> contacts(ranks);
+    std::vector<std::size_t> active(ranks);
+    RanksRun run = run_on_ranks(start, partition, whole, [&](int r, Model&, ExplicitSolver& solver) -> std::function<void()> {
+      contacts[r] = std::make_unique<ParticleContact>(disc_contact());
+      solver.attach_particle_contact(contacts[r].get());
+      return [&, r] { active[r] = contacts[r]->active_contacts(); };
+    }, &halo);
+    Model gathered = start;
+    gathered.particle_contacts = InteractionList(whole.model.particle_contacts.history_size());
+    std::size_t touching = 0, ghosts = 0, owned = 0;
+    for (int r = 0; r < ranks; ++r) {
+      EXPECT_EQ(differences(run.booked[r], booked), 0u) << "ledger of rank " << r << " of " << ranks;
+      EXPECT_EQ(differences(run.subs[r], run.finished[r], whole.model), 0u) << "rank " << r << " of " << ranks;
+      gather_owned(run.subs[r], run.finished[r], gathered);
+      touching += active[r];
+      ghosts += run.subs[r].ghost_element_count();
+      owned += run.subs[r].owned_element_count();
+    }
+    EXPECT_EQ(touching, serial_contact.active_contacts()) << "contacts booked once, " << ranks << " ranks";
+    EXPECT_EQ(whole_differences(gathered, whole.model), 0u) << ranks << " ranks";
+    EXPECT_EQ(particle_differences(gathered.particle_parts[0], whole.model.particle_parts[0]), 0u) << ranks << " ranks";
+    InteractionList& mine = gathered.particle_contacts;
+    InteractionList& theirs = whole.model.particle_contacts;
+    ASSERT_EQ(mine.size(), theirs.size()) << ranks << " ranks";
+    std::size_t differ = 0;
+    for (std::size_t k = 0; k < mine.size(); ++k) {
+      differ += !(mine.key(k) == theirs.key(k));
+      for (std::size_t j = 0; j < mine.history(k).size(); ++j) differ += !same_bits(mine.history(k)[j], theirs.history(k)[j]);
+    }
+    EXPECT_EQ(differ, 0u) << "contact histories, " << ranks << " ranks";
+    std::printf("discs on a plate, %s on %d ranks: %zu contacts touching (%zu listed on facets), ghost/owned elements %.2f\n",
+                scattered ? "scattered" : "RCB      ", ranks, touching, on_facets, static_cast<double>(ghosts) / static_cast<double>(owned));
+  }
+}
+
 }  // namespace
 }  // namespace shard
