@@ -361,7 +361,7 @@ class RunDriver {
     first_step_ = solver_.state().step;
     try {
       // The first forces give the step the whole run is judged by, before any output exists.
-      solver_.compute_forces();
+      compute_forces();
     } catch (const RunError& e) {
       if (writes()) open_outputs();
       fail(e);
@@ -436,14 +436,17 @@ class RunDriver {
       throw InputError(shown_path(sc_.file), 0, "mpirun",
                        "a run on " + std::to_string(ranks.size()) + " ranks cannot yet hold " + why +
                            ": run it as one process (without mpirun), with --threads");
-    const bool debris = makes_debris();
+    // Conversion gives particles the ids of one process; an eroding element takes its interface
+    // elements along in the force call, which the whole model must see too.
+    const bool eroding_interfaces =
+        sim_.cohesive && std::any_of(sim_.model.parts.begin(), sim_.model.parts.end(), [&](const Part& p) { return erodes(p); });
+    compacts_whole_ = cracks_ || makes_debris() || eroding_interfaces;
     whole_ = std::move(sim_.model);
     // A checkpoint read fills the contact list's arrays; its keys follow them only when the
     // solver is told of the restart, after the cut, which reads the keys.
     whole_.particle_contacts.restored();
-    if (cracks_ || debris) {
-      // Splits, erosion and conversion in the order of one process: on the whole model, whose
-      // particle ids are then those of one process.
+    if (compacts_whole_) {
+      // Splits, erosion and conversion in the order of one process: on the whole model.
       solver_.leave_eroded_elements();  // compact_eroded_across_ranks does it
       compacted_eroded_ = solver_.state().eroded_elements;
     } else {
@@ -461,6 +464,7 @@ class RunDriver {
     unpack_ranks(ranks_->all_gather(pack_owned(*sub_, sim_.model)), reported);
     reported_.clear();  // whole_ is the whole model's now: nothing left unreported
     if (any_unreported(reported)) compact_whole([&] { drop_unreported(whole_, reported); });
+    drop_interfaces_of_eroded(whole_);  // as one process's force call did (a cut follows)
   }
 
   /// Writes every rank's array of what it owns (pack_owned) into whole_, marking the elements
@@ -774,7 +778,6 @@ class RunDriver {
       // The outer ghost rings' state is not their owners' (section 12): it must not decide erosion.
       if (erodes_by_state(part) && part.volumetric == VolumetricTreatment::average_nodal_pressure)
         return "erosion by a history variable with averaged nodal pressure (part '" + part.name + "')";
-      if (erodes(part) && sim_.cohesive) return "erosion with cohesive interfaces (part '" + part.name + "')";
     }
     return "";
   }
@@ -816,7 +819,7 @@ class RunDriver {
   /// whole model, or become particles, by the compaction of one process, and the model is cut
   /// anew (docs/theory/domain_decomposition.md, sections 14 and 18).
   void compact_eroded_across_ranks() {
-    if (!sub_ || !(cracks_ || makes_debris())) return;
+    if (!sub_ || !compacts_whole_) return;
     SolverState& s = solver_.state();
     if (s.eroded_elements == compacted_eroded_) return;  // the count is the whole model's: alike everywhere
     compacted_eroded_ = s.eroded_elements;
@@ -848,9 +851,10 @@ class RunDriver {
     // Elements erosion took out of the subdomains since the cut are still in whole_, whose
     // indices the ranks send until the next cut: the outputs read a copy without them.
     std::optional<Model> compacted;
-    if (any_unreported(reported_)) {
+    if (any_unreported(reported_) || any_interface_of_eroded(whole_)) {
       compacted = whole_;
-      drop_unreported(*compacted, reported_);
+      if (any_unreported(reported_)) drop_unreported(*compacted, reported_);
+      drop_interfaces_of_eroded(*compacted);  // as one process's force call did
     }
     Model& shown = compacted ? *compacted : whole_;
     // The solver keeps its reference to sim_.model; the outputs read it, whole, for a moment.
@@ -1042,7 +1046,7 @@ class RunDriver {
     while (true) {
       if (!forces_ready_) {
         build_particle_list_when_due();
-        solver_.compute_forces();
+        compute_forces();
       }
       forces_ready_ = false;
       note_particle_step();
@@ -1094,6 +1098,13 @@ class RunDriver {
       rebalance_if_uneven();
       if (checkpoint_or_stop()) break;
     }
+  }
+
+  /// The solver's forces; in a decomposed run the subdomain's lists of its interface elements
+  /// follow those the force call dropped beside eroded elements.
+  void compute_forces() {
+    solver_.compute_forces();
+    if (sub_ && sim_.cohesive) follow_dropped_interfaces(*sub_, sim_.model, whole_);
   }
 
   /// Elements turn into debris particles in this run.
@@ -1717,6 +1728,7 @@ class RunDriver {
       if (driver && driver->sub_) follow_removed_elements(*driver->sub_, driver->sim_.model, remap);
     }
   } follower_;
+  bool compacts_whole_ = false;  ///< eroded elements leave the whole model (compact_eroded_across_ranks), not the subdomains
   double particle_margin_ = 0;  ///< m: added to the reaches of particles in contact; a cut serves while nothing moved half of it
   std::int64_t compacted_eroded_ = 0;                    ///< the count of eroded elements at the last compaction
   ElementPartition partition_;                ///< the last cut

@@ -411,23 +411,33 @@ void check_decomposable(const Model& model, const ElementPartition& partition) {
   if (!fits) throw std::invalid_argument("make_subdomain: the partition does not give every particle a rank");
 }
 
-/// Keeps of `sub`'s interface elements (a copy of the whole model's) those `held` says, in the
-/// whole model's order, and notes which are the rank's own.
-void cut_interfaces(Subdomain& sub, const LocalEntities& held) {
-  CohesiveElements& c = sub.model.cohesive;
+/// Keeps the interface elements `keep` marks, in their order.
+void keep_interfaces(CohesiveElements& c, const std::vector<std::uint8_t>& keep) {
   const std::size_t ne = c.element_count();
+  if (ne == 0) return;
   std::size_t out = 0;
   for (std::size_t e = 0; e < ne; ++e) {
-    if (held.cohesive[e] == Holding::none) continue;
-    sub.global_cohesive.push_back(static_cast<std::int32_t>(e));
-    sub.cohesive_owned.push_back(held.cohesive[e] == Holding::owned);
+    if (!keep[e]) continue;
     c.visit_fields([&](const std::string&, const FieldInfo&, auto& v) {
       const std::size_t width = v.size() / ne;  // per element: 1, corners or 3 × corners
       std::copy_n(v.begin() + width * e, width, v.begin() + width * out);
     });
     ++out;
   }
-  if (ne > 0) c.visit_fields([&](const std::string&, const FieldInfo&, auto& v) { v.resize(v.size() / ne * out); });
+  c.visit_fields([&](const std::string&, const FieldInfo&, auto& v) { v.resize(v.size() / ne * out); });
+}
+
+/// Keeps of `sub`'s interface elements (a copy of the whole model's) those `held` says, in the
+/// whole model's order, and notes which are the rank's own.
+void cut_interfaces(Subdomain& sub, const LocalEntities& held) {
+  std::vector<std::uint8_t> keep(sub.model.cohesive.element_count());
+  for (std::size_t e = 0; e < keep.size(); ++e) {
+    keep[e] = held.cohesive[e] != Holding::none;
+    if (!keep[e]) continue;
+    sub.global_cohesive.push_back(static_cast<std::int32_t>(e));
+    sub.cohesive_owned.push_back(held.cohesive[e] == Holding::owned);
+  }
+  keep_interfaces(sub.model.cohesive, keep);
 }
 
 /// The faces at the cut, as facet keys (sorted): of each held element, those it shares with an
@@ -668,6 +678,63 @@ void follow_removed_elements(Subdomain& sub, Model& local, const Remap& remap) {
       mine.ghost_begin[c] = g;
     }
   }
+}
+
+void follow_dropped_interfaces(Subdomain& sub, const Model& local, const Model& whole) {
+  const CohesiveElements& mine = local.cohesive;
+  if (mine.element_count() == sub.global_cohesive.size()) return;
+  const CohesiveElements& all = whole.cohesive;
+  const auto k = static_cast<std::size_t>(all.nodes_per_face);
+  // An interface element is the one between its two elements, from its first node of side A.
+  auto same = [&](std::size_t e, std::size_t g) {
+    return mine.owner_a[e] == all.owner_a[g] && mine.owner_b[e] == all.owner_b[g] && mine.node_a[k * e] == all.node_a[k * g];
+  };
+  std::vector<std::int32_t> global;
+  std::vector<std::uint8_t> owned;
+  std::size_t e = 0;
+  for (std::size_t i = 0; i < sub.global_cohesive.size() && e < mine.element_count(); ++i) {
+    if (!same(e, static_cast<std::size_t>(sub.global_cohesive[i]))) continue;  // dropped
+    global.push_back(sub.global_cohesive[i]);
+    owned.push_back(sub.cohesive_owned[i]);
+    ++e;
+  }
+  if (e != mine.element_count())
+    throw std::logic_error("follow_dropped_interfaces: a subdomain's interface elements changed otherwise; change the whole model");
+  sub.global_cohesive = std::move(global);
+  sub.cohesive_owned = std::move(owned);
+}
+
+namespace {
+
+/// Per interface element of `model`: 1 if both elements it bounds are held and not eroded.
+std::vector<std::uint8_t> interfaces_beside_live_elements(const Model& model) {
+  const CohesiveElements& c = model.cohesive;
+  std::vector<std::pair<std::int32_t, std::int32_t>> element_of(static_cast<std::size_t>(model.next_element_id), {-1, -1});
+  for (std::size_t p = 0; p < model.parts.size(); ++p)
+    for (std::size_t e = 0; e < model.parts[p].id.size(); ++e)
+      element_of[static_cast<std::size_t>(model.parts[p].id[e])] = {static_cast<std::int32_t>(p), static_cast<std::int32_t>(e)};
+  auto live = [&](std::int64_t id) {
+    if (id < 0 || id >= model.next_element_id) return false;
+    const auto [p, e] = element_of[static_cast<std::size_t>(id)];
+    if (p < 0) return false;
+    const Part& part = model.parts[p];
+    return part.eroded.empty() || !part.eroded[e];
+  };
+  std::vector<std::uint8_t> keep(c.element_count());
+  for (std::size_t e = 0; e < keep.size(); ++e) keep[e] = live(c.owner_a[e]) && live(c.owner_b[e]);
+  return keep;
+}
+
+}  // namespace
+
+bool any_interface_of_eroded(const Model& model) {
+  if (model.cohesive.element_count() == 0) return false;
+  const auto keep = interfaces_beside_live_elements(model);
+  return std::find(keep.begin(), keep.end(), 0) != keep.end();
+}
+
+void drop_interfaces_of_eroded(Model& model) {
+  if (model.cohesive.element_count() > 0) keep_interfaces(model.cohesive, interfaces_beside_live_elements(model));
 }
 
 namespace {

@@ -130,6 +130,19 @@ void gather_owned(const Subdomain& sub, Model& local, Model& whole);
 /// std::logic_error for any other change, which must be made on the whole model and cut anew.
 void follow_removed_elements(Subdomain& sub, Model& local, const Remap& remap);
 
+/// After `local` (the subdomain's model as its run has it) lost the interface elements whose
+/// neighbour eroded (CohesiveInterfaces drops them in the force call, keeping the order of the
+/// rest), the subdomain's lists of its interface elements follow; `whole` is the model it was
+/// cut from. Throws std::logic_error for any other change.
+void follow_dropped_interfaces(Subdomain& sub, const Model& local, const Model& whole);
+
+/// Whether `model` has interface elements beside an eroded element or one it no longer holds:
+/// those a process's force call drops (src/fracture/cohesive_interface.hpp). A whole model
+/// gathered from subdomains still has them; drop_interfaces_of_eroded takes them out, keeping
+/// the order of the rest, and books nothing (the subdomains did).
+bool any_interface_of_eroded(const Model& model);
+void drop_interfaces_of_eroded(Model& model);
+
 /// gather_owned across processes: what `sub` owns of every node, element, particle and pair field of `local`
 /// but ids and indices (which a cut model does not change), and contact's model-wide state, with
 /// the owned entities' indices in the whole model, as one array to send to the rank that writes

@@ -15,7 +15,8 @@ the plate (contact between parts, the model cut anew as it moves) on 2 and 3 ran
 cuts it in two on 2 and 4 ranks and on 3 ranks cut at random; the rod perforating the plate with
 erosion on 2 ranks, on 3 cut at random, and from 2 to 3 ranks across a restart, and the same with
 its failed elements turned into debris particles in contact with each other and the mesh; the four-ply
-laminate's cohesive interfaces, without erosion, on 2 ranks and on 3 and 4 cut at random; the
+laminate's cohesive interfaces, without erosion, on 2 ranks and on 3 and 4 cut at random, and
+with erosion into particles on 2 ranks and from 2 to 3 ranks across a restart; the
 bonded automata of the MCA tension test, with contact updates, on 2 and 4 ranks, on 3 at random and
 from 2 to 3 ranks across a restart, and pulled at 100 m/s on 3 ranks (cut anew as its automata
 move), and the TiC-NiCr beam to 0.05 us on 3 ranks at random; the
@@ -246,6 +247,17 @@ with open("laminate_serial/history.csv") as f:
     header, last = rows[0].split(","), rows[-1].split(",")
     if float(last[header.index("interface_elements_open")]) < 1:
         failures.append("the laminate: no interface element open by 30 us: the case no longer tests failure")
+# With erosion (criterion I) to 100 us: 8 elements become particles from 48 us, each taking its
+# interface elements along in the force call (the subdomains' lists follow), and 26 interface
+# elements open; on 2 ranks, and from 2 to 3 ranks across a restart at 60 us.
+eroding = ["--set", "analysis.end_time=100us", "--set", "materials.ply.erosion_criterion=I"]
+serial_then_ranks("laminate_eroding", laminate, (2,), "the laminate's interfaces with erosion", eroding)
+restart_on_three("laminate_eroding_restart", laminate, "laminate_eroding_serial", eroding, until="60us")
+with open("laminate_eroding_serial/history.csv") as f:
+    rows = f.read().splitlines()
+    header, last = rows[0].split(","), rows[-1].split(",")
+    if float(last[header.index("particles_plate_particles")]) < 1:
+        failures.append("the laminate with erosion: no element became a particle by 100 us: the case no longer tests it")
 
 # Bonded automata across the cut: the MCA sample pulled apart until it breaks (plane strain, 246
 # automata, Drucker-Prager bonds), 120 ns, searching for new contacts every 20 steps (each search
