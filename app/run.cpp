@@ -374,6 +374,9 @@ class RunDriver {
       if (writes()) std::fprintf(stderr, "warning: %s\n", w.c_str());
       notes_.push_back("warning: " + w);
     }
+    // A restart says again what the run before it noted of its step (the checkpoint keeps it).
+    say_cohesive_step();
+    say_particle_step();
     forces_ready_ = true;
     try {
       loop();
@@ -438,9 +441,10 @@ class RunDriver {
                            ": run it as one process (without mpirun), with --threads");
     // Conversion gives particles the ids of one process; an eroding element takes its interface
     // elements along in the force call, which the whole model must see too.
-    const bool eroding_interfaces =
-        sim_.cohesive && std::any_of(sim_.model.parts.begin(), sim_.model.parts.end(), [&](const Part& p) { return erodes(p); });
-    compacts_whole_ = cracks_ || makes_debris() || eroding_interfaces;
+    // Particles against the mesh meet the faces erosion uncovers: the halo holds what they need
+    // until the end of the step, when the model is cut anew.
+    const bool eroding = std::any_of(sim_.model.parts.begin(), sim_.model.parts.end(), [&](const Part& p) { return erodes(p); });
+    compacts_whole_ = cracks_ || makes_debris() || (eroding && (sim_.cohesive || particles_touch_mesh(sim_.model)));
     whole_ = std::move(sim_.model);
     // A checkpoint read fills the contact list's arrays; its keys follow them only when the
     // solver is told of the restart, after the cut, which reads the keys.
@@ -633,14 +637,16 @@ class RunDriver {
   /// the model is cut anew (cut_anew_if_automata_moved).
   void hold_particles_in_reach() {
     if (sim_.particle_contact) {
-      // The margin: the largest radius (ten lists' worth of motion for particles of one size),
-      // at least the skin.
+      // The margin: the largest radius (about nine lists' worth of motion for particles of one
+      // size and the default skin), at least twice the skin.
       const double skin = sim_.particle_contact->skin(whole_);
-      particle_margin_ = std::max(skin, 0.5 * (sim_.particle_contact->reach(whole_) - skin));
+      particle_margin_ = std::max(2 * skin, 0.5 * (sim_.particle_contact->reach(whole_) - skin));
     }
     halo_.particle_parts.assign(whole_.particle_parts.size(), 0);
     halo_.particle_reach = 0;
     halo_.particle_facet_reach = 0;
+    halo_.eroding.clear();
+    for (const Part& part : whole_.parts) halo_.eroding.push_back(erodes(part) ? 1 : 0);
     automata_allowed_motion_ = std::numeric_limits<double>::infinity();
     for (std::size_t p = 0; p < whole_.particle_parts.size(); ++p) {
       const ParticlePart& part = whole_.particle_parts[p];
@@ -655,13 +661,18 @@ class RunDriver {
       halo_.particle_reach = std::max(halo_.particle_reach, 2 * *largest + 2 * automata_allowed_motion_);
     }
     // Particles against the boundary facets: the facets and particles each rank's own need.
-    bool particles = false;
-    for (std::size_t p = 0; p < whole_.particle_parts.size(); ++p)
-      particles = particles || (sim_.particle_contact && sim_.particle_contact->takes_part(p) && whole_.particle_parts[p].count() > 0);
-    if (particles && sim_.particle_contact->settings().mesh && !whole_.parts.empty())
+    if (particles_touch_mesh(whole_))
       halo_.particle_facet_reach = particle_facet_reach(whole_, 0.5 * (sim_.particle_contact->reach(whole_) - sim_.particle_contact->skin(whole_)),
                                                         sim_.particle_contact->skin(whole_)) +
                                    particle_margin_;
+  }
+
+  /// Whether `model` holds particles in contact that touch its elements' boundary facets.
+  bool particles_touch_mesh(const Model& model) const {
+    if (!sim_.particle_contact || !sim_.particle_contact->settings().mesh || model.parts.empty()) return false;
+    for (std::size_t p = 0; p < model.particle_parts.size(); ++p)
+      if (sim_.particle_contact->takes_part(p) && model.particle_parts[p].count() > 0) return true;
+    return false;
   }
 
   static bool searches_contacts(const ParticlePart& part) {
@@ -702,16 +713,21 @@ class RunDriver {
   /// change.
   void build_particle_list_when_due() {
     if (!sub_ || !sim_.particle_contact) return;
-    double due_and_moved[2] = {sim_.particle_contact->list_due(sim_.model) ? -1.0 : 0.0, -largest_move_since_cut()};
-    ranks_->minimum(due_and_moved, 2);  // a maximum as the minimum of its negative: exact
-    if (due_and_moved[0] == 0) return;
-    if (-due_and_moved[1] < 0.5 * particle_margin_) {
-      sim_.particle_contact->expire_list();
-      return;
+    ParticleContact& contact = *sim_.particle_contact;
+    // Maxima as the minima of their negatives (exact): whether any rank sees a move of half the
+    // skin, whether any holds particles, and the largest move since the cut.
+    double votes[3] = {contact.list_due(sim_.model) ? -1.0 : 0.0, contact.holds_particles() ? -1.0 : 0.0,
+                       -largest_move_since_cut()};
+    ranks_->minimum(votes, 3);
+    if (votes[0] == 0 || votes[1] == 0) return;
+    // Between two looks a particle moves less than half the skin: at every build it is then
+    // within half the margin of where it was at the cut.
+    if (-votes[2] >= 0.5 * (particle_margin_ - contact.skin(sim_.model))) {
+      gather_whole_everywhere();
+      cut_whole();  // the list it takes up is due all the same
+      ++cuts_;
     }
-    gather_whole_everywhere();
-    cut_whole();
-    ++cuts_;
+    contact.expire_list();
   }
 
   /// The largest distance an owned particle in contact or an owned node has moved since the cut.
@@ -1014,10 +1030,18 @@ class RunDriver {
     const double particles = sim_.particle_contact->stable_time_step(sim_.model);
     const double elements = sim_.settings.time_step_safety * solver_.state().stable_dt;
     if (!std::isfinite(particles) || !(elements > 0) || particles > 0.5 * elements) return;
+    cursor_.particle_step_note = {solver_.state().time, particles, elements};
+    say_particle_step();
+  }
+
+  /// The note of note_particle_step, from what the cursor keeps (a restart says it again).
+  void say_particle_step() {
+    const std::vector<double>& n = cursor_.particle_step_note;
+    if (n.size() != 3) return;
     particle_step_noted_ = true;
-    particle_step_note_ = "from t = " + format_time(solver_.state().time) + " particle contacts hold the time step at " +
-                          format_time(particles) + ", " + std::to_string(std::lround(elements / particles)) +
-                          " times below the elements' " + format_time(elements) +
+    particle_step_note_ = "from t = " + format_time(n[0]) + " particle contacts hold the time step at " +
+                          format_time(n[1]) + ", " + std::to_string(std::lround(n[2] / n[1])) +
+                          " times below the elements' " + format_time(n[2]) +
                           ": the particle_contact stiffness sets it (modulus or young); a softer contact keeps "
                           "the step as long as overlaps stay small against the radii";
     if (!options_.quiet) std::cerr << "note: " << particle_step_note_ << "\n";
@@ -1029,11 +1053,19 @@ class RunDriver {
     if (cohesive_step_noted_ || !sim_.cohesive) return;
     const double elements = solver_.element_stable_time_step(), cohesive = solver_.cohesive_stable_time_step();
     if (!(elements > 0) || !(cohesive < 0.99 * elements)) return;
+    cursor_.cohesive_step_note = {elements, cohesive};
+    say_cohesive_step();
+  }
+
+  /// The note of note_cohesive_step, from what the cursor keeps (a restart says it again).
+  void say_cohesive_step() {
+    const std::vector<double>& n = cursor_.cohesive_step_note;
+    if (n.size() != 2) return;
     cohesive_step_noted_ = true;
     std::ostringstream out;
     out.precision(3);
-    out << "the cohesive interfaces' springs shorten the stable time step from " << format_time(elements) << " to "
-        << format_time(cohesive) << " (" << 100 * (1 - cohesive / elements)
+    out << "the cohesive interfaces' springs shorten the stable time step from " << format_time(n[0]) << " to "
+        << format_time(n[1]) << " (" << 100 * (1 - n[1] / n[0])
         << " % shorter): their stiffness sets it; a softer penalty keeps the step, at the price of a more "
            "compliant interface";
     notes_.push_back(out.str());

@@ -118,6 +118,11 @@ void ParticleContact::gather(Model& model) {
 bool ParticleContact::list_is_stale(const Model& model) const {
   if (stale_ || x_at_build_.size() != x_.size()) return true;
   if (part_of_.empty()) return false;  // particles come only with a topology change
+  return moved_half_the_skin(model);
+}
+
+bool ParticleContact::moved_half_the_skin(const Model& model) const {
+  if (stale_ || x_at_build_.size() != x_.size()) return true;
   double moved2 = 0;
   for (std::size_t k = 0; k < x_.size(); k += 3) {
     double d2 = 0;
@@ -242,13 +247,15 @@ double ParticleContact::reach(const Model& model) const {
 }
 
 bool ParticleContact::list_due(Model& model) {
+  if (stale_ && resumable_) resume_list(model);
   if (stale_) return false;
   gather(model);
-  return list_is_stale(model);
+  // A rank that holds no particle still holds facets that may have moved: the rule of one
+  // process, whose model has particles, once the ranks agree (and whether any has particles).
+  return moved_half_the_skin(model);
 }
 
-void ParticleContact::rebuild_list(Model& model) {
-  // The taking particles, flat, in part order.
+double ParticleContact::index_particles(const Model& model, std::vector<std::int64_t>& ids) {
   part_of_.clear();
   index_in_part_.clear();
   std::int64_t id_end = model.next_particle_id;
@@ -273,7 +280,7 @@ void ParticleContact::rebuild_list(Model& model) {
   ring_scale_.resize(n);
   newborn_.resize(n);
   owned_.resize(n);
-  std::vector<std::int64_t> ids(n);
+  ids.resize(n);
   double r_max = 0;
   for (std::size_t i = 0; i < n; ++i) {
     const ParticlePart& part = model.particle_parts[part_of_[i]];
@@ -285,6 +292,13 @@ void ParticleContact::rebuild_list(Model& model) {
     ids[i] = part.id[index_in_part_[i]];
     r_max = std::max(r_max, radius_[i]);
   }
+  return r_max;
+}
+
+void ParticleContact::rebuild_list(Model& model) {
+  std::vector<std::int64_t> ids;
+  const double r_max = index_particles(model, ids);
+  const std::size_t n = part_of_.size();
   gather(model);
   skin_ = skin(model);
 
@@ -333,6 +347,63 @@ void ParticleContact::rebuild_list(Model& model) {
   stable_dt_ = 0;  // the step is bounded over the listed contacts
   x_at_build_ = x_;
   wall_offset_at_build_ = model.contact.wall_offset;
+  stale_ = false;
+  resumable_ = false;
+  record_build(model);
+}
+
+void ParticleContact::record_build(Model& model) const {
+  for (std::size_t i = 0; i < part_of_.size(); ++i) {
+    ParticlePart& part = model.particle_parts[part_of_[i]];
+    const std::size_t j = index_in_part_[i];
+    for (int k = 0; k < part.dim; ++k) part.x_listed[part.dim * j + k] = x_at_build_[3 * i + k];
+  }
+  ContactState& c = model.contact;
+  c.particle_list_built.assign(1, 1.0);
+  c.particle_list_walls = wall_offset_at_build_;
+  // Every node written (0 off the boundary), whatever the surface holds: the field is then the
+  // same whatever it held before, and on every rank of a decomposed run.
+  const int dim = model.dim();
+  const bool facets = settings_.mesh && !model.parts.empty();
+  c.particle_list_x.assign(facets ? model.nodes.count() * dim : 0, 0.0);
+  if (facets && facet_x_at_build_.size() == surface_.nodes.size() * dim)
+    for (std::size_t s = 0; s < surface_.nodes.size(); ++s)
+      for (int a = 0; a < dim; ++a) c.particle_list_x[dim * surface_.nodes[s] + a] = facet_x_at_build_[dim * s + a];
+}
+
+void ParticleContact::resume_list(Model& model) {
+  resumable_ = false;
+  std::vector<std::int64_t> ids;
+  index_particles(model, ids);
+  gather(model);
+  skin_ = skin(model);
+  const ContactState& c = model.contact;
+  const int dim = model.dim();
+  if (settings_.mesh && !model.parts.empty()) {
+    if (surface_stale_) surface_ = extract_contact_surface(model), surface_stale_ = false;
+    facet_x_at_build_.clear();
+    if (c.particle_list_x.size() == model.nodes.count() * dim)
+      for (const std::int32_t node : surface_.nodes)
+        facet_x_at_build_.insert(facet_x_at_build_.end(), &c.particle_list_x[dim * node], &c.particle_list_x[dim * (node + 1)]);
+  }
+  x_at_build_.assign(x_.size(), 0.0);
+  for (std::size_t i = 0; i < part_of_.size(); ++i) {
+    const ParticlePart& part = model.particle_parts[part_of_[i]];
+    for (int k = 0; k < part.dim; ++k) x_at_build_[3 * i + k] = part.x_listed[part.dim * index_in_part_[i] + k];
+  }
+  wall_offset_at_build_ = c.particle_list_walls;
+  std::unordered_map<std::int64_t, std::int32_t> facets;
+  for (std::size_t f = 0; f < surface_.facet_id.size(); ++f) facets.emplace(surface_.facet_id[f], static_cast<std::int32_t>(f));
+  auto held = [&](std::int64_t id) {
+    return id >= 0 && static_cast<std::size_t>(id) < flat_of_id_.size() && flat_of_id_[static_cast<std::size_t>(id)] >= 0;
+  };
+  model.particle_contacts.keep_if([&](const InteractionKey& key) {
+    if (!held(key.first)) return false;
+    if (key.kind == InteractionKind::particle_particle) return held(key.second);
+    return key.kind != InteractionKind::particle_facet || facets.count(key.second) > 0;
+  });
+  resolve_list(model);
+  stable_dt_ = 0;  // bounded over the same list as when it was built
   stale_ = false;
 }
 
@@ -693,6 +764,7 @@ void ParticleContact::scatter(Model& model, std::vector<ExactSum>& wall_force) {
 }
 
 ParticleContactWork ParticleContact::add_forces(Model& model, double time, double dt) {
+  if (stale_ && resumable_) resume_list(model);
   if (!stale_) gather(model);
   if (list_is_stale(model)) rebuild_list(model);
   evaluate_contacts(model, time, dt);
@@ -728,6 +800,10 @@ double ParticleContact::stable_time_step(const Model& model) {
   double omega2 = 0;
   for (std::size_t k = 0; k < first_.size(); ++k) {
     const std::int32_t a = first_[k], b = second_[k];
+    // The contacts this process books: in a subdomain the owner of a particle holds every
+    // element around its facets' corners, so their lumped masses are whole (a ghost node further
+    // out may miss some); the ranks then take the largest.
+    if (!owned_[a]) continue;
     ContactKinematics c;
     double inverse_mass = 1 / mass_[a];
     c.effective_radius = radius_[a];

@@ -79,13 +79,16 @@ class ParticleContact final : public TopologyListener {
   /// Force of the particles on each wall at the last call (dim per wall), of the contacts this
   /// process books (the solver's state has the sum over the ranks).
   const std::vector<double>& wall_forces() const { return wall_force_; }
-  /// Whether the next add_forces builds its list again because a particle or a wall has moved
-  /// half the skin since the last build (a decomposed run cuts the model anew then, on every
-  /// rank alike); false when it builds it again for a topology change, which every rank has too.
+  /// Whether a particle, a wall or a facet has moved half the skin since the last build, as far
+  /// as this model sees, even if it holds no particle: a decomposed run builds the list again on
+  /// every rank when one says so and one holds particles (holds_particles); false when the list
+  /// is to be built again for a topology change, which every rank has too.
   bool list_due(Model& model);
   /// Builds the list again at the next add_forces, as if it were due (a decomposed run: another
   /// rank's particles or facets have moved half the skin).
-  void expire_list() { stale_ = true; }
+  void expire_list() { stale_ = true, resumable_ = false; }
+  /// Whether the model, at the last build or take-up of the list, held particles that take part.
+  bool holds_particles() const { return !part_of_.empty(); }
   /// The neighbour-list skin for `model`: the one fix_skin set, else the settings', else a tenth
   /// of its smallest radius.
   double skin(const Model& model) const;
@@ -109,16 +112,22 @@ class ParticleContact final : public TopologyListener {
   /// books, at the last call.
   std::size_t active_contacts() const { return active_; }
 
-  void topology_changed(const Model&, const Remap&) override {
+  void topology_changed(const Model& model, const Remap&) override {
     stale_ = true;
     surface_stale_ = true;
     stable_dt_ = 0;
+    // A restart or a new cut of a decomposed run (Topology::reset) keeps the list the model
+    // holds; a change of topology (Topology::changed) has marked it to be built again.
+    resumable_ = !model.contact.particle_list_built.empty();
   }
 
  private:
   /// Where the listed particles are in the flat arrays (index over the taking parts).
   void gather(Model& model);
   bool list_is_stale(const Model& model) const;
+  /// Whether a particle, a wall or a facet has moved half the skin since the build (or the list
+  /// is stale), whether or not this model holds particles.
+  bool moved_half_the_skin(const Model& model) const;
   bool walls_only(std::int32_t part) const;
   /// Where each wall passes at t_n (3 per wall, the axis last) and its unit normal.
   std::vector<double> wall_origins(const Model& model) const;
@@ -143,7 +152,16 @@ class ParticleContact final : public TopologyListener {
   /// The closest point of every listed facet contact, and which of them repeat another's
   /// feature (an edge, a vertex, a split diagonal) and are set aside.
   void facet_features(const Model& model);
+  /// The taking particles, flat, in part order, with their radii, masses and ids; returns the
+  /// largest radius.
+  double index_particles(const Model& model, std::vector<std::int64_t>& ids);
   void rebuild_list(Model& model);
+  /// Keeps in `model` where the list was built (ContactState::particle_list_built, ...).
+  void record_build(Model& model) const;
+  /// Takes up the list `model` holds, built where `model` keeps (a restart, a new cut): what a
+  /// rebuild would have left, without building. Contacts this model cannot hold (a facet or a
+  /// particle another rank holds) leave its list; their owners hold them.
+  void resume_list(Model& model);
   void resolve_list(const Model& model);
   void evaluate_contacts(Model& model, double time, double dt);
   /// Overlap and normal of listed interaction k at the gathered positions.
@@ -187,6 +205,7 @@ class ParticleContact final : public TopologyListener {
   double released_ = 0;  ///< stored energy of contacts whose partner left the model (J)
   double stable_dt_ = 0;
   bool stale_ = true;
+  bool resumable_ = false;  ///< the next use takes up the model's list instead of building one
   std::size_t active_ = 0;
 };
 

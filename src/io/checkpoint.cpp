@@ -19,8 +19,10 @@ namespace {
 // history's force columns, the node groups' reactions and work, and the pending half step of the
 // contact dashpots' work; 8 the stored energy of each element part;
 // 9 the elements' reference shape (adaptive remeshing); 10 the time a crack reached each node;
-// 11 the count of local remeshes and the back-off of failed ones.
-constexpr char kMagic[8] = {'S', 'H', 'A', 'R', 'D', 'C', 'K', ';'};
+// 11 the count of local remeshes and the back-off of failed ones; 12 where the list of particle
+// contacts was built (a restart takes the list up instead of building it), and the run's notes
+// on its step.
+constexpr char kMagic[8] = {'S', 'H', 'A', 'R', 'D', 'C', 'K', '<'};
 
 /// Scalars of SolverState and OutputCursor in one fixed order, for both directions.
 template <class F>
@@ -138,6 +140,8 @@ void write_checkpoint(const std::filesystem::path& path, Model& model, const Sol
     w.array("history_reaction_work", c.reaction_work);
     w.array("probe_bytes", c.probe_bytes);
     w.array("probe_next", c.probe_next);
+    w.array("cohesive_step_note", c.cohesive_step_note);
+    w.array("particle_step_note", c.particle_step_note);
     w.array("part_stored", s.part_stored);
     // The energy ledger, by name: every registered term.
     w.raw<std::uint64_t>(state.energy.terms().size());
@@ -171,6 +175,8 @@ void read_checkpoint(const std::filesystem::path& path, Model& model, SolverStat
   r.array("history_reaction_work", cursor.reaction_work);
   r.array("probe_bytes", cursor.probe_bytes);
   r.array("probe_next", cursor.probe_next);
+  r.array("cohesive_step_note", cursor.cohesive_step_note);
+  r.array("particle_step_note", cursor.particle_step_note);
   r.array("part_stored", state.part_stored);
   const auto terms = r.raw<std::uint64_t>();
   if (terms > 4096) r.fail("corrupt energy ledger");

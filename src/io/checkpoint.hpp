@@ -26,6 +26,10 @@ struct OutputCursor {
   std::vector<double> reaction_work;     ///< per node group: work to t_n, and the half step after
   std::vector<double> probe_bytes;       ///< length of each probe file at the checkpoint
   std::vector<double> probe_next;        ///< index of each probe's next row
+  /// What the run's notes on its step said, so that a restart says it as the run straight through
+  /// does: the elements' and the cohesive springs' steps (empty: not noted), and the time, the
+  /// particle contacts' and the elements' steps (empty: not noted).
+  std::vector<double> cohesive_step_note, particle_step_note;
 };
 
 /// Writes `path` via "<path>.tmp" and a rename: a run killed while writing leaves the previous

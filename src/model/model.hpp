@@ -204,6 +204,13 @@ struct ContactState {
   /// value): a penalty that followed the current step would change with the motion of the
   /// critical element and bulk viscosity, and make contact chatter.
   std::vector<double> penalty_time_step;
+  /// The list of particle contacts (Model::particle_contacts) as its last build left it: one value
+  /// while it holds for the model's particles and facets (empty: to be built again; every
+  /// Topology::changed empties it), the walls' offsets then (dim per wall), and the nodes'
+  /// positions then (dim per node; the corners of boundary facets are read). With
+  /// ParticlePart::x_listed they let a restart or a new cut of a decomposed run take the list up
+  /// where one process still uses it (docs/theory/particle_contact.md, "Neighbour list").
+  std::vector<double> particle_list_built, particle_list_walls, particle_list_x;
   /// Normal contact pressure per node, for frames (ContactSystem::nodal_pressure): derived, set
   /// before outputs are written, so that a decomposed run gathers it with the rest.
   std::vector<double> pressure;
@@ -216,6 +223,7 @@ struct ContactState {
     f(field("touching", Location::node, 0, Follow::fresh), touching);
     f(field("penetration_offset", Location::node, 0, Follow::fresh), penetration_offset);
     f(field("loaded_gap", Location::node, 0, Follow::fresh), loaded_gap);
+    f(field("particle_list_x", Location::node, 0, Follow::fresh), particle_list_x);
     FieldInfo derived = field("pressure", Location::node, 0, Follow::recompute);
     derived.checkpoint = false;
     f(derived, pressure);
@@ -224,6 +232,8 @@ struct ContactState {
   void visit_model_fields(F&& f) {
     f(field("wall_offset", Location::model, 0), wall_offset);
     f(field("penalty_time_step", Location::model, 0), penalty_time_step);
+    f(field("particle_list_built", Location::model, 0), particle_list_built);
+    f(field("particle_list_walls", Location::model, 0), particle_list_walls);
   }
 };
 

@@ -104,6 +104,9 @@ struct ParticlePart {
   std::vector<double> x0;        ///< positions at t = 0 (for displacements)
   std::vector<double> x;         ///< current positions (dim per particle)
   std::vector<double> x_old;     ///< positions at t_n−1: the last increment starts there
+  /// Positions at the last build of the list of particle contacts (src/contact/particle_contact.hpp):
+  /// the list is due again once one has moved half the skin from there.
+  std::vector<double> x_listed;
   std::vector<double> v, force;  ///< velocity at the last half step, net force (dim per particle)
   std::vector<double> mass;
   std::vector<double> radius;    ///< MCA: half the automaton size d (its inscribed sphere)
@@ -163,6 +166,7 @@ struct ParticlePart {
     f(field("x0", Location::particle, d), x0);
     f(field("x", Location::particle, d), x);
     f(field("x_old", Location::particle, d), x_old);
+    f(field("x_listed", Location::particle, d), x_listed);
     f(field("v", Location::particle, d), v);
     f(field("force", Location::particle, d, Follow::share), force);
     f(field("mass", Location::particle, 1, Follow::share), mass);

@@ -14,7 +14,12 @@ void Topology::apply(Model& model, const Remap& remap) {
   changed(model, remap);
 }
 
-void Topology::changed(const Model& model, const Remap& remap) {
+void Topology::changed(Model& model, const Remap& remap) {
+  model.contact.particle_list_built.clear();
+  tell(model, remap);
+}
+
+void Topology::tell(const Model& model, const Remap& remap) {
   for (TopologyListener* l : listeners_) l->topology_changed(model, remap);
 }
 

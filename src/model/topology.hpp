@@ -22,12 +22,17 @@ class Topology {
 
   /// Applies the change to every declared field (apply_remap) and tells every listener.
   void apply(Model& model, const Remap& remap);
-  /// Tells every listener of a change already applied.
-  void changed(const Model& model, const Remap& remap);
-  /// After the model was replaced wholesale (read from a checkpoint): every listener rebuilds.
-  void reset(const Model& model) { changed(model, Remap{}); }
+  /// Tells every listener of a change already applied; the model's list of particle contacts
+  /// is then to be built again (ContactState::particle_list_built).
+  void changed(Model& model, const Remap& remap);
+  /// After the model was replaced wholesale (read from a checkpoint, or cut anew from the whole
+  /// model): every listener rebuilds, from the model as it is (what it keeps, such as a list
+  /// built before, stays valid).
+  void reset(const Model& model) { tell(model, Remap{}); }
 
  private:
+  void tell(const Model& model, const Remap& remap);
+
   std::vector<TopologyListener*> listeners_;
 };
 

@@ -226,10 +226,15 @@ void hold_particles_near(const Model& model, const ContactHalo& halo, std::vecto
     }
 }
 
-/// Per node, 1 where it is a corner of a boundary facet: what particles touch.
-std::vector<char> boundary_facet_nodes(const Model& model, const ContactSurface& surface) {
+/// Per node, 1 where it is or may come to be a corner of a boundary facet, which particles
+/// touch: a corner of a facet now, or a node of a part that erodes (any face of it may be
+/// uncovered, and the particles' list is built on it in that step's force call).
+std::vector<char> boundary_facet_nodes(const Model& model, const ContactSurface& surface, const ContactHalo& halo) {
   std::vector<char> on(model.nodes.count(), 0);
   for (const std::int32_t n : surface.facets) on[n] = 1;
+  for (std::size_t p = 0; p < model.parts.size() && p < halo.eroding.size(); ++p)
+    if (halo.eroding[p])
+      for (const std::int32_t n : model.parts[p].connectivity) on[n] = 1;
   return on;
 }
 
@@ -384,7 +389,7 @@ LocalEntities local_entities(const Model& model, const ElementPartition& partiti
   if (halo && (!halo->parts.empty() || halo->particle_facet_reach > 0)) {
     const ContactSurface surface = extract_contact_surface(model);
     if (!halo->parts.empty()) on_surface = contact_surface_nodes(model, surface, *halo);
-    if (halo->particle_facet_reach > 0) boundary = boundary_facet_nodes(model, surface);
+    if (halo->particle_facet_reach > 0) boundary = boundary_facet_nodes(model, surface, *halo);
   }
   return held_entities(model, partition, owner, rank, halo, &on_surface, &boundary);
 }
@@ -588,7 +593,7 @@ Subdomain make_subdomain(const Model& model, const ElementPartition& partition, 
   std::vector<char> on_surface;
   if (halo && !halo->parts.empty()) on_surface = contact_surface_nodes(model, surface, *halo);
   std::vector<char> boundary;
-  if (halo && halo->particle_facet_reach > 0) boundary = boundary_facet_nodes(model, surface);
+  if (halo && halo->particle_facet_reach > 0) boundary = boundary_facet_nodes(model, surface, *halo);
   const LocalEntities held = held_entities(model, partition, owner, rank, halo, &on_surface, &boundary);
 
   Subdomain sub;

@@ -37,7 +37,7 @@ struct LocalEntities {
 /// so every node of it counts as a surface node ("Erosion across ranks").
 struct ContactHalo {
   std::vector<char> parts;     ///< per part: 1 where contact between parts (or self-contact) acts on it
-  std::vector<char> eroding;   ///< per part: 1 where its elements may erode (empty: none)
+  std::vector<char> eroding;   ///< per part: 1 where its elements may erode (empty: none); also read for particles against the mesh
   double reach = 0;            ///< m
   double allowed_motion = 0;   ///< m
   /// Per particle part: 1 where its particles take part in contact of particles (discrete
@@ -46,11 +46,13 @@ struct ContactHalo {
   /// skin, every contact an owned particle's list can hold until the list is built again.
   std::vector<char> particle_parts;
   double particle_reach = 0;  ///< m
-  /// With contact of particles against the finite-element boundary: d = R_max + skin + h, with
-  /// h the longest boundary facet edge; 0: particles touch no facet. A rank holds every element
-  /// around a boundary node within d of a particle it owns (every facet that particle can touch)
-  /// or within 2d of a boundary node it owns, and every particle within d of such a node (every
-  /// particle that can touch that node's facets, with every other facet it touches).
+  /// With contact of particles against the finite-element boundary: d = R_max + skin + h + m,
+  /// with h the longest boundary facet edge and m the margin for motion since the cut; 0:
+  /// particles touch no facet. A rank holds every element around a boundary node within d of a
+  /// particle it owns (every facet that particle can touch) or within 2d of a boundary node it
+  /// owns, and every particle within d of such a node (every particle that can touch that node's
+  /// facets, with every other facet it touches). Every node of an `eroding` part counts as a
+  /// boundary node.
   double particle_facet_reach = 0;  ///< m
 };
 

@@ -603,6 +603,54 @@ ParticleContactSettings grain_contact() {
   return s;
 }
 
+/// `start` run on 1–4 ranks by bisection and on 2 and 3 at random (from `seed`), each rank with
+/// a ParticleContact of `settings` and the `halo`, against the whole run `whole` (its contact
+/// `serial` and ledger `booked`): every rank's ledger and owned values, every node, element and
+/// particle field and every contact's key and history gathered with the bits of the whole run,
+/// and each touching contact booked once.
+void check_particle_contact_on_ranks(const Model& start, ElasticRun& whole, const Booked& booked,
+                                     const ParticleContact& serial, const ParticleContactSettings& settings,
+                                     const ContactHalo& halo, unsigned seed, const char* what) {
+  for (const auto& [ranks, scattered] : std::vector<std::pair<int, bool>>{{1, false}, {2, false}, {3, false}, {4, false}, {2, true}, {3, true}}) {
+    const ElementPartition partition = scattered ? scatter_elements(start, ranks, seed) : partition_elements(start, ranks);
+    std::vector<std::unique_ptr<ParticleContact>> contacts(ranks);
+    std::vector<std::size_t> active(ranks);
+    RanksRun run = run_on_ranks(start, partition, whole, [&](int r, Model&, ExplicitSolver& solver) -> std::function<void()> {
+      contacts[r] = std::make_unique<ParticleContact>(settings);
+      solver.attach_particle_contact(contacts[r].get());
+      return [&, r] { active[r] = contacts[r]->active_contacts(); };
+    }, &halo);
+    Model gathered = start;
+    gathered.particle_contacts = InteractionList(whole.model.particle_contacts.history_size());
+    std::size_t held = 0, touching = 0, ghosts = 0, owned = 0;
+    for (int r = 0; r < ranks; ++r) {
+      EXPECT_EQ(differences(run.booked[r], booked), 0u) << what << ", ledger of rank " << r << " of " << ranks;
+      EXPECT_EQ(differences(run.subs[r], run.finished[r], whole.model), 0u) << what << ", rank " << r << " of " << ranks;
+      gather_owned(run.subs[r], run.finished[r], gathered);
+      held += run.subs[r].global_particle[0].size();
+      touching += active[r];
+      ghosts += run.subs[r].ghost_element_count();
+      owned += run.subs[r].owned_element_count();
+    }
+    EXPECT_EQ(touching, serial.active_contacts()) << what << ", contacts booked once, " << ranks << " ranks";
+    EXPECT_EQ(whole_differences(gathered, whole.model), 0u) << what << ", " << ranks << " ranks";
+    EXPECT_EQ(particle_differences(gathered.particle_parts[0], whole.model.particle_parts[0]), 0u) << what << ", " << ranks << " ranks";
+    InteractionList& mine = gathered.particle_contacts;
+    InteractionList& theirs = whole.model.particle_contacts;
+    ASSERT_EQ(mine.size(), theirs.size()) << what << ", " << ranks << " ranks";
+    std::size_t differ = 0;
+    for (std::size_t k = 0; k < mine.size(); ++k) {
+      differ += !(mine.key(k) == theirs.key(k));
+      for (std::size_t j = 0; j < mine.history(k).size(); ++j) differ += !same_bits(mine.history(k)[j], theirs.history(k)[j]);
+    }
+    EXPECT_EQ(differ, 0u) << what << ", contact histories, " << ranks << " ranks";
+    std::printf("%s, %s on %d ranks: %zu contacts touching, %zu listed, particles held %.2f times, ghost/owned elements %.2f\n",
+                what, scattered ? "scattered" : "RCB      ", ranks, touching, theirs.size(),
+                static_cast<double>(held) / static_cast<double>(start.particle_parts[0].count()),
+                owned > 0 ? static_cast<double>(ghosts) / static_cast<double>(owned) : 0.0);
+  }
+}
+
 // Discrete elements across the cut: each rank holds every disc within twice the largest radius
 // and the skin of one it owns (ContactHalo::particle_reach), every contact of its own discs'
 // list; the contacts are booked by the owner of their first disc. Cut by bisection and at random:
@@ -623,39 +671,7 @@ TEST(DomainDecomposition, DiscreteElementsGiveTheSameBitsOnOneToFourRanks) {
   ContactHalo halo;
   halo.particle_parts = {1};
   halo.particle_reach = serial_contact.reach(start);
-  for (const auto& [ranks, scattered] : std::vector<std::pair<int, bool>>{{1, false}, {2, false}, {3, false}, {4, false}, {2, true}, {3, true}}) {
-    const ElementPartition partition = scattered ? scatter_elements(start, ranks, 8) : partition_elements(start, ranks);
-    std::vector<std::unique_ptr<ParticleContact>> contacts(ranks);
-    std::vector<std::size_t> active(ranks);
-    RanksRun run = run_on_ranks(start, partition, whole, [&](int r, Model&, ExplicitSolver& solver) -> std::function<void()> {
-      contacts[r] = std::make_unique<ParticleContact>(grain_contact());
-      solver.attach_particle_contact(contacts[r].get());
-      return [&, r] { active[r] = contacts[r]->active_contacts(); };
-    }, &halo);
-    Model gathered = start;
-    gathered.particle_contacts = InteractionList(whole.model.particle_contacts.history_size());
-    std::size_t held = 0, touching = 0;
-    for (int r = 0; r < ranks; ++r) {
-      EXPECT_EQ(differences(run.booked[r], booked), 0u) << "ledger of rank " << r << " of " << ranks;
-      gather_owned(run.subs[r], run.finished[r], gathered);
-      held += run.subs[r].global_particle[0].size();
-      touching += active[r];
-    }
-    EXPECT_EQ(touching, serial_contact.active_contacts()) << "contacts booked once, " << ranks << " ranks";
-    EXPECT_EQ(particle_differences(gathered.particle_parts[0], serial), 0u) << ranks << " ranks";
-    InteractionList& mine = gathered.particle_contacts;
-    InteractionList& theirs = whole.model.particle_contacts;
-    ASSERT_EQ(mine.size(), theirs.size()) << ranks << " ranks";
-    std::size_t differ = 0;
-    for (std::size_t k = 0; k < mine.size(); ++k) {
-      differ += !(mine.key(k) == theirs.key(k));
-      for (std::size_t j = 0; j < mine.history(k).size(); ++j) differ += !same_bits(mine.history(k)[j], theirs.history(k)[j]);
-    }
-    EXPECT_EQ(differ, 0u) << "contact histories, " << ranks << " ranks";
-    std::printf("discs, %s on %d ranks: %zu contacts touching, %zu listed, discs held %.2f times\n",
-                scattered ? "scattered" : "RCB      ", ranks, touching, theirs.size(),
-                static_cast<double>(held) / static_cast<double>(serial.count()));
-  }
+  check_particle_contact_on_ranks(start, whole, booked, serial_contact, grain_contact(), halo, 8, "discs");
 }
 
 
@@ -735,41 +751,7 @@ TEST(DomainDecomposition, DiscsOnAMeshGiveTheSameBitsOnOneToFourRanks) {
   halo.particle_reach = serial_contact.reach(start);
   halo.particle_facet_reach = particle_facet_reach(start, 8e-3, disc_contact().skin);
   ASSERT_NEAR(halo.particle_facet_reach, 8e-3 + 8e-3 + 0.3 / 24, 0.2 * 0.3 / 24) << "r + skin + a distorted cell's edge";
-  for (const auto& [ranks, scattered] : std::vector<std::pair<int, bool>>{{1, false}, {2, false}, {3, false}, {4, false}, {2, true}, {3, true}}) {
-    const ElementPartition partition = scattered ? scatter_elements(start, ranks, 11) : partition_elements(start, ranks);
-    std::vector<std::unique_ptr<ParticleContact>> contacts(ranks);
-    std::vector<std::size_t> active(ranks);
-    RanksRun run = run_on_ranks(start, partition, whole, [&](int r, Model&, ExplicitSolver& solver) -> std::function<void()> {
-      contacts[r] = std::make_unique<ParticleContact>(disc_contact());
-      solver.attach_particle_contact(contacts[r].get());
-      return [&, r] { active[r] = contacts[r]->active_contacts(); };
-    }, &halo);
-    Model gathered = start;
-    gathered.particle_contacts = InteractionList(whole.model.particle_contacts.history_size());
-    std::size_t touching = 0, ghosts = 0, owned = 0;
-    for (int r = 0; r < ranks; ++r) {
-      EXPECT_EQ(differences(run.booked[r], booked), 0u) << "ledger of rank " << r << " of " << ranks;
-      EXPECT_EQ(differences(run.subs[r], run.finished[r], whole.model), 0u) << "rank " << r << " of " << ranks;
-      gather_owned(run.subs[r], run.finished[r], gathered);
-      touching += active[r];
-      ghosts += run.subs[r].ghost_element_count();
-      owned += run.subs[r].owned_element_count();
-    }
-    EXPECT_EQ(touching, serial_contact.active_contacts()) << "contacts booked once, " << ranks << " ranks";
-    EXPECT_EQ(whole_differences(gathered, whole.model), 0u) << ranks << " ranks";
-    EXPECT_EQ(particle_differences(gathered.particle_parts[0], whole.model.particle_parts[0]), 0u) << ranks << " ranks";
-    InteractionList& mine = gathered.particle_contacts;
-    InteractionList& theirs = whole.model.particle_contacts;
-    ASSERT_EQ(mine.size(), theirs.size()) << ranks << " ranks";
-    std::size_t differ = 0;
-    for (std::size_t k = 0; k < mine.size(); ++k) {
-      differ += !(mine.key(k) == theirs.key(k));
-      for (std::size_t j = 0; j < mine.history(k).size(); ++j) differ += !same_bits(mine.history(k)[j], theirs.history(k)[j]);
-    }
-    EXPECT_EQ(differ, 0u) << "contact histories, " << ranks << " ranks";
-    std::printf("discs on a plate, %s on %d ranks: %zu contacts touching (%zu listed on facets), ghost/owned elements %.2f\n",
-                scattered ? "scattered" : "RCB      ", ranks, touching, on_facets, static_cast<double>(ghosts) / static_cast<double>(owned));
-  }
+  check_particle_contact_on_ranks(start, whole, booked, serial_contact, disc_contact(), halo, 11, "discs on a plate");
 }
 
 }  // namespace
