@@ -1077,7 +1077,6 @@ class RunDriver {
     const double end = sc_.end_time;
     while (true) {
       if (!forces_ready_) {
-        build_particle_list_when_due();
         compute_forces();
       }
       forces_ready_ = false;
@@ -1132,9 +1131,12 @@ class RunDriver {
     }
   }
 
-  /// The solver's forces; in a decomposed run the subdomain's lists of its interface elements
-  /// follow those the force call dropped beside eroded elements.
+  /// The solver's forces; in a decomposed run the ranks first agree whether the list of particle
+  /// contacts is due (the first forces of a restart too: the list it takes up may be), and the
+  /// subdomain's lists of its interface elements then follow those the force call dropped beside
+  /// eroded elements.
   void compute_forces() {
+    build_particle_list_when_due();
     solver_.compute_forces();
     if (sub_ && sim_.cohesive) follow_dropped_interfaces(*sub_, sim_.model, whole_);
   }

@@ -588,11 +588,17 @@ ElasticRun tumbling_grains() {
   return run;
 }
 
-ParticleContactSettings grain_contact() {
+/// Linear springs with damping and friction, and a fixed neighbour-list skin (m).
+ParticleContactSettings linear_springs(double modulus, double restitution, double friction, double skin) {
   ParticleContactSettings s;
   s.law = find_pair_law("linear_spring");
-  s.params = pair_law_parameters(*s.law, {{"modulus", 1e8}, {"restitution", 0.3}, {"friction", 0.5}});
-  s.skin = 3e-3;
+  s.params = pair_law_parameters(*s.law, {{"modulus", modulus}, {"restitution", restitution}, {"friction", friction}});
+  s.skin = skin;
+  return s;
+}
+
+ParticleContactSettings grain_contact() {
+  ParticleContactSettings s = linear_springs(1e8, 0.3, 0.5, 3e-3);
   for (const auto& [point, normal] : std::vector<std::pair<std::array<double, 3>, std::array<double, 3>>>{
            {{0, 0.5e-3, 0}, {0, 1, 0}}, {{0.5e-3, 0, 0}, {1, 0, 0}}, {{40e-3, 0, 0}, {-1, 0, 0}}}) {
     RigidWall wall;
@@ -717,13 +723,7 @@ ElasticRun discs_on_plate() {
   return run;
 }
 
-ParticleContactSettings disc_contact() {
-  ParticleContactSettings s;
-  s.law = find_pair_law("linear_spring");
-  s.params = pair_law_parameters(*s.law, {{"modulus", 1e11}, {"restitution", 0.5}, {"friction", 0.3}});
-  s.skin = 8e-3;
-  return s;
-}
+ParticleContactSettings disc_contact() { return linear_springs(1e11, 0.5, 0.3, 8e-3); }
 
 // Discs against the mesh across the cut: a rank holds the facets every disc it owns can touch,
 // the discs that can touch a facet of a node it owns, and every facet those discs touch
