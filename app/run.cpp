@@ -829,11 +829,12 @@ class RunDriver {
 
   /// Erosion across ranks: an element erodes on every rank that holds it (its state is its
   /// owner's), and the ledger and the count of eroded elements are sums over the owners. Without
-  /// cracks or debris each subdomain's erosion event takes them out of it (follower_); with
-  /// cracks (which split the whole model first) or debris (whose particles take the ids of one
-  /// process), at the end of a step in which any element eroded the eroded elements leave the
-  /// whole model, or become particles, by the compaction of one process, and the model is cut
-  /// anew (docs/theory/domain_decomposition.md, sections 14 and 18).
+  /// compacts_whole_ each subdomain's erosion event takes them out of it (follower_). With cracks
+  /// (which split the whole model first), debris (whose particles take the ids of one process),
+  /// interfaces (which leave with their elements) or particles on an eroding mesh (which meet the
+  /// faces it uncovers), at the end of a step in which any element eroded the eroded elements
+  /// leave the whole model, or become particles, by the compaction of one process, and the model
+  /// is cut anew (docs/theory/domain_decomposition.md, sections 14, 15 and 18).
   void compact_eroded_across_ranks() {
     if (!sub_ || !compacts_whole_) return;
     SolverState& s = solver_.state();

@@ -299,7 +299,7 @@ else:
 # linear springs, three walls), 20 ms; each rank holds the grains within reach of its own with a
 # margin of the largest radius, and builds its neighbour list again when any grain has moved half
 # the skin; once one has moved half the margin, the grains are gathered and cut anew by their
-# positions (3 times): on 2 ranks, on 3 at random, and from 2 to 3 ranks across a restart at 10 ms.
+# positions (4 times): on 2 ranks, on 3 at random, and from 2 to 3 ranks across a restart at 10 ms.
 granular = os.path.join(source, "examples/granular_column/settle.yaml")
 settle = ["--set", "analysis.end_time=20ms"]
 serial_then_ranks("granular", granular, (2,), "the settling grains", settle)
