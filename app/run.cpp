@@ -639,8 +639,7 @@ class RunDriver {
     if (sim_.particle_contact) {
       // The margin: the largest radius (about nine lists' worth of motion for particles of one
       // size and the default skin), at least twice the skin.
-      const double skin = sim_.particle_contact->skin(whole_);
-      particle_margin_ = std::max(2 * skin, 0.5 * (sim_.particle_contact->reach(whole_) - skin));
+      particle_margin_ = std::max(2 * sim_.particle_contact->skin(whole_), sim_.particle_contact->largest_radius(whole_));
     }
     halo_.particle_parts.assign(whole_.particle_parts.size(), 0);
     halo_.particle_reach = 0;
@@ -662,7 +661,7 @@ class RunDriver {
     }
     // Particles against the boundary facets: the facets and particles each rank's own need.
     if (particles_touch_mesh(whole_))
-      halo_.particle_facet_reach = particle_facet_reach(whole_, 0.5 * (sim_.particle_contact->reach(whole_) - sim_.particle_contact->skin(whole_)),
+      halo_.particle_facet_reach = particle_facet_reach(whole_, sim_.particle_contact->largest_radius(whole_),
                                                         sim_.particle_contact->skin(whole_)) +
                                    particle_margin_;
   }

@@ -238,13 +238,15 @@ double ParticleContact::own_skin(const Model& model) const {
   return std::isfinite(r_min) ? 0.1 * r_min : 0.0;
 }
 
-double ParticleContact::reach(const Model& model) const {
+double ParticleContact::largest_radius(const Model& model) const {
   double r_max = 0;
   for (std::size_t p = 0; p < model.particle_parts.size(); ++p)
     if (takes_part(p))
       for (const double r : model.particle_parts[p].radius) r_max = std::max(r_max, r);
-  return 2 * r_max + skin(model);
+  return r_max;
 }
+
+double ParticleContact::reach(const Model& model) const { return 2 * largest_radius(model) + skin(model); }
 
 bool ParticleContact::list_due(Model& model) {
   if (stale_ && resumable_) resume_list(model);

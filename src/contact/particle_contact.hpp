@@ -94,6 +94,8 @@ class ParticleContact final : public TopologyListener {
   double skin(const Model& model) const;
   /// The skin one process would take for `model`, whatever fix_skin set.
   double own_skin(const Model& model) const;
+  /// The largest radius of the particles of `model` that take part (0: none).
+  double largest_radius(const Model& model) const;
   /// Twice the largest radius and the skin: no contact a list of `model` holds is longer.
   double reach(const Model& model) const;
   /// Whether the particles of particle part `part` take part.

@@ -39,6 +39,31 @@ std::vector<char> contact_surface_nodes(const Model& model, const ContactSurface
   return on;
 }
 
+/// Whether x (dim coordinates) lies within `reach` of one of `points` (dim each), entered in `grid`.
+bool within_reach(const CellGrid& grid, const std::vector<double>& points, int dim, double reach, const double* x) {
+  return grid.any_near(x, [&](std::int32_t q) {
+    double d2 = 0;
+    for (int k = 0; k < dim; ++k) d2 += (x[k] - points[dim * q + k]) * (x[k] - points[dim * q + k]);
+    return d2 <= reach * reach;
+  });
+}
+
+/// Particle i of `part`, in 3 coordinates (the unused ones 0).
+std::array<double, 3> padded_position(const ParticlePart& part, std::size_t i) {
+  std::array<double, 3> x{0, 0, 0};
+  for (int k = 0; k < part.dim; ++k) x[k] = part.coord(i, k);
+  return x;
+}
+
+/// Per stable element id of `model`, its part and index there ({−1, −1}: none).
+std::vector<std::pair<std::int32_t, std::int32_t>> element_locations(const Model& model) {
+  std::vector<std::pair<std::int32_t, std::int32_t>> where(static_cast<std::size_t>(model.next_element_id), {-1, -1});
+  for (std::size_t p = 0; p < model.parts.size(); ++p)
+    for (std::size_t e = 0; e < model.parts[p].id.size(); ++e)
+      where[static_cast<std::size_t>(model.parts[p].id[e])] = {static_cast<std::int32_t>(p), static_cast<std::int32_t>(e)};
+  return where;
+}
+
 /// The surface nodes of the halo's parts within its reach of such a node that `rank` owns.
 std::vector<char> nodes_near_owned_surface(const Model& model, const std::vector<char>& on_surface,
                                            const std::vector<std::int32_t>& owner, int rank,
@@ -51,19 +76,8 @@ std::vector<char> nodes_near_owned_surface(const Model& model, const std::vector
   std::vector<char> near(model.nodes.count(), 0);
   if (mine.empty() || !(halo.reach > 0)) return near;
   const CellGrid grid(mine, dim, halo.reach);
-  const double reach2 = halo.reach * halo.reach;
-  for (std::size_t n = 0; n < on_surface.size(); ++n) {
-    if (!on_surface[n]) continue;
-    if (owner[n] == rank) {  // one of its own
-      near[n] = 1;
-      continue;
-    }
-    near[n] = grid.any_near(X + dim * n, [&](std::int32_t q) {
-      double d2 = 0;
-      for (int k = 0; k < dim; ++k) d2 += (X[dim * n + k] - mine[dim * q + k]) * (X[dim * n + k] - mine[dim * q + k]);
-      return d2 <= reach2;
-    });
-  }
+  for (std::size_t n = 0; n < on_surface.size(); ++n)
+    if (on_surface[n]) near[n] = owner[n] == rank || within_reach(grid, mine, dim, halo.reach, X + dim * n);
   return near;
 }
 
@@ -164,10 +178,7 @@ void hold_interfaces(const Model& model, const std::vector<std::int32_t>& owner,
   if (c.element_count() == 0) return;
   std::vector<std::int32_t> node_of(static_cast<std::size_t>(model.next_node_id), -1);
   for (std::size_t n = 0; n < model.nodes.count(); ++n) node_of[static_cast<std::size_t>(model.nodes.id[n])] = static_cast<std::int32_t>(n);
-  std::vector<std::pair<std::int32_t, std::int32_t>> element_of(static_cast<std::size_t>(model.next_element_id), {-1, -1});
-  for (std::size_t p = 0; p < model.parts.size(); ++p)
-    for (std::size_t e = 0; e < model.parts[p].id.size(); ++e)
-      element_of[static_cast<std::size_t>(model.parts[p].id[e])] = {static_cast<std::int32_t>(p), static_cast<std::int32_t>(e)};
+  const auto element_of = element_locations(model);
   const std::vector<Holding> before = held.node;  // the rule looks at the nodes held before it
   const std::size_t k = static_cast<std::size_t>(c.nodes_per_face);
   auto hold_node = [&](std::int32_t n) {
@@ -195,34 +206,30 @@ bool in_particle_contact(const ContactHalo& halo, std::size_t part) {
   return part < halo.particle_parts.size() && halo.particle_parts[part];
 }
 
-/// The particles in contact of particles within the halo's particle reach of one the rank owns
-/// (marked owned in `held` already) become ghosts.
-void hold_particles_near(const Model& model, const ContactHalo& halo, std::vector<std::vector<Holding>>& held) {
-  auto position = [](const ParticlePart& part, std::size_t i) {
-    std::array<double, 3> x{0, 0, 0};
-    for (int k = 0; k < part.dim; ++k) x[k] = part.coord(i, k);
-    return x;
-  };
+/// The positions (3 each) of the particles in contact of particles that `held` marks owned.
+std::vector<double> owned_particle_positions(const Model& model, const ContactHalo& halo,
+                                             const std::vector<std::vector<Holding>>& held) {
   std::vector<double> mine;
   for (std::size_t pp = 0; pp < model.particle_parts.size(); ++pp)
     for (std::size_t i = 0; in_particle_contact(halo, pp) && i < held[pp].size(); ++i)
       if (held[pp][i] == Holding::owned) {
-        const auto x = position(model.particle_parts[pp], i);
+        const auto x = padded_position(model.particle_parts[pp], i);
         mine.insert(mine.end(), x.begin(), x.end());
       }
+  return mine;
+}
+
+/// The particles in contact of particles within the halo's particle reach of one the rank owns
+/// (marked owned in `held` already) become ghosts.
+void hold_particles_near(const Model& model, const ContactHalo& halo, std::vector<std::vector<Holding>>& held) {
+  const std::vector<double> mine = owned_particle_positions(model, halo, held);
   if (mine.empty() || !(halo.particle_reach > 0)) return;
   const CellGrid grid(mine, 3, halo.particle_reach);
-  const double reach2 = halo.particle_reach * halo.particle_reach;
   for (std::size_t pp = 0; pp < model.particle_parts.size(); ++pp)
     for (std::size_t i = 0; in_particle_contact(halo, pp) && i < held[pp].size(); ++i) {
       if (held[pp][i] != Holding::none) continue;
-      const auto x = position(model.particle_parts[pp], i);
-      const bool near = grid.any_near(x.data(), [&](std::int32_t q) {
-        double d2 = 0;
-        for (int k = 0; k < 3; ++k) d2 += (x[k] - mine[3 * q + k]) * (x[k] - mine[3 * q + k]);
-        return d2 <= reach2;
-      });
-      if (near) held[pp][i] = Holding::ghost;
+      const auto x = padded_position(model.particle_parts[pp], i);
+      if (within_reach(grid, mine, 3, halo.particle_reach, x.data())) held[pp][i] = Holding::ghost;
     }
 }
 
@@ -236,15 +243,6 @@ std::vector<char> boundary_facet_nodes(const Model& model, const ContactSurface&
     if (halo.eroding[p])
       for (const std::int32_t n : model.parts[p].connectivity) on[n] = 1;
   return on;
-}
-
-/// Whether x (3 coordinates) lies within `reach` of one of `points` (3 each), found in `grid`.
-bool within_reach(const CellGrid& grid, const std::vector<double>& points, double reach, const double* x) {
-  return grid.any_near(x, [&](std::int32_t q) {
-    double d2 = 0;
-    for (int k = 0; k < 3; ++k) d2 += (x[k] - points[3 * q + k]) * (x[k] - points[3 * q + k]);
-    return d2 <= reach * reach;
-  });
 }
 
 /// Contact of particles against the boundary facets (ContactHalo::particle_facet_reach, d): an
@@ -261,35 +259,28 @@ void hold_near_boundary(const Model& model, const ContactHalo& halo, const std::
     for (int k = 0; k < dim; ++k) x[k] = model.nodes.x[dim * n + k];
     return x;
   };
-  std::vector<double> own_nodes, own_particles;
+  std::vector<double> own_nodes;
   for (std::size_t n = 0; n < boundary.size(); ++n)
     if (boundary[n] && owner[n] == rank) {
       const auto x = node_x(n);
       own_nodes.insert(own_nodes.end(), x.begin(), x.end());
     }
-  for (std::size_t pp = 0; pp < model.particle_parts.size(); ++pp)
-    for (std::size_t i = 0; in_particle_contact(halo, pp) && i < held.particle[pp].size(); ++i)
-      if (held.particle[pp][i] == Holding::owned)
-        for (int k = 0; k < 3; ++k) own_particles.push_back(k < model.particle_parts[pp].dim ? model.particle_parts[pp].coord(i, k) : 0.0);
+  const std::vector<double> own_particles = owned_particle_positions(model, halo, held.particle);
   std::vector<char> around(model.nodes.count(), 0);
   if (!own_nodes.empty()) {
     const CellGrid near_nodes(own_nodes, 3, d), far_from_nodes(own_nodes, 3, 2 * d);
-    for (std::size_t pp = 0; pp < model.particle_parts.size(); ++pp) {
-      const ParticlePart& part = model.particle_parts[pp];
-      for (std::size_t i = 0; in_particle_contact(halo, pp) && i < part.count(); ++i) {
-        std::array<double, 3> x{0, 0, 0};
-        for (int k = 0; k < part.dim; ++k) x[k] = part.coord(i, k);
-        if (held.particle[pp][i] == Holding::none && within_reach(near_nodes, own_nodes, d, x.data()))
+    for (std::size_t pp = 0; pp < model.particle_parts.size(); ++pp)
+      for (std::size_t i = 0; in_particle_contact(halo, pp) && i < held.particle[pp].size(); ++i)
+        if (held.particle[pp][i] == Holding::none &&
+            within_reach(near_nodes, own_nodes, 3, d, padded_position(model.particle_parts[pp], i).data()))
           held.particle[pp][i] = Holding::ghost;
-      }
-    }
     for (std::size_t n = 0; n < boundary.size(); ++n)
-      if (boundary[n]) around[n] = within_reach(far_from_nodes, own_nodes, 2 * d, node_x(n).data());
+      if (boundary[n]) around[n] = within_reach(far_from_nodes, own_nodes, 3, 2 * d, node_x(n).data());
   }
   if (!own_particles.empty()) {
     const CellGrid near_particles(own_particles, 3, d);
     for (std::size_t n = 0; n < boundary.size(); ++n)
-      if (boundary[n] && !around[n]) around[n] = within_reach(near_particles, own_particles, d, node_x(n).data());
+      if (boundary[n] && !around[n]) around[n] = within_reach(near_particles, own_particles, 3, d, node_x(n).data());
   }
   hold_elements_around(model, around, owner, rank, held);
 }
@@ -333,10 +324,25 @@ void hold_particles(const Model& model, const ElementPartition& partition, int r
   }
 }
 
-/// local_entities, with the contact surface nodes of the halo's parts found once per cut.
+/// The nodes a halo looks at, found once per cut: per node, 1 on the surface of the parts in
+/// contact (contact_surface_nodes) and 1 on the boundary particles touch (boundary_facet_nodes);
+/// each empty where the halo has no use for it.
+struct SurfaceMarks {
+  std::vector<char> contact, boundary;
+};
+
+SurfaceMarks surface_marks(const Model& model, const ContactHalo* halo) {
+  SurfaceMarks marks;
+  if (!halo || (halo->parts.empty() && !(halo->particle_facet_reach > 0))) return marks;
+  const ContactSurface surface = extract_contact_surface(model);
+  if (!halo->parts.empty()) marks.contact = contact_surface_nodes(model, surface, *halo);
+  if (halo->particle_facet_reach > 0) marks.boundary = boundary_facet_nodes(model, surface, *halo);
+  return marks;
+}
+
+/// local_entities, with the surface marks found once per cut.
 LocalEntities held_entities(const Model& model, const ElementPartition& partition, const std::vector<std::int32_t>& owner,
-                            int rank, const ContactHalo* halo, const std::vector<char>* on_surface,
-                            const std::vector<char>* boundary) {
+                            int rank, const ContactHalo* halo, const SurfaceMarks& marks) {
   LocalEntities held;
   held.node.assign(model.nodes.count(), Holding::none);
   for (std::size_t p = 0; p < model.parts.size(); ++p) {
@@ -373,10 +379,10 @@ LocalEntities held_entities(const Model& model, const ElementPartition& partitio
     for (std::size_t n = 0; n < held_nodes.size(); ++n) held_nodes[n] = held.node[n] != Holding::none;
     hold_elements_around(model, held_nodes, owner, rank, held);
   }
-  if (halo && !halo->parts.empty() && on_surface)
-    hold_elements_around(model, nodes_near_owned_surface(model, *on_surface, owner, rank, *halo), owner, rank, held);
+  if (!marks.contact.empty())
+    hold_elements_around(model, nodes_near_owned_surface(model, marks.contact, owner, rank, *halo), owner, rank, held);
   hold_particles(model, partition, rank, halo, held);
-  if (halo && halo->particle_facet_reach > 0 && boundary) hold_near_boundary(model, *halo, *boundary, owner, rank, held);
+  if (!marks.boundary.empty()) hold_near_boundary(model, *halo, marks.boundary, owner, rank, held);
   hold_interfaces(model, owner, rank, held);
   return held;
 }
@@ -385,13 +391,7 @@ LocalEntities held_entities(const Model& model, const ElementPartition& partitio
 
 LocalEntities local_entities(const Model& model, const ElementPartition& partition,
                              const std::vector<std::int32_t>& owner, int rank, const ContactHalo* halo) {
-  std::vector<char> on_surface, boundary;
-  if (halo && (!halo->parts.empty() || halo->particle_facet_reach > 0)) {
-    const ContactSurface surface = extract_contact_surface(model);
-    if (!halo->parts.empty()) on_surface = contact_surface_nodes(model, surface, *halo);
-    if (halo->particle_facet_reach > 0) boundary = boundary_facet_nodes(model, surface, *halo);
-  }
-  return held_entities(model, partition, owner, rank, halo, &on_surface, &boundary);
+  return held_entities(model, partition, owner, rank, halo, surface_marks(model, halo));
 }
 
 std::size_t Subdomain::owned_element_count() const {
@@ -507,12 +507,11 @@ bool all_empty(const GhostExchangePlan::Lists& lists) {
 /// the particles and pairs likewise.
 GhostExchangePlan plan_ghost_exchange(const Model& model, const ElementPartition& partition,
                                       const std::vector<std::int32_t>& owner, int rank, const Subdomain& sub,
-                                      const ContactHalo* halo, const std::vector<char>* on_surface,
-                                      const std::vector<char>* boundary) {
+                                      const ContactHalo* halo, const SurfaceMarks& marks) {
   GhostExchangePlan plan;
   for (int q = 0; q < partition.ranks; ++q) {
     if (q == rank) continue;
-    const LocalEntities theirs = held_entities(model, partition, owner, q, halo, on_surface, boundary);
+    const LocalEntities theirs = held_entities(model, partition, owner, q, halo, marks);
     std::vector<std::int32_t> send, receive;
     for (std::size_t i = 0; i < sub.global_node.size(); ++i) {
       const auto g = static_cast<std::size_t>(sub.global_node[i]);
@@ -589,12 +588,8 @@ Subdomain make_subdomain(const Model& model, const ElementPartition& partition, 
   if (rank < 0 || rank >= partition.ranks || partition.rank.size() != model.parts.size())
     throw std::invalid_argument("make_subdomain: rank " + std::to_string(rank) + " outside the partition");
   const std::vector<std::int32_t> owner = node_owners(model, partition);
-  const ContactSurface surface = extract_contact_surface(model);
-  std::vector<char> on_surface;
-  if (halo && !halo->parts.empty()) on_surface = contact_surface_nodes(model, surface, *halo);
-  std::vector<char> boundary;
-  if (halo && halo->particle_facet_reach > 0) boundary = boundary_facet_nodes(model, surface, *halo);
-  const LocalEntities held = held_entities(model, partition, owner, rank, halo, &on_surface, &boundary);
+  const SurfaceMarks marks = surface_marks(model, halo);
+  const LocalEntities held = held_entities(model, partition, owner, rank, halo, marks);
 
   Subdomain sub;
   sub.rank = rank;
@@ -654,7 +649,7 @@ Subdomain make_subdomain(const Model& model, const ElementPartition& partition, 
   }
   sub.model.ghost_node.resize(sub.node_owned.size());
   for (std::size_t n = 0; n < sub.node_owned.size(); ++n) sub.model.ghost_node[n] = !sub.node_owned[n];
-  sub.ghosts = plan_ghost_exchange(model, partition, owner, rank, sub, halo, &on_surface, &boundary);
+  sub.ghosts = plan_ghost_exchange(model, partition, owner, rank, sub, halo, marks);
   return sub;
 }
 
@@ -714,10 +709,7 @@ namespace {
 /// Per interface element of `model`: 1 if both elements it bounds are held and not eroded.
 std::vector<std::uint8_t> interfaces_beside_live_elements(const Model& model) {
   const CohesiveElements& c = model.cohesive;
-  std::vector<std::pair<std::int32_t, std::int32_t>> element_of(static_cast<std::size_t>(model.next_element_id), {-1, -1});
-  for (std::size_t p = 0; p < model.parts.size(); ++p)
-    for (std::size_t e = 0; e < model.parts[p].id.size(); ++e)
-      element_of[static_cast<std::size_t>(model.parts[p].id[e])] = {static_cast<std::int32_t>(p), static_cast<std::int32_t>(e)};
+  const auto element_of = element_locations(model);
   auto live = [&](std::int64_t id) {
     if (id < 0 || id >= model.next_element_id) return false;
     const auto [p, e] = element_of[static_cast<std::size_t>(id)];

@@ -285,15 +285,22 @@ TEST(DomainDecomposition, ARigidWallWithFrictionGivesTheSameBitsOnOneToFourRanks
   }
 }
 
-/// A block of 8 × 4 tri3 driven down at 60 m/s from 20 µm above the middle of the distorted plate of kPlate,
-/// whose bottom is held: contact between the two parts with friction 0.2, the block a little off centre
-/// so that cuts by bisection run under the contact patch.
-ElasticRun block_on_plate() {
+/// The distorted plane-strain plate of 24 × 8 tri3 cells, 0.3 × 0.1 m, that contact and particles
+/// are pressed into.
+BoxMesh distorted_plate() {
   BoxMesh plate;
   plate.element = "tri3";
   plate.cells = {24, 8, 1};
   plate.size = {0.3, 0.1, 1};
   plate.distortion = 0.2;
+  return plate;
+}
+
+/// A block of 8 × 4 tri3 driven down at 60 m/s from 20 µm above the middle of the distorted plate of kPlate,
+/// whose bottom is held: contact between the two parts with friction 0.2, the block a little off centre
+/// so that cuts by bisection run under the contact patch.
+ElasticRun block_on_plate() {
+  const BoxMesh plate = distorted_plate();
   Model model = make_box_model(Formulation::plane_strain, plate);
   BoxMesh block = plate;
   block.cells = {8, 4, 1};
@@ -687,12 +694,7 @@ TEST(DomainDecomposition, DiscreteElementsGiveTheSameBitsOnOneToFourRanks) {
 /// springs with friction between the discs and against the plate's boundary facets (the facets'
 /// nodes take the reactions); the list's skin (8 mm) holds for the run.
 ElasticRun discs_on_plate() {
-  BoxMesh plate;
-  plate.element = "tri3";
-  plate.cells = {24, 8, 1};
-  plate.size = {0.3, 0.1, 1};
-  plate.distortion = 0.2;
-  Model model = make_box_model(Formulation::plane_strain, plate);
+  Model model = make_box_model(Formulation::plane_strain, distorted_plate());
   ParticlePart discs;
   discs.name = "discs";
   discs.dim = 2;
