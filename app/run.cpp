@@ -444,7 +444,8 @@ class RunDriver {
     // Particles against the mesh meet the faces erosion uncovers: the halo holds what they need
     // until the end of the step, when the model is cut anew.
     const bool eroding = std::any_of(sim_.model.parts.begin(), sim_.model.parts.end(), [&](const Part& p) { return erodes(p); });
-    compacts_whole_ = cracks_ || makes_debris() || (eroding && (sim_.cohesive || particles_touch_mesh(sim_.model)));
+    // A remesh skips a part with elements eroded in its step, which the whole model must see.
+    compacts_whole_ = cracks_ || remesher_ || makes_debris() || (eroding && (sim_.cohesive || particles_touch_mesh(sim_.model)));
     whole_ = std::move(sim_.model);
     // A checkpoint read fills the contact list's arrays; its keys follow them only when the
     // solver is told of the restart, after the cut, which reads the keys.
@@ -521,6 +522,7 @@ class RunDriver {
     sim_.model = sub_->model;  // the solver's model, in place
     solver_.restored();        // every cache of the topology (the contact surface, ...) follows the cut
     if (cracks_) solver_.remove_event(*cracks_);  // split on the whole model: grow_cracks_across_ranks
+    if (remesher_) solver_.remove_event(*remesher_);  // remeshes the whole model: remesh_across_ranks
     if (automata_contacts_) solver_.remove_event(*automata_contacts_);  // update_automata_contacts_across_ranks
     if (exchange_) solver_.remove_event(*exchange_);
     exchange_ = std::make_unique<GhostExchange>(sub_->ghosts, ranks);
@@ -589,6 +591,46 @@ class RunDriver {
     cracks_->insert(whole_, s.energy, untold, s.time, &s.eroded_elements, &s.part_stored);
     cut_whole();
     ++cuts_;
+  }
+
+  /// Remeshing across ranks: the shapes new elements are measured against are measured on each
+  /// subdomain, as one process measures them; at a check, the ranks agree whether some part may
+  /// be due by what their owned elements show (each element is some rank's), and if so the whole
+  /// model, gathered, is assessed and remeshed by the rule of one process, on every rank alike,
+  /// and cut anew (docs/theory/domain_decomposition.md, "Remeshing across ranks").
+  void remesh_across_ranks() {
+    if (!sub_ || !remesher_) return;
+    SolverState& s = solver_.state();
+    remesher_->measure_new_elements(sim_.model);
+    std::int64_t due = remesher_->may_be_due(sim_.model, owned_elements(), s.step) ? 1 : 0;
+    ranks_->sum(&due, 1);
+    if (due == 0) return;
+    gather_whole_everywhere();
+    struct : TopologyListener {
+      bool changed = false;
+      void topology_changed(const Model&, const Remap&) override { changed = true; }
+    } remeshed;
+    Topology untold;  // the solver's caches follow the new cut, not the whole model
+    untold.add(remeshed);
+    EventContext context{s.step, s.time, s.eroded_elements, s.energy, untold, &s.part_stored};
+    compact_whole([&] { remesher_->run(whole_, context); });  // the weights of the elements kept
+    // What a remesh that failed keeps of its attempts (when to try again) is the whole model's.
+    using Record = std::vector<std::int64_t> Model::*;
+    for (const Record record : {&Model::remesh_count, &Model::remesh_step, &Model::remesh_local_count,
+                                &Model::remesh_failures, &Model::remesh_retry_step})
+      sim_.model.*record = whole_.*record;
+    if (!remeshed.changed) return;
+    cut_whole();
+    ++cuts_;
+  }
+
+  /// Per part, the indices of the elements this rank owns in its subdomain.
+  std::vector<std::vector<std::int32_t>> owned_elements() const {
+    std::vector<std::vector<std::int32_t>> owned(sub_->element_owned.size());
+    for (std::size_t p = 0; p < owned.size(); ++p)
+      for (std::size_t e = 0; e < sub_->element_owned[p].size(); ++e)
+        if (sub_->element_owned[p][e]) owned[p].push_back(static_cast<std::int32_t>(e));
+    return owned;
   }
 
   /// The automata's search for new contacts across ranks: it changes the pairs, so it runs on the
@@ -781,9 +823,8 @@ class RunDriver {
     // disturb (its loads' lists are local); the automata alone have nothing of the kind.
     if (automata_contacts_ && !sim_.model.parts.empty()) return "the automata's contact update in a model with elements";
     if (sim_.cracking && sim_.cracking->comminution) return "comminution (cracks that make debris particles)";
-    if (remesher_) return "remeshing";
     for (const auto& event : sim_.events)
-      if (event.get() != cracks_ && event.get() != automata_contacts_)
+      if (event.get() != cracks_ && event.get() != automata_contacts_ && event.get() != remesher_)
         return "step events (" + std::string(event->name()) + ")";
     for (const Part& part : sim_.model.parts) {
       // A point's average reaches points of elements a rank does not hold, in an order of its own.
@@ -1044,7 +1085,7 @@ class RunDriver {
                           " times below the elements' " + format_time(n[2]) +
                           ": the particle_contact stiffness sets it (modulus or young); a softer contact keeps "
                           "the step as long as overlaps stay small against the radii";
-    if (!options_.quiet) std::cerr << "note: " << particle_step_note_ << "\n";
+    if (!options_.quiet && writes()) std::cerr << "note: " << particle_step_note_ << "\n";
   }
 
   /// Once, when the cohesive springs shorten the step by more than 1 %: says by how much and
@@ -1069,7 +1110,7 @@ class RunDriver {
         << " % shorter): their stiffness sets it; a softer penalty keeps the step, at the price of a more "
            "compliant interface";
     notes_.push_back(out.str());
-    if (!options_.quiet) std::cerr << "note: " << notes_.back() << "\n";
+    if (!options_.quiet && writes()) std::cerr << "note: " << notes_.back() << "\n";
   }
 
   void loop() {
@@ -1105,6 +1146,7 @@ class RunDriver {
       update_automata_contacts_across_ranks();  // where the solver's event would have run
       solver_.advance();
       grow_cracks_across_ranks();  // where the solver's crack event would have run
+      remesh_across_ranks();  // its remesh event
       compact_eroded_across_ranks();  // and then its erosion event
       take_remesh_notes();
       book_reactions(dt_n);
@@ -1217,7 +1259,7 @@ class RunDriver {
     if (!remesher_) return;
     for (auto& note : remesher_->take_notes()) {
       notes_.push_back(std::move(note));
-      if (!options_.quiet) std::cerr << "note: " << notes_.back() << "\n";
+      if (!options_.quiet && writes()) std::cerr << "note: " << notes_.back() << "\n";
     }
   }
 
@@ -1480,8 +1522,9 @@ class RunDriver {
     if (cracks_) write_fragment_counts();
     if (remesher_)
       for (const RemeshedPart& r : remesher_->parts()) {
-        const auto& count = sim_.model.remesh_count;
-        history_ << ',' << (r.part < count.size() ? count[r.part] : 0) << ',' << sim_.model.parts[r.part].element_count();
+        const Model& model = sub_ ? whole_ : sim_.model;  // a decomposed run's whole_ is cut at every remesh
+        const auto& count = model.remesh_count;
+        history_ << ',' << (r.part < count.size() ? count[r.part] : 0) << ',' << model.parts[r.part].element_count();
       }
     if (sim_.cohesive)
       history_ << ',' << sim_.cohesive->intact_points() << ',' << sim_.cohesive->failed_points() << ','
@@ -1659,13 +1702,14 @@ class RunDriver {
     if (!remesher_) return {};
     std::ostringstream j;
     j << ",\n  \"remeshing\": {";
+    const Model& model = sim_.model;  // whole: the summary is written on_whole
     for (std::size_t i = 0; i < remesher_->parts().size(); ++i) {
       const std::size_t p = remesher_->parts()[i].part;
-      const auto& count = sim_.model.remesh_count;
-      j << (i ? ", " : "") << json_string(sim_.model.parts[p].name) << ": {\"remeshes\": "
+      const auto& count = model.remesh_count;
+      j << (i ? ", " : "") << json_string(model.parts[p].name) << ": {\"remeshes\": "
         << (p < count.size() ? count[p] : 0) << ", \"local_remeshes\": "
-        << (p < sim_.model.remesh_local_count.size() ? sim_.model.remesh_local_count[p] : 0)
-        << ", \"elements\": " << sim_.model.parts[p].element_count()
+        << (p < model.remesh_local_count.size() ? model.remesh_local_count[p] : 0)
+        << ", \"elements\": " << model.parts[p].element_count()
         << ", \"seconds\": " << remesher_->seconds()[i] << "}";
     }
     j << "}";

@@ -46,14 +46,20 @@ std::vector<EnergyTerm> RemeshEvent::energy_terms() const {
 }
 
 RemeshEvent::Due RemeshEvent::due(const Model& model, std::size_t i, std::int64_t step) const {
+  return assess(model, i, step, all_elements(model.parts[parts_[i].part]));
+}
+
+RemeshEvent::Due RemeshEvent::assess(const Model& model, std::size_t i, std::int64_t step,
+                                     const std::vector<std::int32_t>& elements) const {
   const std::size_t p = parts_[i].part;
   const Part& part = model.parts[p];
-  if (triggers_.max_interval > 0 && step - model.remesh_step[p] >= triggers_.max_interval)
-    return {format("%.0f steps since the last remesh", static_cast<double>(step - model.remesh_step[p]))};
+  const std::int64_t last = p < model.remesh_step.size() ? model.remesh_step[p] : 0;
+  if (triggers_.max_interval > 0 && step - last >= triggers_.max_interval)
+    return {format("%.0f steps since the last remesh", static_cast<double>(step - last))};
   double worst = 0, smallest = std::numbers::pi, largest = 0;
-  for (std::size_t e = 0; e < part.element_count(); ++e) {
-    worst = std::max(worst, element_distortion(part, model.nodes, e).value());
-    const std::int32_t* c = &part.connectivity[3 * e];
+  for (const std::int32_t e : elements) {
+    worst = std::max(worst, element_distortion(part, model.nodes, static_cast<std::size_t>(e)).value());
+    const std::int32_t* c = &part.connectivity[3 * static_cast<std::size_t>(e)];
     for (const double a : triangle_angles(&model.nodes.x[2 * c[0]], &model.nodes.x[2 * c[1]], &model.nodes.x[2 * c[2]])) {
       smallest = std::min(smallest, a);
       largest = std::max(largest, a);
@@ -62,7 +68,7 @@ RemeshEvent::Due RemeshEvent::due(const Model& model, std::size_t i, std::int64_
   // A size mismatch asks for the whole part, so it is looked for before the shapes (which a
   // patch may fix).
   if (triggers_.size_mismatch > 0) {
-    const ElementSizes sizes = element_target_sizes(part, all_elements(part), model.nodes, *materials_[part.material],
+    const ElementSizes sizes = element_target_sizes(part, elements, model.nodes, *materials_[part.material],
                                                     model.formulation, parts_[i].settings.size);
     for (std::size_t e = 0; e < sizes.target.size(); ++e) {
       const double ratio = sizes.current[e] / sizes.target[e];
@@ -78,6 +84,19 @@ RemeshEvent::Due RemeshEvent::due(const Model& model, std::size_t i, std::int64_
   if (triggers_.max_angle > 0 && largest > triggers_.max_angle)
     return {format("an angle of %.1f deg (above %.1f)", largest / degree, triggers_.max_angle / degree), true};
   return {};
+}
+
+bool RemeshEvent::may_be_due(const Model& model, const std::vector<std::vector<std::int32_t>>& owned,
+                             std::int64_t step) const {
+  if (triggers_.check_interval <= 0 || step % triggers_.check_interval != 0) return false;
+  for (std::size_t i = 0; i < parts_.size(); ++i) {
+    const std::size_t p = parts_[i].part;
+    if (p < model.remesh_retry_step.size() && step < model.remesh_retry_step[p]) continue;
+    // The energy-norm error is normalised over the whole part (eq. 6): a part of it cannot tell.
+    if (triggers_.size_mismatch > 0 && parts_[i].settings.size.measure == SizeMeasure::error) return true;
+    if (!assess(model, i, step, owned[p]).why.empty()) return true;
+  }
+  return false;
 }
 
 std::vector<std::int32_t> RemeshEvent::poor_elements(const Model& model, std::size_t i) const {
@@ -113,18 +132,22 @@ RemeshOutcome RemeshEvent::remesh(Model& model, std::size_t i, const Due& why, b
   return remesh_part(model, p, material, parts_[i].settings, kept_nodes_);
 }
 
+void RemeshEvent::measure_new_elements(Model& model) const {
+  for (const RemeshedPart& r : parts_) {
+    Part& part = model.parts[r.part];
+    // Elements made since the last look (the first step) are measured now.
+    if (part.shape_reference.size() != 4 * part.element_count())
+      measure_reference_shape(part, model.nodes, part.shape_reference);
+  }
+}
+
 void RemeshEvent::run(Model& model, EventContext& context) {
   model.remesh_count.resize(model.parts.size(), 0);
   model.remesh_step.resize(model.parts.size(), 0);
   model.remesh_local_count.resize(model.parts.size(), 0);
   model.remesh_failures.resize(model.parts.size(), 0);
   model.remesh_retry_step.resize(model.parts.size(), 0);
-  for (std::size_t i = 0; i < parts_.size(); ++i) {
-    Part& part = model.parts[parts_[i].part];
-    // Elements made since the last look (the first step) are measured now.
-    if (part.shape_reference.size() != 4 * part.element_count())
-      measure_reference_shape(part, model.nodes, part.shape_reference);
-  }
+  measure_new_elements(model);
   if (triggers_.check_interval <= 0 || context.step % triggers_.check_interval != 0) return;
   bool changed = false;
   for (std::size_t i = 0; i < parts_.size(); ++i) {

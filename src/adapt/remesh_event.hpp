@@ -56,6 +56,16 @@ class RemeshEvent final : public StepEvent {
   std::vector<EnergyTerm> energy_terms() const override;
 
   const std::vector<RemeshedPart>& parts() const { return parts_; }
+
+  /// Measures the shape of the elements made since the last look (at the first step, after a
+  /// remesh), which their distortion is measured against: what `run` does first at every step.
+  void measure_new_elements(Model& model) const;
+  /// In a decomposed run, on a rank's subdomain: whether this step is a check and some remeshed
+  /// part may be due by what its `owned` elements (per part, their indices) show. Every element
+  /// is some rank's, so the whole model is due only where some rank says so; the whole model
+  /// then decides (`run`). A size rule of the energy-norm error, normalised over the whole part,
+  /// says "may be" at every check.
+  bool may_be_due(const Model& model, const std::vector<std::vector<std::int32_t>>& owned, std::int64_t step) const;
   /// Wall-clock seconds spent remeshing each remeshed part (not in the history: it would differ
   /// from run to run).
   const std::vector<double>& seconds() const { return seconds_; }
@@ -75,6 +85,8 @@ class RemeshEvent final : public StepEvent {
     bool shape = false;
   };
   Due due(const Model& model, std::size_t i, std::int64_t step) const;
+  /// Why part i is due by what the listed elements of it show (due: all of them).
+  Due assess(const Model& model, std::size_t i, std::int64_t step, const std::vector<std::int32_t>& elements) const;
   /// The elements of part i whose shape is beyond the limits (distortion or angles).
   std::vector<std::int32_t> poor_elements(const Model& model, std::size_t i) const;
   /// Remeshes part i: a patch around its poor elements when the triggers allow it and that

@@ -9,7 +9,8 @@ Checked on the steel bar of examples/bar_impact/ in plane strain (tri3) on 1-4 r
 checkpointed on 2 ranks and continued on 3 ends with the bytes of one straight through; the
 copper Taylor bar on its rigid anvil (a wall with friction), with probes and a crash report, on 2
 and 3 ranks; the 4340 Taylor
-bar in axisymmetry with its pressure averaged over the nodes on 2 and 3 ranks; the cylinder on
+bar in axisymmetry with its pressure averaged over the nodes on 2 and 3 ranks, and remeshed as it
+mushrooms on 3 ranks at random and from 2 to 3 ranks across a restart; the cylinder on
 the plate (contact between parts, the model cut anew as it moves) on 2 and 3 ranks and from 2 to
 3 ranks across a restart, and rebalanced every 13 steps; the notched plate whose discrete crack
 cuts it in two on 2 and 4 ranks and on 3 ranks cut at random; the rod perforating the plate with
@@ -62,6 +63,9 @@ def same_outputs(a, b, what):
     for name in names:
         if name == "summary.json":
             sa, sb = (json.load(open(os.path.join(d, name))) for d in (a, b))
+            for summary in (sa, sb):  # the time each remesh took is a run fact too
+                for part in summary.get("remeshing", {}).values():
+                    part.pop("seconds", None)
             for key in set(sa) | set(sb):
                 if key not in RUN_FACTS and sa.get(key) != sb.get(key):
                     failures.append(f"{what}: summary.json '{key}' is {sb.get(key)!r}, not {sa.get(key)!r}")
@@ -150,6 +154,20 @@ for probe in ("tip", "face", "side"):
 # axisymmetry (tri3), 10 us.
 serial_then_ranks("steel", os.path.join(source, "examples/taylor_bar/steel_4340_axisymmetric.yaml"), (2, 3),
                   "the axisymmetric Taylor bar, averaged pressure", ["--set", "analysis.end_time=10us"])
+
+# Adaptive remeshing: the same bar remeshed as it mushrooms (angles and a longest interval, sizes
+# from the plastic strain), 20 us, remeshed at 8, 12, 15.5 and 19 us: each remesh gathers the
+# whole model, remeshes it by the rule of one process and cuts it anew; on 3 ranks at random, and
+# from 2 to 3 ranks across a restart at 10 us (between the first remesh and the second).
+remeshing = os.path.join(source, "examples/taylor_bar/steel_4340_axisymmetric_remeshing.yaml")
+to_20us = ["--set", "analysis.end_time=20us"]
+serial_then_ranks("remeshing", remeshing, (), "the remeshed Taylor bar", to_20us)
+random_ranks("remeshing_random", remeshing, 3, 2, "remeshing_serial", "the remeshed Taylor bar", to_20us)
+restart_on_three("remeshing_restart", remeshing, "remeshing_serial", to_20us, until="10us")
+if json.load(open("remeshing_serial/summary.json"))["remeshing"]["bar"]["remeshes"] < 3:
+    failures.append("the remeshed Taylor bar: fewer than 3 remeshes by 20 us: the case no longer tests remeshing")
+if os.path.exists("remeshing_random/summary.json") and json.load(open("remeshing_random/summary.json"))["cuts"] < 3:
+    failures.append("the remeshed Taylor bar on 3 ranks: fewer than 3 new cuts: its remeshes no longer cut it anew")
 
 # Contact between parts across the cut: the steel cylinder on the alumina plate (plane strain,
 # 25 912 tri3) to 3 us, cut anew as the cylinder moves; checkpointed on 2 ranks at 1.5 us and

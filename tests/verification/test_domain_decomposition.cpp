@@ -21,6 +21,8 @@
 #include <numbers>
 #include <random>
 
+#include "adapt/planar_mesh.hpp"
+#include "adapt/remesh_event.hpp"
 #include "contact/contact.hpp"
 #include "contact/particle_contact.hpp"
 #include "fracture/cohesive_interface.hpp"
@@ -754,6 +756,104 @@ TEST(DomainDecomposition, DiscsOnAMeshGiveTheSameBitsOnOneToFourRanks) {
   halo.particle_facet_reach = particle_facet_reach(start, 8e-3, disc_contact().skin);
   ASSERT_NEAR(halo.particle_facet_reach, 8e-3 + 8e-3 + 0.3 / 24, 0.2 * 0.3 / 24) << "r + skin + a distorted cell's edge";
   check_particle_contact_on_ranks(start, whole, booked, serial_contact, disc_contact(), halo, 11, "discs on a plate");
+}
+
+
+// Remeshing across ranks (docs/theory/domain_decomposition.md, "Remeshing across ranks"): the
+// shapes new elements are measured against are measured on each subdomain, and at a check the
+// ranks vote on whether a part may be due by their owned elements; the whole model is remeshed
+// only where some rank says so. On the distorted plate, each of 25 nodes in turn is pushed a
+// third of a cell, with thresholds just either side of what the whole model shows (the smallest
+// angle, the largest distortion, the largest size mismatch of a strain-rate table): the vote of
+// 2 to 4 ranks, by bisection and at random, must say due exactly when the whole model is, and
+// the subdomains' measured shapes must be the whole model's, bit for bit.
+RemeshEvent remesh_event(const std::vector<std::unique_ptr<Material>>& materials, const RemeshTriggers& triggers) {
+  RemeshedPart part;
+  part.settings.size.measure = SizeMeasure::strain_rate;
+  part.settings.size.table = {{0, 0.02}, {100, 0.005}};
+  return RemeshEvent(materials, {part}, triggers, {});
+}
+
+/// The smallest angle, largest distortion and largest size mismatch over the plate's elements.
+std::array<double, 3> worst_shapes(const Model& model, const std::vector<std::unique_ptr<Material>>& materials) {
+  const Part& part = model.parts[0];
+  std::array<double, 3> worst{std::numbers::pi, 0, 0};
+  std::vector<std::int32_t> all(part.element_count());
+  for (std::size_t e = 0; e < all.size(); ++e) {
+    all[e] = static_cast<std::int32_t>(e);
+    const std::int32_t* c = &part.connectivity[3 * e];
+    for (double a : triangle_angles(&model.nodes.x[2 * c[0]], &model.nodes.x[2 * c[1]], &model.nodes.x[2 * c[2]]))
+      worst[0] = std::min(worst[0], a);
+    worst[1] = std::max(worst[1], element_distortion(part, model.nodes, e).value());
+  }
+  SizeRule rule;
+  rule.measure = SizeMeasure::strain_rate;
+  rule.table = {{0, 0.02}, {100, 0.005}};
+  const ElementSizes sizes = element_target_sizes(part, all, model.nodes, *materials[0], model.formulation, rule);
+  for (std::size_t e = 0; e < all.size(); ++e)
+    worst[2] = std::max({worst[2], sizes.current[e] / sizes.target[e], sizes.target[e] / sizes.current[e]});
+  return worst;
+}
+
+TEST(DomainDecomposition, RanksVoteARemeshExactlyWhenTheWholeModelIsDue) {
+  const ElasticRun plate_run(make_box_model(Formulation::plane_strain, distorted_plate()), kDensity, kYoungs, kPoisson);
+  const auto& materials = plate_run.materials;
+  Model measured = plate_run.model;
+  std::mt19937 random(5);
+  std::uniform_real_distribution<double> speed(-3, 3);
+  for (double& v : measured.nodes.v) v = speed(random);  // strain rates for the size table
+  const Model unmeasured = measured;
+  remesh_event(materials, {}).measure_new_elements(measured);
+  const Part& plate = measured.parts[0];
+  ASSERT_EQ(plate.shape_reference.size(), 4 * plate.element_count());
+  const double cell = 0.3 / 24;
+  int due_votes = 0, idle_votes = 0;
+  for (int ranks : {2, 3, 4})
+    for (const bool scattered : {false, true}) {
+      const ElementPartition partition =
+          scattered ? scatter_elements(measured, ranks, 31) : partition_elements(measured, ranks);
+      for (int r = 0; r < ranks; ++r) {  // measured on the subdomain as on the whole
+        Model local = make_subdomain(unmeasured, partition, r).model;
+        remesh_event(materials, {}).measure_new_elements(local);
+        const Subdomain cut = make_subdomain(measured, partition, r);
+        EXPECT_EQ(std::memcmp(local.parts[0].shape_reference.data(), cut.model.parts[0].shape_reference.data(),
+                              8 * local.parts[0].shape_reference.size()), 0) << "rank " << r << " of " << ranks;
+      }
+      for (std::size_t n = 7; n < measured.nodes.count(); n += 9) {
+        Model moved = measured;
+        moved.nodes.x[2 * n] += cell / 3;
+        moved.nodes.x[2 * n + 1] -= cell / 4;
+        const std::array<double, 3> worst = worst_shapes(moved, materials);
+        for (int trigger = 0; trigger < 3; ++trigger)
+          for (const double side : {-1.0, 1.0}) {  // just past the worst value (due), and short of it
+            RemeshTriggers t;
+            t.check_interval = 10;
+            const double eps = 1e-9 * side;
+            if (trigger == 0) t.min_angle = worst[0] * (1 + eps);
+            if (trigger == 1) t.distortion = worst[1] * (1 - eps);
+            if (trigger == 2) t.size_mismatch = worst[2] * (1 - eps);
+            const RemeshEvent event = remesh_event(materials, t);
+            std::vector<std::vector<std::int32_t>> all(1);
+            for (std::size_t e = 0; e < moved.parts[0].element_count(); ++e) all[0].push_back(static_cast<std::int32_t>(e));
+            const bool whole_due = event.may_be_due(moved, all, 20);
+            EXPECT_EQ(whole_due, side > 0) << "trigger " << trigger << ", node " << n;
+            EXPECT_FALSE(event.may_be_due(moved, all, 21)) << "not a check step";
+            bool voted = false;
+            for (int r = 0; r < ranks; ++r) {
+              const Subdomain sub = make_subdomain(moved, partition, r);
+              std::vector<std::vector<std::int32_t>> owned(1);
+              for (std::size_t e = 0; e < sub.element_owned[0].size(); ++e)
+                if (sub.element_owned[0][e]) owned[0].push_back(static_cast<std::int32_t>(e));
+              voted = voted || event.may_be_due(sub.model, owned, 20);
+            }
+            EXPECT_EQ(voted, whole_due) << ranks << " ranks" << (scattered ? " at random" : "") << ", trigger "
+                                        << trigger << ", node " << n;
+            (voted ? due_votes : idle_votes)++;
+          }
+      }
+    }
+  EXPECT_GT(due_votes, 100);
+  EXPECT_GT(idle_votes, 100);
 }
 
 }  // namespace
