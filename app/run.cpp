@@ -822,7 +822,6 @@ class RunDriver {
     // The search runs between a step's forces and its advance, which a new cut of a mesh would
     // disturb (its loads' lists are local); the automata alone have nothing of the kind.
     if (automata_contacts_ && !sim_.model.parts.empty()) return "the automata's contact update in a model with elements";
-    if (sim_.cracking && sim_.cracking->comminution) return "comminution (cracks that make debris particles)";
     for (const auto& event : sim_.events)
       if (event.get() != cracks_ && event.get() != automata_contacts_ && event.get() != remesher_)
         return "step events (" + std::string(event->name()) + ")";
