@@ -9,15 +9,12 @@
 #include <thread>
 #include <vector>
 
-#ifdef __GLIBC__
-#include <malloc.h>
-#endif
-
 #ifdef _OPENMP
 #include <omp.h>
 #endif
 
 #include "core/error.hpp"
+#include "core/freed_memory.hpp"
 #include "core/units.hpp"
 #include "io/scenario.hpp"
 #include "contact/pair_law.hpp"
@@ -302,25 +299,10 @@ int main_on_ranks(int argc, char** argv) {
 }
 #endif
 
-/// Keeps freed memory in the process for the next allocation of its size. A topology change
-/// (a crack split, a remesh, a conversion; in a decomposed run, every gather and new cut) frees
-/// and allocates arrays of the whole model; glibc gives blocks above a sliding threshold back to
-/// the system at each free and trims the heap's top, so each new array faults every page in
-/// again, and a page fault costs microseconds on a virtual machine. Measured on the notched plate
-/// on 2 ranks (tests/data/fracture/notched_plate_coarse.yaml, a gather and a cut on most steps):
-/// 9 of the 9.5 ms of each gather were page faults. Arrays above 32 MB (glibc's largest mapping
-/// threshold) are still mapped and returned, so a large model's peak memory is unchanged.
-void keep_freed_memory() {
-#ifdef __GLIBC__
-  mallopt(M_MMAP_THRESHOLD, 32 << 20);
-  mallopt(M_TRIM_THRESHOLD, 1 << 30);
-#endif
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
-  keep_freed_memory();
+  shard::keep_freed_memory();
 #ifdef SHARD_WITH_MPI
   if (launched_by_mpirun()) return main_on_ranks(argc, argv);
 #endif

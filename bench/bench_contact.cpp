@@ -25,6 +25,7 @@
 
 #include "../tests/support/contact_models.hpp"
 #include "contact/contact.hpp"
+#include "core/freed_memory.hpp"
 #include "material/linear_elastic.hpp"
 #include "model/structured_mesh.hpp"
 #include "solver/explicit_solver.hpp"
@@ -151,6 +152,7 @@ void time_surface_extraction() {
 }
 
 int main(int argc, char** argv) {
+  keep_freed_memory();  // as shard's main does
   const int steps = argc > 1 ? std::atoi(argv[1]) : 1000;
   time_surface_extraction();
   if (steps == 0) return 0;

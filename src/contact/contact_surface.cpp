@@ -36,61 +36,79 @@ bool ContactSurface::are_neighbours(std::size_t surface_node, std::int32_t node)
   return std::binary_search(b, e, node);
 }
 
-ContactSurface extract_contact_surface(const Model& model) {
-  ContactSurface s;
-  s.dim = model.dim();
-  std::vector<Face> faces;
-  // Each face's key (its sorted nodes) with its index in faces: sorted, a key met once is a face
-  // of one element. Sorting is some ten times faster than hashing the faces, which mattered in a
-  // decomposed run, where every new cut extracts the whole model's surface.
-  std::vector<std::pair<FaceNodes, std::int32_t>> keys;
-  std::size_t face_count = 0;
-  for (const Part& part : model.parts) face_count += part.element_count() * part.type->faces.size();
-  faces.reserve(face_count);
-  keys.reserve(face_count);
+FaceGroups group_faces(const Model& model) {
+  FaceGroups g;
+  std::vector<FaceNodes> keys;
   for (std::size_t p = 0; p < model.parts.size(); ++p) {
     const Part& part = model.parts[p];
-    const int npe = part.type->nodes;
     for (std::size_t e = 0; e < part.element_count(); ++e) {
       if (!part.eroded.empty() && part.eroded[e]) continue;  // its faces left with it
-      const std::int32_t* cn = &part.connectivity[npe * e];
       for (std::size_t lf = 0; lf < part.type->faces.size(); ++lf) {
-        const auto& local = part.type->faces[lf];
-        const int count = static_cast<int>(local.size());
-        const std::int64_t owner = part.id.empty() ? static_cast<std::int64_t>(e) : part.id[e];
-        Face f{{-1, -1, -1, -1}, count, static_cast<std::int32_t>(p), facet_key(owner, static_cast<int>(lf))};
-        for (int i = 0; i < count; ++i) f.nodes[i] = cn[local[i]];
-        keys.emplace_back(face_nodes(part, e, lf), static_cast<std::int32_t>(faces.size()));
-        faces.push_back(f);
+        g.faces.push_back({static_cast<std::int32_t>(p), static_cast<std::int32_t>(e), static_cast<std::int32_t>(lf)});
+        keys.push_back(face_nodes(part, e, lf));
       }
     }
   }
-  std::sort(keys.begin(), keys.end(), [](const auto& a, const auto& b) { return a.first.sorted < b.first.sorted; });
-  // Keep the faces seen once, in the order of their keys: the order does not then depend on how
-  // the elements are stored (a subdomain holds a colour's owned elements before its ghosts), so
-  // the sums over facets (tributary areas, node normals) and the ties of the search come out
-  // the same in every subdomain as in the whole model.
-  std::vector<char> boundary(faces.size(), 0);
-  const auto& cut = model.cut_faces;  // a subdomain's faces at its cut
-  for (std::size_t i = 0; i < keys.size();) {
-    std::size_t j = i + 1;
-    while (j < keys.size() && keys[j].first == keys[i].first) ++j;
-    const std::int32_t index = keys[i].second;
-    if (j == i + 1) boundary[index] = !std::binary_search(cut.begin(), cut.end(), faces[index].id);
-    i = j;
+  // Buckets by the smallest node (the first used slot of the sorted key), filled in the order
+  // met, so that each bucket is ascending.
+  auto smallest = [&](std::size_t f) {
+    const auto& k = keys[f].sorted;
+    return static_cast<std::size_t>(k[0] >= 0 ? k[0] : k[1] >= 0 ? k[1] : k[2] >= 0 ? k[2] : k[3]);
+  };
+  std::vector<std::int32_t> begin(model.nodes.count() + 1, 0);
+  for (std::size_t f = 0; f < keys.size(); ++f) ++begin[smallest(f) + 1];
+  for (std::size_t n = 0; n < model.nodes.count(); ++n) begin[n + 1] += begin[n];
+  std::vector<std::int32_t> bucketed(keys.size()), next(begin.begin(), begin.end() - 1);
+  for (std::size_t f = 0; f < keys.size(); ++f) bucketed[next[smallest(f)]++] = static_cast<std::int32_t>(f);
+  // Within a bucket (a few faces), the faces of one key together, in the order met.
+  g.order.reserve(keys.size());
+  for (std::size_t n = 0; n < model.nodes.count(); ++n) {
+    auto* first = bucketed.data() + begin[n];
+    auto* last = bucketed.data() + begin[n + 1];
+    for (auto* f = first + 1; f < last; ++f)  // insertion sort: stable, and a bucket holds a few faces
+      for (auto* g = f; g > first && keys[*g].sorted < keys[*(g - 1)].sorted; --g) std::swap(*g, *(g - 1));
+    for (auto* f = first; f < last; ++f) {
+      if (f == first || keys[*f].sorted != keys[*(f - 1)].sorted) g.group_begin.push_back(static_cast<std::int32_t>(g.order.size()));
+      g.order.push_back(*f);
+    }
   }
+  g.group_begin.push_back(static_cast<std::int32_t>(g.order.size()));
+  return g;
+}
+
+ContactSurface extract_contact_surface(const Model& model) {
+  ContactSurface s;
+  s.dim = model.dim();
+  // Keep the faces of one element, in the order of their keys: the order does not then depend on
+  // how the elements are stored (a subdomain holds a colour's owned elements before its ghosts),
+  // so the sums over facets (tributary areas, node normals) and the ties of the search come out
+  // the same in every subdomain as in the whole model. A subdomain's faces at its cut are not
+  // surface.
+  const FaceGroups groups = group_faces(model);
+  const auto& cut = model.cut_faces;
+  std::vector<Face> faces;
+  for (std::size_t k = 0; k < groups.group_count(); ++k) {
+    if (groups.group_begin[k + 1] - groups.group_begin[k] != 1) continue;
+    const FaceGroups::Face& at = groups.faces[groups.order[groups.group_begin[k]]];
+    const Part& part = model.parts[at.part];
+    const auto e = static_cast<std::size_t>(at.element);
+    const auto& local = part.type->faces[at.local];
+    const int count = static_cast<int>(local.size());
+    const std::int64_t owner = part.id.empty() ? static_cast<std::int64_t>(e) : part.id[e];
+    Face f{{-1, -1, -1, -1}, count, at.part, facet_key(owner, at.local)};
+    if (std::binary_search(cut.begin(), cut.end(), f.id)) continue;
+    const std::int32_t* cn = &part.connectivity[static_cast<std::size_t>(part.type->nodes) * e];
+    for (int i = 0; i < count; ++i) f.nodes[i] = cn[local[i]];
+    faces.push_back(f);
+  }
+  std::sort(faces.begin(), faces.end(), [](const Face& a, const Face& b) { return a.id < b.id; });
   const int dim = s.dim;
   // Tributary areas on the undeformed surface: they must not depend on when the surface was last
   // built (a restart rebuilds it), only on the topology.
   const double* X = model.nodes.x0.data();
   std::vector<double> area(model.nodes.count(), 0.0);
   std::vector<std::int32_t> part_of(model.nodes.count(), -1);
-  std::vector<std::size_t> kept;
-  for (std::size_t f = 0; f < faces.size(); ++f)
-    if (boundary[f]) kept.push_back(f);
-  std::sort(kept.begin(), kept.end(), [&](std::size_t a, std::size_t b) { return faces[a].id < faces[b].id; });
-  for (const std::size_t f : kept) {
-    const Face& face = faces[f];
+  for (const Face& face : faces) {
     auto emit = [&](std::int32_t a, std::int32_t b, std::int32_t c, int half = 0) {
       s.facets.push_back(a);
       s.facets.push_back(b);

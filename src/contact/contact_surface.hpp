@@ -55,4 +55,20 @@ struct FaceNodesHash {
 /// The key of local face `local_face` of element e of `part`.
 FaceNodes face_nodes(const Part& part, std::size_t e, std::size_t local_face);
 
+/// The faces of a model's elements (an eroded element's left out) grouped by their nodes: a face
+/// of one element alone is a group of one, a face two elements share a group of two. Faces are
+/// put in buckets by their smallest node and matched within the bucket, so the cost is linear in
+/// the faces (hashing them was several times slower, and every new cut of a decomposed run
+/// groups the whole model's faces more than once).
+struct FaceGroups {
+  struct Face {
+    std::int32_t part, element, local;
+  };
+  std::vector<Face> faces;                 ///< in the order met: by part, element, local face
+  std::vector<std::int32_t> order;         ///< face indices, group after group, each ascending
+  std::vector<std::int32_t> group_begin;   ///< group g is order[group_begin[g] .. group_begin[g + 1])
+  std::size_t group_count() const { return group_begin.empty() ? 0 : group_begin.size() - 1; }
+};
+FaceGroups group_faces(const Model& model);
+
 }  // namespace shard

@@ -448,26 +448,19 @@ void cut_interfaces(Subdomain& sub, const LocalEntities& held) {
 /// The faces at the cut, as facet keys (sorted): of each held element, those it shares with an
 /// element the rank does not hold. Eroded elements have no faces.
 std::vector<std::int64_t> cut_faces(const Model& model, const LocalEntities& held) {
-  struct Seen {
-    std::int64_t key;
-    bool held;
+  const FaceGroups groups = group_faces(model);
+  auto key = [&](const FaceGroups::Face& f) {
+    const Part& part = model.parts[f.part];
+    return facet_key(part.id.empty() ? static_cast<std::int64_t>(f.element) : part.id[f.element], f.local);
   };
-  std::size_t faces = 0;
-  for (const Part& part : model.parts) faces += part.element_count() * part.type->faces.size();
-  std::unordered_map<FaceNodes, Seen, FaceNodesHash> seen;
-  seen.reserve(faces / 2 + 1);  // most faces are seen twice
+  auto holds = [&](const FaceGroups::Face& f) { return held.element[f.part][f.element] != Holding::none; };
   std::vector<std::int64_t> cut;
-  for (std::size_t p = 0; p < model.parts.size(); ++p) {
-    const Part& part = model.parts[p];
-    for (std::size_t e = 0; e < part.element_count(); ++e) {
-      if (!part.eroded.empty() && part.eroded[e]) continue;
-      const bool mine = held.element[p][e] != Holding::none;
-      for (std::size_t lf = 0; lf < part.type->faces.size(); ++lf) {
-        const Seen here{facet_key(part.id.empty() ? static_cast<std::int64_t>(e) : part.id[e], static_cast<int>(lf)), mine};
-        auto [it, first] = seen.emplace(face_nodes(part, e, lf), here);
-        if (first || it->second.held == mine) continue;
-        cut.push_back(mine ? here.key : it->second.key);
-      }
+  for (std::size_t k = 0; k < groups.group_count(); ++k) {
+    // Each later face of the group against the first (two, unless the mesh is not manifold).
+    const FaceGroups::Face& first = groups.faces[groups.order[groups.group_begin[k]]];
+    for (auto i = groups.group_begin[k] + 1; i < groups.group_begin[k + 1]; ++i) {
+      const FaceGroups::Face& other = groups.faces[groups.order[i]];
+      if (holds(other) != holds(first)) cut.push_back(key(holds(other) ? other : first));
     }
   }
   std::sort(cut.begin(), cut.end());
