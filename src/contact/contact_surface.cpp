@@ -25,8 +25,12 @@ FaceNodes face_nodes(const Part& part, std::size_t e, std::size_t local_face) {
   const auto& local = part.type->faces[local_face];
   const std::size_t npe = static_cast<std::size_t>(part.type->nodes);
   for (std::size_t i = 0; i < local.size(); ++i) k.sorted[i] = part.connectivity[npe * e + local[i]];
-  // All four slots: the unused ones (−1) sort first alike for every face of that size.
-  std::sort(k.sorted.begin(), k.sorted.end());
+  // All four slots: the unused ones (−1) sort first alike for every face of that size. A network
+  // of five compare-exchanges sorts four (std::sort's call was a third of the grouping's time).
+  auto order = [&k](int a, int b) {
+    if (k.sorted[b] < k.sorted[a]) std::swap(k.sorted[a], k.sorted[b]);
+  };
+  order(0, 1), order(2, 3), order(0, 2), order(1, 3), order(1, 2);
   return k;
 }
 
@@ -76,7 +80,9 @@ FaceGroups group_faces(const Model& model) {
   return g;
 }
 
-ContactSurface extract_contact_surface(const Model& model) {
+ContactSurface extract_contact_surface(const Model& model) { return extract_contact_surface(model, group_faces(model)); }
+
+ContactSurface extract_contact_surface(const Model& model, const FaceGroups& groups) {
   ContactSurface s;
   s.dim = model.dim();
   // Keep the faces of one element, in the order of their keys: the order does not then depend on
@@ -84,7 +90,6 @@ ContactSurface extract_contact_surface(const Model& model) {
   // so the sums over facets (tributary areas, node normals) and the ties of the search come out
   // the same in every subdomain as in the whole model. A subdomain's faces at its cut are not
   // surface.
-  const FaceGroups groups = group_faces(model);
   const auto& cut = model.cut_faces;
   std::vector<Face> faces;
   for (std::size_t k = 0; k < groups.group_count(); ++k) {

@@ -38,6 +38,9 @@ struct ContactSurface {
 };
 
 ContactSurface extract_contact_surface(const Model& model);
+struct FaceGroups;
+/// … from its faces grouped already (group_faces).
+ContactSurface extract_contact_surface(const Model& model, const FaceGroups& faces);
 
 /// An element face by its corners, sorted (the unused slots, −1, first): the same key for the two
 /// elements that share the face, whatever its orientation in each.

@@ -331,10 +331,10 @@ struct SurfaceMarks {
   std::vector<char> contact, boundary;
 };
 
-SurfaceMarks surface_marks(const Model& model, const ContactHalo* halo) {
+SurfaceMarks surface_marks(const Model& model, const ContactHalo* halo, const FaceGroups& faces) {
   SurfaceMarks marks;
   if (!halo || (halo->parts.empty() && !(halo->particle_facet_reach > 0))) return marks;
-  const ContactSurface surface = extract_contact_surface(model);
+  const ContactSurface surface = extract_contact_surface(model, faces);
   if (!halo->parts.empty()) marks.contact = contact_surface_nodes(model, surface, *halo);
   if (halo->particle_facet_reach > 0) marks.boundary = boundary_facet_nodes(model, surface, *halo);
   return marks;
@@ -391,7 +391,7 @@ LocalEntities held_entities(const Model& model, const ElementPartition& partitio
 
 LocalEntities local_entities(const Model& model, const ElementPartition& partition,
                              const std::vector<std::int32_t>& owner, int rank, const ContactHalo* halo) {
-  return held_entities(model, partition, owner, rank, halo, surface_marks(model, halo));
+  return held_entities(model, partition, owner, rank, halo, surface_marks(model, halo, group_faces(model)));
 }
 
 std::size_t Subdomain::owned_element_count() const {
@@ -447,8 +447,7 @@ void cut_interfaces(Subdomain& sub, const LocalEntities& held) {
 
 /// The faces at the cut, as facet keys (sorted): of each held element, those it shares with an
 /// element the rank does not hold. Eroded elements have no faces.
-std::vector<std::int64_t> cut_faces(const Model& model, const LocalEntities& held) {
-  const FaceGroups groups = group_faces(model);
+std::vector<std::int64_t> cut_faces(const Model& model, const LocalEntities& held, const FaceGroups& groups) {
   auto key = [&](const FaceGroups::Face& f) {
     const Part& part = model.parts[f.part];
     return facet_key(part.id.empty() ? static_cast<std::int64_t>(f.element) : part.id[f.element], f.local);
@@ -581,7 +580,8 @@ Subdomain make_subdomain(const Model& model, const ElementPartition& partition, 
   if (rank < 0 || rank >= partition.ranks || partition.rank.size() != model.parts.size())
     throw std::invalid_argument("make_subdomain: rank " + std::to_string(rank) + " outside the partition");
   const std::vector<std::int32_t> owner = node_owners(model, partition);
-  const SurfaceMarks marks = surface_marks(model, halo);
+  const FaceGroups faces = group_faces(model);  // for the surface marks and the faces at the cut
+  const SurfaceMarks marks = surface_marks(model, halo, faces);
   const LocalEntities held = held_entities(model, partition, owner, rank, halo, marks);
 
   Subdomain sub;
@@ -634,7 +634,7 @@ Subdomain make_subdomain(const Model& model, const ElementPartition& partition, 
   }
   // The body's surface is the whole model's: the faces where the cut separates held elements
   // from the rest are not contact faces. A face a held element's erosion uncovers is.
-  sub.model.cut_faces = cut_faces(model, held);
+  sub.model.cut_faces = cut_faces(model, held, faces);
   if (model.has_cracks()) {
     const std::vector<char> faces = model.crack_face_nodes();
     sub.model.whole_crack_faces.resize(sub.global_node.size());
