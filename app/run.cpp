@@ -322,6 +322,13 @@ int cores_per_rank(const RunOptions& options) {
 }
 #endif
 
+/// Whether an event run on the whole model of a decomposed run changed its topology: the
+/// subdomains are cut anew only if it did.
+struct ChangeSeen : TopologyListener {
+  bool changed = false;
+  void topology_changed(const Model&, const Remap&) override { changed = true; }
+};
+
 /// One run: the simulation, its solver and its outputs (history, frames, checkpoints, summary).
 class RunDriver {
  public:
@@ -601,36 +608,26 @@ class RunDriver {
   void remesh_across_ranks() {
     if (!sub_ || !remesher_) return;
     SolverState& s = solver_.state();
+    // As one process's event at every step: the record of remeshes sized (the checkpoint, written
+    // from whole_, holds it from the first step on), the shapes of new elements measured.
+    remesher_->size_records(whole_);
+    remesher_->size_records(sim_.model);
     remesher_->measure_new_elements(sim_.model);
-    std::int64_t due = remesher_->may_be_due(sim_.model, owned_elements(), s.step) ? 1 : 0;
+    if (!remesher_->checks(s.step)) return;  // the step is alike on every rank
+    std::int64_t due = remesher_->may_be_due(sim_.model, sub_->owned_elements(), s.step) ? 1 : 0;
     ranks_->sum(&due, 1);
     if (due == 0) return;
     gather_whole_everywhere();
-    struct : TopologyListener {
-      bool changed = false;
-      void topology_changed(const Model&, const Remap&) override { changed = true; }
-    } remeshed;
+    ChangeSeen remeshed;
     Topology untold;  // the solver's caches follow the new cut, not the whole model
     untold.add(remeshed);
     EventContext context{s.step, s.time, s.eroded_elements, s.energy, untold, &s.part_stored};
-    compact_whole([&] { remesher_->run(whole_, context); });  // the weights of the elements kept
+    compact_whole([&] { remesher_->run(whole_, context); });
     // What a remesh that failed keeps of its attempts (when to try again) is the whole model's.
-    using Record = std::vector<std::int64_t> Model::*;
-    for (const Record record : {&Model::remesh_count, &Model::remesh_step, &Model::remesh_local_count,
-                                &Model::remesh_failures, &Model::remesh_retry_step})
-      sim_.model.*record = whole_.*record;
+    RemeshEvent::copy_records(whole_, sim_.model);
     if (!remeshed.changed) return;
     cut_whole();
     ++cuts_;
-  }
-
-  /// Per part, the indices of the elements this rank owns in its subdomain.
-  std::vector<std::vector<std::int32_t>> owned_elements() const {
-    std::vector<std::vector<std::int32_t>> owned(sub_->element_owned.size());
-    for (std::size_t p = 0; p < owned.size(); ++p)
-      for (std::size_t e = 0; e < sub_->element_owned[p].size(); ++e)
-        if (sub_->element_owned[p][e]) owned[p].push_back(static_cast<std::int32_t>(e));
-    return owned;
   }
 
   /// The automata's search for new contacts across ranks: it changes the pairs, so it runs on the
@@ -657,10 +654,7 @@ class RunDriver {
     gather_whole_everywhere();
     // The solver's caches follow the new cut, not the whole model; a search that changed no pair
     // (alike on every rank) leaves the cut as it was.
-    struct : TopologyListener {
-      bool changed = false;
-      void topology_changed(const Model&, const Remap&) override { changed = true; }
-    } pairs;
+    ChangeSeen pairs;
     Topology untold;
     untold.add(pairs);
     EventContext context{s.step, s.time, s.eroded_elements, s.energy, untold, &s.part_stored};
@@ -838,7 +832,8 @@ class RunDriver {
   }
 
   /// Runs `take_out`, which removes elements from whole_ (keeping the order of those left in
-  /// each part), and carries the rebalancing weights of the elements left.
+  /// each part), and carries the rebalancing weights of the elements left; a part that gained
+  /// elements (a remesh) starts again from each element's number of points.
   template <class TakeOut>
   void compact_whole(TakeOut&& take_out) {
     std::vector<std::vector<std::int64_t>> ids_before;

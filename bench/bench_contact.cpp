@@ -133,8 +133,6 @@ Timing run_case(int threads, int steps, bool print_model) {
   return t;
 }
 
-}  // namespace
-
 /// Extracting the whole surface (at set-up, after every topology change, and three times per new
 /// cut of a decomposed run): the median of 11 extractions of the impact model's surface.
 void time_surface_extraction() {
@@ -150,6 +148,8 @@ void time_surface_extraction() {
   std::printf("# surface extraction: %zu elements, %zu facets, %.2f ms (median of 11)\n", model.element_count(),
               facets, ms[5]);
 }
+
+}  // namespace
 
 int main(int argc, char** argv) {
   keep_freed_memory();  // as shard's main does

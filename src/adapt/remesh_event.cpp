@@ -88,7 +88,7 @@ RemeshEvent::Due RemeshEvent::assess(const Model& model, std::size_t i, std::int
 
 bool RemeshEvent::may_be_due(const Model& model, const std::vector<std::vector<std::int32_t>>& owned,
                              std::int64_t step) const {
-  if (triggers_.check_interval <= 0 || step % triggers_.check_interval != 0) return false;
+  if (!checks(step)) return false;
   for (std::size_t i = 0; i < parts_.size(); ++i) {
     const std::size_t p = parts_[i].part;
     if (p < model.remesh_retry_step.size() && step < model.remesh_retry_step[p]) continue;
@@ -132,6 +132,20 @@ RemeshOutcome RemeshEvent::remesh(Model& model, std::size_t i, const Due& why, b
   return remesh_part(model, p, material, parts_[i].settings, kept_nodes_);
 }
 
+void RemeshEvent::size_records(Model& model) const {
+  for (auto* record : {&model.remesh_count, &model.remesh_step, &model.remesh_local_count, &model.remesh_failures,
+                       &model.remesh_retry_step})
+    record->resize(model.parts.size(), 0);
+}
+
+void RemeshEvent::copy_records(const Model& from, Model& to) {
+  to.remesh_count = from.remesh_count;
+  to.remesh_step = from.remesh_step;
+  to.remesh_local_count = from.remesh_local_count;
+  to.remesh_failures = from.remesh_failures;
+  to.remesh_retry_step = from.remesh_retry_step;
+}
+
 void RemeshEvent::measure_new_elements(Model& model) const {
   for (const RemeshedPart& r : parts_) {
     Part& part = model.parts[r.part];
@@ -142,13 +156,9 @@ void RemeshEvent::measure_new_elements(Model& model) const {
 }
 
 void RemeshEvent::run(Model& model, EventContext& context) {
-  model.remesh_count.resize(model.parts.size(), 0);
-  model.remesh_step.resize(model.parts.size(), 0);
-  model.remesh_local_count.resize(model.parts.size(), 0);
-  model.remesh_failures.resize(model.parts.size(), 0);
-  model.remesh_retry_step.resize(model.parts.size(), 0);
+  size_records(model);
   measure_new_elements(model);
-  if (triggers_.check_interval <= 0 || context.step % triggers_.check_interval != 0) return;
+  if (!checks(context.step)) return;
   bool changed = false;
   for (std::size_t i = 0; i < parts_.size(); ++i) {
     const std::size_t p = parts_[i].part;

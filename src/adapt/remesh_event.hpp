@@ -57,14 +57,20 @@ class RemeshEvent final : public StepEvent {
 
   const std::vector<RemeshedPart>& parts() const { return parts_; }
 
-  /// Measures the shape of the elements made since the last look (at the first step, after a
-  /// remesh), which their distortion is measured against: what `run` does first at every step.
+  /// What `run` does first at every step: the model's record of remeshes sized to its parts, and
+  /// the shapes distortion is measured against taken anew in a part whose element count changed
+  /// (at the first step, after a remesh).
+  void size_records(Model& model) const;
   void measure_new_elements(Model& model) const;
+  /// Whether `step` is a check (every check_interval steps).
+  bool checks(std::int64_t step) const { return triggers_.check_interval > 0 && step % triggers_.check_interval == 0; }
+  /// Copies the record of remeshes (counts, steps, failures, when to try again) between models.
+  static void copy_records(const Model& from, Model& to);
   /// In a decomposed run, on a rank's subdomain: whether this step is a check and some remeshed
   /// part may be due by what its `owned` elements (per part, their indices) show. Every element
-  /// is some rank's, so the whole model is due only where some rank says so; the whole model
-  /// then decides (`run`). A size rule of the energy-norm error, normalised over the whole part,
-  /// says "may be" at every check.
+  /// is some rank's, so whenever the whole model is due some rank says so (and a yes may find
+  /// nothing due: the whole model then decides, `run`). A size rule of the energy-norm error,
+  /// normalised over the whole part, says yes at every check.
   bool may_be_due(const Model& model, const std::vector<std::vector<std::int32_t>>& owned, std::int64_t step) const;
   /// Wall-clock seconds spent remeshing each remeshed part (not in the history: it would differ
   /// from run to run).

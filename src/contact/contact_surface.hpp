@@ -48,13 +48,6 @@ struct FaceNodes {
   std::array<std::int32_t, 4> sorted{-1, -1, -1, -1};
   bool operator==(const FaceNodes&) const = default;
 };
-struct FaceNodesHash {
-  std::size_t operator()(const FaceNodes& k) const {
-    std::size_t h = 1469598103934665603ull;  // FNV-1a over the four corners
-    for (auto v : k.sorted) h = (h ^ static_cast<std::size_t>(v + 1)) * 1099511628211ull;
-    return h;
-  }
-};
 /// The key of local face `local_face` of element e of `part`.
 FaceNodes face_nodes(const Part& part, std::size_t e, std::size_t local_face);
 

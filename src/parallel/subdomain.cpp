@@ -401,6 +401,14 @@ std::size_t Subdomain::owned_element_count() const {
   return n;
 }
 
+std::vector<std::vector<std::int32_t>> Subdomain::owned_elements() const {
+  std::vector<std::vector<std::int32_t>> owned(element_owned.size());
+  for (std::size_t p = 0; p < owned.size(); ++p)
+    for (std::size_t e = 0; e < element_owned[p].size(); ++e)
+      if (element_owned[p][e]) owned[p].push_back(static_cast<std::int32_t>(e));
+  return owned;
+}
+
 std::size_t Subdomain::ghost_element_count() const {
   std::size_t n = 0;
   for (const auto& owned : element_owned) n += owned.size();
@@ -580,8 +588,8 @@ Subdomain make_subdomain(const Model& model, const ElementPartition& partition, 
   if (rank < 0 || rank >= partition.ranks || partition.rank.size() != model.parts.size())
     throw std::invalid_argument("make_subdomain: rank " + std::to_string(rank) + " outside the partition");
   const std::vector<std::int32_t> owner = node_owners(model, partition);
-  const FaceGroups faces = group_faces(model);  // for the surface marks and the faces at the cut
-  const SurfaceMarks marks = surface_marks(model, halo, faces);
+  const FaceGroups face_groups = group_faces(model);  // for the surface marks and the faces at the cut
+  const SurfaceMarks marks = surface_marks(model, halo, face_groups);
   const LocalEntities held = held_entities(model, partition, owner, rank, halo, marks);
 
   Subdomain sub;
@@ -634,7 +642,7 @@ Subdomain make_subdomain(const Model& model, const ElementPartition& partition, 
   }
   // The body's surface is the whole model's: the faces where the cut separates held elements
   // from the rest are not contact faces. A face a held element's erosion uncovers is.
-  sub.model.cut_faces = cut_faces(model, held, faces);
+  sub.model.cut_faces = cut_faces(model, held, face_groups);
   if (model.has_cracks()) {
     const std::vector<char> faces = model.crack_face_nodes();
     sub.model.whole_crack_faces.resize(sub.global_node.size());

@@ -107,6 +107,8 @@ struct Subdomain {
 
   std::size_t owned_element_count() const;
   std::size_t ghost_element_count() const;
+  /// Per part, the local indices of the elements this rank owns.
+  std::vector<std::vector<std::int32_t>> owned_elements() const;
 };
 
 /// Cuts the part of `model` that rank `rank` holds out of a copy of it (apply_remap, keeping the

@@ -159,10 +159,14 @@ serial_then_ranks("steel", os.path.join(source, "examples/taylor_bar/steel_4340_
 # Adaptive remeshing: the same bar remeshed as it mushrooms (angles and a longest interval, sizes
 # from the plastic strain), 20 us, remeshed at 8, 12, 15.5 and 19 us: each remesh gathers the
 # whole model, remeshes it by the rule of one process and cuts it anew; on 3 ranks at random, and
-# from 2 to 3 ranks across a restart at 10 us (between the first remesh and the second).
+# from 2 to 3 ranks across a restart at 10 us (between the first remesh and the second); and to
+# 5 us on 2 ranks, before any remesh.
 remeshing = os.path.join(source, "examples/taylor_bar/steel_4340_axisymmetric_remeshing.yaml")
 to_20us = ["--set", "analysis.end_time=20us"]
 serial_then_ranks("remeshing", remeshing, (), "the remeshed Taylor bar", to_20us)
+# Stopped before the first remesh: the checkpoint holds the record of remeshes as one process's.
+serial_then_ranks("remeshing_early", remeshing, (2,), "the remeshed Taylor bar before its first remesh",
+                  ["--set", "analysis.end_time=5us"])
 random_ranks("remeshing_random", remeshing, 3, 2, "remeshing_serial", "the remeshed Taylor bar", to_20us)
 restart_on_three("remeshing_restart", remeshing, "remeshing_serial", to_20us, until="10us")
 if json.load(open("remeshing_serial/summary.json"))["remeshing"]["bar"]["remeshes"] < 3:

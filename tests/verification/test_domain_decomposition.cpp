@@ -841,10 +841,7 @@ TEST(DomainDecomposition, RanksVoteARemeshExactlyWhenTheWholeModelIsDue) {
             bool voted = false;
             for (int r = 0; r < ranks; ++r) {
               const Subdomain sub = make_subdomain(moved, partition, r);
-              std::vector<std::vector<std::int32_t>> owned(1);
-              for (std::size_t e = 0; e < sub.element_owned[0].size(); ++e)
-                if (sub.element_owned[0][e]) owned[0].push_back(static_cast<std::int32_t>(e));
-              voted = voted || event.may_be_due(sub.model, owned, 20);
+              voted = voted || event.may_be_due(sub.model, sub.owned_elements(), 20);
             }
             EXPECT_EQ(voted, whole_due) << ranks << " ranks" << (scattered ? " at random" : "") << ", trigger "
                                         << trigger << ", node " << n;
