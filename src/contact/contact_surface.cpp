@@ -40,9 +40,46 @@ bool ContactSurface::are_neighbours(std::size_t surface_node, std::int32_t node)
   return std::binary_search(b, e, node);
 }
 
+namespace {
+
+/// A face's key with its index in the order met.
+struct KeyedFace {
+  FaceNodes key;
+  std::int32_t face;
+};
+
+bool before(const KeyedFace& a, const KeyedFace& b) {
+  return a.key.sorted < b.key.sorted || (a.key.sorted == b.key.sorted && a.face < b.face);
+}
+
+/// The faces, keyed, in buckets by their smallest node (the first used slot of the sorted key),
+/// each bucket in the order met; bucket n is [begin[n], begin[n + 1]). The keys travel with the
+/// indices, so that the sorting within a bucket reads contiguous memory.
+std::vector<KeyedFace> bucket_by_smallest_node(const std::vector<FaceNodes>& keys, std::size_t nodes,
+                                               std::vector<std::int32_t>& begin) {
+  auto smallest = [&](std::size_t f) {
+    const auto& k = keys[f].sorted;
+    return static_cast<std::size_t>(k[0] >= 0 ? k[0] : k[1] >= 0 ? k[1] : k[2] >= 0 ? k[2] : k[3]);
+  };
+  begin.assign(nodes + 1, 0);
+  for (std::size_t f = 0; f < keys.size(); ++f) ++begin[smallest(f) + 1];
+  for (std::size_t n = 0; n < nodes; ++n) begin[n + 1] += begin[n];
+  std::vector<KeyedFace> bucketed(keys.size());
+  std::vector<std::int32_t> next(begin.begin(), begin.end() - 1);
+  for (std::size_t f = 0; f < keys.size(); ++f) bucketed[next[smallest(f)]++] = {keys[f], static_cast<std::int32_t>(f)};
+  return bucketed;
+}
+
+}  // namespace
+
 FaceGroups group_faces(const Model& model) {
   FaceGroups g;
   std::vector<FaceNodes> keys;
+  std::size_t count = 0;
+  for (const Part& part : model.parts) count += part.element_count() * part.type->faces.size();
+  g.faces.reserve(count);
+  keys.reserve(count);
+  g.group_begin.reserve(count / 2 + 2);
   for (std::size_t p = 0; p < model.parts.size(); ++p) {
     const Part& part = model.parts[p];
     for (std::size_t e = 0; e < part.element_count(); ++e) {
@@ -53,35 +90,23 @@ FaceGroups group_faces(const Model& model) {
       }
     }
   }
-  // Buckets by the smallest node (the first used slot of the sorted key), filled in the order
-  // met, so that each bucket is ascending.
-  auto smallest = [&](std::size_t f) {
-    const auto& k = keys[f].sorted;
-    return static_cast<std::size_t>(k[0] >= 0 ? k[0] : k[1] >= 0 ? k[1] : k[2] >= 0 ? k[2] : k[3]);
-  };
-  std::vector<std::int32_t> begin(model.nodes.count() + 1, 0);
-  for (std::size_t f = 0; f < keys.size(); ++f) ++begin[smallest(f) + 1];
-  for (std::size_t n = 0; n < model.nodes.count(); ++n) begin[n + 1] += begin[n];
-  std::vector<std::int32_t> bucketed(keys.size()), next(begin.begin(), begin.end() - 1);
-  for (std::size_t f = 0; f < keys.size(); ++f) bucketed[next[smallest(f)]++] = static_cast<std::int32_t>(f);
+  std::vector<std::int32_t> begin;
+  std::vector<KeyedFace> bucketed = bucket_by_smallest_node(keys, model.nodes.count(), begin);
   // Within a bucket (a few faces, more at the hub of a fan), the faces of one key together, in
   // the order met.
   g.order.reserve(keys.size());
-  auto before = [&keys](std::int32_t a, std::int32_t b) {
-    return keys[a].sorted < keys[b].sorted || (keys[a].sorted == keys[b].sorted && a < b);
-  };
   for (std::size_t n = 0; n < model.nodes.count(); ++n) {
-    auto* first = bucketed.data() + begin[n];
-    auto* last = bucketed.data() + begin[n + 1];
+    KeyedFace* first = bucketed.data() + begin[n];
+    KeyedFace* last = bucketed.data() + begin[n + 1];
     if (last - first > 16) {
       std::sort(first, last, before);
     } else {  // insertion: a few faces, without std::sort's set-up
-      for (auto* f = first + 1; f < last; ++f)
-        for (auto* at = f; at > first && before(*at, *(at - 1)); --at) std::swap(*at, *(at - 1));
+      for (KeyedFace* f = first + 1; f < last; ++f)
+        for (KeyedFace* at = f; at > first && before(*at, *(at - 1)); --at) std::swap(*at, *(at - 1));
     }
-    for (auto* f = first; f < last; ++f) {
-      if (f == first || keys[*f].sorted != keys[*(f - 1)].sorted) g.group_begin.push_back(static_cast<std::int32_t>(g.order.size()));
-      g.order.push_back(*f);
+    for (KeyedFace* f = first; f < last; ++f) {
+      if (f == first || f->key.sorted != (f - 1)->key.sorted) g.group_begin.push_back(static_cast<std::int32_t>(g.order.size()));
+      g.order.push_back(f->face);
     }
   }
   g.group_begin.push_back(static_cast<std::int32_t>(g.order.size()));
