@@ -132,8 +132,7 @@ ContactSurface extract_contact_surface(const Model& model, const FaceGroups& gro
     const auto e = static_cast<std::size_t>(at.element);
     const auto& local = part.type->faces[at.local];
     const int count = static_cast<int>(local.size());
-    const std::int64_t owner = part.id.empty() ? static_cast<std::int64_t>(e) : part.id[e];
-    Face f{{-1, -1, -1, -1}, count, at.part, facet_key(owner, at.local)};
+    Face f{{-1, -1, -1, -1}, count, at.part, FaceGroups::key(model, at)};
     if (std::binary_search(cut.begin(), cut.end(), f.id)) continue;
     const std::int32_t* cn = &part.connectivity[static_cast<std::size_t>(part.type->nodes) * e];
     for (int i = 0; i < count; ++i) f.nodes[i] = cn[local[i]];

@@ -64,6 +64,11 @@ struct FaceGroups {
   std::vector<std::int32_t> order;         ///< face indices, group after group, each ascending
   std::vector<std::int32_t> group_begin;   ///< group g is order[group_begin[g] .. group_begin[g + 1])
   std::size_t group_count() const { return group_begin.empty() ? 0 : group_begin.size() - 1; }
+  /// The face's facet key: its element's stable id (its index before ids are given) and local face.
+  static std::int64_t key(const Model& model, const Face& f) {
+    const Part& part = model.parts[f.part];
+    return facet_key(part.id.empty() ? static_cast<std::int64_t>(f.element) : part.id[f.element], f.local);
+  }
 };
 FaceGroups group_faces(const Model& model);
 

@@ -456,10 +456,6 @@ void cut_interfaces(Subdomain& sub, const LocalEntities& held) {
 /// The faces at the cut, as facet keys (sorted): of each held element, those it shares with an
 /// element the rank does not hold. Eroded elements have no faces.
 std::vector<std::int64_t> cut_faces(const Model& model, const LocalEntities& held, const FaceGroups& groups) {
-  auto key = [&](const FaceGroups::Face& f) {
-    const Part& part = model.parts[f.part];
-    return facet_key(part.id.empty() ? static_cast<std::int64_t>(f.element) : part.id[f.element], f.local);
-  };
   auto holds = [&](const FaceGroups::Face& f) { return held.element[f.part][f.element] != Holding::none; };
   std::vector<std::int64_t> cut;
   for (std::size_t k = 0; k < groups.group_count(); ++k) {
@@ -467,7 +463,7 @@ std::vector<std::int64_t> cut_faces(const Model& model, const LocalEntities& hel
     const FaceGroups::Face& first = groups.faces[groups.order[groups.group_begin[k]]];
     for (auto i = groups.group_begin[k] + 1; i < groups.group_begin[k + 1]; ++i) {
       const FaceGroups::Face& other = groups.faces[groups.order[i]];
-      if (holds(other) != holds(first)) cut.push_back(key(holds(other) ? other : first));
+      if (holds(other) != holds(first)) cut.push_back(FaceGroups::key(model, holds(other) ? other : first));
     }
   }
   std::sort(cut.begin(), cut.end());

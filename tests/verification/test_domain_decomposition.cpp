@@ -666,6 +666,12 @@ void check_particle_contact_on_ranks(const Model& start, ElasticRun& whole, cons
   }
 }
 
+/// The whole model run kSteps in one process with contact of particles: a decomposed run's reference.
+Booked run_whole_with(ElasticRun& whole, ParticleContact& contact) {
+  return run_steps(whole.model, whole.materials, whole.loads, whole.settings, kSteps,
+                   [&](ExplicitSolver& solver) { solver.attach_particle_contact(&contact); });
+}
+
 // Discrete elements across the cut: each rank holds every disc within twice the largest radius
 // and the skin of one it owns (ContactHalo::particle_reach), every contact of its own discs'
 // list; the contacts are booked by the owner of their first disc. Cut by bisection and at random:
@@ -675,8 +681,7 @@ TEST(DomainDecomposition, DiscreteElementsGiveTheSameBitsOnOneToFourRanks) {
   ElasticRun whole = tumbling_grains();
   const Model start = whole.model;
   ParticleContact serial_contact(grain_contact());
-  const Booked booked = run_steps(whole.model, whole.materials, whole.loads, whole.settings, kSteps,
-                                  [&](ExplicitSolver& solver) { solver.attach_particle_contact(&serial_contact); });
+  const Booked booked = run_whole_with(whole, serial_contact);
   ParticlePart& serial = whole.model.particle_parts[0];
   double moved = 0;
   for (std::size_t i = 0; i < serial.count(); ++i)
@@ -738,8 +743,7 @@ TEST(DomainDecomposition, DiscsOnAMeshGiveTheSameBitsOnOneToFourRanks) {
   ElasticRun whole = discs_on_plate();
   const Model start = whole.model;
   ParticleContact serial_contact(disc_contact());
-  const Booked booked = run_steps(whole.model, whole.materials, whole.loads, whole.settings, kSteps,
-                                  [&](ExplicitSolver& solver) { solver.attach_particle_contact(&serial_contact); });
+  const Booked booked = run_whole_with(whole, serial_contact);
   double moved = 0;
   for (std::size_t i = 0; i < start.nodes.x.size(); ++i) moved = std::max(moved, std::abs(whole.model.nodes.x[i] - start.nodes.x[i]));
   const ParticlePart& serial = whole.model.particle_parts[0];
