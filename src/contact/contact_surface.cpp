@@ -96,6 +96,7 @@ FaceGroups group_faces(const Model& model) {
   // the order met.
   g.order.reserve(keys.size());
   for (std::size_t n = 0; n < model.nodes.count(); ++n) {
+    if (begin[n] == begin[n + 1]) continue;  // no face: and no pointer into an empty array
     KeyedFace* first = bucketed.data() + begin[n];
     KeyedFace* last = bucketed.data() + begin[n + 1];
     if (last - first > 16) {
