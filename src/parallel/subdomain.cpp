@@ -104,6 +104,11 @@ double longest_edge(const double* X, int dim, const std::int32_t* nodes, const s
 }  // namespace
 
 ContactHalo contact_halo(const Model& model, const std::vector<char>& part_pairs, const std::vector<char>& eroding_parts) {
+  return contact_halo(model, extract_contact_surface(model), part_pairs, eroding_parts);
+}
+
+ContactHalo contact_halo(const Model& model, const ContactSurface& surface, const std::vector<char>& part_pairs,
+                         const std::vector<char>& eroding_parts) {
   ContactHalo halo;
   const std::size_t np = model.parts.size();
   halo.parts.assign(np, 0);
@@ -113,7 +118,6 @@ ContactHalo contact_halo(const Model& model, const std::vector<char>& part_pairs
       if (a * np + b < part_pairs.size() && part_pairs[a * np + b]) halo.parts[a] = halo.parts[b] = 1, any = true;
   if (!any) return ContactHalo{};
   halo.eroding = eroding_parts;
-  const ContactSurface surface = extract_contact_surface(model);
   const int dim = model.dim();
   const double* X = model.nodes.x.data();
   double longest = 0;
@@ -331,10 +335,11 @@ struct SurfaceMarks {
   std::vector<char> contact, boundary;
 };
 
-SurfaceMarks surface_marks(const Model& model, const ContactHalo* halo, const FaceGroups& faces) {
+SurfaceMarks surface_marks(const Model& model, const ContactHalo* halo, const WholeFaces& faces) {
   SurfaceMarks marks;
   if (!halo || (halo->parts.empty() && !(halo->particle_facet_reach > 0))) return marks;
-  const ContactSurface surface = extract_contact_surface(model, faces);
+  const ContactSurface found = faces.has_surface ? ContactSurface{} : extract_contact_surface(model, faces.groups);
+  const ContactSurface& surface = faces.has_surface ? faces.surface : found;
   if (!halo->parts.empty()) marks.contact = contact_surface_nodes(model, surface, *halo);
   if (halo->particle_facet_reach > 0) marks.boundary = boundary_facet_nodes(model, surface, *halo);
   return marks;
@@ -391,7 +396,7 @@ LocalEntities held_entities(const Model& model, const ElementPartition& partitio
 
 LocalEntities local_entities(const Model& model, const ElementPartition& partition,
                              const std::vector<std::int32_t>& owner, int rank, const ContactHalo* halo) {
-  return held_entities(model, partition, owner, rank, halo, surface_marks(model, halo, group_faces(model)));
+  return held_entities(model, partition, owner, rank, halo, surface_marks(model, halo, WholeFaces{group_faces(model)}));
 }
 
 std::size_t Subdomain::owned_element_count() const {
@@ -580,12 +585,17 @@ void cut_particles(const Model& model, const LocalEntities& held, Subdomain& sub
 }  // namespace
 
 Subdomain make_subdomain(const Model& model, const ElementPartition& partition, int rank, const ContactHalo* halo) {
+  return make_subdomain(model, partition, rank, halo, WholeFaces{group_faces(model)});
+}
+
+Subdomain make_subdomain(const Model& model, const ElementPartition& partition, int rank, const ContactHalo* halo,
+                         const WholeFaces& faces) {
   check_decomposable(model, partition);
   if (rank < 0 || rank >= partition.ranks || partition.rank.size() != model.parts.size())
     throw std::invalid_argument("make_subdomain: rank " + std::to_string(rank) + " outside the partition");
   const std::vector<std::int32_t> owner = node_owners(model, partition);
-  const FaceGroups face_groups = group_faces(model);  // for the surface marks and the faces at the cut
-  const SurfaceMarks marks = surface_marks(model, halo, face_groups);
+  const FaceGroups& face_groups = faces.groups;  // for the surface marks and the faces at the cut
+  const SurfaceMarks marks = surface_marks(model, halo, faces);
   const LocalEntities held = held_entities(model, partition, owner, rank, halo, marks);
 
   Subdomain sub;

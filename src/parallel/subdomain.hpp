@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "contact/contact_surface.hpp"
 #include "model/model.hpp"
 #include "model/remap.hpp"
 #include "parallel/partition.hpp"
@@ -62,6 +63,9 @@ struct ContactHalo {
 /// allowed motion δ. Empty parts: no contact between parts.
 ContactHalo contact_halo(const Model& model, const std::vector<char>& part_pairs,
                          const std::vector<char>& eroding = {});
+/// … with `model`'s contact surface found already (extract_contact_surface).
+ContactHalo contact_halo(const Model& model, const ContactSurface& surface, const std::vector<char>& part_pairs,
+                         const std::vector<char>& eroding);
 
 /// ContactHalo::particle_facet_reach on `model` for particles of radius up to `r_max` and a
 /// neighbour list of skin `skin`: r_max + skin + the longest edge of its boundary facets.
@@ -118,6 +122,18 @@ struct Subdomain {
 /// partners (docs/theory/domain_decomposition.md, sections 16 and 17).
 Subdomain make_subdomain(const Model& model, const ElementPartition& partition, int rank,
                          const ContactHalo* halo = nullptr);
+
+/// What a cut finds of the whole model's faces, found once when the caller needs them too (the
+/// halo's reach): its faces grouped, and its contact surface (empty: found by the cut if needed).
+struct WholeFaces {
+  FaceGroups groups;
+  ContactSurface surface;
+  bool has_surface = false;
+};
+
+/// make_subdomain, with the whole model's faces found already.
+Subdomain make_subdomain(const Model& model, const ElementPartition& partition, int rank, const ContactHalo* halo,
+                         const WholeFaces& faces);
 
 /// Writes what `sub` owns — as unpack_owned(pack_owned(sub, local), whole): every declared field
 /// of its owned nodes, elements, particles and pairs as they are in `local` (the subdomain's
