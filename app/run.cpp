@@ -526,7 +526,10 @@ class RunDriver {
     if (sim_.particle_contact) sim_.particle_contact->fix_skin(sim_.particle_contact->own_skin(whole_));
     if (sim_.particle_contact || automata_contacts_) hold_particles_in_reach();
     const bool halo = !halo_.parts.empty() || !halo_.particle_parts.empty();
-    sub_ = make_subdomain(whole_, partition_, ranks.rank(), halo ? &halo_ : nullptr, faces);
+    // What each rank sends its neighbours is what they say they receive: one exchange of lists
+    // instead of a pass over the whole model per other rank.
+    sub_ = make_subdomain(whole_, partition_, ranks.rank(), halo ? &halo_ : nullptr, faces, /*plan_sends=*/false);
+    complete_ghost_exchange(*sub_, ranks.all_gather(ghost_requests(*sub_)));
     sim_.model = sub_->model;  // the solver's model, in place
     solver_.restored();        // every cache of the topology (the contact surface, ...) follows the cut
     if (cracks_) solver_.remove_event(*cracks_);  // split on the whole model: grow_cracks_across_ranks

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <optional>
 #include <unordered_map>
 #include <stdexcept>
 #include <string>
@@ -478,21 +479,23 @@ std::vector<std::int64_t> cut_faces(const Model& model, const LocalEntities& hel
 /// A rank's particle lists for neighbour `q`, per particle part: the owned particles q holds as
 /// ghosts and the ghosts q owns; the pairs whose first particle is owned here that q holds, and
 /// those whose first particle is a ghost q owns. All in ascending index of the whole model.
-void plan_particle_exchange(const Model& model, const ElementPartition& partition, const LocalEntities& theirs,
+/// Without `theirs` (what q holds), the lists of what is sent are left empty.
+void plan_particle_exchange(const Model& model, const ElementPartition& partition, const LocalEntities* theirs,
                             int q, const Subdomain& sub, GhostExchangePlan::Lists (&lists)[4]) {
   for (std::size_t pp = 0; pp < model.particle_parts.size(); ++pp) {
     for (auto& list : lists) list.emplace_back();
     const auto& global = sub.global_particle[pp];
     for (std::size_t i = 0; i < global.size(); ++i) {
       const auto g = static_cast<std::size_t>(global[i]);
-      if (sub.particle_owned[pp][i] && theirs.particle[pp][g] == Holding::ghost) lists[0].back().push_back(static_cast<std::int32_t>(i));
+      if (theirs && sub.particle_owned[pp][i] && theirs->particle[pp][g] == Holding::ghost)
+        lists[0].back().push_back(static_cast<std::int32_t>(i));
       if (!sub.particle_owned[pp][i] && partition.particle_rank[pp][g] == q) lists[1].back().push_back(static_cast<std::int32_t>(i));
     }
     const auto [first, second] = model.particle_parts[pp].pair_ends();
     for (std::size_t k = 0; k < sub.global_pair[pp].size(); ++k) {
       const auto p = static_cast<std::size_t>(sub.global_pair[pp][k]);
       const auto a = static_cast<std::size_t>((*first)[p]), b = static_cast<std::size_t>((*second)[p]);
-      const bool they_hold = theirs.particle[pp][a] != Holding::none && theirs.particle[pp][b] != Holding::none;
+      const bool they_hold = theirs && theirs->particle[pp][a] != Holding::none && theirs->particle[pp][b] != Holding::none;
       if (sub.pair_owned[pp][k] && they_hold) lists[2].back().push_back(static_cast<std::int32_t>(k));
       if (!sub.pair_owned[pp][k] && partition.particle_rank[pp][a] == q) lists[3].back().push_back(static_cast<std::int32_t>(k));
     }
@@ -506,22 +509,27 @@ bool all_empty(const GhostExchangePlan::Lists& lists) {
 /// The ghost exchange of `rank`: per neighbour, the owned nodes it holds as ghosts and the ghost
 /// nodes it owns, both in ascending index of the whole model (local indices keep that order), and
 /// the particles and pairs likewise.
+/// With plan_sends false, what other ranks hold is not looked at (each holding costs a pass over
+/// the whole model): every other rank is listed as a neighbour with what it sends alone, for
+/// complete_ghost_exchange to finish from what the ranks say they receive.
 GhostExchangePlan plan_ghost_exchange(const Model& model, const ElementPartition& partition,
                                       const std::vector<std::int32_t>& owner, int rank, const Subdomain& sub,
-                                      const ContactHalo* halo, const SurfaceMarks& marks) {
+                                      const ContactHalo* halo, const SurfaceMarks& marks, bool plan_sends) {
   GhostExchangePlan plan;
   for (int q = 0; q < partition.ranks; ++q) {
     if (q == rank) continue;
-    const LocalEntities theirs = held_entities(model, partition, owner, q, halo, marks);
+    std::optional<LocalEntities> theirs;
+    if (plan_sends) theirs = held_entities(model, partition, owner, q, halo, marks);
     std::vector<std::int32_t> send, receive;
     for (std::size_t i = 0; i < sub.global_node.size(); ++i) {
       const auto g = static_cast<std::size_t>(sub.global_node[i]);
-      if (sub.node_owned[i] && theirs.node[g] == Holding::ghost) send.push_back(static_cast<std::int32_t>(i));
+      if (theirs && sub.node_owned[i] && theirs->node[g] == Holding::ghost) send.push_back(static_cast<std::int32_t>(i));
       if (!sub.node_owned[i] && owner[g] == q) receive.push_back(static_cast<std::int32_t>(i));
     }
     GhostExchangePlan::Lists particles[4];
-    plan_particle_exchange(model, partition, theirs, q, sub, particles);
-    if (send.empty() && receive.empty() && std::all_of(std::begin(particles), std::end(particles), all_empty)) continue;
+    plan_particle_exchange(model, partition, theirs ? &*theirs : nullptr, q, sub, particles);
+    const bool silent = send.empty() && receive.empty() && std::all_of(std::begin(particles), std::end(particles), all_empty);
+    if (plan_sends && silent) continue;
     plan.neighbours.push_back(q);
     plan.send.push_back(std::move(send));
     plan.receive.push_back(std::move(receive));
@@ -585,11 +593,11 @@ void cut_particles(const Model& model, const LocalEntities& held, Subdomain& sub
 }  // namespace
 
 Subdomain make_subdomain(const Model& model, const ElementPartition& partition, int rank, const ContactHalo* halo) {
-  return make_subdomain(model, partition, rank, halo, WholeFaces{group_faces(model)});
+  return make_subdomain(model, partition, rank, halo, WholeFaces{group_faces(model)}, true);
 }
 
 Subdomain make_subdomain(const Model& model, const ElementPartition& partition, int rank, const ContactHalo* halo,
-                         const WholeFaces& faces) {
+                         const WholeFaces& faces, bool plan_sends) {
   check_decomposable(model, partition);
   if (rank < 0 || rank >= partition.ranks || partition.rank.size() != model.parts.size())
     throw std::invalid_argument("make_subdomain: rank " + std::to_string(rank) + " outside the partition");
@@ -656,8 +664,89 @@ Subdomain make_subdomain(const Model& model, const ElementPartition& partition, 
   }
   sub.model.ghost_node.resize(sub.node_owned.size());
   for (std::size_t n = 0; n < sub.node_owned.size(); ++n) sub.model.ghost_node[n] = !sub.node_owned[n];
-  sub.ghosts = plan_ghost_exchange(model, partition, owner, rank, sub, halo, marks);
+  sub.ghosts = plan_ghost_exchange(model, partition, owner, rank, sub, halo, marks, plan_sends);
   return sub;
+}
+
+namespace {
+
+/// Local index of each whole-model index in `global` (ascending), −1 where not held.
+std::vector<std::int32_t> local_of(const std::vector<std::int32_t>& global) {
+  std::vector<std::int32_t> local(global.empty() ? 0 : static_cast<std::size_t>(global.back()) + 1, -1);
+  for (std::size_t i = 0; i < global.size(); ++i) local[static_cast<std::size_t>(global[i])] = static_cast<std::int32_t>(i);
+  return local;
+}
+
+void append_globals(const std::vector<std::int32_t>& list, const std::vector<std::int32_t>& global, std::vector<double>& out) {
+  out.push_back(static_cast<double>(list.size()));
+  for (auto i : list) out.push_back(static_cast<double>(global[static_cast<std::size_t>(i)]));
+}
+
+/// Reads a list appended by append_globals as local indices; every entry must be held here.
+std::vector<std::int32_t> read_locals(const std::vector<double>& in, std::size_t& at, const std::vector<std::int32_t>& local) {
+  const auto n = static_cast<std::size_t>(in.at(at++));
+  std::vector<std::int32_t> list(n);
+  for (auto& i : list) {
+    const auto g = static_cast<std::size_t>(in.at(at++));
+    i = g < local.size() ? local[g] : -1;
+    if (i < 0) throw std::logic_error("complete_ghost_exchange: a rank asks for an entity this rank does not hold");
+  }
+  return list;
+}
+
+}  // namespace
+
+std::vector<double> ghost_requests(const Subdomain& sub) {
+  const GhostExchangePlan& plan = sub.ghosts;
+  std::vector<double> out;
+  for (std::size_t k = 0; k < plan.neighbours.size(); ++k) {
+    out.push_back(plan.neighbours[k]);
+    append_globals(plan.receive[k], sub.global_node, out);
+    for (std::size_t pp = 0; pp < sub.global_particle.size(); ++pp) {
+      append_globals(plan.receive_particles[k][pp], sub.global_particle[pp], out);
+      append_globals(plan.receive_pairs[k][pp], sub.global_pair[pp], out);
+    }
+  }
+  return out;
+}
+
+void complete_ghost_exchange(Subdomain& sub, const std::vector<std::vector<double>>& requests) {
+  GhostExchangePlan& plan = sub.ghosts;
+  const std::vector<std::int32_t> node = local_of(sub.global_node);
+  std::vector<std::vector<std::int32_t>> particle, pair;
+  for (std::size_t pp = 0; pp < sub.global_particle.size(); ++pp)
+    particle.push_back(local_of(sub.global_particle[pp])), pair.push_back(local_of(sub.global_pair[pp]));
+  for (std::size_t k = 0; k < plan.neighbours.size(); ++k) {
+    const std::vector<double>& asked = requests.at(static_cast<std::size_t>(plan.neighbours[k]));
+    std::size_t at = 0;
+    while (at < asked.size() && static_cast<int>(asked[at]) != sub.rank) {  // skip what it asks of others
+      ++at;
+      at += 1 + static_cast<std::size_t>(asked.at(at));
+      for (std::size_t pp = 0; pp < 2 * particle.size(); ++pp) at += 1 + static_cast<std::size_t>(asked.at(at));
+    }
+    if (at == asked.size()) continue;  // it asks nothing of this rank
+    ++at;
+    plan.send[k] = read_locals(asked, at, node);
+    for (std::size_t pp = 0; pp < particle.size(); ++pp) {
+      plan.send_particles[k][pp] = read_locals(asked, at, particle[pp]);
+      plan.send_pairs[k][pp] = read_locals(asked, at, pair[pp]);
+    }
+  }
+  // Neighbours are the ranks with something to say either way, as plan_ghost_exchange lists them.
+  GhostExchangePlan kept;
+  for (std::size_t k = 0; k < plan.neighbours.size(); ++k) {
+    const bool silent = plan.send[k].empty() && plan.receive[k].empty() && all_empty(plan.send_particles[k]) &&
+                        all_empty(plan.receive_particles[k]) && all_empty(plan.send_pairs[k]) && all_empty(plan.receive_pairs[k]);
+    if (silent) continue;
+    kept.neighbours.push_back(plan.neighbours[k]);
+    kept.send.push_back(std::move(plan.send[k]));
+    kept.receive.push_back(std::move(plan.receive[k]));
+    kept.send_particles.push_back(std::move(plan.send_particles[k]));
+    kept.receive_particles.push_back(std::move(plan.receive_particles[k]));
+    kept.send_pairs.push_back(std::move(plan.send_pairs[k]));
+    kept.receive_pairs.push_back(std::move(plan.receive_pairs[k]));
+  }
+  plan = std::move(kept);
 }
 
 void follow_removed_elements(Subdomain& sub, Model& local, const Remap& remap) {

@@ -131,9 +131,22 @@ struct WholeFaces {
   bool has_surface = false;
 };
 
-/// make_subdomain, with the whole model's faces found already.
+/// make_subdomain, with the whole model's faces found already. With `plan_sends` false the
+/// ghost exchange is left half planned: what the rank receives from each other rank (every one
+/// listed), not what it sends, which takes a pass over the whole model per other rank; the ranks
+/// then tell each other what they receive (ghost_requests) and complete_ghost_exchange finishes
+/// the plan, the same as make_subdomain's.
 Subdomain make_subdomain(const Model& model, const ElementPartition& partition, int rank, const ContactHalo* halo,
-                         const WholeFaces& faces);
+                         const WholeFaces& faces, bool plan_sends);
+
+/// What `sub` receives from each rank (its ghost nodes, particles and pairs), as indices of the
+/// whole model: per neighbour its rank, then its lists, each prefixed by its length.
+std::vector<double> ghost_requests(const Subdomain& sub);
+
+/// Completes a half-planned exchange (make_subdomain with plan_sends false) from every rank's
+/// ghost_requests (in rank order): what a rank sends to q is what q receives from it, in the
+/// same order (ascending index of the whole model); the ranks with nothing either way are dropped.
+void complete_ghost_exchange(Subdomain& sub, const std::vector<std::vector<double>>& requests);
 
 /// Writes what `sub` owns — as unpack_owned(pack_owned(sub, local), whole): every declared field
 /// of its owned nodes, elements, particles and pairs as they are in `local` (the subdomain's

@@ -763,6 +763,72 @@ TEST(DomainDecomposition, DiscsOnAMeshGiveTheSameBitsOnOneToFourRanks) {
 }
 
 
+// A run's cut plans what each rank sends from what the others say they receive (ghost_requests,
+// complete_ghost_exchange), not from a pass over the whole model per other rank: the plan must be
+// the one make_subdomain draws from the whole model, list for list, for nodes, particles and
+// pairs, on 2 to 4 ranks, by bisection and at random.
+struct SentCounts {
+  std::size_t nodes = 0, particles = 0, pairs = 0;
+};
+SentCounts check_exchange_from_requests(const Model& model, const ElementPartition& partition, const ContactHalo* halo,
+                                        const std::string& what) {
+  const int ranks = partition.ranks;
+  const WholeFaces faces{group_faces(model)};
+  std::vector<Subdomain> half;
+  std::vector<std::vector<double>> requests;
+  for (int r = 0; r < ranks; ++r) {
+    half.push_back(make_subdomain(model, partition, r, halo, faces, /*plan_sends=*/false));
+    requests.push_back(ghost_requests(half.back()));
+  }
+  SentCounts sent;
+  for (int r = 0; r < ranks; ++r) {
+    complete_ghost_exchange(half[r], requests);
+    const Subdomain full = make_subdomain(model, partition, r, halo);
+    const GhostExchangePlan& a = half[r].ghosts;
+    const GhostExchangePlan& b = full.ghosts;
+    const std::string where = what + ", rank " + std::to_string(r) + " of " + std::to_string(ranks);
+    EXPECT_EQ(a.neighbours, b.neighbours) << where;
+    EXPECT_EQ(a.send, b.send) << where;
+    EXPECT_EQ(a.receive, b.receive) << where;
+    EXPECT_EQ(a.send_particles, b.send_particles) << where;
+    EXPECT_EQ(a.receive_particles, b.receive_particles) << where;
+    EXPECT_EQ(a.send_pairs, b.send_pairs) << where;
+    EXPECT_EQ(a.receive_pairs, b.receive_pairs) << where;
+    for (const auto& list : a.send) sent.nodes += list.size();
+    for (const auto& lists : a.send_particles)
+      for (const auto& list : lists) sent.particles += list.size();
+    for (const auto& lists : a.send_pairs)
+      for (const auto& list : lists) sent.pairs += list.size();
+  }
+  return sent;
+}
+
+TEST(DomainDecomposition, RanksPlanWhatTheySendFromWhatTheOthersReceive) {
+  const Model plate = block_on_plate().model;
+  const ContactHalo plate_halo = contact_halo(plate, block_contact().part_pairs);
+  const Model automata = bonded_automata().model;
+  const Model discs = discs_on_plate().model;
+  ParticleContact contact(disc_contact());
+  ContactHalo discs_halo;
+  discs_halo.particle_parts = {1};
+  discs_halo.particle_reach = contact.reach(discs);
+  discs_halo.particle_facet_reach = particle_facet_reach(discs, 8e-3, disc_contact().skin);
+  for (int ranks = 2; ranks <= 4; ++ranks) {
+    for (const bool scattered : {false, true}) {
+      auto cut = [&](const Model& m) { return scattered ? scatter_elements(m, ranks, 9) : partition_elements(m, ranks); };
+      const std::string how = std::string(scattered ? "random" : "bisection") + " cut";
+      const SentCounts a = check_exchange_from_requests(plate, cut(plate), &plate_halo, "block on plate, " + how);
+      const SentCounts b = check_exchange_from_requests(automata, cut(automata), nullptr, "automata, " + how);
+      const SentCounts c = check_exchange_from_requests(discs, cut(discs), &discs_halo, "discs on a plate, " + how);
+      EXPECT_GT(a.nodes, 0u);
+      EXPECT_GT(b.particles, 0u);
+      EXPECT_GT(b.pairs, 0u);
+      EXPECT_GT(c.nodes, 0u);
+      EXPECT_GT(c.particles, 0u);
+    }
+  }
+}
+
 // Remeshing across ranks (docs/theory/domain_decomposition.md, "Remeshing across ranks"): the
 // shapes new elements are measured against are measured on each subdomain, and at a check the
 // ranks vote on whether a part may be due by their owned elements; the whole model is remeshed
