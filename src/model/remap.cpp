@@ -75,6 +75,10 @@ bool EntityRemap::appends_only() const {
   return true;
 }
 
+bool EntityRemap::selects_only() const {
+  return parent_begin.empty() && std::find(born.begin(), born.end(), std::uint8_t{1}) == born.end();
+}
+
 namespace {
 
 [[noreturn]] void inconsistent(const std::string& why) { throw std::logic_error("apply_remap: " + why); }
@@ -166,6 +170,18 @@ void remap_values(std::vector<T>& a, const FieldInfo& info, const EntityRemap& r
           for (std::size_t k = 0; k < comps; ++k) taken[comps * r.source[i] + k] += a[comps * i + k];
       for (const auto& [slot, value] : taken) a[slot] -= value;
     }
+    return;
+  }
+  if (r.selects_only()) {
+    // Every rule gives an old entity its own value (a share less nothing taken): copied whole,
+    // without the rules' tests per value or zeroing the array first.
+    std::vector<T> out;
+    out.reserve(n_new * comps);
+    for (std::size_t i = 0; i < n_new; ++i) {
+      const auto from = a.begin() + static_cast<std::ptrdiff_t>(comps * static_cast<std::size_t>(r.source[i]));
+      out.insert(out.end(), from, from + static_cast<std::ptrdiff_t>(comps));
+    }
+    a = std::move(out);
     return;
   }
   std::vector<T> out(n_new * comps);

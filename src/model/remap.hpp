@@ -58,6 +58,9 @@ struct EntityRemap {
   std::vector<std::int32_t> new_of_old() const;
   /// Every old entity continues at its own index (born ones, if any, follow): the change appends.
   bool appends_only() const;
+  /// No entity is born and none absorbs another: each new entity is an old one (a cut, a
+  /// compaction, a reordering), whose values it takes as they are.
+  bool selects_only() const;
   bool is_identity() const { return appends_only() && new_count() == old_count; }
 };
 
