@@ -77,8 +77,9 @@ checkpoint.bin (docs/outputs.md).
 Under mpirun (a build with MPI), the run is cut into one subdomain per rank and rank 0 writes
 the same outputs, byte for byte (docs/outputs.md, "Ranks"):
 
-  --rebalance RATIO       cut anew, weighing each element by its rank's measured work, when the
-                          busiest rank's work passes RATIO times the mean (default 1.2; 0: never)
+  --rebalance RATIO       cut anew, weighing each element and particle by its rank's measured
+                          work, when the busiest rank's work passes RATIO times the mean
+                          (default 1.2; 0: never)
   --rebalance-interval N  steps between those looks (default 100)
   --partition HOW         how the model is cut: 'bisection' (recursive coordinate bisection,
                           the default), 'graph' (METIS on the elements' dual graph, in a build

@@ -19,6 +19,7 @@
 #include <functional>
 #include <iostream>
 #include <sstream>
+#include <unordered_map>
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -552,11 +553,13 @@ class RunDriver {
 
   void partition_whole() {
     const auto* weights = weights_.empty() ? nullptr : &weights_;
+    if (!particle_weights_.empty()) fit_particle_weights();  // particles come and go between cuts
+    const auto* particle_weights = particle_weights_.empty() ? nullptr : &particle_weights_;
     const int n = ranks_->size();
     switch (options_.partition) {
       case RunOptions::Partition::random: partition_ = scatter_elements(whole_, n, options_.partition_seed); break;
       case RunOptions::Partition::graph: partition_ = partition_graph(whole_, n, weights); break;
-      case RunOptions::Partition::bisection: partition_ = partition_elements(whole_, n, weights); break;
+      case RunOptions::Partition::bisection: partition_ = partition_elements(whole_, n, weights, particle_weights); break;
     }
   }
 
@@ -571,14 +574,13 @@ class RunDriver {
 
   /// Rebalancing: every rebalance_interval steps the ranks compare the wall time each spent on
   /// its own work (not talking to the others) since the last look; when the busiest passes
-  /// rebalance_above times the mean, every element is weighed by its rank's work per weight and
-  /// the whole model, gathered, is cut anew by bisection of those weights. The times differ from
-  /// run to run, and so may the cuts; the results do not (a cut changes no value).
+  /// rebalance_above times the mean, every element and particle is weighed by its rank's work
+  /// per weight and the whole model, gathered, is cut anew by bisection of those weights. A cut
+  /// of particles in contact falls where their list is built again, so with contact of particles
+  /// the cut waits for that build (build_particle_list_when_due). The times differ from run to
+  /// run, and so may the cuts; the results do not (a cut changes no value).
   void rebalance_if_uneven() {
     if (!sub_ || !(options_.rebalance_above > 0) || options_.partition == RunOptions::Partition::random) return;
-    // The weights are the elements'; a cut of particles in contact must fall where their list
-    // is built again (build_particle_list_when_due).
-    if (!whole_.particle_parts.empty()) return;
     if (options_.rebalance_interval < 1 || solver_.state().step % options_.rebalance_interval != 0) return;
     const auto now = Clock::now();
     // Rank 0's writing of the outputs is not work a cut could move.
@@ -589,24 +591,64 @@ class RunDriver {
     double most = 0, mean = 0;
     for (const auto& t : times) most = std::max(most, t[0]), mean += t[0] / static_cast<double>(times.size());
     if (!(mean > 0) || most <= options_.rebalance_above * mean) return;
-    // Each element's weight times its rank's work per unit of weight: the cost measured there.
-    const int n = ranks_->size();
-    if (weights_.size() != whole_.parts.size()) {
-      weights_.clear();
-      for (const Part& part : whole_.parts) weights_.emplace_back(part.element_count(), static_cast<double>(part.type->points));
+    weigh_by_measured_work(times, mean);
+    if (sim_.particle_contact && !whole_.particle_parts.empty()) {
+      rebalance_waits_ = true;  // alike everywhere: the times are
+      return;
     }
-    std::vector<double> held(static_cast<std::size_t>(n), 0.0);
-    for (std::size_t p = 0; p < weights_.size(); ++p)
-      for (std::size_t e = 0; e < weights_[p].size(); ++e) held[partition_.rank[p][e]] += weights_[p][e];
-    for (std::size_t p = 0; p < weights_.size(); ++p)
-      for (std::size_t e = 0; e < weights_[p].size(); ++e) {
-        const auto r = static_cast<std::size_t>(partition_.rank[p][e]);
-        weights_[p][e] *= std::max(times[r][0], 1e-3 * mean) / held[r];
-      }
     gather_whole_everywhere();
     cut_whole();
     ++rebalances_;
     start_work_clock();  // the cut itself is not work either
+  }
+
+  /// Each element's and particle's weight times its rank's work per unit of weight: the cost
+  /// measured there (partition_ is the last cut's, of whole_ as it was cut).
+  void weigh_by_measured_work(const std::vector<std::vector<double>>& times, double mean) {
+    if (weights_.size() != whole_.parts.size()) {
+      weights_.clear();
+      for (const Part& part : whole_.parts) weights_.emplace_back(part.element_count(), static_cast<double>(part.type->points));
+    }
+    fit_particle_weights();
+    for (std::size_t pp = 0; pp < particle_weights_.size(); ++pp)  // the last cut was of whole_ as it is
+      if (partition_.particle_rank.size() != particle_weights_.size() || partition_.particle_rank[pp].size() != particle_weights_[pp].size())
+        throw std::logic_error("rebalance: the partition's particles are not the whole model's");
+    std::vector<double> held(static_cast<std::size_t>(ranks_->size()), 0.0);
+    for (std::size_t p = 0; p < weights_.size(); ++p)
+      for (std::size_t e = 0; e < weights_[p].size(); ++e) held[partition_.rank[p][e]] += weights_[p][e];
+    for (std::size_t pp = 0; pp < particle_weights_.size(); ++pp)
+      for (std::size_t i = 0; i < particle_weights_[pp].size(); ++i) held[partition_.particle_rank[pp][i]] += particle_weights_[pp][i];
+    auto per_weight = [&](std::int32_t rank) {
+      const auto r = static_cast<std::size_t>(rank);
+      return std::max(times[r][0], 1e-3 * mean) / held[r];
+    };
+    for (std::size_t p = 0; p < weights_.size(); ++p)
+      for (std::size_t e = 0; e < weights_[p].size(); ++e) weights_[p][e] *= per_weight(partition_.rank[p][e]);
+    for (std::size_t pp = 0; pp < particle_weights_.size(); ++pp)
+      for (std::size_t i = 0; i < particle_weights_[pp].size(); ++i)
+        particle_weights_[pp][i] *= per_weight(partition_.particle_rank[pp][i]);
+  }
+
+  /// particle_weights_ for whole_'s particles as they are now: a particle keeps its weight by its
+  /// id; one born since (debris, conversion) takes the mean of its part's, or one.
+  void fit_particle_weights() {
+    std::vector<std::vector<double>> fitted;
+    for (std::size_t pp = 0; pp < whole_.particle_parts.size(); ++pp) {
+      const ParticlePart& part = whole_.particle_parts[pp];
+      const bool weighed = pp < particle_weights_.size() && particle_weight_ids_.size() == particle_weights_.size();
+      std::unordered_map<std::int64_t, double> by_id;
+      double sum = 0;
+      if (weighed)
+        for (std::size_t i = 0; i < particle_weights_[pp].size(); ++i)
+          by_id.emplace(particle_weight_ids_[pp][i], particle_weights_[pp][i]), sum += particle_weights_[pp][i];
+      const double born = by_id.empty() ? 1.0 : sum / static_cast<double>(by_id.size());
+      auto& w = fitted.emplace_back(part.count(), born);
+      for (std::size_t i = 0; i < part.count(); ++i)
+        if (const auto it = by_id.find(part.id[i]); it != by_id.end()) w[i] = it->second;
+    }
+    particle_weights_ = std::move(fitted);
+    particle_weight_ids_.clear();
+    for (const ParticlePart& part : whole_.particle_parts) particle_weight_ids_.push_back(part.id);
   }
 
   void start_work_clock() {
@@ -793,10 +835,11 @@ class RunDriver {
     if (votes[0] == 0 || votes[1] == 0) return;
     // Between two looks a particle moves less than half the skin: at every build it is then
     // within half the margin of where it was at the cut.
-    if (-votes[2] >= 0.5 * (particle_margin_ - contact.skin(sim_.model))) {
+    if (rebalance_waits_ || -votes[2] >= 0.5 * (particle_margin_ - contact.skin(sim_.model))) {
       gather_whole_everywhere();
       cut_whole();  // the list it takes up is due all the same
-      ++cuts_;
+      ++(rebalance_waits_ ? rebalances_ : cuts_);  // a rebalance's cut is counted as one, as ever
+      if (rebalance_waits_) rebalance_waits_ = false, start_work_clock();
     }
     contact.expire_list();
   }
@@ -1844,6 +1887,11 @@ class RunDriver {
   ElementPartition partition_;                ///< the last cut
   std::vector<std::vector<double>> weights_;  ///< per part and element, after a rebalance: its measured cost
   std::int64_t rebalances_ = 0;               ///< (summary.json)
+  /// Per particle part and particle, after a rebalance: its measured cost; the ids they were
+  /// weighed with (particles are born and leave between cuts).
+  std::vector<std::vector<double>> particle_weights_;
+  std::vector<std::vector<std::int64_t>> particle_weight_ids_;
+  bool rebalance_waits_ = false;  ///< a rebalance of particles in contact waits for their list's build
   Clock::time_point work_since_ = Clock::now();
   double talk_mark_ = 0;
   double output_seconds_ = 0, output_mark_ = 0;  ///< this rank's time writing outputs (not work)

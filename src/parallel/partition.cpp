@@ -70,14 +70,18 @@ void bisect(const std::vector<PartitionPoint>& points, std::vector<std::int32_t>
 
 /// The particles of every particle part as points of weight one; their ids are set apart from
 /// the elements' (bit 62), so that a tie between an element and a particle breaks one way.
-void add_particle_points(const Model& model, std::vector<PartitionPoint>& points) {
-  for (const ParticlePart& part : model.particle_parts)
+void add_particle_points(const Model& model, std::vector<PartitionPoint>& points,
+                         const std::vector<std::vector<double>>* weights = nullptr) {
+  for (std::size_t pp = 0; pp < model.particle_parts.size(); ++pp) {
+    const ParticlePart& part = model.particle_parts[pp];
     for (std::size_t i = 0; i < part.count(); ++i) {
       PartitionPoint p;
       for (int k = 0; k < part.dim; ++k) p.x[k] = part.coord(i, k);
+      if (weights) p.weight = (*weights)[pp][i];
       p.id = part.id[i] | (std::int64_t{1} << 62);
       points.push_back(p);
     }
+  }
 }
 
 /// The particles' ranks from `flat`, the ranks of the points add_particle_points gave from `next` on.
@@ -101,7 +105,8 @@ std::vector<std::int32_t> recursive_coordinate_bisection(const std::vector<Parti
   return rank;
 }
 
-ElementPartition partition_elements(const Model& model, int ranks, const std::vector<std::vector<double>>* weights) {
+ElementPartition partition_elements(const Model& model, int ranks, const std::vector<std::vector<double>>* weights,
+                                    const std::vector<std::vector<double>>* particle_weights) {
   const int dim = model.dim();
   std::vector<PartitionPoint> points;
   for (std::size_t q = 0; q < model.parts.size(); ++q) {
@@ -116,7 +121,7 @@ ElementPartition partition_elements(const Model& model, int ranks, const std::ve
       points.push_back(p);
     }
   }
-  add_particle_points(model, points);
+  add_particle_points(model, points, particle_weights);
   const std::vector<std::int32_t> flat = recursive_coordinate_bisection(points, dim, ranks);
   ElementPartition partition{ranks, {}, {}};
   std::size_t next = 0;

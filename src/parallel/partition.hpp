@@ -38,9 +38,11 @@ struct ElementPartition {
 /// The elements of every part and the particles of every particle part cut together by recursive
 /// coordinate bisection of the elements' centroids and the particles' positions (current), each
 /// element weighted by its integration points, or by `weights` (per part and element: a rebalance
-/// weighs each element by the measured cost on its rank), each particle by one.
+/// weighs each element by the measured cost on its rank), each particle by one, or by
+/// `particle_weights` (per particle part and particle).
 ElementPartition partition_elements(const Model& model, int ranks,
-                                    const std::vector<std::vector<double>>* weights = nullptr);
+                                    const std::vector<std::vector<double>>* weights = nullptr,
+                                    const std::vector<std::vector<double>>* particle_weights = nullptr);
 
 /// Every element and particle on a rank drawn from a generator seeded with `seed` and its id: the
 /// worst case for the ghost layers, for tests.

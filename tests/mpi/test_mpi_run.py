@@ -330,6 +330,15 @@ random_ranks("granular_random", granular, 3, 4, "granular_serial", "the settling
 restart_on_three("granular_restart", granular, "granular_serial", settle, until="10ms")
 if os.path.exists("granular_np2/summary.json") and json.load(open("granular_np2/summary.json"))["cuts"] < 2:
     failures.append("the settling grains on 2 ranks: fewer than 2 new cuts: the case no longer moves the grains across cuts")
+# Rebalanced whenever the ranks' work differs at all, looked at every 7 steps: particles are
+# weighed by their rank's work too, and the cut waits for the grains' next list build.
+r = run("granular_rebalanced", granular, 2, settle + ["--rebalance", "1", "--rebalance-interval", "7"])
+if r.returncode != 0:
+    failures.append(f"the rebalanced grains on 2 ranks failed ({r.returncode}): {r.stderr[-2000:]}")
+else:
+    same_outputs("granular_serial", "granular_rebalanced", "the settling grains, 2 ranks rebalanced every 7 steps")
+    if json.load(open("granular_rebalanced/summary.json"))["rebalances"] < 5:
+        failures.append("the settling grains: fewer than 5 rebalances with --rebalance 1 every 7 steps")
 
 # Comminution: the steel sphere on the alumina plate at 500 m/s (axisymmetric, 28 204 tri3 in
 # the plate), its cracks' small pieces and its crushed elements turned into debris particles, to
