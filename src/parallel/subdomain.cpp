@@ -700,6 +700,10 @@ std::vector<double> ghost_requests(const Subdomain& sub) {
   const GhostExchangePlan& plan = sub.ghosts;
   std::vector<double> out;
   for (std::size_t k = 0; k < plan.neighbours.size(); ++k) {
+    bool asks = !plan.receive[k].empty();
+    for (std::size_t pp = 0; pp < sub.global_particle.size(); ++pp)
+      asks = asks || !plan.receive_particles[k][pp].empty() || !plan.receive_pairs[k][pp].empty();
+    if (!asks) continue;  // the requests grow with the neighbours, not with the ranks
     out.push_back(plan.neighbours[k]);
     append_globals(plan.receive[k], sub.global_node, out);
     for (std::size_t pp = 0; pp < sub.global_particle.size(); ++pp) {

@@ -140,7 +140,8 @@ Subdomain make_subdomain(const Model& model, const ElementPartition& partition, 
                          const WholeFaces& faces, bool plan_sends);
 
 /// What `sub` receives from each rank (its ghost nodes, particles and pairs), as indices of the
-/// whole model: per neighbour its rank, then its lists, each prefixed by its length.
+/// whole model: per rank it receives anything from, that rank, then its lists, each prefixed by
+/// its length.
 std::vector<double> ghost_requests(const Subdomain& sub);
 
 /// Completes a half-planned exchange (make_subdomain with plan_sends false) from every rank's

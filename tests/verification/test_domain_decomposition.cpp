@@ -773,7 +773,11 @@ struct SentCounts {
 SentCounts check_exchange_from_requests(const Model& model, const ElementPartition& partition, const ContactHalo* halo,
                                         const std::string& what) {
   const int ranks = partition.ranks;
-  const WholeFaces faces{group_faces(model)};
+  WholeFaces faces{group_faces(model)};
+  if (halo) {  // as a run with contact hands it over: the whole surface found once
+    faces.surface = extract_contact_surface(model, faces.groups);
+    faces.has_surface = true;
+  }
   std::vector<Subdomain> half;
   std::vector<std::vector<double>> requests;
   for (int r = 0; r < ranks; ++r) {
