@@ -22,7 +22,8 @@ bonded automata of the MCA tension test, with contact updates, on 2 and 4 ranks,
 from 2 to 3 ranks across a restart, and pulled at 100 m/s on 3 ranks (cut anew as its automata
 move), and the TiC-NiCr beam to 0.05 us on 3 ranks at random; the
 column of grains settling in its box (discrete elements, cut anew once they have moved half their
-margin) on 2 ranks, on 3 at random and from 2 to 3 ranks across a restart; a
+margin) on 2 ranks, on 3 at random, from 2 to 3 ranks across a restart and on 2 rebalanced
+every 7 steps; a
 run stopped by the energy watchdog on 2 ranks writes the summary.json of one process; the
 sphere on alumina whose cracks' small pieces become particles (comminution) on 2 ranks;
 scenarios with a non-local failure map, or erosion by damage with averaged nodal pressure, are
@@ -128,6 +129,18 @@ def serial_then_ranks(name, scenario, rank_counts, what, extra=()):
             same_outputs(f"{name}_serial", f"{name}_np{ranks}", f"{what}, {ranks} ranks")
 
 
+def rebalanced_on_two(name, scenario, reference, what, interval, least, extra=()):
+    """On 2 ranks rebalanced whenever their work differs at all (ratio 1), looked at every
+    `interval` steps: the bytes of `reference`, and at least `least` rebalances."""
+    r = run(name, scenario, 2, [*extra, "--rebalance", "1", "--rebalance-interval", str(interval)])
+    if r.returncode != 0:
+        failures.append(f"{what}, rebalanced on 2 ranks, failed ({r.returncode}): {r.stderr[-2000:]}")
+        return
+    same_outputs(reference, name, f"{what}, 2 ranks rebalanced every {interval} steps")
+    if json.load(open(f"{name}/summary.json"))["rebalances"] < least:
+        failures.append(f"{what}: fewer than {least} rebalances with --rebalance 1 every {interval} steps")
+
+
 def random_ranks(name, scenario, ranks, seed, reference, what, extra=()):
     """The scenario on `ranks` ranks, every element and particle on a rank drawn from `seed`: the
     bytes of `reference`."""
@@ -192,13 +205,7 @@ else:
     same_outputs("cylinder_serial", "cylinder_graph", "cylinder on the plate, 3 ranks, graph partition")
 
 # Rebalanced every 13 steps (a ratio of 1 makes every look a new cut): the same bytes.
-r = run("cylinder_rebalanced", cylinder, 2, ["--rebalance", "1", "--rebalance-interval", "13"])
-if r.returncode != 0:
-    failures.append(f"the rebalanced cylinder on 2 ranks failed ({r.returncode}): {r.stderr[-2000:]}")
-else:
-    same_outputs("cylinder_serial", "cylinder_rebalanced", "cylinder on the plate, 2 ranks rebalanced every 13 steps")
-    if json.load(open("cylinder_rebalanced/summary.json"))["rebalances"] < 10:
-        failures.append("cylinder on the plate: fewer than 10 rebalances with --rebalance 1 every 13 steps")
+rebalanced_on_two("cylinder_rebalanced", cylinder, "cylinder_serial", "cylinder on the plate", 13, 10)
 restart_on_three("cylinder_restart", cylinder, "cylinder_serial")
 
 # Discrete cracks: the notched plate pulled apart (3 045 tri3, rotating crack), to 22 us, when the
@@ -332,13 +339,7 @@ if os.path.exists("granular_np2/summary.json") and json.load(open("granular_np2/
     failures.append("the settling grains on 2 ranks: fewer than 2 new cuts: the case no longer moves the grains across cuts")
 # Rebalanced whenever the ranks' work differs at all, looked at every 7 steps: particles are
 # weighed by their rank's work too, and the cut waits for the grains' next list build.
-r = run("granular_rebalanced", granular, 2, settle + ["--rebalance", "1", "--rebalance-interval", "7"])
-if r.returncode != 0:
-    failures.append(f"the rebalanced grains on 2 ranks failed ({r.returncode}): {r.stderr[-2000:]}")
-else:
-    same_outputs("granular_serial", "granular_rebalanced", "the settling grains, 2 ranks rebalanced every 7 steps")
-    if json.load(open("granular_rebalanced/summary.json"))["rebalances"] < 5:
-        failures.append("the settling grains: fewer than 5 rebalances with --rebalance 1 every 7 steps")
+rebalanced_on_two("granular_rebalanced", granular, "granular_serial", "the settling grains", 7, 5, settle)
 
 # Comminution: the steel sphere on the alumina plate at 500 m/s (axisymmetric, 28 204 tri3 in
 # the plate), its cracks' small pieces and its crushed elements turned into debris particles, to
