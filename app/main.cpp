@@ -79,7 +79,8 @@ the same outputs, byte for byte (docs/outputs.md, "Ranks"):
 
   --rebalance RATIO       cut anew, weighing each element and particle by its rank's measured
                           work, when the busiest rank's work passes RATIO times the mean
-                          (default 1.2; 0: never)
+                          (default 1.2; 0: never). With contact of particles the new cut waits
+                          for their next neighbour list; a random partition never rebalances
   --rebalance-interval N  steps between those looks (default 100)
   --partition HOW         how the model is cut: 'bisection' (recursive coordinate bisection,
                           the default), 'graph' (METIS on the elements' dual graph, in a build

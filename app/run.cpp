@@ -1138,10 +1138,12 @@ class RunDriver {
   }
 
   /// Once, when particle contacts first hold the step below half of what the elements allow:
-  /// says so, and what sets it (the particles may appear mid-run, by conversion).
+  /// says so, and what sets it (the particles may appear mid-run, by conversion). A rank's
+  /// contacts give its own bound; the whole model's is the smallest over the ranks (exact).
   void note_particle_step() {
     if (particle_step_noted_ || !sim_.particle_contact || sim_.model.parts.empty()) return;
-    const double particles = sim_.particle_contact->stable_time_step(sim_.model);
+    double particles = sim_.particle_contact->stable_time_step(sim_.model);
+    if (sub_) ranks_->minimum(&particles, 1);  // every rank is here: the conditions above are alike
     const double elements = sim_.settings.time_step_safety * solver_.state().stable_dt;
     if (!std::isfinite(particles) || !(elements > 0) || particles > 0.5 * elements) return;
     cursor_.particle_step_note = {solver_.state().time, particles, elements};

@@ -25,7 +25,8 @@ column of grains settling in its box (discrete elements, cut anew once they have
 margin) on 2 ranks, on 3 at random, from 2 to 3 ranks across a restart and on 2 rebalanced
 every 7 steps; a
 run stopped by the energy watchdog on 2 ranks writes the summary.json of one process; the
-sphere on alumina whose cracks' small pieces become particles (comminution) on 2 ranks;
+sphere on alumina whose cracks' small pieces become particles (comminution) on 2 ranks and on 3
+rebalanced every 5 steps;
 scenarios with a non-local failure map, or erosion by damage with averaged nodal pressure, are
 refused before the run (exit status 2, saying what they cannot hold).
 
@@ -129,14 +130,14 @@ def serial_then_ranks(name, scenario, rank_counts, what, extra=()):
             same_outputs(f"{name}_serial", f"{name}_np{ranks}", f"{what}, {ranks} ranks")
 
 
-def rebalanced_on_two(name, scenario, reference, what, interval, least, extra=()):
-    """On 2 ranks rebalanced whenever their work differs at all (ratio 1), looked at every
+def rebalanced(name, scenario, reference, what, interval, least, extra=(), ranks=2):
+    """On `ranks` ranks rebalanced whenever their work differs at all (ratio 1), looked at every
     `interval` steps: the bytes of `reference`, and at least `least` rebalances."""
-    r = run(name, scenario, 2, [*extra, "--rebalance", "1", "--rebalance-interval", str(interval)])
+    r = run(name, scenario, ranks, [*extra, "--rebalance", "1", "--rebalance-interval", str(interval)])
     if r.returncode != 0:
-        failures.append(f"{what}, rebalanced on 2 ranks, failed ({r.returncode}): {r.stderr[-2000:]}")
+        failures.append(f"{what}, rebalanced on {ranks} ranks, failed ({r.returncode}): {r.stderr[-2000:]}")
         return
-    same_outputs(reference, name, f"{what}, 2 ranks rebalanced every {interval} steps")
+    same_outputs(reference, name, f"{what}, {ranks} ranks rebalanced every {interval} steps")
     if json.load(open(f"{name}/summary.json"))["rebalances"] < least:
         failures.append(f"{what}: fewer than {least} rebalances with --rebalance 1 every {interval} steps")
 
@@ -205,7 +206,7 @@ else:
     same_outputs("cylinder_serial", "cylinder_graph", "cylinder on the plate, 3 ranks, graph partition")
 
 # Rebalanced every 13 steps (a ratio of 1 makes every look a new cut): the same bytes.
-rebalanced_on_two("cylinder_rebalanced", cylinder, "cylinder_serial", "cylinder on the plate", 13, 10)
+rebalanced("cylinder_rebalanced", cylinder, "cylinder_serial", "cylinder on the plate", 13, 10)
 restart_on_three("cylinder_restart", cylinder, "cylinder_serial")
 
 # Discrete cracks: the notched plate pulled apart (3 045 tri3, rotating crack), to 22 us, when the
@@ -339,15 +340,18 @@ if os.path.exists("granular_np2/summary.json") and json.load(open("granular_np2/
     failures.append("the settling grains on 2 ranks: fewer than 2 new cuts: the case no longer moves the grains across cuts")
 # Rebalanced whenever the ranks' work differs at all, looked at every 7 steps: particles are
 # weighed by their rank's work too, and the cut waits for the grains' next list build.
-rebalanced_on_two("granular_rebalanced", granular, "granular_serial", "the settling grains", 7, 5, settle)
+rebalanced("granular_rebalanced", granular, "granular_serial", "the settling grains", 7, 5, settle)
 
 # Comminution: the steel sphere on the alumina plate at 500 m/s (axisymmetric, 28 204 tri3 in
 # the plate), its cracks' small pieces and its crushed elements turned into debris particles, to
 # 0.2 us, when 54 particles have been made: each split and each conversion runs on the whole model,
-# which is then cut anew; on 2 ranks.
+# which is then cut anew; on 2 ranks, and on 3 rebalanced every 5 steps (the particles' contacts,
+# spread over the ranks, set the time-step note of summary.json and the checkpoint from 110 ns).
 comminution = os.path.join(source, "examples/sphere_on_alumina/sphere_on_alumina_500_debris.yaml")
-serial_then_ranks("comminution", comminution, (2,), "the sphere on alumina, comminution",
-                  ["--set", "analysis.end_time=0.2us"])
+to_200ns = ["--set", "analysis.end_time=0.2us"]
+serial_then_ranks("comminution", comminution, (2,), "the sphere on alumina, comminution", to_200ns)
+rebalanced("comminution_rebalanced", comminution, "comminution_serial", "the sphere on alumina, comminution", 5, 3,
+           to_200ns, ranks=3)
 with open("comminution_serial/history.csv") as f:
     rows = f.read().splitlines()
     header = rows[0].split(",")
