@@ -520,8 +520,7 @@ class RunDriver {
       std::vector<char> eroding;
       for (const Part& part : whole_.parts) eroding.push_back(erodes(part) ? 1 : 0);
       faces.surface = extract_contact_surface(whole_, faces.groups);
-      faces.has_surface = true;
-      halo_ = contact_halo(whole_, faces.surface, sim_.contact->part_pairs, eroding);
+      halo_ = contact_halo(whole_, *faces.surface, sim_.contact->part_pairs, eroding);
     }
     // The skin of one process, from the smallest radius of the whole model (debris changes it).
     if (sim_.particle_contact) sim_.particle_contact->fix_skin(sim_.particle_contact->own_skin(whole_));
@@ -564,7 +563,7 @@ class RunDriver {
   }
 
   /// Whether partition_ still gives every element of whole_ a rank: the same elements, and no
-  /// particles (a cut of particles in contact falls where their list is built: rebalance_if_uneven).
+  /// particles (they are bisected anew by their positions at every cut).
   bool partition_fits_whole() const {
     if (!whole_.particle_parts.empty() || partition_.rank.size() != whole_.parts.size()) return false;
     for (std::size_t p = 0; p < whole_.parts.size(); ++p)

@@ -339,8 +339,8 @@ struct SurfaceMarks {
 SurfaceMarks surface_marks(const Model& model, const ContactHalo* halo, const WholeFaces& faces) {
   SurfaceMarks marks;
   if (!halo || (halo->parts.empty() && !(halo->particle_facet_reach > 0))) return marks;
-  const ContactSurface found = faces.has_surface ? ContactSurface{} : extract_contact_surface(model, faces.groups);
-  const ContactSurface& surface = faces.has_surface ? faces.surface : found;
+  const ContactSurface found = faces.surface ? ContactSurface{} : extract_contact_surface(model, faces.groups);
+  const ContactSurface& surface = faces.surface ? *faces.surface : found;
   if (!halo->parts.empty()) marks.contact = contact_surface_nodes(model, surface, *halo);
   if (halo->particle_facet_reach > 0) marks.boundary = boundary_facet_nodes(model, surface, *halo);
   return marks;
@@ -506,11 +506,29 @@ bool all_empty(const GhostExchangePlan::Lists& lists) {
   return std::all_of(lists.begin(), lists.end(), [](const auto& list) { return list.empty(); });
 }
 
+/// Takes out of `plan` the ranks with nothing to send or receive either way.
+void drop_silent_neighbours(GhostExchangePlan& plan) {
+  GhostExchangePlan kept;
+  for (std::size_t k = 0; k < plan.neighbours.size(); ++k) {
+    const bool silent = plan.send[k].empty() && plan.receive[k].empty() && all_empty(plan.send_particles[k]) &&
+                        all_empty(plan.receive_particles[k]) && all_empty(plan.send_pairs[k]) && all_empty(plan.receive_pairs[k]);
+    if (silent) continue;
+    kept.neighbours.push_back(plan.neighbours[k]);
+    kept.send.push_back(std::move(plan.send[k]));
+    kept.receive.push_back(std::move(plan.receive[k]));
+    kept.send_particles.push_back(std::move(plan.send_particles[k]));
+    kept.receive_particles.push_back(std::move(plan.receive_particles[k]));
+    kept.send_pairs.push_back(std::move(plan.send_pairs[k]));
+    kept.receive_pairs.push_back(std::move(plan.receive_pairs[k]));
+  }
+  plan = std::move(kept);
+}
+
 /// The ghost exchange of `rank`: per neighbour, the owned nodes it holds as ghosts and the ghost
 /// nodes it owns, both in ascending index of the whole model (local indices keep that order), and
 /// the particles and pairs likewise.
 /// With plan_sends false, what other ranks hold is not looked at (each holding costs a pass over
-/// the whole model): every other rank is listed as a neighbour with what it sends alone, for
+/// the whole model): every other rank is listed as a neighbour with what it receives alone, for
 /// complete_ghost_exchange to finish from what the ranks say they receive.
 GhostExchangePlan plan_ghost_exchange(const Model& model, const ElementPartition& partition,
                                       const std::vector<std::int32_t>& owner, int rank, const Subdomain& sub,
@@ -528,8 +546,6 @@ GhostExchangePlan plan_ghost_exchange(const Model& model, const ElementPartition
     }
     GhostExchangePlan::Lists particles[4];
     plan_particle_exchange(model, partition, theirs ? &*theirs : nullptr, q, sub, particles);
-    const bool silent = send.empty() && receive.empty() && std::all_of(std::begin(particles), std::end(particles), all_empty);
-    if (plan_sends && silent) continue;
     plan.neighbours.push_back(q);
     plan.send.push_back(std::move(send));
     plan.receive.push_back(std::move(receive));
@@ -538,6 +554,7 @@ GhostExchangePlan plan_ghost_exchange(const Model& model, const ElementPartition
     plan.send_pairs.push_back(std::move(particles[2]));
     plan.receive_pairs.push_back(std::move(particles[3]));
   }
+  if (plan_sends) drop_silent_neighbours(plan);
   return plan;
 }
 
@@ -736,21 +753,7 @@ void complete_ghost_exchange(Subdomain& sub, const std::vector<std::vector<doubl
       plan.send_pairs[k][pp] = read_locals(asked, at, pair[pp]);
     }
   }
-  // Neighbours are the ranks with something to say either way, as plan_ghost_exchange lists them.
-  GhostExchangePlan kept;
-  for (std::size_t k = 0; k < plan.neighbours.size(); ++k) {
-    const bool silent = plan.send[k].empty() && plan.receive[k].empty() && all_empty(plan.send_particles[k]) &&
-                        all_empty(plan.receive_particles[k]) && all_empty(plan.send_pairs[k]) && all_empty(plan.receive_pairs[k]);
-    if (silent) continue;
-    kept.neighbours.push_back(plan.neighbours[k]);
-    kept.send.push_back(std::move(plan.send[k]));
-    kept.receive.push_back(std::move(plan.receive[k]));
-    kept.send_particles.push_back(std::move(plan.send_particles[k]));
-    kept.receive_particles.push_back(std::move(plan.receive_particles[k]));
-    kept.send_pairs.push_back(std::move(plan.send_pairs[k]));
-    kept.receive_pairs.push_back(std::move(plan.receive_pairs[k]));
-  }
-  plan = std::move(kept);
+  drop_silent_neighbours(plan);  // as plan_ghost_exchange does when it plans the sends itself
 }
 
 void follow_removed_elements(Subdomain& sub, Model& local, const Remap& remap) {

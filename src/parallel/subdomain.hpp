@@ -8,6 +8,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "contact/contact_surface.hpp"
@@ -124,11 +125,10 @@ Subdomain make_subdomain(const Model& model, const ElementPartition& partition, 
                          const ContactHalo* halo = nullptr);
 
 /// What a cut finds of the whole model's faces, found once when the caller needs them too (the
-/// halo's reach): its faces grouped, and its contact surface (empty: found by the cut if needed).
+/// halo's reach): its faces grouped, and its contact surface (none: found by the cut if needed).
 struct WholeFaces {
   FaceGroups groups;
-  ContactSurface surface;
-  bool has_surface = false;
+  std::optional<ContactSurface> surface;
 };
 
 /// make_subdomain, with the whole model's faces found already. With `plan_sends` false the

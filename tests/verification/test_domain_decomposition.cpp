@@ -774,10 +774,7 @@ SentCounts check_exchange_from_requests(const Model& model, const ElementPartiti
                                         const std::string& what) {
   const int ranks = partition.ranks;
   WholeFaces faces{group_faces(model)};
-  if (halo) {  // as a run with contact hands it over: the whole surface found once
-    faces.surface = extract_contact_surface(model, faces.groups);
-    faces.has_surface = true;
-  }
+  if (halo) faces.surface = extract_contact_surface(model, faces.groups);  // as a run with contact hands it over
   std::vector<Subdomain> half;
   std::vector<std::vector<double>> requests;
   for (int r = 0; r < ranks; ++r) {
