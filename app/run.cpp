@@ -834,11 +834,12 @@ class RunDriver {
     if (votes[0] == 0 || votes[1] == 0) return;
     // Between two looks a particle moves less than half the skin: at every build it is then
     // within half the margin of where it was at the cut.
-    if (rebalance_waits_ || -votes[2] >= 0.5 * (particle_margin_ - contact.skin(sim_.model))) {
+    const bool moved = -votes[2] >= 0.5 * (particle_margin_ - contact.skin(sim_.model));
+    if (moved || rebalance_waits_) {
       gather_whole_everywhere();
       cut_whole();  // the list it takes up is due all the same
-      ++(rebalance_waits_ ? rebalances_ : cuts_);  // a rebalance's cut is counted as one, as ever
-      if (rebalance_waits_) rebalance_waits_ = false, start_work_clock();
+      if (moved) ++cuts_;  // a cut due for both counts in both
+      if (rebalance_waits_) ++rebalances_, rebalance_waits_ = false, start_work_clock();
     }
     contact.expire_list();
   }
