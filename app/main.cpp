@@ -1,7 +1,9 @@
 // The `shard` command line: run, check, reference, info.
+#include <algorithm>
 #include <cmath>
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <iostream>
 #include <optional>
@@ -88,6 +90,8 @@ the same outputs, byte for byte (docs/outputs.md, "Ranks"):
                           SEED and its id: the worst cut, to check that results do not depend on
                           it); the outputs are the same bytes whichever
 
+A run of one process ignores these three options, and says so.
+
 Exit status: 0 success, 1 the run failed (outputs so far kept, summary.json says why),
 2 bad input (nothing written).
 )";
@@ -117,39 +121,52 @@ std::optional<int> whole_number(const std::string& text, long lo, long hi) {
   return static_cast<int>(n);
 }
 
-int usage_error(const std::string& message) {
-  std::fprintf(stderr, "shard: %s\nRun 'shard --help' for usage.\n", message.c_str());
+/// A fault in the command line, said by the process that speaks for the run (rank 0 under
+/// mpirun, where every rank reads the same command line and finds the same fault).
+int usage_error(const std::string& message, bool speaks = true) {
+  if (speaks) std::fprintf(stderr, "shard: %s\nRun 'shard --help' for usage.\n", message.c_str());
   return kBadInput;
+}
+
+/// An option that acts only on a run over ranks, noted once however often given.
+void note_decomposition_option(shard::RunOptions& options, const std::string& name) {
+  auto& given = options.decomposition_options;
+  if (std::find(given.begin(), given.end(), name) == given.end()) given.push_back(name);
 }
 
 /// The command line of one process, or of one rank of a decomposed run (`ranks`; rank 0 speaks
 /// for all of them).
 int shard_main(int argc, char** argv, shard::Communicator* ranks) {
   const bool speaks = !ranks || ranks->rank() == 0;
+  const auto usage = [speaks](const std::string& message) { return usage_error(message, speaks); };
+  const auto say = [speaks](const char* text, std::FILE* to) {
+    if (speaks) std::fputs(text, to);
+  };
   std::vector<std::string> args(argv + 1, argv + argc);
   if (args.empty()) {
-    std::fputs(kHelp, stderr);
+    say(kHelp, stderr);
     return kBadInput;
   }
   const std::string command = args[0];
   if (command == "--help" || command == "-h" || command == "help") {
-    std::fputs(kHelp, stdout);
+    say(kHelp, stdout);
     return kOk;
   }
   if (command == "--version") {
-    std::printf("shard %s\n", SHARD_VERSION);
+    if (speaks) std::printf("shard %s\n", SHARD_VERSION);
     return kOk;
   }
   if ((command == "run" || command == "check") && asks_for_help(args)) {
-    std::fputs(command == "run" ? kRunHelp : kCheckHelp, stdout);
+    say(command == "run" ? kRunHelp : kCheckHelp, stdout);
     return kOk;
   }
   try {
     if (command == "reference") {
-      std::fputs(shard::scenario_reference_markdown().c_str(), stdout);
+      say(shard::scenario_reference_markdown().c_str(), stdout);
       return kOk;
     }
     if (command == "info") {
+      if (!speaks) return kOk;
       std::printf("shard %s\nmaterial models:", SHARD_VERSION);
       for (const auto& n : shard::MaterialRegistry::names()) std::printf(" %s", n.c_str());
       std::printf(" automaton (particles: movable cellular automata and discrete elements)");
@@ -167,12 +184,12 @@ int shard_main(int argc, char** argv, shard::Communicator* ranks) {
       std::vector<shard::ScenarioOverride> overrides;
       for (std::size_t i = 1; i < args.size(); ++i) {
         if (args[i] == "--set" && i + 1 < args.size()) overrides.push_back(shard::parse_override(args[++i]));
-        else if (!args[i].empty() && args[i][0] == '-') return usage_error("unknown option '" + args[i] + "' for check");
+        else if (!args[i].empty() && args[i][0] == '-') return usage("unknown option '" + args[i] + "' for check");
         else if (!scenario) scenario = args[i];
-        else return usage_error("check takes one scenario file");
+        else return usage("check takes one scenario file");
       }
-      if (!scenario) return usage_error("check takes one scenario file");
-      std::fputs(shard::check_scenario(*scenario, overrides).c_str(), stdout);
+      if (!scenario) return usage("check takes one scenario file");
+      say(shard::check_scenario(*scenario, overrides).c_str(), stdout);
       return kOk;
     }
     if (command == "run") {
@@ -189,7 +206,7 @@ int shard_main(int argc, char** argv, shard::Communicator* ranks) {
         else if (a == "--threads") {
           const std::string v = value("--threads");
           const auto n = whole_number(v, 1, 1024);
-          if (!n) return usage_error("--threads expects a whole number >= 1, got '" + v + "'");
+          if (!n) return usage("--threads expects a whole number >= 1, got '" + v + "'");
           options.threads = *n;
         } else if (a == "--quiet" || a == "-q") options.quiet = true;
         else if (a == "--set") options.overrides.push_back(shard::parse_override(value("--set")));
@@ -199,13 +216,14 @@ int shard_main(int argc, char** argv, shard::Communicator* ranks) {
           try {
             options.until = shard::parse_quantity_as(v, shard::dim::time);
           } catch (const std::invalid_argument& e) {
-            return usage_error(std::string("--until: ") + e.what());
+            return usage(std::string("--until: ") + e.what());
           }
           if (!(*options.until > 0) || !std::isfinite(*options.until))
-            return usage_error("--until expects a time after the start (a positive, finite time such "
+            return usage("--until expects a time after the start (a positive, finite time such "
                                "as 20us), got '" + v + "'");
         } else if (a == "--partition") {
           const std::string v = value("--partition");
+          note_decomposition_option(options, "--partition");
           char* end = nullptr;
           const unsigned long long seed = v.rfind("random:", 0) == 0 ? std::strtoull(v.c_str() + 7, &end, 10) : 0;
           using P = shard::RunOptions::Partition;
@@ -215,26 +233,28 @@ int shard_main(int argc, char** argv, shard::Communicator* ranks) {
             options.partition = P::random;
             options.partition_seed = seed;
           } else {
-            return usage_error("--partition expects 'bisection', 'graph' or 'random:SEED' (SEED a whole number), got '" +
+            return usage("--partition expects 'bisection', 'graph' or 'random:SEED' (SEED a whole number), got '" +
                                v + "'");
           }
         } else if (a == "--rebalance") {
           const std::string v = value("--rebalance");
+          note_decomposition_option(options, "--rebalance");
           char* end = nullptr;
           const double ratio = std::strtod(v.c_str(), &end);
           if (v.empty() || *end != '\0' || !(ratio == 0 || (ratio >= 1 && std::isfinite(ratio))))
-            return usage_error("--rebalance expects 0 (never) or a ratio of at least 1 (such as 1.2), got '" + v + "'");
+            return usage("--rebalance expects 0 (never) or a ratio of at least 1 (such as 1.2), got '" + v + "'");
           options.rebalance_above = ratio;
         } else if (a == "--rebalance-interval") {
           const std::string v = value("--rebalance-interval");
+          note_decomposition_option(options, "--rebalance-interval");
           const auto n = whole_number(v, 1, 1000000000);
-          if (!n) return usage_error("--rebalance-interval expects a whole number of steps >= 1, got '" + v + "'");
+          if (!n) return usage("--rebalance-interval expects a whole number of steps >= 1, got '" + v + "'");
           options.rebalance_interval = *n;
-        } else if (!a.empty() && a[0] == '-') return usage_error("unknown option '" + a + "'");
+        } else if (!a.empty() && a[0] == '-') return usage("unknown option '" + a + "'");
         else if (!scenario) scenario = a;
-        else return usage_error("more than one scenario given ('" + *scenario + "', '" + a + "')");
+        else return usage("more than one scenario given ('" + *scenario + "', '" + a + "')");
       }
-      if (!scenario) return usage_error("run needs a scenario file");
+      if (!scenario) return usage("run needs a scenario file");
       options.output_dir = output ? *output
                                   : std::filesystem::path("out") /
                                         std::filesystem::path(*scenario).stem();
@@ -246,7 +266,7 @@ int shard_main(int argc, char** argv, shard::Communicator* ranks) {
                      100 * summary.energy_balance_error, options.output_dir.string().c_str());
       return kOk;
     }
-    return usage_error("unknown command '" + command + "'");
+    return usage("unknown command '" + command + "'");
   } catch (const shard::InputError& e) {
     // Every rank reads the same input and finds the same fault: one says it.
     if (speaks) std::fprintf(stderr, "error: %s\n", e.what());
@@ -301,12 +321,32 @@ int main_on_ranks(int argc, char** argv) {
 }
 #endif
 
+#ifndef SHARD_WITH_MPI
+/// A build without MPI started as several copies by mpirun (OpenMPI says how many): each copy
+/// would run the whole scenario into the same output folder. The first says so; all stop.
+int refuse_copies_without_mpi() {
+  const char* size = std::getenv("OMPI_COMM_WORLD_SIZE");
+  const int copies = size ? std::atoi(size) : 1;
+  if (copies <= 1) return kOk;
+  const char* rank = std::getenv("OMPI_COMM_WORLD_RANK");
+  if (!rank || std::atoi(rank) == 0)
+    std::fprintf(stderr,
+                 "error: mpirun started %d copies of a shard built without MPI: each would run the whole "
+                 "scenario into the same output folder. Run it as one process (threads: --threads N), or "
+                 "build shard with MPI (Debian's libopenmpi-dev, then scripts/build.sh)\n",
+                 copies);
+  return kBadInput;
+}
+#endif
+
 }  // namespace
 
 int main(int argc, char** argv) {
   shard::keep_freed_memory();
 #ifdef SHARD_WITH_MPI
   if (launched_by_mpirun()) return main_on_ranks(argc, argv);
+#else
+  if (const int refused = refuse_copies_without_mpi(); refused != kOk) return refused;
 #endif
   return shard_main(argc, argv, nullptr);
 }

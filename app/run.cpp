@@ -377,6 +377,7 @@ class RunDriver {
     std::vector<std::string> warnings = sc_.warnings;
     if (auto long_run = check_step_count(sc_, solver_.state().dt_next, solver_.state().time))
       warnings.push_back(*long_run);
+    if (auto ignored = ignored_decomposition_options()) warnings.push_back(*ignored);
     if (writes()) open_outputs();
     for (const auto& w : warnings) {  // said even with --quiet: they may mean a wrong result
       if (writes()) std::fprintf(stderr, "warning: %s\n", w.c_str());
@@ -407,6 +408,18 @@ class RunDriver {
   }
 
  private:
+  /// The options of a decomposed run given to a run of one rank, which acts on none of them:
+  /// said, so that nobody believes a partition or a rebalance was tried.
+  std::optional<std::string> ignored_decomposition_options() const {
+    const auto& given = options_.decomposition_options;
+    if (given.empty() || (ranks_ && ranks_->size() > 1)) return std::nullopt;
+    std::string names;
+    for (std::size_t i = 0; i < given.size(); ++i) names += (i == 0 ? "" : i + 1 == given.size() ? " and " : ", ") + given[i];
+    return names + (given.size() == 1 ? " acts" : " act") +
+           " only on a run cut over several ranks (mpirun -np N, N > 1, in a build with MPI); "
+           "this run is one process and ignores " + (given.size() == 1 ? "it" : "them");
+  }
+
   /// A run that went wrong: what it wrote so far stays, summary.json says why.
   [[noreturn]] void fail(const RunError& e) {
     progress_.finish();
@@ -515,7 +528,7 @@ class RunDriver {
   void cut_whole(bool keep_partition = false) {
     Communicator& ranks = *ranks_;
     if (!(keep_partition && partition_fits_whole())) partition_whole();
-    WholeFaces faces{group_faces(whole_)};  // grouped once for the halo's reach and the cut
+    WholeFaces faces{group_faces(whole_), std::nullopt};  // grouped once for the halo's reach and the cut
     if (sim_.contact && sim_.contact->any_pairs()) {
       std::vector<char> eroding;
       for (const Part& part : whole_.parts) eroding.push_back(erodes(part) ? 1 : 0);
@@ -1661,8 +1674,11 @@ class RunDriver {
     });
     if (!stop) return false;
     status_ = "stopped";
-    message_ = "stopped at t = " + format_time(s.time) + " (--until); continue with --restart " +
-               (dir_ / "checkpoint.bin").string();
+    // The outputs end at the state before the last step (its velocities are a half step behind
+    // its positions); the checkpoint holds the positions after it, where a restart goes on.
+    message_ = "stopped by --until " + format_time(*options_.until) + ": the last state written is at t = " +
+               format_time(s.time - s.dt_half) + "; --restart " + (dir_ / "checkpoint.bin").string() +
+               " continues from t = " + format_time(s.time);
     return true;
   }
 

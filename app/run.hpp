@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "io/scenario.hpp"
 
@@ -33,6 +34,9 @@ struct RunOptions {
   /// (--rebalance; 0: never).
   double rebalance_above = 1.2;
   int rebalance_interval = 100;
+  /// The options given that act only on a decomposed run (--partition, --rebalance, ...): a run
+  /// of one process warns that it ignores them.
+  std::vector<std::string> decomposition_options;
 };
 
 struct RunSummary {

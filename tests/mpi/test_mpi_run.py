@@ -382,6 +382,13 @@ else:
 r = run("refused_nonlocal", notched, 2, ["--set", "materials.ceramic.nonlocal_length=1mm"])
 if r.returncode != 2 or "non-local average" not in r.stderr or os.path.exists("refused_nonlocal"):
     failures.append(f"a non-local failure map on 2 ranks: exit status {r.returncode}, said {r.stderr[:500]!r}")
+elif r.stderr.count("non-local average") != 1:
+    failures.append(f"a refusal on 2 ranks was said {r.stderr.count('non-local average')} times, not once")
+
+# A fault in the command line: every rank finds it, rank 0 alone says it.
+r = run("bad_option", notched, 2, ["--rebalance", "often"])
+if r.returncode != 2 or r.stderr.count("--rebalance expects") != 1:
+    failures.append(f"a bad option on 2 ranks: exit status {r.returncode}, said {r.stderr[:800]!r}")
 
 for f in failures:
     print("FAIL:", f)

@@ -14,6 +14,12 @@ namespace {
 const std::string kExample2d = std::string(SHARD_SOURCE_DIR) + "/examples/bar_impact/bar_2d.yaml";
 const std::string kExample3d = std::string(SHARD_SOURCE_DIR) + "/examples/bar_impact/bar_3d.yaml";
 
+/// The number written right after `key` in `text` (NaN when `key` is absent).
+double number_after(const std::string& text, const std::string& key) {
+  const auto at = text.find(key);
+  return at == std::string::npos ? std::nan("") : std::strtod(text.c_str() + at + key.size(), nullptr);
+}
+
 TEST(RunCli, SameOutputForOneAndTwoThreads) {
   for (const std::string& scenario : {kExample2d, kExample3d}) {
     const auto dir = testing::fresh_dir("threads");
@@ -37,6 +43,13 @@ TEST(RunCli, RestartReproducesTheUninterruptedRun) {
   ASSERT_EQ(full.status, 0) << full.output;
   const auto first = testing::run_shard("run " + kExample2d + " --quiet --until 11.3us -o " + (dir / "pieces").string());
   ASSERT_EQ(first.status, 0) << first.output;
+  // The stop names one time for the outputs, that of summary.json's end_time and of the last
+  // history row, and the later time a restart goes on from.
+  const std::string summary = testing::read_file(dir / "pieces" / "summary.json");
+  EXPECT_NE(summary.find("stopped by --until 11.3 us"), std::string::npos) << summary;
+  const double end_time = number_after(summary, "\"end_time\": ");
+  EXPECT_NEAR(number_after(summary, "last state written is at t = ") * 1e-6, end_time, 5e-4 * end_time) << summary;
+  EXPECT_GT(number_after(summary, "continues from t = ") * 1e-6, 11.3e-6) << summary;
   EXPECT_LT(testing::read_file(dir / "pieces" / "history.csv").size(),
             testing::read_file(dir / "full" / "history.csv").size());
   const auto second = testing::run_shard("run " + kExample2d + " --quiet -o " + (dir / "pieces").string() +
@@ -108,6 +121,21 @@ TEST(RunCli, ExitCodesAndHelp) {
   EXPECT_EQ(testing::run_shard("run").status, 2);
   EXPECT_EQ(testing::run_shard("run " + kExample2d + " --threads zero").status, 2);
   EXPECT_EQ(testing::run_shard("check " + kExample2d).status, 0);
+}
+
+// The options of a run over ranks, given to one process, change nothing: it says so, on the
+// terminal and in summary.json, rather than let a user believe a rebalance was tried.
+TEST(RunCli, OptionsOfRanksAreSaidToBeIgnoredByOneProcess) {
+  const auto dir = testing::fresh_dir("rank_options");
+  const auto r = testing::run_shard("run " + kExample2d + " --quiet --until 1us --rebalance 1.1 --partition random:3 -o " +
+                                    (dir / "a").string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  const std::string said = "--rebalance and --partition act only on a run cut over several ranks";
+  EXPECT_NE(r.output.find(said), std::string::npos) << r.output;
+  EXPECT_NE(testing::read_file(dir / "a" / "summary.json").find(said), std::string::npos);
+  const auto plain = testing::run_shard("run " + kExample2d + " --quiet --until 1us -o " + (dir / "b").string());
+  EXPECT_EQ(plain.output.find("act only on a run cut"), std::string::npos) << plain.output;
+  std::filesystem::remove_all(dir);
 }
 
 TEST(RunCli, EveryExampleScenarioPassesCheck) {
