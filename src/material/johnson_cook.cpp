@@ -28,11 +28,30 @@ double JohnsonCook::rate_factor(double plastic_rate) const {
   return r > 1.0 ? 1.0 + p_.C * std::log(r) : 1.0;
 }
 
+double JohnsonCook::thermal_factor(double temperature) const {
+  const double t = homologous(temperature);
+  return t >= 1.0 ? 0.0 : 1.0 - std::pow(t, p_.m);
+}
+
 double JohnsonCook::flow_stress(double eqps, double plastic_rate, double temperature) const {
   const double hardening = p_.A + (eqps > 0.0 ? p_.B * std::pow(eqps, p_.n) : 0.0);
-  const double t = homologous(temperature);
-  const double thermal = t >= 1.0 ? 0.0 : 1.0 - std::pow(t, p_.m);
-  return hardening * rate_factor(plastic_rate) * thermal;
+  return hardening * rate_factor(plastic_rate) * thermal_factor(temperature);
+}
+
+JohnsonCook::Yield JohnsonCook::yield_and_slope(double eqps, double dgamma, double dt, double thermal) const {
+  // σ_y = (A + B εⁿ)(1 + C ln ε̇*)Θ with ε = ε̄p + Δγ, ε̇* = Δγ/(Δt ε̇0), Θ fixed:
+  //   dσ_y/dΔγ = [B n εⁿ/ε · (1 + C ln ε̇*) + (A + B εⁿ) · C/Δγ] Θ,
+  // the rate term where ε̇* > 1 (below, the factor is held at 1). One power and one logarithm per
+  // evaluation, where a difference quotient took two of each and the thermal power twice.
+  const double strain = eqps + dgamma;
+  const double power = strain > 0.0 ? std::pow(strain, p_.n) : 0.0;
+  const double hardening = p_.A + (strain > 0.0 ? p_.B * power : 0.0);
+  const double hardening_slope = strain > 0.0 ? p_.B * p_.n * power / strain : 0.0;
+  const double r = (dt > 0.0 ? dgamma / dt : 0.0) / p_.reference_strain_rate;
+  const bool rate_acts = r > 1.0;
+  const double rate = rate_acts ? 1.0 + p_.C * std::log(r) : 1.0;
+  const double rate_slope = rate_acts ? p_.C / dgamma : 0.0;
+  return {hardening * rate * thermal, (hardening_slope * rate + hardening * rate_slope) * thermal};
 }
 
 double JohnsonCook::failure_strain(double triaxiality, double plastic_rate, double temperature) const {
@@ -119,22 +138,25 @@ void JohnsonCook::update(MaterialPointBatch& batch) const {
     // g(Δγ) = σ̄_tr − 3GΔγ − σ_y(ε̄p + Δγ, Δγ/Δt, T_n) = 0. g falls monotonically from g(0) > 0
     // to g(σ̄_tr/3G) = −σ_y < 0, so the root is bracketed: Newton steps, bisection whenever a
     // step leaves the bracket (n < 1 makes dσ_y/dε̄p unbounded at ε̄p = 0).
-    double dgamma = 0.0, yield = flow_stress(eqps, 0.0, temperature);
+    const double thermal = thermal_factor(temperature);
+    double dgamma = 0.0, yield = yield_and_slope(eqps, 0.0, dt, thermal).stress;
     if (trial > yield && trial > 0.0) {
       double lo = 0.0, hi = trial / three_g;
       dgamma = std::min(hi, (trial - yield) / three_g);
       for (int it = 0; it < 100; ++it) {
-        const double rate = dt > 0.0 ? dgamma / dt : 0.0;
-        yield = flow_stress(eqps + dgamma, rate, temperature);
+        const Yield y = yield_and_slope(eqps, dgamma, dt, thermal);
+        yield = y.stress;
         const double g = trial - three_g * dgamma - yield;
         if (g > 0.0) lo = dgamma; else hi = dgamma;
         if (std::abs(g) <= 1e-13 * trial || hi - lo <= 1e-15 * hi) break;
-        // dσ_y/dΔγ by a one-sided difference (exact derivative of a product of three factors with
-        // a clamp in each is not worth its branches; the bracket guarantees convergence anyway).
-        const double step = std::max(1e-10 * (eqps + dgamma), 1e-14);
-        const double slope =
-            (flow_stress(eqps + dgamma + step, dt > 0.0 ? (dgamma + step) / dt : 0.0, temperature) - yield) / step;
-        double next = dgamma + g / (three_g + std::max(slope, 0.0));
+        // Newton with the closed-form slope (≥ 0). Where the step leaves the bracket below (a
+        // first yield with n < 1 and the rate term: σ_y climbs like ln Δγ near 0, and the root
+        // lies decades below the first guess), the Newton step in ln Δγ instead: it scales Δγ,
+        // and on a curve that is nearly straight in ln Δγ lands near the root, where halving
+        // the bracket took a step per factor of 2.
+        const double tangent = three_g + y.slope;
+        double next = dgamma + g / tangent;
+        if (!(next > lo)) next = dgamma * std::exp(g / (dgamma * tangent));
         if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
         dgamma = next;
       }

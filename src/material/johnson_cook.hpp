@@ -75,6 +75,13 @@ class JohnsonCook final : public Material {
  private:
   double homologous(double temperature) const;
   double rate_factor(double plastic_rate) const;
+  /// 1 − T*ᵐ: fixed over one radial return (the temperature rises after it).
+  double thermal_factor(double temperature) const;
+  /// σ_y at ε̄p + Δγ and rate Δγ/Δt with the thermal factor given, and dσ_y/dΔγ in closed form.
+  struct Yield {
+    double stress, slope;
+  };
+  Yield yield_and_slope(double plastic_strain, double dgamma, double dt, double thermal) const;
   /// p(μ) = p_H(μ) + (γ0 + aμ) E split into the energy-free part and the coefficient of E.
   void mie_gruneisen(double volumetric_strain, double& cold, double& energy_coefficient) const;
 

@@ -297,6 +297,73 @@ TEST(JohnsonCook, RadialReturnStaysOnYieldSurfaceAndIsObjective) {
   EXPECT_GT(hold.plastic_strain, 0.03);
 }
 
+/// One point sheared from rest in one increment: the radial return's Δγ and stress.
+struct FirstYield {
+  double dgamma, equivalent, trial;
+};
+FirstYield shear_from_rest(const JohnsonCook& m, double gamma, double dt) {
+  double de[kTensorSize] = {0, 0, 0, 0.5 * gamma, 0, 0};  // tensor shear: engineering γ/2
+  double stress[kTensorSize] = {};
+  double state[JohnsonCook::slot_count] = {};
+  double temperature = 293.15, volume = 1.0, length = 1e-3;
+  MaterialPointBatch batch;
+  batch.count = 1;
+  batch.dt = dt;
+  batch.strain_increment = de;
+  batch.stress = stress;
+  batch.state = state;
+  batch.temperature = &temperature;
+  batch.volume = &volume;
+  batch.characteristic_length = &length;
+  m.update(batch);
+  return {state[JohnsonCook::plastic_strain], von_mises(stress),
+          std::sqrt(3.0) * m.parameters_in_use().moduli.shear * gamma};
+}
+
+// The hardest return of the model: the first yield of a point with n < 1 and the rate term, where
+// σ_y climbs like ln Δγ and the root Δγ lies decades below the first guess (σ̄_tr − σ_y)/3G. For
+// RHA steel's constants (n = 0.26, C = 0.014; Westerling et al. 2001), over six decades of
+// increment and three of time step, the return must find the root of
+//   g(Δγ) = σ̄_tr − 3GΔγ − σ_y(Δγ, Δγ/Δt, T_r) = 0
+// that a bisection of 200 halvings finds here, to 1e-9 of it, with σ̄ = σ_y to 1e-10 (the return stops at |g| ≤ 1e-13 σ̄_tr).
+TEST(JohnsonCook, FirstYieldWithRateFindsTheRootOfTheConsistencyCondition) {
+  JohnsonCookParameters p;
+  p.moduli = {159e9, 81.8e9};
+  p.A = 792e6;
+  p.B = 510e6;
+  p.n = 0.26;
+  p.C = 0.014;
+  p.m = 1.03;
+  p.melting_temperature = 1793;
+  p.taylor_quinney = 0;
+  const JohnsonCook m("rha", 7830, p);
+  const double three_g = 3 * p.moduli.shear;
+  double worst_root = 0, worst_surface = 0;
+  int plastic = 0;
+  for (const double dt : {1e-9, 1e-8, 1e-7, 1e-6})
+    for (double excess = 1.001; excess < 2e3; excess *= 1.7) {
+      // σ̄_tr = excess · A: from just past the yield stress to far beyond it.
+      const double gamma = excess * p.A / (std::sqrt(3.0) * p.moduli.shear);
+      const FirstYield r = shear_from_rest(m, gamma, dt);
+      double lo = 0, hi = r.trial / three_g;
+      for (int it = 0; it < 200; ++it) {
+        const double mid = 0.5 * (lo + hi);
+        (r.trial - three_g * mid - m.flow_stress(mid, mid / dt, 293.15) > 0 ? lo : hi) = mid;
+      }
+      const double root = 0.5 * (lo + hi);
+      if (!(r.dgamma > 0)) continue;
+      ++plastic;
+      worst_root = std::max(worst_root, std::abs(r.dgamma - root) / root);
+      const double yield = m.flow_stress(r.dgamma, r.dgamma / dt, 293.15);
+      worst_surface = std::max(worst_surface, std::abs(r.equivalent - yield) / yield);
+    }
+  std::printf("[johnson_cook] first yield with rate: %d returns, |dgamma - root| <= %.2e root (limit 1e-9), "
+              "|sigma - sigma_y| <= %.2e sigma_y (limit 1e-10)\n", plastic, worst_root, worst_surface);
+  EXPECT_GT(plastic, 40);
+  EXPECT_LT(worst_root, 1e-9);
+  EXPECT_LT(worst_surface, 1e-10);
+}
+
 TEST(JohnsonCook, DamageErodesAtFailureStrain) {
   JohnsonCookParameters p = copper(0.0);
   p.damage = true;
