@@ -123,6 +123,9 @@ std::optional<int> whole_number(const std::string& text, long lo, long hi) {
 
 /// A fault in the command line, said by the process that speaks for the run (rank 0 under
 /// mpirun, where every rank reads the same command line and finds the same fault).
+/// A rank's input error that rank 0 did not say for it (docs/outputs.md, "Ranks").
+std::string unsaid_error;
+
 int usage_error(const std::string& message, bool speaks = true) {
   if (speaks) std::fprintf(stderr, "shard: %s\nRun 'shard --help' for usage.\n", message.c_str());
   return kBadInput;
@@ -268,8 +271,10 @@ int shard_main(int argc, char** argv, shard::Communicator* ranks) {
     }
     return usage("unknown command '" + command + "'");
   } catch (const shard::InputError& e) {
-    // Every rank reads the same input and finds the same fault: one says it.
+    // Every rank reads the same input and finds the same fault: one says it. The others keep it,
+    // in case their fault was theirs alone (a file missing on their machine).
     if (speaks) std::fprintf(stderr, "error: %s\n", e.what());
+    else unsaid_error = e.what();
     return kBadInput;
   } catch (const shard::RunError& e) {
     std::fprintf(stderr, "\n%srun failed: %s\n", rank_prefix(ranks).c_str(), e.what());
@@ -287,7 +292,8 @@ bool launched_by_mpirun() { return std::getenv("OMPI_COMM_WORLD_SIZE") || std::g
 
 /// Waits at most `seconds` for every rank to come here too, on `failures` (a communicator of its
 /// own, so that this meeting cannot be matched with a collective some rank is still held in).
-void meet_the_others(MPI_Comm failures, double seconds) {
+/// Whether they all came.
+bool meet_the_others(MPI_Comm failures, double seconds) {
   MPI_Request request;
   MPI_Ibarrier(failures, &request);
   int done = 0;
@@ -295,6 +301,7 @@ void meet_the_others(MPI_Comm failures, double seconds) {
     MPI_Test(&request, &done, MPI_STATUS_IGNORE);
     if (!done) std::this_thread::sleep_for(std::chrono::milliseconds(2));
   }
+  return done != 0;
 }
 
 int main_on_ranks(int argc, char** argv) {
@@ -314,6 +321,14 @@ int main_on_ranks(int argc, char** argv) {
       meet_the_others(failures, 10.0);
       MPI_Abort(MPI_COMM_WORLD, code);
     }
+    // Bad input found on every rank alike ends them all here. Found on some ranks only, it
+    // leaves the others in a collective: the ranks that found it say it and end the run.
+    if (code == kBadInput && ranks.size() > 1 && !meet_the_others(failures, 10.0)) {
+      if (!unsaid_error.empty())
+        std::fprintf(stderr, "rank %d: error: %s\n", ranks.rank(), unsaid_error.c_str());
+      std::fflush(stderr);
+      MPI_Abort(MPI_COMM_WORLD, code);
+    }
   }
   MPI_Comm_free(&failures);
   MPI_Finalize();
@@ -322,19 +337,29 @@ int main_on_ranks(int argc, char** argv) {
 #endif
 
 #ifndef SHARD_WITH_MPI
-/// A build without MPI started as several copies by mpirun (OpenMPI says how many): each copy
-/// would run the whole scenario into the same output folder. The first says so; all stop.
-int refuse_copies_without_mpi() {
-  const char* size = std::getenv("OMPI_COMM_WORLD_SIZE");
-  const int copies = size ? std::atoi(size) : 1;
+/// The number in environment variable `name` (OpenMPI's OMPI_COMM_WORLD_*, or PMI_* of MPICH,
+/// Intel MPI and Slurm), or `otherwise` where it is unset or not a number.
+long launcher_number(const char* name, long otherwise) {
+  const char* text = std::getenv(name);
+  if (!text || !*text) return otherwise;
+  char* end = nullptr;
+  const long n = std::strtol(text, &end, 10);
+  return *end == '\0' ? n : otherwise;
+}
+
+/// A build without MPI started as several copies by mpirun: a run's copies would each run the
+/// whole scenario into the same output folder. The first copy says so; every copy stops.
+int refuse_copies_without_mpi(int argc, char** argv) {
+  if (argc < 2 || std::strcmp(argv[1], "run") != 0) return kOk;  // the other commands write nothing
+  const long copies = std::max(launcher_number("OMPI_COMM_WORLD_SIZE", 1), launcher_number("PMI_SIZE", 1));
   if (copies <= 1) return kOk;
-  const char* rank = std::getenv("OMPI_COMM_WORLD_RANK");
-  if (!rank || std::atoi(rank) == 0)
+  const long rank = launcher_number("OMPI_COMM_WORLD_RANK", launcher_number("PMI_RANK", 0));
+  if (rank == 0)
     std::fprintf(stderr,
                  "error: mpirun started %d copies of a shard built without MPI: each would run the whole "
                  "scenario into the same output folder. Run it as one process (threads: --threads N), or "
                  "build shard with MPI (Debian's libopenmpi-dev, then scripts/build.sh)\n",
-                 copies);
+                 static_cast<int>(copies));
   return kBadInput;
 }
 #endif
@@ -346,7 +371,7 @@ int main(int argc, char** argv) {
 #ifdef SHARD_WITH_MPI
   if (launched_by_mpirun()) return main_on_ranks(argc, argv);
 #else
-  if (const int refused = refuse_copies_without_mpi(); refused != kOk) return refused;
+  if (const int refused = refuse_copies_without_mpi(argc, argv); refused != kOk) return refused;
 #endif
   return shard_main(argc, argv, nullptr);
 }

@@ -75,14 +75,14 @@ std::string json_string(const std::string& s) {
   return out + "\"";
 }
 
-std::string format_time(double seconds) {
-  char buffer[32];
+std::string format_time(double seconds, int digits = 4) {
+  char buffer[48];
   const double a = std::abs(seconds);
   if (a == 0) return "0 s";
-  if (a < 1e-6) std::snprintf(buffer, sizeof buffer, "%.4g ns", seconds * 1e9);
-  else if (a < 1e-3) std::snprintf(buffer, sizeof buffer, "%.4g us", seconds * 1e6);
-  else if (a < 1) std::snprintf(buffer, sizeof buffer, "%.4g ms", seconds * 1e3);
-  else std::snprintf(buffer, sizeof buffer, "%.4g s", seconds);
+  if (a < 1e-6) std::snprintf(buffer, sizeof buffer, "%.*g ns", digits, seconds * 1e9);
+  else if (a < 1e-3) std::snprintf(buffer, sizeof buffer, "%.*g us", digits, seconds * 1e6);
+  else if (a < 1) std::snprintf(buffer, sizeof buffer, "%.*g ms", digits, seconds * 1e3);
+  else std::snprintf(buffer, sizeof buffer, "%.*g s", digits, seconds);
   return buffer;
 }
 
@@ -377,7 +377,9 @@ class RunDriver {
     std::vector<std::string> warnings = sc_.warnings;
     if (auto long_run = check_step_count(sc_, solver_.state().dt_next, solver_.state().time))
       warnings.push_back(*long_run);
-    if (auto ignored = ignored_decomposition_options()) warnings.push_back(*ignored);
+    // Said, not noted: summary.json is the same for one process and any number of ranks.
+    if (auto ignored = ignored_decomposition_options(); ignored && writes())
+      std::fprintf(stderr, "warning: %s\n", ignored->c_str());
     if (writes()) open_outputs();
     for (const auto& w : warnings) {  // said even with --quiet: they may mean a wrong result
       if (writes()) std::fprintf(stderr, "warning: %s\n", w.c_str());
@@ -1676,9 +1678,10 @@ class RunDriver {
     status_ = "stopped";
     // The outputs end at the state before the last step (its velocities are a half step behind
     // its positions); the checkpoint holds the positions after it, where a restart goes on.
+    // Seven digits: a step is far less than 1e-4 of the time in a long run.
     message_ = "stopped by --until " + format_time(*options_.until) + ": the last state written is at t = " +
-               format_time(s.time - s.dt_half) + "; --restart " + (dir_ / "checkpoint.bin").string() +
-               " continues from t = " + format_time(s.time);
+               format_time(s.time - s.dt_half, 7) + "; --restart " + (dir_ / "checkpoint.bin").string() +
+               " continues from t = " + format_time(s.time, 7);
     return true;
   }
 

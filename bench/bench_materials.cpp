@@ -3,8 +3,10 @@
 // return"). One thread; prints a table; not a test.
 //
 //   build/bench/bench_materials [seconds-per-case]
+#include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <vector>

@@ -38,6 +38,11 @@ double JohnsonCook::flow_stress(double eqps, double plastic_rate, double tempera
   return hardening * rate_factor(plastic_rate) * thermal_factor(temperature);
 }
 
+namespace {
+/// Newton steps of the radial return before it only bisects.
+constexpr int kNewtonSteps = 30;
+}  // namespace
+
 JohnsonCook::Yield JohnsonCook::yield_and_slope(double eqps, double dgamma, double dt, double thermal) const {
   // σ_y = (A + B εⁿ)(1 + C ln ε̇*)Θ with ε = ε̄p + Δγ, ε̇* = Δγ/(Δt ε̇0), Θ fixed:
   //   dσ_y/dΔγ = [B n εⁿ/ε · (1 + C ln ε̇*) + (A + B εⁿ) · C/Δγ] Θ,
@@ -154,10 +159,13 @@ void JohnsonCook::update(MaterialPointBatch& batch) const {
         // lies decades below the first guess), the Newton step in ln Δγ instead: it scales Δγ,
         // and on a curve that is nearly straight in ln Δγ lands near the root, where halving
         // the bracket took a step per factor of 2.
+        // After kNewtonSteps without convergence (never seen with the exact slope; a root at the
+        // rate factor's kink can make Newton alternate), the bracket is halved to the end: 50
+        // halvings reach the tolerance from any bracket, within the 100 evaluations.
         const double tangent = three_g + y.slope;
         double next = dgamma + g / tangent;
         if (!(next > lo)) next = dgamma * std::exp(g / (dgamma * tangent));
-        if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
+        if (!(next > lo && next < hi) || it >= kNewtonSteps) next = 0.5 * (lo + hi);
         dgamma = next;
       }
       const double scale = 1.0 - three_g * dgamma / trial;

@@ -63,6 +63,15 @@ class JohnsonCook final : public Material {
 
   /// σ_y at plastic strain ε̄p, plastic strain rate ε̇p and temperature T (eq. (1) of the note).
   double flow_stress(double plastic_strain, double plastic_rate, double temperature) const;
+  /// 1 − T*ᵐ: fixed over one radial return (the temperature rises after it).
+  double thermal_factor(double temperature) const;
+  /// σ_y at ε̄p + Δγ and rate Δγ/Δt with the thermal factor Θ given (the value flow_stress gives,
+  /// bit for bit), and dσ_y/dΔγ in closed form (eq. (2a) of the note): what the radial return
+  /// iterates on.
+  struct Yield {
+    double stress, slope;
+  };
+  Yield yield_and_slope(double plastic_strain, double dgamma, double dt, double thermal) const;
   /// ε_f at stress triaxiality σ* = −p/σ̄, plastic strain rate and temperature.
   double failure_strain(double triaxiality, double plastic_rate, double temperature) const;
   /// Pressure of the equation of state at ln(V/V0) and internal energy E per reference volume
@@ -75,13 +84,7 @@ class JohnsonCook final : public Material {
  private:
   double homologous(double temperature) const;
   double rate_factor(double plastic_rate) const;
-  /// 1 − T*ᵐ: fixed over one radial return (the temperature rises after it).
-  double thermal_factor(double temperature) const;
-  /// σ_y at ε̄p + Δγ and rate Δγ/Δt with the thermal factor given, and dσ_y/dΔγ in closed form.
-  struct Yield {
-    double stress, slope;
-  };
-  Yield yield_and_slope(double plastic_strain, double dgamma, double dt, double thermal) const;
+
   /// p(μ) = p_H(μ) + (γ0 + aμ) E split into the energy-free part and the coefficient of E.
   void mie_gruneisen(double volumetric_strain, double& cold, double& energy_coefficient) const;
 

@@ -320,6 +320,45 @@ FirstYield shear_from_rest(const JohnsonCook& m, double gamma, double dt) {
           std::sqrt(3.0) * m.parameters_in_use().moduli.shear * gamma};
 }
 
+// The slope the radial return's Newton steps take (eq. (2a) of the theory note) against a central
+// difference of the flow stress, and its stress against flow_stress bit for bit: copper's and RHA
+// steel's constants, ε̄p from 0 to 0.3, the thermal factor from 1 to 0.4, Δγ on both sides of the
+// rate factor's kink (ε̇* = 1 at Δγ = Δt ε̇0 = 10 ns · 1/s).
+TEST(JohnsonCook, YieldSlopeIsTheDerivativeOfTheFlowStress) {
+  JohnsonCookParameters rha = copper(0.0);
+  rha.A = 792e6;
+  rha.B = 510e6;
+  rha.n = 0.26;
+  rha.C = 0.014;
+  rha.m = 1.03;
+  rha.melting_temperature = 1793;
+  double worst = 0;
+  int cases = 0;
+  for (const JohnsonCookParameters& p : {copper(0.0), rha}) {
+    const JohnsonCook m("m", kRho, p);
+    const double dt = 1e-8;
+    for (const double temperature : {293.15, 500.0, 900.0})
+      for (const double eqps : {0.0, 0.01, 0.3})
+        for (const double dgamma : {1e-10, 5e-9, 2e-8, 1e-6, 1e-3}) {
+          const double thermal = m.thermal_factor(temperature);
+          const auto y = m.yield_and_slope(eqps, dgamma, dt, thermal);
+          EXPECT_EQ(y.stress, m.flow_stress(eqps + dgamma, dgamma / dt, temperature));  // every case
+          // A difference quotient resolves the slope only where the step is far above the
+          // rounding of ε̄p + Δγ (so not at Δγ ≪ ε̄p).
+          const double h = 1e-6 * dgamma;
+          if (h < 1e7 * (std::nextafter(eqps + dgamma, 1.0) - (eqps + dgamma))) continue;
+          const double difference = (m.yield_and_slope(eqps, dgamma + h, dt, thermal).stress -
+                                     m.yield_and_slope(eqps, dgamma - h, dt, thermal).stress) / (2 * h);
+          worst = std::max(worst, std::abs(y.slope - difference) / std::abs(difference));
+          ++cases;
+        }
+  }
+  std::printf("[johnson_cook] yield slope against a central difference: %d cases, worst %.2e (limit 1e-5)\n",
+              cases, worst);
+  EXPECT_GE(cases, 40);
+  EXPECT_LT(worst, 1e-5);
+}
+
 // The hardest return of the model: the first yield of a point with n < 1 and the rate term, where
 // σ_y climbs like ln Δγ and the root Δγ lies decades below the first guess (σ̄_tr − σ_y)/3G. For
 // RHA steel's constants (n = 0.26, C = 0.014; Westerling et al. 2001), over six decades of
@@ -359,7 +398,7 @@ TEST(JohnsonCook, FirstYieldWithRateFindsTheRootOfTheConsistencyCondition) {
     }
   std::printf("[johnson_cook] first yield with rate: %d returns, |dgamma - root| <= %.2e root (limit 1e-9), "
               "|sigma - sigma_y| <= %.2e sigma_y (limit 1e-10)\n", plastic, worst_root, worst_surface);
-  EXPECT_GT(plastic, 40);
+  EXPECT_EQ(plastic, 60);  // every case past the yield stress
   EXPECT_LT(worst_root, 1e-9);
   EXPECT_LT(worst_surface, 1e-10);
 }
