@@ -12,25 +12,11 @@
 #include <vector>
 
 #include "material/johnson_cook.hpp"
+#include "support/rha_steel.hpp"
 
 using namespace shard;
 
 namespace {
-
-/// RHA steel (table III of the ceramics paper: Westerling et al. 2001), isothermal, so that
-/// repeated updates of the same increment stay the same work.
-JohnsonCookParameters rha() {
-  JohnsonCookParameters p;
-  p.moduli = {159e9, 81.8e9};
-  p.A = 792e6;
-  p.B = 510e6;
-  p.n = 0.26;
-  p.C = 0.014;
-  p.m = 1.03;
-  p.melting_temperature = 1793;
-  p.taylor_quinney = 0;
-  return p;
-}
 
 struct Regime {
   const char* name;
@@ -83,7 +69,7 @@ void run_regime(const JohnsonCook& m, const Regime& r, double seconds) {
 
 int main(int argc, char** argv) {
   const double seconds = argc > 1 ? std::atof(argv[1]) : 2.0;
-  const JohnsonCook m("rha", 7830, rha());
+  const JohnsonCook m("rha", 7830, testing::rha_steel_isothermal());
   std::printf("Johnson-Cook stress update, RHA steel, dt = 10 ns, 4096 points, one thread\n");
   std::printf("%-44s %10s %14s\n", "regime", "ns/point", "dgamma (1st)");
   for (const Regime& r : {Regime{"elastic (trial 0.5 A), no plastic strain", 0.5, 0.0},

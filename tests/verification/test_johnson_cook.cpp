@@ -24,7 +24,9 @@
 #include <numbers>
 
 #include "material/johnson_cook.hpp"
+#include "support/material_point.hpp"
 #include "support/model_runner.hpp"
+#include "support/rha_steel.hpp"
 #include "support/rotation.hpp"
 #include "support/velocity_field.hpp"
 
@@ -306,15 +308,7 @@ FirstYield shear_from_rest(const JohnsonCook& m, double gamma, double dt) {
   double stress[kTensorSize] = {};
   double state[JohnsonCook::slot_count] = {};
   double temperature = 293.15, volume = 1.0, length = 1e-3;
-  MaterialPointBatch batch;
-  batch.count = 1;
-  batch.dt = dt;
-  batch.strain_increment = de;
-  batch.stress = stress;
-  batch.state = state;
-  batch.temperature = &temperature;
-  batch.volume = &volume;
-  batch.characteristic_length = &length;
+  MaterialPointBatch batch = testing::one_point(de, dt, stress, state, &temperature, &volume, &length);
   m.update(batch);
   return {state[JohnsonCook::plastic_strain], von_mises(stress),
           std::sqrt(3.0) * m.parameters_in_use().moduli.shear * gamma};
@@ -325,13 +319,7 @@ FirstYield shear_from_rest(const JohnsonCook& m, double gamma, double dt) {
 // steel's constants, ε̄p from 0 to 0.3, the thermal factor from 1 to 0.4, Δγ on both sides of the
 // rate factor's kink (ε̇* = 1 at Δγ = Δt ε̇0 = 10 ns · 1/s).
 TEST(JohnsonCook, YieldSlopeIsTheDerivativeOfTheFlowStress) {
-  JohnsonCookParameters rha = copper(0.0);
-  rha.A = 792e6;
-  rha.B = 510e6;
-  rha.n = 0.26;
-  rha.C = 0.014;
-  rha.m = 1.03;
-  rha.melting_temperature = 1793;
+  const JohnsonCookParameters rha = testing::rha_steel_isothermal();
   double worst = 0;
   int cases = 0;
   for (const JohnsonCookParameters& p : {copper(0.0), rha}) {
@@ -366,15 +354,7 @@ TEST(JohnsonCook, YieldSlopeIsTheDerivativeOfTheFlowStress) {
 //   g(Δγ) = σ̄_tr − 3GΔγ − σ_y(Δγ, Δγ/Δt, T_r) = 0
 // that a bisection of 200 halvings finds here, to 1e-9 of it, with σ̄ = σ_y to 1e-10 (the return stops at |g| ≤ 1e-13 σ̄_tr).
 TEST(JohnsonCook, FirstYieldWithRateFindsTheRootOfTheConsistencyCondition) {
-  JohnsonCookParameters p;
-  p.moduli = {159e9, 81.8e9};
-  p.A = 792e6;
-  p.B = 510e6;
-  p.n = 0.26;
-  p.C = 0.014;
-  p.m = 1.03;
-  p.melting_temperature = 1793;
-  p.taylor_quinney = 0;
+  const JohnsonCookParameters p = testing::rha_steel_isothermal();
   const JohnsonCook m("rha", 7830, p);
   const double three_g = 3 * p.moduli.shear;
   double worst_root = 0, worst_surface = 0;
