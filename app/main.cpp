@@ -121,11 +121,11 @@ std::optional<int> whole_number(const std::string& text, long lo, long hi) {
   return static_cast<int>(n);
 }
 
-/// A fault in the command line, said by the process that speaks for the run (rank 0 under
-/// mpirun, where every rank reads the same command line and finds the same fault).
 /// A rank's input error that rank 0 did not say for it (docs/outputs.md, "Ranks").
 std::string unsaid_error;
 
+/// A fault in the command line, said by the process that speaks for the run (rank 0 under
+/// mpirun, where every rank reads the same command line and finds the same fault).
 int usage_error(const std::string& message, bool speaks = true) {
   if (speaks) std::fprintf(stderr, "shard: %s\nRun 'shard --help' for usage.\n", message.c_str());
   return kBadInput;

@@ -159,9 +159,9 @@ void JohnsonCook::update(MaterialPointBatch& batch) const {
         // lies decades below the first guess), the Newton step in ln Δγ instead: it scales Δγ,
         // and on a curve that is nearly straight in ln Δγ lands near the root, where halving
         // the bracket took a step per factor of 2.
-        // After kNewtonSteps without convergence (never seen with the exact slope; a root at the
-        // rate factor's kink can make Newton alternate), the bracket is halved to the end: 50
-        // halvings reach the tolerance from any bracket, within the 100 evaluations.
+        // After kNewtonSteps without convergence (rare: a root at the rate factor's kink can make
+        // Newton alternate about it), the bracket is halved to the end: 50 halvings reach the
+        // tolerance from any bracket, within the 100 evaluations.
         const double tangent = three_g + y.slope;
         double next = dgamma + g / tangent;
         if (!(next > lo)) next = dgamma * std::exp(g / (dgamma * tangent));

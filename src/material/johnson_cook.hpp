@@ -84,7 +84,6 @@ class JohnsonCook final : public Material {
  private:
   double homologous(double temperature) const;
   double rate_factor(double plastic_rate) const;
-
   /// p(μ) = p_H(μ) + (γ0 + aμ) E split into the energy-free part and the coefficient of E.
   void mie_gruneisen(double volumetric_strain, double& cold, double& energy_coefficient) const;
 
