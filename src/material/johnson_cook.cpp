@@ -30,6 +30,7 @@ double JohnsonCook::rate_factor(double plastic_rate) const {
 
 double JohnsonCook::thermal_factor(double temperature) const {
   const double t = homologous(temperature);
+  if (t <= 0.0) return 1.0;  // 1 − 0ᵐ, without the power
   return t >= 1.0 ? 0.0 : 1.0 - std::pow(t, p_.m);
 }
 
@@ -144,7 +145,10 @@ void JohnsonCook::update(MaterialPointBatch& batch) const {
     // to g(σ̄_tr/3G) = −σ_y < 0, so the root is bracketed: Newton steps, bisection whenever a
     // step leaves the bracket (n < 1 makes dσ_y/dε̄p unbounded at ε̄p = 0).
     const double thermal = thermal_factor(temperature);
-    double dgamma = 0.0, yield = yield_and_slope(eqps, 0.0, dt, thermal).stress;
+    // σ_y ≥ AΘ: a trial below it is elastic without the hardening's power (an elastic point's
+    // σ_y is not used further).
+    double dgamma = 0.0, yield = p_.A * thermal;
+    if (trial > yield) yield = yield_and_slope(eqps, 0.0, dt, thermal).stress;
     if (trial > yield && trial > 0.0) {
       double lo = 0.0, hi = trial / three_g;
       dgamma = std::min(hi, (trial - yield) / three_g);
