@@ -6,6 +6,10 @@
 #include <cmath>
 #include <limits>
 
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
 namespace shard {
 
 std::vector<EnergyTerm> ContactSystem::energy_terms() {
@@ -234,21 +238,36 @@ void ContactSystem::build_candidates(const Model& model) {
   const std::size_t ns = surface_.nodes.size();
   const int dim = model.dim();
   candidate_begin_.assign(ns + 1, 0);
-#pragma omp parallel for schedule(static)
-  for (std::size_t i = 0; i < ns; ++i) {
-    std::int32_t count = 0;
-    for (const std::int32_t f : grid_.cell(&model.nodes.x[dim * surface_.nodes[i]]))
-      count += facet_may_touch(model, i, f) ? 1 : 0;
-    candidate_begin_[i + 1] = count;
+  // One pass of the filters: each thread keeps what its nodes (one contiguous range, the static
+  // schedule's) found, in order, and the ranges are laid end to end after (a count pass and a
+  // fill pass tested every pair twice: a tenth of a run with many crack faces).
+#ifdef _OPENMP
+  const int threads = omp_get_max_threads();
+#else
+  const int threads = 1;
+#endif
+  std::vector<std::vector<std::int32_t>> found(static_cast<std::size_t>(threads));
+  std::vector<std::size_t> first(static_cast<std::size_t>(threads), ns);
+#pragma omp parallel num_threads(threads)
+  {
+#ifdef _OPENMP
+    const auto t = static_cast<std::size_t>(omp_get_thread_num());
+#else
+    const std::size_t t = 0;
+#endif
+#pragma omp for schedule(static)
+    for (std::size_t i = 0; i < ns; ++i) {
+      if (first[t] == ns) first[t] = i;
+      const std::size_t before = found[t].size();
+      for (const std::int32_t f : grid_.cell(&model.nodes.x[dim * surface_.nodes[i]]))
+        if (facet_may_touch(model, i, f)) found[t].push_back(f);
+      candidate_begin_[i + 1] = static_cast<std::int32_t>(found[t].size() - before);
+    }
   }
   for (std::size_t i = 0; i < ns; ++i) candidate_begin_[i + 1] += candidate_begin_[i];
   candidates_.resize(static_cast<std::size_t>(candidate_begin_[ns]));
-#pragma omp parallel for schedule(static)
-  for (std::size_t i = 0; i < ns; ++i) {
-    std::int32_t k = candidate_begin_[i];
-    for (const std::int32_t f : grid_.cell(&model.nodes.x[dim * surface_.nodes[i]]))
-      if (facet_may_touch(model, i, f)) candidates_[k++] = f;
-  }
+  for (std::size_t t = 0; t < found.size(); ++t)
+    if (first[t] < ns) std::copy(found[t].begin(), found[t].end(), candidates_.begin() + candidate_begin_[first[t]]);
   candidate_x_ = model.nodes.x;
   candidates_valid_ = true;
   ++candidate_builds_;
