@@ -469,6 +469,9 @@ class RunDriver {
     const bool eroding = std::any_of(sim_.model.parts.begin(), sim_.model.parts.end(), [&](const Part& p) { return erodes(p); });
     // A remesh skips a part with elements eroded in its step, which the whole model must see.
     compacts_whole_ = cracks_ || remesher_ || makes_debris() || (eroding && (sim_.cohesive || particles_touch_mesh(sim_.model)));
+    // Cracks alone change nothing but the nodes: each subdomain follows a split in place.
+    splits_in_place_ = cracks_ && !cracks_->comminutes() && !remesher_ && !automata_contacts_ && !eroding &&
+                       !makes_debris() && sim_.model.particle_parts.empty() && sim_.model.cohesive.element_count() == 0;
     whole_ = std::move(sim_.model);
     // A checkpoint read fills the contact list's arrays; its keys follow them only when the
     // solver is told of the restart, after the cut, which reads the keys.
@@ -532,8 +535,11 @@ class RunDriver {
     if (!(keep_partition && partition_fits_whole())) partition_whole();
     WholeFaces faces{group_faces(whole_), std::nullopt};  // grouped once for the halo's reach and the cut
     if (sim_.contact && sim_.contact->any_pairs()) {
+      // A part that cracks in place may open a crack face anywhere before the next cut: its
+      // every node counts as a surface node, as an eroding part's does.
       std::vector<char> eroding;
-      for (const Part& part : whole_.parts) eroding.push_back(erodes(part) ? 1 : 0);
+      for (std::size_t p = 0; p < whole_.parts.size(); ++p)
+        eroding.push_back(erodes(whole_.parts[p]) || (splits_in_place_ && cracks_->cracking_parts()[p].cracks) ? 1 : 0);
       faces.surface = extract_contact_surface(whole_, faces.groups);
       halo_ = contact_halo(whole_, *faces.surface, sim_.contact->part_pairs, eroding);
     }
@@ -672,12 +678,16 @@ class RunDriver {
   }
 
   /// Discrete cracks across ranks: which nodes split is decided on the whole model, by the rule
-  /// of one process, on every rank alike, and the model is then cut anew (docs/theory/
-  /// domain_decomposition.md, "Discrete cracks across ranks"). The ranks first agree whether
-  /// any point of a cracking part has reached the threshold (each holds its owned and ghost
-  /// elements with their owners' state): on most steps none has, and nothing is gathered.
+  /// of one process, on every rank alike (docs/theory/domain_decomposition.md, "Discrete cracks
+  /// across ranks"). Where the subdomains can follow a split (splits_in_place_), the ranks tell
+  /// each other their own failed nodes and every rank plans and splits whole_'s topology; each
+  /// subdomain then follows without a gather. Otherwise the ranks first agree whether any point
+  /// of a cracking part has reached the threshold (each holds its owned and ghost elements with
+  /// their owners' state): on most steps none has, and nothing is gathered; when one has, the
+  /// whole model is gathered, split and cut anew.
   void grow_cracks_across_ranks() {
     if (!sub_ || !cracks_) return;
+    if (splits_in_place_) return split_in_place();
     std::int64_t due = cracks_->may_split(sim_.model) ? 1 : 0;
     ranks_->sum(&due, 1);
     if (due == 0) return;
@@ -687,6 +697,155 @@ class RunDriver {
     cracks_->insert(whole_, s.energy, untold, s.time, &s.eroded_elements, &s.part_stored);
     cut_whole(/*keep_partition=*/true);  // a split adds nodes, not elements
     ++cuts_;
+  }
+
+  /// A split planned on whole_'s topology from the failed nodes' owners, followed by each
+  /// subdomain: the failed elements around the cracked nodes heal where they are held, the
+  /// energy they release is summed in the order of one process, and the copies' shares of the
+  /// force are taken from their parents' owners. A rank that no longer holds every element around
+  /// a node it owns (its copy went to a rank without the rest of its wedge) has the model
+  /// gathered and cut anew.
+  void split_in_place() {
+    SolverState& s = solver_.state();
+    const auto failed = ranks_->all_gather(cracks_->owned_failed_nodes(sim_.model, sub_->global_node, sub_->node_owned));
+    if (std::all_of(failed.begin(), failed.end(), [](const auto& f) { return f.empty(); })) return;
+    CrackInsertion ins = cracks_->split_whole(whole_, failed, s.time);
+    if (ins.new_node_count() == 0 && ins.around_cracked.empty()) return;  // alike on every rank
+    const std::vector<std::int32_t> owner = node_owners(whole_, partition_);
+    const WholeSplit split{&whole_, &ins.remap, ins.opened_edges, &owner};
+    // One message: whether this rank still holds its nodes' stars, the forces of the split nodes
+    // it owns, the energy its own healed elements release.
+    SplitMessage mine;
+    mine.holds = holds_split_stars(*sub_, split);
+    tell_split_forces(ins, mine);
+    heal_around_cracks(ins, mine);
+    std::vector<SplitMessage> heard;
+    for (const auto& packed : ranks_->all_gather(mine.pack())) heard.push_back(SplitMessage::unpack(packed, dim_));
+    sum_released(ins, heard);
+    CrackGrowth::book_released(ins, s.energy, &s.part_stored);
+    if (ins.new_node_count() == 0) return;
+    std::unordered_map<std::int32_t, std::array<double, 3>> parent_force;
+    bool holds = true;
+    for (const SplitMessage& h : heard) {
+      holds = holds && h.holds;
+      for (std::size_t k = 0; k < h.nodes.size(); ++k)
+        std::copy_n(&h.forces[static_cast<std::size_t>(dim_) * k], dim_, parent_force[h.nodes[k]].begin());
+    }
+    const std::vector<std::int32_t> from = follow_split(*sub_, sim_.model, split, parent_force);
+    std::vector<double> at_cut(from.size() * dim_);
+    for (std::size_t i = 0; i < from.size(); ++i)
+      std::copy_n(&node_x_at_cut_[dim_ * static_cast<std::size_t>(from[i])], dim_, &at_cut[dim_ * i]);
+    node_x_at_cut_ = std::move(at_cut);
+    if (!holds) {  // alike on every rank
+      gather_whole_everywhere();
+      cut_whole(/*keep_partition=*/true);
+      ++cuts_;
+      return;
+    }
+    complete_ghost_exchange(*sub_, ranks_->all_gather(ghost_requests(*sub_)));
+    solver_.topology().changed(sim_.model, Remap{});  // every cache rebuilds, as after a cut
+    solver_.remove_event(*exchange_);
+    exchange_ = std::make_unique<GhostExchange>(sub_->ghosts, *ranks_);
+    join_decomposed_run(solver_, *exchange_, *ranks_);
+    ++splits_in_place_count_;
+  }
+
+  /// What a rank tells the others of a split it follows (split_in_place).
+  struct SplitMessage {
+    bool holds = true;                 ///< it holds every element around each node it owns
+    std::vector<std::int32_t> nodes;   ///< split nodes it owns (whole-model indices)
+    std::vector<double> forces;        ///< their forces, dim each
+    std::vector<std::int64_t> healed;  ///< its own healed elements (indices into around_cracked)
+    std::vector<double> released;      ///< the energy each released
+
+    std::vector<double> pack() const {
+      std::vector<double> out{holds ? 1.0 : 0.0, static_cast<double>(nodes.size()), static_cast<double>(healed.size())};
+      out.insert(out.end(), nodes.begin(), nodes.end());
+      out.insert(out.end(), forces.begin(), forces.end());
+      out.insert(out.end(), healed.begin(), healed.end());
+      out.insert(out.end(), released.begin(), released.end());
+      return out;
+    }
+    static SplitMessage unpack(const std::vector<double>& in, int dim) {
+      SplitMessage m;
+      m.holds = in.at(0) == 1.0;
+      const auto n = static_cast<std::size_t>(in.at(1)), h = static_cast<std::size_t>(in.at(2));
+      auto at = in.begin() + 3;
+      m.nodes.assign(at, at + static_cast<std::ptrdiff_t>(n));
+      at += static_cast<std::ptrdiff_t>(n);
+      m.forces.assign(at, at + static_cast<std::ptrdiff_t>(n * dim));
+      at += static_cast<std::ptrdiff_t>(n * dim);
+      m.healed.assign(at, at + static_cast<std::ptrdiff_t>(h));
+      at += static_cast<std::ptrdiff_t>(h);
+      m.released.assign(at, at + static_cast<std::ptrdiff_t>(h));
+      return m;
+    }
+  };
+
+  /// The force of each node a split copies that this rank owns: a ghost's force is partial, and
+  /// the copies take shares of the whole.
+  void tell_split_forces(const CrackInsertion& ins, SplitMessage& told) const {
+    const std::vector<std::int32_t> local = local_nodes();
+    const auto dim = static_cast<std::size_t>(dim_);
+    for (std::size_t k = 0; k < ins.parent.size(); ++k) {
+      const std::int32_t g = ins.parent[k];
+      if (k > 0 && ins.parent[k - 1] == g) continue;
+      const std::int32_t n = local[static_cast<std::size_t>(g)];
+      if (n < 0 || !sub_->node_owned[static_cast<std::size_t>(n)]) continue;
+      told.nodes.push_back(g);
+      const double* f = &sim_.model.nodes.force[dim * static_cast<std::size_t>(n)];
+      told.forces.insert(told.forces.end(), f, f + dim);
+    }
+  }
+
+  /// Heals the failed elements around the cracked nodes that this rank holds (a ghost as its
+  /// owner does), and tells what its own released.
+  void heal_around_cracks(const CrackInsertion& ins, SplitMessage& told) {
+    std::vector<std::vector<std::int32_t>> local(whole_.parts.size());
+    for (std::size_t p = 0; p < local.size(); ++p) {
+      local[p].assign(whole_.parts[p].element_count(), -1);
+      for (std::size_t e = 0; e < sub_->global_element[p].size(); ++e) local[p][sub_->global_element[p][e]] = static_cast<std::int32_t>(e);
+    }
+    std::vector<std::pair<int, std::size_t>> held;
+    std::vector<std::size_t> listed;
+    for (std::size_t k = 0; k < ins.around_cracked.size(); ++k) {
+      const auto [p, e] = ins.around_cracked[k];
+      const std::int32_t mine = local[static_cast<std::size_t>(p)][e];
+      if (mine < 0) continue;
+      held.emplace_back(p, static_cast<std::size_t>(mine));
+      listed.push_back(k);
+    }
+    const ReinitialisedElements healed =
+        reinitialise_failed(sim_.model, cracks_->cracking_parts(), held, cracks_->failure_threshold());
+    for (std::size_t i = 0; i < healed.listed.size(); ++i) {
+      const auto [p, e] = held[healed.listed[i]];
+      if (!sub_->element_owned[static_cast<std::size_t>(p)][e]) continue;
+      told.healed.push_back(static_cast<std::int64_t>(listed[healed.listed[i]]));
+      told.released.push_back(healed.released[i]);
+    }
+  }
+
+  /// The energy the healed elements released, summed in the order of one process (ascending in
+  /// around_cracked, the elements' global order).
+  void sum_released(CrackInsertion& ins, const std::vector<SplitMessage>& heard) const {
+    std::vector<std::pair<std::int64_t, double>> released;
+    for (const SplitMessage& h : heard)
+      for (std::size_t i = 0; i < h.healed.size(); ++i) released.emplace_back(h.healed[i], h.released[i]);
+    std::sort(released.begin(), released.end());
+    for (const auto& [k, energy] : released) {
+      const auto p = static_cast<std::size_t>(ins.around_cracked[static_cast<std::size_t>(k)].first);
+      ins.released_energy += energy;
+      ins.released_by_part.resize(whole_.parts.size(), 0.0);
+      ins.released_by_part[p] += energy;
+    }
+    ins.reinitialised_elements = released.size();
+  }
+
+  /// Per node of whole_, its index in the subdomain (−1: not held).
+  std::vector<std::int32_t> local_nodes() const {
+    std::vector<std::int32_t> local(whole_.nodes.count(), -1);
+    for (std::size_t i = 0; i < sub_->global_node.size(); ++i) local[static_cast<std::size_t>(sub_->global_node[i])] = static_cast<std::int32_t>(i);
+    return local;
   }
 
   /// Remeshing across ranks: the shapes new elements are measured against are measured on each
@@ -1772,7 +1931,7 @@ class RunDriver {
     j << "{\n  \"status\": " << json_string(status_) << ",\n  \"message\": " << json_string(message_)
       << ",\n  \"scenario\": " << json_string(sc_.file.string()) << ",\n  \"steps\": " << s.step
       << ",\n  \"end_time\": " << s.time - s.dt_half << ",\n  \"wall_seconds\": " << wall
-      << ",\n  \"threads\": " << threads_ << ",\n  \"ranks\": " << (ranks_ ? ranks_->size() : 1) << ",\n  \"cuts\": " << cuts_ << ",\n  \"rebalances\": " << rebalances_ << ",\n  \"elements\": " << sim_.model.element_count()
+      << ",\n  \"threads\": " << threads_ << ",\n  \"ranks\": " << (ranks_ ? ranks_->size() : 1) << ",\n  \"cuts\": " << cuts_ << ",\n  \"splits_in_place\": " << splits_in_place_count_ << ",\n  \"rebalances\": " << rebalances_ << ",\n  \"elements\": " << sim_.model.element_count()
       << ",\n  \"nodes\": " << sim_.model.nodes.count() << ",\n  \"particles\": " << particles_
       << ",\n  \"element_steps_per_second\": " << (wall > 0 ? steps * elements / wall : 0.0)
       << ",\n  \"particle_steps_per_second\": "
@@ -1917,6 +2076,10 @@ class RunDriver {
   double talk_mark_ = 0;
   double output_seconds_ = 0, output_mark_ = 0;  ///< this rank's time writing outputs (not work)
   std::int64_t cuts_ = 0;   ///< times the model was cut anew as contact nodes moved (summary.json)
+  /// Cracks split on every rank without a gather (split_in_place): no particles, interface
+  /// elements, erosion, comminution or remeshing, which change the whole model in other ways.
+  bool splits_in_place_ = false;
+  std::int64_t splits_in_place_count_ = 0;  ///< (summary.json)
 };
 
 }  // namespace

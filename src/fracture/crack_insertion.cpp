@@ -527,32 +527,22 @@ bool element_failed(const Part& part, std::size_t e, int factor_index, double th
   return failed;
 }
 
-// Re-initialise the failed elements around each cracked node: their damage has become the
-// discrete crack (paper, "Discrete fracture insertion": failed elements heal and their state
-// is reinitialised). The stored elastic energy they give up is reported for the balance.
-void reinitialise_failed_elements(Model& model, std::span<const CrackingPart> parts, const Fans& fans,
-                                  double threshold, CrackInsertion& out) {
+// The elements around the cracked nodes, in increasing global number: those whose failed
+// points a crack now heals (paper, "Discrete fracture insertion": failed elements heal and their
+// state is reinitialised).
+std::vector<std::pair<int, std::size_t>> elements_around(const Fans& fans, std::span<const std::int32_t> cracked) {
   std::vector<std::int64_t> seen;
-  for (const std::int32_t p : out.cracked_nodes)
+  for (const std::int32_t p : cracked)
     for (const std::int64_t g : fans.elements_of(p)) seen.push_back(g);
   std::sort(seen.begin(), seen.end());
   seen.erase(std::unique(seen.begin(), seen.end()), seen.end());
   const std::vector<std::int64_t>& offset = fans.part_begin;
+  std::vector<std::pair<int, std::size_t>> out;
   for (const std::int64_t g : seen) {
     const std::size_t pi = std::upper_bound(offset.begin(), offset.end(), g) - offset.begin() - 1;
-    const CrackingPart& cp = parts[pi];
-    if (!cp.cracks || cp.factor_index < 0) continue;
-    Part& part = model.parts[pi];
-    const std::size_t e = static_cast<std::size_t>(g - offset[pi]);
-    if (!element_failed(part, e, cp.factor_index, threshold)) continue;
-    const double volume =
-        std::abs(element_measure(part, model.nodes, e, model.formulation, model.thickness)) / part.type->points;
-    const double released = reinitialise_element(part, e, cp, volume);
-    out.released_energy += released;
-    out.released_by_part.resize(model.parts.size(), 0.0);
-    out.released_by_part[pi] += released;
-    ++out.reinitialised_elements;
+    out.emplace_back(static_cast<int>(pi), static_cast<std::size_t>(g - offset[pi]));
   }
+  return out;
 }
 
 // Both ends of each opened edge: reached by a crack now, unless one reached them before. Set
@@ -611,9 +601,25 @@ bool cracks_would_change(Model& model, std::span<const CrackingPart> parts, std:
   return false;
 }
 
-CrackInsertion insert_cracks(Model& model, std::span<const CrackingPart> parts,
-                             std::span<const double> nodal_factor, std::span<const double> nodal_normal,
-                             const CrackInsertionSettings& settings) {
+ReinitialisedElements reinitialise_failed(Model& model, std::span<const CrackingPart> parts,
+                                          std::span<const std::pair<int, std::size_t>> elements, double threshold) {
+  ReinitialisedElements out;
+  for (std::size_t k = 0; k < elements.size(); ++k) {
+    const auto [pi, e] = elements[k];
+    const CrackingPart& cp = parts[static_cast<std::size_t>(pi)];
+    if (!cp.cracks || cp.factor_index < 0) continue;
+    Part& part = model.parts[static_cast<std::size_t>(pi)];
+    if (!element_failed(part, e, cp.factor_index, threshold)) continue;
+    const double volume =
+        std::abs(element_measure(part, model.nodes, e, model.formulation, model.thickness)) / part.type->points;
+    out.listed.push_back(k);
+    out.released.push_back(reinitialise_element(part, e, cp, volume));
+  }
+  return out;
+}
+
+CrackInsertion split_cracks(Model& model, std::span<const CrackingPart> parts, std::span<const double> nodal_factor,
+                            std::span<const double> nodal_normal, const CrackInsertionSettings& settings) {
   require_planar(model, "insert_cracks");
   const std::size_t nn = model.nodes.count();
   if (parts.size() != model.parts.size() || nodal_factor.size() != nn || nodal_normal.size() != 2 * nn)
@@ -621,9 +627,7 @@ CrackInsertion insert_cracks(Model& model, std::span<const CrackingPart> parts,
         "insert_cracks: expected one CrackingPart per part, one factor and 2 normal components per node");
   CrackInsertion out;
   out.first_new_node = nn;
-  const double threshold = settings.failure_threshold;
-
-  const std::vector<std::int32_t> failed = failed_nodes(nodal_factor, threshold);
+  const std::vector<std::int32_t> failed = failed_nodes(nodal_factor, settings.failure_threshold);
   if (failed.empty()) return out;
 
   // The edges opened run from a failed node to a neighbour: those are all the nodes to look at.
@@ -637,9 +641,24 @@ CrackInsertion insert_cracks(Model& model, std::span<const CrackingPart> parts,
   for (std::size_t i = 0; i < parts.size(); ++i) density[i] = parts[i].density;
   out.remap = split_on_fans(model, planner.fans(), density, out.opened_edges, out.parent);
   apply_remap(model, out.remap);
-  reinitialise_failed_elements(model, parts, planner.fans(), threshold, out);
+  out.around_cracked = elements_around(planner.fans(), out.cracked_nodes);
   std::sort(out.comminuted.begin(), out.comminuted.end());
   out.comminuted.erase(std::unique(out.comminuted.begin(), out.comminuted.end()), out.comminuted.end());
+  return out;
+}
+
+CrackInsertion insert_cracks(Model& model, std::span<const CrackingPart> parts,
+                             std::span<const double> nodal_factor, std::span<const double> nodal_normal,
+                             const CrackInsertionSettings& settings) {
+  CrackInsertion out = split_cracks(model, parts, nodal_factor, nodal_normal, settings);
+  const ReinitialisedElements healed = reinitialise_failed(model, parts, out.around_cracked, settings.failure_threshold);
+  for (std::size_t i = 0; i < healed.listed.size(); ++i) {
+    const int pi = out.around_cracked[healed.listed[i]].first;
+    out.released_energy += healed.released[i];
+    out.released_by_part.resize(model.parts.size(), 0.0);
+    out.released_by_part[static_cast<std::size_t>(pi)] += healed.released[i];
+  }
+  out.reinitialised_elements = healed.listed.size();
   return out;
 }
 

@@ -65,6 +65,9 @@ struct CrackInsertion {
   /// would have cut off, in parts that comminute: the caller turns them into particles. Sorted,
   /// unique; element numbers are unchanged by the update (it adds nodes, not elements).
   std::vector<std::pair<int, std::size_t>> comminuted;
+  /// The elements (part, element) around the cracked nodes, in increasing global number (over
+  /// all parts in order): those whose failed points the crack heals (reinitialise_failed).
+  std::vector<std::pair<int, std::size_t>> around_cracked;
   std::size_t reinitialised_elements = 0;
   /// Recoverable energy of the re-initialised points, whose stress was set to 0 (Ψ·V, or
   /// p²/2K + s:s/4G · V): the damage "coalesced into the crack"; book it as fracture energy.
@@ -97,6 +100,27 @@ struct CrackInsertion {
 CrackInsertion insert_cracks(Model& model, std::span<const CrackingPart> parts,
                              std::span<const double> nodal_factor, std::span<const double> nodal_normal,
                              const CrackInsertionSettings& settings = {});
+
+/// The topological half of insert_cracks: plans the edges, stamps crack_time and splits the
+/// nodes (out.remap, applied), and lists the elements around the cracked nodes
+/// (out.around_cracked) without re-initialising them. A decomposed run splits the whole model's
+/// topology so on every rank, whose values are not current, and heals the elements on the ranks
+/// that hold them (docs/theory/domain_decomposition.md, "Discrete cracks across ranks").
+CrackInsertion split_cracks(Model& model, std::span<const CrackingPart> parts, std::span<const double> nodal_factor,
+                            std::span<const double> nodal_normal, const CrackInsertionSettings& settings = {});
+
+/// The listed elements that re-initialisation healed (indices into the list) and the energy
+/// each released, in the list's order.
+struct ReinitialisedElements {
+  std::vector<std::size_t> listed;
+  std::vector<double> released;
+};
+
+/// Re-initialises every listed element (part, element) of a cracking part that has failed (a
+/// point with F ≥ threshold): zero stress, F, Ψ and the part's reset_indices set to 0; each
+/// gives up its recoverable energy Ψ·V (or p²/2K + s:s/4G · V), booked as fracture energy.
+ReinitialisedElements reinitialise_failed(Model& model, std::span<const CrackingPart> parts,
+                                          std::span<const std::pair<int, std::size_t>> elements, double threshold);
 
 /// Whether insert_cracks would change `model` (open an edge, or re-initialise a failed element
 /// around a node a crack already passes through), without changing it: the nodes are planned

@@ -783,6 +783,175 @@ void follow_removed_elements(Subdomain& sub, Model& local, const Remap& remap) {
   }
 }
 
+namespace {
+
+/// Per part, the local index of each element of the whole model (−1: not held).
+std::vector<std::vector<std::int32_t>> local_elements(const Subdomain& sub, const Model& whole) {
+  std::vector<std::vector<std::int32_t>> local;
+  for (std::size_t p = 0; p < whole.parts.size(); ++p) {
+    auto& of = local.emplace_back(whole.parts[p].element_count(), -1);
+    for (std::size_t e = 0; e < sub.global_element[p].size(); ++e) of[static_cast<std::size_t>(sub.global_element[p][e])] = static_cast<std::int32_t>(e);
+  }
+  return local;
+}
+
+/// The nodes of the whole model a split touched: the nodes split, and their copies.
+std::vector<char> touched_by_split(const EntityRemap& nodes) {
+  std::vector<char> touched(nodes.new_count(), 0);
+  for (std::size_t i = nodes.old_count; i < nodes.new_count(); ++i) touched[i] = touched[static_cast<std::size_t>(nodes.source[i])] = 1;
+  return touched;
+}
+
+/// A subdomain's faces at the cut that an opened edge (`opened`, as local node pairs) turned
+/// into crack faces leave its list: they are surface now.
+void uncut_opened_faces(Model& local, const std::vector<std::array<std::int32_t, 2>>& opened) {
+  if (opened.empty() || local.cut_faces.empty()) return;
+  auto same = [](std::int32_t a, std::int32_t b, const std::array<std::int32_t, 2>& edge) {
+    return (a == edge[0] && b == edge[1]) || (a == edge[1] && b == edge[0]);
+  };
+  std::vector<std::int64_t> opened_faces;
+  for (std::size_t p = 0; p < local.parts.size(); ++p) {
+    const Part& part = local.parts[p];
+    if (!part.type->is_triangle()) continue;
+    const auto& faces = part.type->faces;
+    for (std::size_t e = 0; e < part.element_count(); ++e) {
+      const std::int32_t* cn = &part.connectivity[3 * e];
+      for (std::size_t f = 0; f < faces.size(); ++f)
+        for (const auto& edge : opened)
+          if (same(cn[faces[f][0]], cn[faces[f][1]], edge))
+            opened_faces.push_back(FaceGroups::key(local, {static_cast<std::int32_t>(p), static_cast<std::int32_t>(e), static_cast<std::int32_t>(f)}));
+    }
+  }
+  std::sort(opened_faces.begin(), opened_faces.end());
+  std::vector<std::int64_t> kept;
+  std::set_difference(local.cut_faces.begin(), local.cut_faces.end(), opened_faces.begin(), opened_faces.end(), std::back_inserter(kept));
+  local.cut_faces = std::move(kept);
+}
+
+}  // namespace
+
+bool holds_split_stars(const Subdomain& sub, const WholeSplit& split) {
+  if (!split.split->nodes) return true;
+  const Model& whole = *split.whole;
+  const std::vector<char> touched = touched_by_split(*split.split->nodes);
+  const std::vector<std::vector<std::int32_t>> local = local_elements(sub, whole);
+  const std::vector<std::int32_t>& owner = *split.owner;
+  std::unordered_map<std::int32_t, std::array<std::int32_t, 2>> count;  // per own touched node: elements, held
+  for (std::size_t p = 0; p < whole.parts.size(); ++p) {
+    const Part& part = whole.parts[p];
+    const int npe = part.type->nodes;
+    for (std::size_t e = 0; e < part.element_count(); ++e)
+      for (int a = 0; a < npe; ++a) {
+        const std::int32_t n = part.connectivity[static_cast<std::size_t>(npe) * e + a];
+        if (!touched[static_cast<std::size_t>(n)] || owner[static_cast<std::size_t>(n)] != sub.rank) continue;
+        auto& c = count[n];
+        ++c[0];
+        if (local[p][e] >= 0) ++c[1];
+      }
+  }
+  return std::all_of(count.begin(), count.end(), [](const auto& c) { return c.second[0] == c.second[1]; });
+}
+
+std::vector<std::int32_t> follow_split(Subdomain& sub, Model& local, const WholeSplit& split,
+                                       const std::unordered_map<std::int32_t, std::array<double, 3>>& parent_force) {
+  if (!local.particle_parts.empty() || local.cohesive.element_count() > 0)
+    throw std::logic_error("follow_split: a subdomain with particles or interface elements; cut the whole model anew");
+  const Model& whole = *split.whole;
+  const std::size_t n_before = local.nodes.count();
+  const auto dim = static_cast<std::size_t>(local.dim());
+  std::vector<std::int32_t> from(n_before);
+  for (std::size_t i = 0; i < n_before; ++i) from[i] = static_cast<std::int32_t>(i);
+  if (!split.split->nodes) return from;
+  const EntityRemap& whole_nodes = *split.split->nodes;
+  const std::vector<std::int32_t> local_node = local_of(sub.global_node);
+  auto held = [&](std::int32_t g) { return static_cast<std::size_t>(g) < local_node.size() ? local_node[static_cast<std::size_t>(g)] : -1; };
+
+  // What one process stamps before the split (so that the copies share it), and the forces the
+  // copies take their shares of.
+  if (!whole.nodes.crack_time.empty()) {
+    local.nodes.crack_time.resize(n_before);
+    for (std::size_t i = 0; i < n_before; ++i)
+      local.nodes.crack_time[i] = whole.nodes.crack_time[static_cast<std::size_t>(sub.global_node[i])];
+  }
+  std::vector<std::array<std::int32_t, 2>> opened;
+  for (const auto& edge : split.opened)
+    if (const std::int32_t a = held(edge[0]), b = held(edge[1]); a >= 0 && b >= 0) opened.push_back({a, b});
+  for (const auto& [g, force] : parent_force)
+    if (const std::int32_t n = held(g); n >= 0) std::copy_n(force.begin(), dim, &local.nodes.force[dim * static_cast<std::size_t>(n)]);
+  uncut_opened_faces(local, opened);
+
+  // Every copy of a held node, in the whole model's order (so local order stays ascending in it).
+  Remap remap;
+  remap.nodes = EntityRemap::identity(n_before);
+  std::vector<std::int32_t> local_copy(whole_nodes.new_count() - whole_nodes.old_count, -1);
+  std::vector<std::int32_t> copies;
+  for (std::size_t i = whole_nodes.old_count; i < whole_nodes.new_count(); ++i) {
+    const std::int32_t parent = held(whole_nodes.source[i]);
+    if (parent < 0) continue;
+    local_copy[i - whole_nodes.old_count] = remap.nodes->add_born(parent, whole_nodes.weight_of(i));
+    copies.push_back(static_cast<std::int32_t>(i));
+    from.push_back(parent);
+  }
+  if (copies.empty()) return from;  // no held node split: no held element's corner moved
+  const std::vector<std::vector<std::int32_t>> local_element = local_elements(sub, whole);
+  for (const CornerMove& c : split.split->corners) {
+    const std::int32_t e = local_element[static_cast<std::size_t>(c.part)][static_cast<std::size_t>(c.element)];
+    if (e >= 0) remap.corners.push_back({c.part, e, c.corner, local_copy[static_cast<std::size_t>(c.node) - whole_nodes.old_count]});
+  }
+  apply_remap(local, remap);
+  for (std::size_t k = 0; k < copies.size(); ++k) {
+    local.nodes.id[n_before + k] = whole.nodes.id[static_cast<std::size_t>(copies[k])];
+    sub.global_node.push_back(copies[k]);
+  }
+  local.next_node_id = whole.next_node_id;
+
+  // A split node or copy whose held elements all went to the other side is no longer held.
+  const std::vector<char> touched = touched_by_split(whole_nodes);
+  std::vector<std::uint8_t> keep(local.nodes.count(), 1);
+  for (std::size_t i = 0; i < keep.size(); ++i) keep[i] = !touched[static_cast<std::size_t>(sub.global_node[i])];
+  for (const Part& part : local.parts)
+    for (const std::int32_t n : part.connectivity) keep[static_cast<std::size_t>(n)] = 1;
+  if (std::find(keep.begin(), keep.end(), 0) != keep.end()) {
+    Remap drop;
+    drop.nodes = EntityRemap::keeping(keep);
+    apply_remap(local, drop);
+    std::vector<std::int32_t> global, kept_from;
+    for (std::size_t i = 0; i < keep.size(); ++i)
+      if (keep[i]) global.push_back(sub.global_node[i]), kept_from.push_back(from[i]);
+    sub.global_node = std::move(global);
+    from = std::move(kept_from);
+  }
+
+  // Owners, ghost marks, crack faces, and the half of the exchange plan this rank knows.
+  const std::vector<std::int32_t>& owner = *split.owner;
+  const std::vector<char> faces = whole.crack_face_nodes();
+  const std::size_t n = sub.global_node.size();
+  sub.node_owned.assign(n, 0);
+  local.ghost_node.assign(n, 0);
+  local.whole_crack_faces.assign(n, 0);
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto g = static_cast<std::size_t>(sub.global_node[i]);
+    sub.node_owned[i] = owner[g] == sub.rank;
+    local.ghost_node[i] = !sub.node_owned[i];
+    local.whole_crack_faces[i] = faces[g];
+  }
+  GhostExchangePlan plan;
+  for (int q = 0; q < sub.ranks; ++q) {
+    if (q == sub.rank) continue;
+    plan.neighbours.push_back(q);
+    auto& receive = plan.receive.emplace_back();
+    for (std::size_t i = 0; i < n; ++i)
+      if (!sub.node_owned[i] && owner[static_cast<std::size_t>(sub.global_node[i])] == q) receive.push_back(static_cast<std::int32_t>(i));
+    plan.send.emplace_back();
+    plan.send_particles.emplace_back();
+    plan.receive_particles.emplace_back();
+    plan.send_pairs.emplace_back();
+    plan.receive_pairs.emplace_back();
+  }
+  sub.ghosts = std::move(plan);
+  return from;
+}
+
 void follow_dropped_interfaces(Subdomain& sub, const Model& local, const Model& whole) {
   const CohesiveElements& mine = local.cohesive;
   if (mine.element_count() == sub.global_cohesive.size()) return;

@@ -7,8 +7,11 @@
 // Theory: docs/theory/domain_decomposition.md.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <optional>
+#include <span>
+#include <unordered_map>
 #include <vector>
 
 #include "contact/contact_surface.hpp"
@@ -163,6 +166,36 @@ void gather_owned(const Subdomain& sub, Model& local, Model& whole);
 /// does each part's ghost_begin (the owned elements of a colour still come first). Throws
 /// std::logic_error for any other change, which must be made on the whole model and cut anew.
 void follow_removed_elements(Subdomain& sub, Model& local, const Remap& remap);
+
+/// A crack insertion made on the whole model (its remap `split`, applied to `whole` already:
+/// nodes appended, element corners moved to them), as a subdomain sees it (docs/theory/
+/// domain_decomposition.md, "Discrete cracks across ranks"). `owner`: node_owners of `whole`
+/// after the split.
+struct WholeSplit {
+  const Model* whole = nullptr;
+  const Remap* split = nullptr;
+  std::span<const std::array<std::int32_t, 2>> opened;  ///< the edges opened (nodes of `whole` before)
+  const std::vector<std::int32_t>* owner = nullptr;
+};
+
+/// Whether `sub` still holds every element around each node it owns after `split` (a copy of a
+/// node goes to the rank of its wedge's first element, which need not hold the rest of the wedge
+/// when another rank owned the node): if a rank does not, the model must be cut anew.
+bool holds_split_stars(const Subdomain& sub, const WholeSplit& split);
+
+/// `local` (the subdomain's model as its run has it) follows `split`: each node it holds that
+/// was split gets every copy, with the values one process gives it (its parent's, and a share
+/// of the mass and force: `parent_force`, per split node of the whole model its owner's force,
+/// replaces the node's own first, since a ghost's force is partial); the corners of its elements
+/// move to them; a node or copy none of its elements holds any longer is dropped. The copies take
+/// the whole model's ids. Its node lists, ghost marks, crack-face flags and faces at the cut
+/// follow (an opened edge between a held element and one the rank does not hold is a crack face
+/// now), and its ghost exchange is left half planned, to be completed as after a cut
+/// (ghost_requests, complete_ghost_exchange). Needs a subdomain without particles or interface
+/// elements. Returns, per local node after, the local node before that it continues or was
+/// split off.
+std::vector<std::int32_t> follow_split(Subdomain& sub, Model& local, const WholeSplit& split,
+                                       const std::unordered_map<std::int32_t, std::array<double, 3>>& parent_force);
 
 /// After `local` (the subdomain's model as its run has it) lost the interface elements whose
 /// neighbour eroded (CohesiveInterfaces drops them in the force call, keeping the order of the

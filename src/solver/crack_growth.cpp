@@ -34,28 +34,40 @@ CrackGrowth::CrackGrowth(const Model& model, const std::vector<std::unique_ptr<M
   }
 }
 
-std::size_t CrackGrowth::insert(Model& model, EnergyLedger& energy, Topology& topology, double time,
-                                std::int64_t* eroded, std::vector<double>* part_stored) {
-  if (settings_.parts.empty()) return 0;
+bool CrackGrowth::map_failure(const Model& model) {
+  if (settings_.parts.empty()) return false;
   // No node can reach the threshold while no point has (the nodal factor is a weighted mean).
   bool any = false;
   for (std::size_t f = 0; f < fields_.size(); ++f) {
     const Part& part = model.parts[fields_[f].part];
-    const CrackingPart& cp = parts_[fields_[f].part];
-    fields_[f].field = failure_field_from_state(part, cp.factor_index, normals_[f]);
+    fields_[f].field = failure_field_from_state(part, parts_[fields_[f].part].factor_index, normals_[f]);
     any = any || max_point_factor(part, fields_[f].field) >= settings_.failure_threshold;
   }
-  if (!any) return 0;
+  if (!any) return false;
   nodal_failure_map(model, fields_, map_);
+  return true;
+}
+
+CrackInsertionSettings CrackGrowth::insertion_settings(double time) const {
   CrackInsertionSettings s;
   s.failure_threshold = settings_.failure_threshold;
   s.min_fragment_elements = settings_.min_fragment_elements;
   s.time = time;
-  const CrackInsertion ins = insert_cracks(model, parts_, map_.factor, map_.direction, s);
+  return s;
+}
+
+void CrackGrowth::book_released(const CrackInsertion& ins, EnergyLedger& energy, std::vector<double>* part_stored) {
   energy.at("fracture") += ins.released_energy;
   if (part_stored)
     for (std::size_t p = 0; p < ins.released_by_part.size() && p < part_stored->size(); ++p)
       (*part_stored)[p] -= ins.released_by_part[p];
+}
+
+std::size_t CrackGrowth::insert(Model& model, EnergyLedger& energy, Topology& topology, double time,
+                                std::int64_t* eroded, std::vector<double>* part_stored) {
+  if (!map_failure(model)) return 0;
+  const CrackInsertion ins = insert_cracks(model, parts_, map_.factor, map_.direction, insertion_settings(time));
+  book_released(ins, energy, part_stored);
   const std::int64_t comminuted = comminute(model, ins, energy, part_stored);
   if (eroded) *eroded += comminuted;
   if (ins.new_node_count() == 0 && comminuted == 0) return 0;
@@ -65,19 +77,68 @@ std::size_t CrackGrowth::insert(Model& model, EnergyLedger& energy, Topology& to
 }
 
 bool CrackGrowth::may_split(Model& model) {
-  if (settings_.parts.empty()) return false;
-  bool any = false;
-  for (std::size_t f = 0; f < fields_.size(); ++f) {
-    const Part& part = model.parts[fields_[f].part];
-    fields_[f].field = failure_field_from_state(part, parts_[fields_[f].part].factor_index, normals_[f]);
-    any = any || max_point_factor(part, fields_[f].field) >= settings_.failure_threshold;
+  if (!map_failure(model)) return false;
+  return cracks_would_change(model, parts_, map_.factor, map_.direction, insertion_settings(0));
+}
+
+std::vector<double> CrackGrowth::owned_failed_nodes(Model& local, std::span<const std::int32_t> global_node,
+                                                    std::span<const std::uint8_t> node_owned) {
+  std::vector<double> out;
+  if (!map_failure(local)) return out;
+  const std::size_t nn = local.nodes.count();
+  std::vector<std::int32_t> slot(nn, -1);
+  std::vector<std::int32_t> failed;
+  for (std::size_t i = 0; i < nn; ++i)
+    if (node_owned[i] && map_.factor[i] >= settings_.failure_threshold) {
+      slot[i] = static_cast<std::int32_t>(failed.size());
+      failed.push_back(static_cast<std::int32_t>(i));
+    }
+  if (failed.empty()) return out;
+  // The star of each: the nodes of the live triangles around it, whose positions the planner reads.
+  std::vector<std::vector<std::int32_t>> star(failed.size());
+  for (const Part& part : local.parts) {
+    if (!part.type->is_triangle()) continue;
+    for (std::size_t e = 0; e < part.element_count(); ++e) {
+      if (!part.eroded.empty() && part.eroded[e]) continue;
+      const std::int32_t* cn = &part.connectivity[3 * e];
+      for (int a = 0; a < 3; ++a)
+        if (slot[cn[a]] >= 0) star[slot[cn[a]]].insert(star[slot[cn[a]]].end(), cn, cn + 3);
+    }
   }
-  if (!any) return false;
-  nodal_failure_map(model, fields_, map_);
-  CrackInsertionSettings s;
-  s.failure_threshold = settings_.failure_threshold;
-  s.min_fragment_elements = settings_.min_fragment_elements;
-  return cracks_would_change(model, parts_, map_.factor, map_.direction, s);
+  const double* x = local.nodes.x.data();
+  for (std::size_t k = 0; k < failed.size(); ++k) {
+    const std::int32_t p = failed[k];
+    auto& nodes = star[k];
+    std::sort(nodes.begin(), nodes.end());
+    nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+    out.insert(out.end(), {static_cast<double>(global_node[p]), map_.factor[p], map_.direction[2 * p],
+                           map_.direction[2 * p + 1], static_cast<double>(nodes.size())});
+    for (const std::int32_t n : nodes) out.insert(out.end(), {static_cast<double>(global_node[n]), x[2 * n], x[2 * n + 1]});
+  }
+  return out;
+}
+
+CrackInsertion CrackGrowth::split_whole(Model& whole, const std::vector<std::vector<double>>& failed, double time) {
+  const std::size_t nn = whole.nodes.count();
+  std::vector<double> factor(nn, 0.0), normal(2 * nn, 0.0);
+  double* x = whole.nodes.x.data();
+  for (const std::vector<double>& from : failed)
+    for (std::size_t at = 0; at < from.size();) {
+      const auto p = static_cast<std::size_t>(from[at]);
+      factor[p] = from[at + 1];
+      normal[2 * p] = from[at + 2];
+      normal[2 * p + 1] = from[at + 3];
+      const auto count = static_cast<std::size_t>(from[at + 4]);
+      at += 5;
+      for (std::size_t k = 0; k < count; ++k, at += 3) {
+        const auto n = static_cast<std::size_t>(from[at]);
+        x[2 * n] = from[at + 1];
+        x[2 * n + 1] = from[at + 2];
+      }
+    }
+  CrackInsertion ins = split_cracks(whole, parts_, factor, normal, insertion_settings(time));
+  inserted_ += static_cast<std::int64_t>(ins.new_node_count());
+  return ins;
 }
 
 std::int64_t CrackGrowth::comminute(Model& model, const CrackInsertion& ins, EnergyLedger& energy,

@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <vector>
 
 #include "fracture/crack_insertion.hpp"
@@ -50,6 +51,27 @@ class CrackGrowth final : public StepEvent {
   /// only when one says yes (docs/theory/domain_decomposition.md, "Discrete cracks across ranks").
   bool may_split(Model& model);
 
+  /// Splits without gathering, for a decomposed run (docs/theory/domain_decomposition.md,
+  /// "Discrete cracks across ranks"). What `local` (a subdomain: its nodes' indices in the whole
+  /// model `global_node`, 1 in `node_owned` for its own) tells the other ranks of its own failed
+  /// nodes (F̄ ≥ threshold): per node its whole-model index, F̄, its normal, the count of the
+  /// nodes of its star, then each one's whole-model index and position. Empty when none failed.
+  /// An owner holds its nodes' stars whole, so F̄ and the normal are those of one process.
+  std::vector<double> owned_failed_nodes(Model& local, std::span<const std::int32_t> global_node,
+                                         std::span<const std::uint8_t> node_owned);
+  /// Splits `whole` as insert() splits the whole model, from every rank's owned_failed_nodes:
+  /// `whole`'s topology must be current (its values need not be: the positions the planner
+  /// reads come with the failed nodes, and no element is re-initialised, see split_cracks).
+  /// Every rank gets the same insertion. Counts the nodes added; books nothing.
+  CrackInsertion split_whole(Model& whole, const std::vector<std::vector<double>>& failed, double time);
+  /// Books the energy an insertion's healed elements released (ins.released_energy and
+  /// released_by_part) as fracture, taken from the parts' stored energy.
+  static void book_released(const CrackInsertion& ins, EnergyLedger& energy, std::vector<double>* part_stored);
+  std::span<const CrackingPart> cracking_parts() const { return parts_; }
+  double failure_threshold() const { return settings_.failure_threshold; }
+  /// Whether a piece a crack would cut off may become particles (then a split needs the whole model).
+  bool comminutes() const { return settings_.comminution; }
+
   std::int64_t inserted_nodes() const { return inserted_; }
   /// Elements that became particles instead of a crack cutting them off, since the start.
   std::int64_t comminuted_elements() const { return comminuted_; }
@@ -63,6 +85,9 @@ class CrackGrowth final : public StepEvent {
   std::int64_t inserted_ = 0;
   std::int64_t comminuted_ = 0;
 
+  /// The nodal failure map of `model` now; false when no point has reached the threshold.
+  bool map_failure(const Model& model);
+  CrackInsertionSettings insertion_settings(double time) const;
   /// Erodes the comminuted elements of an insertion, booking the elastic energy they held as a
   /// conversion term; returns how many.
   std::int64_t comminute(Model& model, const CrackInsertion& ins, EnergyLedger& energy,
