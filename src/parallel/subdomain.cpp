@@ -809,6 +809,8 @@ void uncut_opened_faces(Model& local, const std::vector<std::array<std::int32_t,
   auto same = [](std::int32_t a, std::int32_t b, const std::array<std::int32_t, 2>& edge) {
     return (a == edge[0] && b == edge[1]) || (a == edge[1] && b == edge[0]);
   };
+  std::vector<char> end(local.nodes.count(), 0);
+  for (const auto& edge : opened) end[static_cast<std::size_t>(edge[0])] = end[static_cast<std::size_t>(edge[1])] = 1;
   std::vector<std::int64_t> opened_faces;
   for (std::size_t p = 0; p < local.parts.size(); ++p) {
     const Part& part = local.parts[p];
@@ -816,6 +818,7 @@ void uncut_opened_faces(Model& local, const std::vector<std::array<std::int32_t,
     const auto& faces = part.type->faces;
     for (std::size_t e = 0; e < part.element_count(); ++e) {
       const std::int32_t* cn = &part.connectivity[3 * e];
+      if (!end[cn[0]] && !end[cn[1]] && !end[cn[2]]) continue;
       for (std::size_t f = 0; f < faces.size(); ++f)
         for (const auto& edge : opened)
           if (same(cn[faces[f][0]], cn[faces[f][1]], edge))
