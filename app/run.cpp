@@ -550,6 +550,7 @@ class RunDriver {
     // What each rank sends its neighbours is what they say they receive: one exchange of lists
     // instead of a pass over the whole model per other rank.
     sub_ = make_subdomain(whole_, partition_, ranks.rank(), halo ? &halo_ : nullptr, faces, /*plan_sends=*/false);
+    if (splits_in_place_) node_owner_ = node_owners(whole_, partition_);
     complete_ghost_exchange(*sub_, ranks.all_gather(ghost_requests(*sub_)));
     // The solver's model, in place; of the model at the cut only the positions are kept, to
     // measure the motion since (a copy of the whole subdomain took 3 % of a run that cuts often).
@@ -700,43 +701,42 @@ class RunDriver {
   }
 
   /// A split planned on whole_'s topology from the failed nodes' owners, followed by each
-  /// subdomain: the failed elements around the cracked nodes heal where they are held, the
-  /// energy they release is summed in the order of one process, and the copies' shares of the
-  /// force are taken from their parents' owners. A rank that no longer holds every element around
-  /// a node it owns (its copy went to a rank without the rest of its wedge) has the model
-  /// gathered and cut anew.
+  /// subdomain: the split nodes take their owners' state everywhere they are held (a ghost's
+  /// mass, force and contact history are partial), the failed elements around the cracked nodes
+  /// heal where they are held, and the energy they release is summed in the order of one
+  /// process. When a node the split touched changes owner (a copy whose wedge's first element is
+  /// another rank's), the subdomains follow it and the model is then gathered and cut anew.
   void split_in_place() {
     SolverState& s = solver_.state();
     const auto failed = ranks_->all_gather(cracks_->owned_failed_nodes(sim_.model, sub_->global_node, sub_->node_owned));
     if (std::all_of(failed.begin(), failed.end(), [](const auto& f) { return f.empty(); })) return;
     CrackInsertion ins = cracks_->split_whole(whole_, failed, s.time);
     if (ins.new_node_count() == 0 && ins.around_cracked.empty()) return;  // alike on every rank
-    const std::vector<std::int32_t> owner = node_owners(whole_, partition_);
-    const WholeSplit split{&whole_, &ins.remap, ins.opened_edges, &owner};
-    // One message: whether this rank still holds its nodes' stars, the forces of the split nodes
-    // it owns, the energy its own healed elements release.
+    // One message: the state of the split nodes this rank owns, the energy its own healed
+    // elements release.
     SplitMessage mine;
-    mine.holds = holds_split_stars(*sub_, split);
-    tell_split_forces(ins, mine);
+    tell_split_states(ins, mine);
     heal_around_cracks(ins, mine);
     std::vector<SplitMessage> heard;
-    for (const auto& packed : ranks_->all_gather(mine.pack())) heard.push_back(SplitMessage::unpack(packed, dim_));
+    for (const auto& packed : ranks_->all_gather(mine.pack())) heard.push_back(SplitMessage::unpack(packed));
     sum_released(ins, heard);
     CrackGrowth::book_released(ins, s.energy, &s.part_stored);
     if (ins.new_node_count() == 0) return;
-    std::unordered_map<std::int32_t, std::array<double, 3>> parent_force;
-    bool holds = true;
+    const std::vector<std::int32_t> local = local_nodes();
     for (const SplitMessage& h : heard) {
-      holds = holds && h.holds;
-      for (std::size_t k = 0; k < h.nodes.size(); ++k)
-        std::copy_n(&h.forces[static_cast<std::size_t>(dim_) * k], dim_, parent_force[h.nodes[k]].begin());
+      std::vector<std::int32_t> held;
+      for (const std::int32_t g : h.nodes) held.push_back(local[static_cast<std::size_t>(g)]);
+      unpack_node_states(sim_.model, held, h.states);
     }
-    const std::vector<std::int32_t> from = follow_split(*sub_, sim_.model, split, parent_force);
+    std::vector<std::int32_t> owner = node_owners(whole_, partition_);
+    const bool keeps = split_keeps_owners(*ins.remap.nodes, node_owner_, owner);  // alike on every rank
+    const std::vector<std::int32_t> from = follow_split(*sub_, sim_.model, {&whole_, &ins.remap, ins.opened_edges, &owner});
+    node_owner_ = std::move(owner);
     std::vector<double> at_cut(from.size() * dim_);
     for (std::size_t i = 0; i < from.size(); ++i)
       std::copy_n(&node_x_at_cut_[dim_ * static_cast<std::size_t>(from[i])], dim_, &at_cut[dim_ * i]);
     node_x_at_cut_ = std::move(at_cut);
-    if (!holds) {  // alike on every rank
+    if (!keeps) {
       gather_whole_everywhere();
       cut_whole(/*keep_partition=*/true);
       ++cuts_;
@@ -752,50 +752,47 @@ class RunDriver {
 
   /// What a rank tells the others of a split it follows (split_in_place).
   struct SplitMessage {
-    bool holds = true;                 ///< it holds every element around each node it owns
     std::vector<std::int32_t> nodes;   ///< split nodes it owns (whole-model indices)
-    std::vector<double> forces;        ///< their forces, dim each
+    std::vector<double> states;        ///< their states (pack_node_states)
     std::vector<std::int64_t> healed;  ///< its own healed elements (indices into around_cracked)
     std::vector<double> released;      ///< the energy each released
 
     std::vector<double> pack() const {
-      std::vector<double> out{holds ? 1.0 : 0.0, static_cast<double>(nodes.size()), static_cast<double>(healed.size())};
+      std::vector<double> out{static_cast<double>(nodes.size()), static_cast<double>(states.size()),
+                              static_cast<double>(healed.size())};
       out.insert(out.end(), nodes.begin(), nodes.end());
-      out.insert(out.end(), forces.begin(), forces.end());
+      out.insert(out.end(), states.begin(), states.end());
       out.insert(out.end(), healed.begin(), healed.end());
       out.insert(out.end(), released.begin(), released.end());
       return out;
     }
-    static SplitMessage unpack(const std::vector<double>& in, int dim) {
+    static SplitMessage unpack(const std::vector<double>& in) {
       SplitMessage m;
-      m.holds = in.at(0) == 1.0;
-      const auto n = static_cast<std::size_t>(in.at(1)), h = static_cast<std::size_t>(in.at(2));
+      const auto n = static_cast<std::ptrdiff_t>(in.at(0)), v = static_cast<std::ptrdiff_t>(in.at(1)),
+                 h = static_cast<std::ptrdiff_t>(in.at(2));
       auto at = in.begin() + 3;
-      m.nodes.assign(at, at + static_cast<std::ptrdiff_t>(n));
-      at += static_cast<std::ptrdiff_t>(n);
-      m.forces.assign(at, at + static_cast<std::ptrdiff_t>(n * dim));
-      at += static_cast<std::ptrdiff_t>(n * dim);
-      m.healed.assign(at, at + static_cast<std::ptrdiff_t>(h));
-      at += static_cast<std::ptrdiff_t>(h);
-      m.released.assign(at, at + static_cast<std::ptrdiff_t>(h));
+      m.nodes.assign(at, at + n);
+      m.states.assign(at + n, at + n + v);
+      m.healed.assign(at + n + v, at + n + v + h);
+      m.released.assign(at + n + v + h, at + n + v + 2 * h);
       return m;
     }
   };
 
-  /// The force of each node a split copies that this rank owns: a ghost's force is partial, and
-  /// the copies take shares of the whole.
-  void tell_split_forces(const CrackInsertion& ins, SplitMessage& told) const {
+  /// The state of each node a split copies that this rank owns: the copies take shares of its
+  /// mass and force, and its contact history is its owner's.
+  void tell_split_states(const CrackInsertion& ins, SplitMessage& told) const {
     const std::vector<std::int32_t> local = local_nodes();
-    const auto dim = static_cast<std::size_t>(dim_);
+    std::vector<std::int32_t> owned;
     for (std::size_t k = 0; k < ins.parent.size(); ++k) {
       const std::int32_t g = ins.parent[k];
       if (k > 0 && ins.parent[k - 1] == g) continue;
       const std::int32_t n = local[static_cast<std::size_t>(g)];
       if (n < 0 || !sub_->node_owned[static_cast<std::size_t>(n)]) continue;
       told.nodes.push_back(g);
-      const double* f = &sim_.model.nodes.force[dim * static_cast<std::size_t>(n)];
-      told.forces.insert(told.forces.end(), f, f + dim);
+      owned.push_back(n);
     }
+    told.states = pack_node_states(sim_.model, owned);
   }
 
   /// Heals the failed elements around the cracked nodes that this rank holds (a ghost as its
@@ -2080,6 +2077,7 @@ class RunDriver {
   /// elements, erosion, comminution or remeshing, which change the whole model in other ways.
   bool splits_in_place_ = false;
   std::int64_t splits_in_place_count_ = 0;  ///< (summary.json)
+  std::vector<std::int32_t> node_owner_;     ///< per node of whole_, its owner (node_owners) since the last cut or split
 };
 
 }  // namespace

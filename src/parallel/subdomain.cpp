@@ -833,35 +833,20 @@ void uncut_opened_faces(Model& local, const std::vector<std::array<std::int32_t,
 
 }  // namespace
 
-bool holds_split_stars(const Subdomain& sub, const WholeSplit& split) {
-  if (!split.split->nodes) return true;
-  const Model& whole = *split.whole;
-  const std::vector<char> touched = touched_by_split(*split.split->nodes);
-  const std::vector<std::vector<std::int32_t>> local = local_elements(sub, whole);
-  const std::vector<std::int32_t>& owner = *split.owner;
-  std::unordered_map<std::int32_t, std::array<std::int32_t, 2>> count;  // per own touched node: elements, held
-  for (std::size_t p = 0; p < whole.parts.size(); ++p) {
-    const Part& part = whole.parts[p];
-    const int npe = part.type->nodes;
-    for (std::size_t e = 0; e < part.element_count(); ++e)
-      for (int a = 0; a < npe; ++a) {
-        const std::int32_t n = part.connectivity[static_cast<std::size_t>(npe) * e + a];
-        if (!touched[static_cast<std::size_t>(n)] || owner[static_cast<std::size_t>(n)] != sub.rank) continue;
-        auto& c = count[n];
-        ++c[0];
-        if (local[p][e] >= 0) ++c[1];
-      }
+bool split_keeps_owners(const EntityRemap& split_nodes, const std::vector<std::int32_t>& before,
+                        const std::vector<std::int32_t>& after) {
+  for (std::size_t i = split_nodes.old_count; i < split_nodes.new_count(); ++i) {
+    const auto parent = static_cast<std::size_t>(split_nodes.source[i]);
+    if (after[i] != before[parent] || after[parent] != before[parent]) return false;
   }
-  return std::all_of(count.begin(), count.end(), [](const auto& c) { return c.second[0] == c.second[1]; });
+  return true;
 }
 
-std::vector<std::int32_t> follow_split(Subdomain& sub, Model& local, const WholeSplit& split,
-                                       const std::unordered_map<std::int32_t, std::array<double, 3>>& parent_force) {
+std::vector<std::int32_t> follow_split(Subdomain& sub, Model& local, const WholeSplit& split) {
   if (!local.particle_parts.empty() || local.cohesive.element_count() > 0)
     throw std::logic_error("follow_split: a subdomain with particles or interface elements; cut the whole model anew");
   const Model& whole = *split.whole;
   const std::size_t n_before = local.nodes.count();
-  const auto dim = static_cast<std::size_t>(local.dim());
   std::vector<std::int32_t> from(n_before);
   for (std::size_t i = 0; i < n_before; ++i) from[i] = static_cast<std::int32_t>(i);
   if (!split.split->nodes) return from;
@@ -869,8 +854,7 @@ std::vector<std::int32_t> follow_split(Subdomain& sub, Model& local, const Whole
   const std::vector<std::int32_t> local_node = local_of(sub.global_node);
   auto held = [&](std::int32_t g) { return static_cast<std::size_t>(g) < local_node.size() ? local_node[static_cast<std::size_t>(g)] : -1; };
 
-  // What one process stamps before the split (so that the copies share it), and the forces the
-  // copies take their shares of.
+  // What one process stamps before the split, so that the copies share it.
   if (!whole.nodes.crack_time.empty()) {
     local.nodes.crack_time.resize(n_before);
     for (std::size_t i = 0; i < n_before; ++i)
@@ -879,8 +863,6 @@ std::vector<std::int32_t> follow_split(Subdomain& sub, Model& local, const Whole
   std::vector<std::array<std::int32_t, 2>> opened;
   for (const auto& edge : split.opened)
     if (const std::int32_t a = held(edge[0]), b = held(edge[1]); a >= 0 && b >= 0) opened.push_back({a, b});
-  for (const auto& [g, force] : parent_force)
-    if (const std::int32_t n = held(g); n >= 0) std::copy_n(force.begin(), dim, &local.nodes.force[dim * static_cast<std::size_t>(n)]);
   uncut_opened_faces(local, opened);
 
   // Every copy of a held node, in the whole model's order (so local order stays ascending in it).
@@ -1215,6 +1197,36 @@ void unpack_owned(const std::vector<double>& packed, Model& whole, std::vector<s
   }
   if (!keys.empty()) list.absorb(keys, history);
   if (at != packed.size()) throw std::logic_error("unpack_owned: the array holds more than its fields");
+}
+
+std::vector<double> pack_node_states(Model& local, std::span<const std::int32_t> nodes) {
+  std::vector<double> packed;
+  const std::size_t count = local.nodes.count();
+  visit_gathered_fields(local, [&](const FieldInfo&, auto& values, Holder holder) {
+    if (holder.kind != Holder::nodes) return;
+    const std::size_t comps = count == 0 ? 0 : values.size() / count;
+    packed.push_back(static_cast<double>(comps));
+    for (const std::int32_t n : nodes)
+      for (std::size_t k = 0; k < comps; ++k) packed.push_back(static_cast<double>(values[comps * static_cast<std::size_t>(n) + k]));
+  });
+  return packed;
+}
+
+std::size_t unpack_node_states(Model& local, std::span<const std::int32_t> nodes, std::span<const double> packed) {
+  std::size_t at = 0;
+  const std::size_t count = local.nodes.count();
+  visit_gathered_fields(local, [&](const FieldInfo&, auto& values, Holder holder) {
+    using T = typename std::decay_t<decltype(values)>::value_type;
+    if (holder.kind != Holder::nodes) return;
+    const auto comps = static_cast<std::size_t>(packed[at++]);
+    const bool fits = count > 0 && values.size() == comps * count;
+    for (const std::int32_t n : nodes) {
+      if (fits && n >= 0)
+        for (std::size_t k = 0; k < comps; ++k) values[comps * static_cast<std::size_t>(n) + k] = static_cast<T>(packed[at + k]);
+      at += comps;
+    }
+  });
+  return at;
 }
 
 }  // namespace shard

@@ -178,24 +178,34 @@ struct WholeSplit {
   const std::vector<std::int32_t>* owner = nullptr;
 };
 
-/// Whether `sub` still holds every element around each node it owns after `split` (a copy of a
-/// node goes to the rank of its wedge's first element, which need not hold the rest of the wedge
-/// when another rank owned the node): if a rank does not, the model must be cut anew.
-bool holds_split_stars(const Subdomain& sub, const WholeSplit& split);
+/// Whether every node a split touched keeps its owner: each node split keeps its own, and each
+/// copy gets its parent's (`split_nodes`: the split's node remap; `before`, `after`: node_owners
+/// before and after it). Only then does a subdomain follow the split in place: the owner held
+/// the node's whole star (every copy's wedge), what its contact reaches, and its exact state.
+/// Otherwise the model is gathered and cut anew.
+bool split_keeps_owners(const EntityRemap& split_nodes, const std::vector<std::int32_t>& before,
+                        const std::vector<std::int32_t>& after);
 
 /// `local` (the subdomain's model as its run has it) follows `split`: each node it holds that
-/// was split gets every copy, with the values one process gives it (its parent's, and a share
-/// of the mass and force: `parent_force`, per split node of the whole model its owner's force,
-/// replaces the node's own first, since a ghost's force is partial); the corners of its elements
-/// move to them; a node or copy none of its elements holds any longer is dropped. The copies take
-/// the whole model's ids. Its node lists, ghost marks, crack-face flags and faces at the cut
-/// follow (an opened edge between a held element and one the rank does not hold is a crack face
-/// now), and its ghost exchange is left half planned, to be completed as after a cut
-/// (ghost_requests, complete_ghost_exchange). Needs a subdomain without particles or interface
-/// elements. Returns, per local node after, the local node before that it continues or was
-/// split off.
-std::vector<std::int32_t> follow_split(Subdomain& sub, Model& local, const WholeSplit& split,
-                                       const std::unordered_map<std::int32_t, std::array<double, 3>>& parent_force);
+/// was split gets every copy, with the values one process gives it (its parent's, and a share of
+/// the mass and force: the split nodes' states must be their owners', see pack_node_states,
+/// since a ghost's mass and force are partial); the corners of its elements move to them; a node
+/// or copy none of its elements holds any longer is dropped. The copies take the whole model's
+/// ids. Its node lists, ghost marks, crack times and crack-face flags and faces at the cut follow
+/// (an opened edge between a held element and one the rank does not hold is a crack face now),
+/// and its ghost exchange is left half planned, to be completed as after a cut (ghost_requests,
+/// complete_ghost_exchange). Needs a subdomain without particles or interface elements. Returns,
+/// per local node after, the local node before that it continues or was split off.
+std::vector<std::int32_t> follow_split(Subdomain& sub, Model& local, const WholeSplit& split);
+
+/// The state of the listed nodes of `local`: every node field a gather carries (not ids and
+/// indices), field by field (its components per node, then the listed nodes' values), as doubles
+/// (integers exact below 2^53).
+std::vector<double> pack_node_states(Model& local, std::span<const std::int32_t> nodes);
+/// Writes states packed by pack_node_states (of as many nodes as `nodes` lists) into the listed
+/// nodes of `local`, skipping entries of −1 and fields whose components differ here (a field not
+/// in use on this rank). Returns the values read.
+std::size_t unpack_node_states(Model& local, std::span<const std::int32_t> nodes, std::span<const double> packed);
 
 /// After `local` (the subdomain's model as its run has it) lost the interface elements whose
 /// neighbour eroded (CohesiveInterfaces drops them in the force call, keeping the order of the
