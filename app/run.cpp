@@ -721,7 +721,11 @@ class RunDriver {
     for (const auto& packed : ranks_->all_gather(mine.pack())) heard.push_back(SplitMessage::unpack(packed));
     sum_released(ins, heard);
     CrackGrowth::book_released(ins, s.energy, &s.part_stored);
-    if (ins.new_node_count() == 0) return;
+    if (ins.new_node_count() == 0) {  // edges may have opened without a split: their crack times
+      std::vector<std::int32_t> owner = node_owner_;
+      follow_split(*sub_, sim_.model, {&whole_, &ins.remap, ins.separated_edges, &owner});
+      return;
+    }
     const std::vector<std::int32_t> local = local_nodes();
     for (const SplitMessage& h : heard) {
       std::vector<std::int32_t> held;
@@ -730,7 +734,7 @@ class RunDriver {
     }
     std::vector<std::int32_t> owner = node_owners(whole_, partition_);
     const bool keeps = split_keeps_owners(*ins.remap.nodes, node_owner_, owner);  // alike on every rank
-    const std::vector<std::int32_t> from = follow_split(*sub_, sim_.model, {&whole_, &ins.remap, ins.opened_edges, &owner});
+    const std::vector<std::int32_t> from = follow_split(*sub_, sim_.model, {&whole_, &ins.remap, ins.separated_edges, &owner});
     node_owner_ = std::move(owner);
     std::vector<double> at_cut(from.size() * dim_);
     for (std::size_t i = 0; i < from.size(); ++i)

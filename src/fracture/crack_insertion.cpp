@@ -270,7 +270,8 @@ namespace {
 /// the mass and force that the wedge's own lumped masses hold; the corners of the wedge's
 /// elements move to it. `parent` receives the node each new node is split off.
 Remap split_on_fans(const Model& model, const Fans& fans, std::span<const double> density,
-                    std::span<const std::array<std::int32_t, 2>> edges, std::vector<std::int32_t>& parent) {
+                    std::span<const std::array<std::int32_t, 2>> edges, std::vector<std::int32_t>& parent,
+                    std::vector<std::array<std::int32_t, 2>>* separated = nullptr) {
   std::unordered_set<std::uint64_t> cut;
   std::vector<std::int32_t> touched;
   for (const auto& e : edges) {
@@ -290,6 +291,11 @@ Remap split_on_fans(const Model& model, const Fans& fans, std::span<const double
     const std::vector<FanEntry> fan = fans.of(p);
     const Wedges w = wedges_of(p, fan, cut);
     if (w.count < 2) continue;
+    // An opened edge whose two triangles now lie in different wedges at p is a crack face.
+    for (std::size_t i = 0; separated && i < fan.size(); ++i)
+      for (std::size_t j = 0; j < fan.size(); ++j)
+        if (fan[i].b == fan[j].a && w.group[i] != w.group[j])
+          separated->push_back({std::min(p, fan[i].b), std::max(p, fan[i].b)});
     std::vector<double> share(w.count, 0.0);
     for (std::size_t i = 0; i < fan.size(); ++i) share[w.group[i]] += corner_mass(model, fan[i], density[fan[i].part]);
     double total = 0;
@@ -639,7 +645,9 @@ CrackInsertion split_cracks(Model& model, std::span<const CrackingPart> parts, s
 
   std::vector<double> density(parts.size());
   for (std::size_t i = 0; i < parts.size(); ++i) density[i] = parts[i].density;
-  out.remap = split_on_fans(model, planner.fans(), density, out.opened_edges, out.parent);
+  out.remap = split_on_fans(model, planner.fans(), density, out.opened_edges, out.parent, &out.separated_edges);
+  std::sort(out.separated_edges.begin(), out.separated_edges.end());
+  out.separated_edges.erase(std::unique(out.separated_edges.begin(), out.separated_edges.end()), out.separated_edges.end());
   apply_remap(model, out.remap);
   out.around_cracked = elements_around(planner.fans(), out.cracked_nodes);
   std::sort(out.comminuted.begin(), out.comminuted.end());

@@ -802,7 +802,7 @@ std::vector<char> touched_by_split(const EntityRemap& nodes) {
   return touched;
 }
 
-/// A subdomain's faces at the cut that an opened edge (`opened`, as local node pairs) turned
+/// A subdomain's faces at the cut that a separated edge (`opened`, as local node pairs) turned
 /// into crack faces leave its list: they are surface now.
 void uncut_opened_faces(Model& local, const std::vector<std::array<std::int32_t, 2>>& opened) {
   if (opened.empty() || local.cut_faces.empty()) return;
@@ -849,19 +849,20 @@ std::vector<std::int32_t> follow_split(Subdomain& sub, Model& local, const Whole
   const std::size_t n_before = local.nodes.count();
   std::vector<std::int32_t> from(n_before);
   for (std::size_t i = 0; i < n_before; ++i) from[i] = static_cast<std::int32_t>(i);
-  if (!split.split->nodes) return from;
-  const EntityRemap& whole_nodes = *split.split->nodes;
-  const std::vector<std::int32_t> local_node = local_of(sub.global_node);
-  auto held = [&](std::int32_t g) { return static_cast<std::size_t>(g) < local_node.size() ? local_node[static_cast<std::size_t>(g)] : -1; };
-
-  // What one process stamps before the split, so that the copies share it.
+  // What one process stamps before the split (an edge may open without splitting a node), so
+  // that the copies share it.
   if (!whole.nodes.crack_time.empty()) {
     local.nodes.crack_time.resize(n_before);
     for (std::size_t i = 0; i < n_before; ++i)
       local.nodes.crack_time[i] = whole.nodes.crack_time[static_cast<std::size_t>(sub.global_node[i])];
   }
+  if (!split.split->nodes) return from;
+  const EntityRemap& whole_nodes = *split.split->nodes;
+  const std::vector<std::int32_t> local_node = local_of(sub.global_node);
+  auto held = [&](std::int32_t g) { return static_cast<std::size_t>(g) < local_node.size() ? local_node[static_cast<std::size_t>(g)] : -1; };
+
   std::vector<std::array<std::int32_t, 2>> opened;
-  for (const auto& edge : split.opened)
+  for (const auto& edge : split.separated)
     if (const std::int32_t a = held(edge[0]), b = held(edge[1]); a >= 0 && b >= 0) opened.push_back({a, b});
   uncut_opened_faces(local, opened);
 

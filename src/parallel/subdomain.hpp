@@ -174,7 +174,8 @@ void follow_removed_elements(Subdomain& sub, Model& local, const Remap& remap);
 struct WholeSplit {
   const Model* whole = nullptr;
   const Remap* split = nullptr;
-  std::span<const std::array<std::int32_t, 2>> opened;  ///< the edges opened (nodes of `whole` before)
+  /// The opened edges whose triangles the split separated (CrackInsertion::separated_edges).
+  std::span<const std::array<std::int32_t, 2>> separated;
   const std::vector<std::int32_t>* owner = nullptr;
 };
 
@@ -192,7 +193,7 @@ bool split_keeps_owners(const EntityRemap& split_nodes, const std::vector<std::i
 /// since a ghost's mass and force are partial); the corners of its elements move to them; a node
 /// or copy none of its elements holds any longer is dropped. The copies take the whole model's
 /// ids. Its node lists, ghost marks, crack times and crack-face flags and faces at the cut follow
-/// (an opened edge between a held element and one the rank does not hold is a crack face now),
+/// (a separated edge between a held element and one the rank does not hold is a crack face now),
 /// and its ghost exchange is left half planned, to be completed as after a cut (ghost_requests,
 /// complete_ghost_exchange). Needs a subdomain without particles or interface elements. Returns,
 /// per local node after, the local node before that it continues or was split off.

@@ -185,7 +185,7 @@ TEST(CrackSplitInPlace, SubdomainsFollowASplitAsAFreshCutOfTheSplitModelHoldsIt)
       const std::vector<std::int32_t> owner = node_owners(whole, partition);
       const bool keeps = split_keeps_owners(*ins.remap.nodes, owner_before, owner);
       keeps ? ++kept_cases : ++moved_cases;
-      const WholeSplit split{&whole, &ins.remap, ins.opened_edges, &owner};
+      const WholeSplit split{&whole, &ins.remap, ins.separated_edges, &owner};
       std::vector<Subdomain> subs;
       for (int r = 0; r < ranks; ++r) {
         Subdomain& sub = subs.emplace_back(make_subdomain(before, partition, r));
