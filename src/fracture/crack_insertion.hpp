@@ -56,9 +56,9 @@ struct CrackInsertion {
   std::size_t first_new_node = 0;     ///< the node count before the update
   std::vector<std::int32_t> parent;   ///< node first_new_node + i is a copy of parent[i]
   std::vector<std::array<std::int32_t, 2>> opened_edges;  ///< (node ids before the update)
-  /// The opened edges whose two triangles the split separated (their faces are crack faces now),
-  /// as sorted node pairs before the update: an edge opened at a node that did not split (one cut
-  /// in a closed fan) leaves its triangles joined.
+  /// The opened edges whose two triangles the split separated at either end (their faces are
+  /// crack faces now), as sorted node pairs before the update. Every edge the planner opens has
+  /// an end that splits; an edge opened where neither end split would leave its triangles joined.
   std::vector<std::array<std::int32_t, 2>> separated_edges;
   std::vector<std::int32_t> cracked_nodes;  ///< failed nodes a crack now passes through or ends at
   std::vector<std::int32_t> skipped_nodes;  ///< failed nodes where no edge could be opened

@@ -878,16 +878,17 @@ std::vector<std::int32_t> follow_split(Subdomain& sub, Model& local, const Whole
     copies.push_back(static_cast<std::int32_t>(i));
     from.push_back(parent);
   }
-  if (copies.empty()) return from;  // no held node split: no held element's corner moved
-  const std::vector<std::vector<std::int32_t>> local_element = local_elements(sub, whole);
-  for (const CornerMove& c : split.split->corners) {
-    const std::int32_t e = local_element[static_cast<std::size_t>(c.part)][static_cast<std::size_t>(c.element)];
-    if (e >= 0) remap.corners.push_back({c.part, e, c.corner, local_copy[static_cast<std::size_t>(c.node) - whole_nodes.old_count]});
-  }
-  apply_remap(local, remap);
-  for (std::size_t k = 0; k < copies.size(); ++k) {
-    local.nodes.id[n_before + k] = whole.nodes.id[static_cast<std::size_t>(copies[k])];
-    sub.global_node.push_back(copies[k]);
+  if (!copies.empty()) {  // else no held node split: no held element's corner moved
+    const std::vector<std::vector<std::int32_t>> local_element = local_elements(sub, whole);
+    for (const CornerMove& c : split.split->corners) {
+      const std::int32_t e = local_element[static_cast<std::size_t>(c.part)][static_cast<std::size_t>(c.element)];
+      if (e >= 0) remap.corners.push_back({c.part, e, c.corner, local_copy[static_cast<std::size_t>(c.node) - whole_nodes.old_count]});
+    }
+    apply_remap(local, remap);
+    for (std::size_t k = 0; k < copies.size(); ++k) {
+      local.nodes.id[n_before + k] = whole.nodes.id[static_cast<std::size_t>(copies[k])];
+      sub.global_node.push_back(copies[k]);
+    }
   }
   local.next_node_id = whole.next_node_id;
 
@@ -1221,6 +1222,10 @@ std::size_t unpack_node_states(Model& local, std::span<const std::int32_t> nodes
     if (holder.kind != Holder::nodes) return;
     const auto comps = static_cast<std::size_t>(packed[at++]);
     const bool fits = count > 0 && values.size() == comps * count;
+    // A field in use here with other components than the sender's would keep a partial value.
+    if (!fits && !values.empty() && std::any_of(nodes.begin(), nodes.end(), [](std::int32_t n) { return n >= 0; }))
+      throw std::logic_error("unpack_node_states: a node field has " + std::to_string(comps) +
+                             " components per node where it was packed and another count here");
     for (const std::int32_t n : nodes) {
       if (fits && n >= 0)
         for (std::size_t k = 0; k < comps; ++k) values[comps * static_cast<std::size_t>(n) + k] = static_cast<T>(packed[at + k]);
