@@ -714,8 +714,9 @@ class RunDriver {
     if (ins.new_node_count() == 0 && ins.around_cracked.empty()) return;  // alike on every rank
     // One message: the state of the split nodes this rank owns, the energy its own healed
     // elements release.
+    const std::vector<std::int32_t> local = local_node_index(*sub_, whole_.nodes.count() - ins.new_node_count());
     SplitMessage mine;
-    tell_split_states(ins, mine);
+    tell_split_states(ins, local, mine);
     heal_around_cracks(ins, mine);
     std::vector<SplitMessage> heard;
     for (const auto& packed : ranks_->all_gather(mine.pack())) heard.push_back(SplitMessage::unpack(packed));
@@ -726,7 +727,6 @@ class RunDriver {
       follow_split(*sub_, sim_.model, {&whole_, &ins.remap, ins.separated_edges, &owner});
       return;
     }
-    const std::vector<std::int32_t> local = local_nodes();
     for (const SplitMessage& h : heard) {
       std::vector<std::int32_t> held;
       for (const std::int32_t g : h.nodes) held.push_back(local[static_cast<std::size_t>(g)]);
@@ -785,8 +785,7 @@ class RunDriver {
 
   /// The state of each node a split copies that this rank owns: the copies take shares of its
   /// mass and force, and its contact history is its owner's.
-  void tell_split_states(const CrackInsertion& ins, SplitMessage& told) const {
-    const std::vector<std::int32_t> local = local_nodes();
+  void tell_split_states(const CrackInsertion& ins, const std::vector<std::int32_t>& local, SplitMessage& told) const {
     std::vector<std::int32_t> owned;
     for (std::size_t k = 0; k < ins.parent.size(); ++k) {
       const std::int32_t g = ins.parent[k];
@@ -802,11 +801,7 @@ class RunDriver {
   /// Heals the failed elements around the cracked nodes that this rank holds (a ghost as its
   /// owner does), and tells what its own released.
   void heal_around_cracks(const CrackInsertion& ins, SplitMessage& told) {
-    std::vector<std::vector<std::int32_t>> local(whole_.parts.size());
-    for (std::size_t p = 0; p < local.size(); ++p) {
-      local[p].assign(whole_.parts[p].element_count(), -1);
-      for (std::size_t e = 0; e < sub_->global_element[p].size(); ++e) local[p][sub_->global_element[p][e]] = static_cast<std::int32_t>(e);
-    }
+    const std::vector<std::vector<std::int32_t>> local = local_element_index(*sub_, whole_);
     std::vector<std::pair<int, std::size_t>> held;
     std::vector<std::size_t> listed;
     for (std::size_t k = 0; k < ins.around_cracked.size(); ++k) {
@@ -840,13 +835,6 @@ class RunDriver {
       ins.released_by_part[p] += energy;
     }
     ins.reinitialised_elements = released.size();
-  }
-
-  /// Per node of whole_, its index in the subdomain (−1: not held).
-  std::vector<std::int32_t> local_nodes() const {
-    std::vector<std::int32_t> local(whole_.nodes.count(), -1);
-    for (std::size_t i = 0; i < sub_->global_node.size(); ++i) local[static_cast<std::size_t>(sub_->global_node[i])] = static_cast<std::int32_t>(i);
-    return local;
   }
 
   /// Remeshing across ranks: the shapes new elements are measured against are measured on each

@@ -783,10 +783,13 @@ void follow_removed_elements(Subdomain& sub, Model& local, const Remap& remap) {
   }
 }
 
-namespace {
+std::vector<std::int32_t> local_node_index(const Subdomain& sub, std::size_t node_count) {
+  std::vector<std::int32_t> local(node_count, -1);
+  for (std::size_t i = 0; i < sub.global_node.size(); ++i) local[static_cast<std::size_t>(sub.global_node[i])] = static_cast<std::int32_t>(i);
+  return local;
+}
 
-/// Per part, the local index of each element of the whole model (−1: not held).
-std::vector<std::vector<std::int32_t>> local_elements(const Subdomain& sub, const Model& whole) {
+std::vector<std::vector<std::int32_t>> local_element_index(const Subdomain& sub, const Model& whole) {
   std::vector<std::vector<std::int32_t>> local;
   for (std::size_t p = 0; p < whole.parts.size(); ++p) {
     auto& of = local.emplace_back(whole.parts[p].element_count(), -1);
@@ -794,6 +797,8 @@ std::vector<std::vector<std::int32_t>> local_elements(const Subdomain& sub, cons
   }
   return local;
 }
+
+namespace {
 
 /// The nodes of the whole model a split touched: the nodes split, and their copies.
 std::vector<char> touched_by_split(const EntityRemap& nodes) {
@@ -858,8 +863,8 @@ std::vector<std::int32_t> follow_split(Subdomain& sub, Model& local, const Whole
   }
   if (!split.split->nodes) return from;
   const EntityRemap& whole_nodes = *split.split->nodes;
-  const std::vector<std::int32_t> local_node = local_of(sub.global_node);
-  auto held = [&](std::int32_t g) { return static_cast<std::size_t>(g) < local_node.size() ? local_node[static_cast<std::size_t>(g)] : -1; };
+  const std::vector<std::int32_t> local_node = local_node_index(sub, whole_nodes.old_count);
+  auto held = [&](std::int32_t g) { return local_node[static_cast<std::size_t>(g)]; };
 
   std::vector<std::array<std::int32_t, 2>> opened;
   for (const auto& edge : split.separated)
@@ -879,7 +884,7 @@ std::vector<std::int32_t> follow_split(Subdomain& sub, Model& local, const Whole
     from.push_back(parent);
   }
   if (!copies.empty()) {  // else no held node split: no held element's corner moved
-    const std::vector<std::vector<std::int32_t>> local_element = local_elements(sub, whole);
+    const std::vector<std::vector<std::int32_t>> local_element = local_element_index(sub, whole);
     for (const CornerMove& c : split.split->corners) {
       const std::int32_t e = local_element[static_cast<std::size_t>(c.part)][static_cast<std::size_t>(c.element)];
       if (e >= 0) remap.corners.push_back({c.part, e, c.corner, local_copy[static_cast<std::size_t>(c.node) - whole_nodes.old_count]});

@@ -167,6 +167,11 @@ void gather_owned(const Subdomain& sub, Model& local, Model& whole);
 /// std::logic_error for any other change, which must be made on the whole model and cut anew.
 void follow_removed_elements(Subdomain& sub, Model& local, const Remap& remap);
 
+/// Per node of the whole model (`node_count` of them), its index in `sub` (−1: not held).
+std::vector<std::int32_t> local_node_index(const Subdomain& sub, std::size_t node_count);
+/// Per part and element of `whole`, its index in `sub` (−1: not held).
+std::vector<std::vector<std::int32_t>> local_element_index(const Subdomain& sub, const Model& whole);
+
 /// A crack insertion made on the whole model (its remap `split`, applied to `whole` already:
 /// nodes appended, element corners moved to them), as a subdomain sees it (docs/theory/
 /// domain_decomposition.md, "Discrete cracks across ranks"). `owner`: node_owners of `whole`
