@@ -772,6 +772,159 @@ def plot_crack_speeds(args):
     save(figure, output, args.dpi)
 
 
+# ---- Hertzian cone of an axisymmetric impact -----------------------------------------------------
+
+def part_index(folder, name):
+    """Index of part `name` in the frames' 'part' field (the order of resolved.yaml's parts)."""
+    import yaml
+
+    try:
+        with open(os.path.join(folder, "resolved.yaml")) as stream:
+            names = list(((yaml.safe_load(stream) or {}).get("parts") or {}).keys())
+    except OSError as error:
+        raise PlotError(f"cannot read {folder}/resolved.yaml: {error.strerror}") from error
+    if name is None:
+        return 0, names[0] if names else "0"
+    if name not in names:
+        raise PlotError(f"no part '{name}' in the run: its parts are {', '.join(names)}")
+    return names.index(name), name
+
+
+def impact_time(folder):
+    """The first history row at which any pair of parts pushes on another (contact_force_*), or None."""
+    history = read_history(find_history(folder))
+    columns = [values for name, values in history.items() if name.startswith("contact_force_")]
+    if not columns:
+        return None
+    touching = np.any(np.abs(np.vstack(columns)) > 0, axis=0)
+    return float(history["time"][np.argmax(touching)]) if touching.any() else None
+
+
+def cone_frame(mesh, part, top, args):
+    """One frame's failed cells of the part as (r, depth) in mm, and the contact radius in mm: the
+    largest radius of the part's nodes within one depth bin of the surface that carry contact
+    pressure."""
+    cells = np.asarray(mesh.cells_dict.get("triangle", np.zeros((0, 3), dtype=int)))
+    if cells.size == 0:
+        raise PlotError("the cone is measured on 2D (axisymmetric) runs of triangles")
+    for name in ("part",) if args.cracks else ("failure_factor", "part"):
+        if name not in mesh.cell_data:
+            raise PlotError(f"the frames have no cell field '{name}' (output.fields: add state and part)")
+    mine = np.asarray(mesh.cell_data["part"][0]).ravel() == part
+    if args.cracks:  # the crack faces' nodes (a split resets the failure factor of its elements)
+        if "crack_face" not in mesh.point_data:
+            raise PlotError("the frames have no point field 'crack_face': the run inserted no cracks")
+        nodes = np.unique(cells[mine])
+        centre = 1e3 * mesh.points[nodes[np.asarray(mesh.point_data["crack_face"]).ravel()[nodes] > 0], :2]
+    else:
+        failed = mine & (np.asarray(mesh.cell_data["failure_factor"][0]).ravel() >= args.level)
+        centre = 1e3 * mesh.points[cells[failed]].mean(axis=1)[:, :2]
+    where = np.column_stack([centre[:, 0], 1e3 * top - centre[:, 1]])
+    radius = 0.0
+    if "contact_pressure" in mesh.point_data:
+        nodes = np.unique(cells[mine])
+        pressed = nodes[(np.asarray(mesh.point_data["contact_pressure"]).ravel()[nodes] > 0)
+                        & (1e3 * (top - mesh.points[nodes, 1]) < args.bin)]
+        radius = float(1e3 * mesh.points[pressed, 0].max()) if pressed.size else 0.0
+    return where[where[:, 0] <= args.reach], radius
+
+
+def cone_fit(failed, args):
+    """Least-squares line r = r0 + z cot(alpha) through the outermost failed cell of each depth bin
+    over the first `depth` mm: (alpha in degrees to the surface, r0 in mm, bins used), or None
+    when fewer than half the bins hold a failed cell."""
+    bins = int(round(args.depth / args.bin))
+    z, r = [], []
+    for j in range(bins):
+        inside = (failed[:, 1] >= j * args.bin if j else failed[:, 1] > -args.bin) & (failed[:, 1] < (j + 1) * args.bin)
+        if inside.any():
+            outermost = np.argmax(np.where(inside, failed[:, 0], -np.inf))
+            z.append(max(failed[outermost, 1], 0.0))
+            r.append(failed[outermost, 0])
+    if len(z) < max(2, bins // 2) or z[-1] < args.depth - 2 * args.bin:
+        return None
+    slope, r0 = np.polyfit(z, r, 1)
+    return float(np.degrees(np.arctan2(1.0, slope))), float(r0), len(z)
+
+
+def measure_cone(args):
+    """The cone's angle and start against time, the ring's radius over the contact radius when it
+    formed, and the first failure inside the cone deeper than `depth` (the second cone)."""
+    folder = run_folder(args.input)
+    part, name = part_index(folder, args.part)
+    frames = read_pvd(run_frames(folder))
+    first = read_mesh(frames[0][1])
+    owned = np.unique(np.asarray(first.cells_dict["triangle"])[np.asarray(first.cell_data["part"][0]).ravel() == part])
+    top = float(first.points[owned, 1].max())
+    rows = []
+    for time, vtu in frames:
+        failed, radius = cone_frame(read_mesh(vtu), part, top, args)
+        rows.append((time, failed, radius, cone_fit(failed, args)))
+    return folder, name, rows
+
+
+def cone_summary(rows, args, start):
+    """The figures the issue asks of the cone, from the frames' rows."""
+    fitted = [(t, fit) for t, _, _, fit in rows if fit is not None and (args.until is None or t <= args.until * 1.001e-6)]
+    if not fitted:
+        raise PlotError(f"no frame has failed cells down to {args.depth:g} mm within {args.reach:g} mm of the axis")
+    angles = np.array([fit[0] for _, fit in fitted])
+    t_fit, (angle, r0, _) = fitted[-1]
+    figures = {"measured_frame": next(k for k, row in enumerate(rows) if row[0] == t_fit),"impact_time_us": None if start is None else start * 1e6,
+               "cone_formed_us": fitted[0][0] * 1e6, "measured_at_us": t_fit * 1e6,
+               "angle_deg": angle, "angle_median_deg": float(np.median(angles)),
+               "angle_range_deg": [float(angles.min()), float(angles.max())], "start_mm": r0}
+    for t, failed, radius, _ in rows:  # the ring: the first frame whose top bin failed at the cone's start
+        top_bin = failed[(failed[:, 1] < args.bin) & (np.abs(failed[:, 0] - r0) <= args.bin)]
+        if top_bin.size and radius > 0:
+            figures.update(ring_us=t * 1e6, contact_radius_mm=radius, ring_over_contact=r0 / radius)
+            break
+    for t, failed, _, _ in rows:  # the second cone: failure inside the first one, below its depth
+        cone_r = r0 + failed[:, 1] / np.tan(np.radians(angle))
+        deep = (failed[:, 1] >= args.depth) & (failed[:, 0] < cone_r - args.margin)
+        if deep.any():
+            figures["deep_inside_us"] = t * 1e6
+            break
+    return figures
+
+
+def plot_cone(args):
+    """Measure the Hertzian cone of an axisymmetric impact from the failure factor in the frames."""
+    folder, name, rows = measure_cone(args)
+    start = impact_time(folder)
+    figures = cone_summary(rows, args, start)
+    if args.table:
+        for t, failed, radius, fit in rows:
+            cone = f"{fit[0]:5.1f} deg from r = {fit[1]:6.3f} mm" if fit else "-"
+            print(f"{t * 1e6:7.3f} us  contact radius {radius:6.3f} mm  failed cells {len(failed):6d}  cone {cone}")
+    after = "" if start is None else f" ({figures['measured_at_us'] - start * 1e6:.2f} µs after impact)"
+    print(f"{folder}, part {name}: cone over the first {args.depth:g} mm at {figures['measured_at_us']:.2f} µs{after}: "
+          f"{figures['angle_deg']:.1f}° to the surface from r = {figures['start_mm']:.2f} mm; "
+          f"{figures['angle_range_deg'][0]:.1f}–{figures['angle_range_deg'][1]:.1f}° (median "
+          f"{figures['angle_median_deg']:.1f}°) since it reached that depth at {figures['cone_formed_us']:.2f} µs")
+    if "ring_us" in figures:
+        print(f"  ring at the cone's start first failed at {figures['ring_us']:.2f} µs, contact radius then "
+              f"{figures['contact_radius_mm']:.3f} mm: {figures['ring_over_contact']:.2f} contact radii")
+    if "deep_inside_us" in figures:
+        print(f"  first failure inside the cone deeper than {args.depth:g} mm at {figures['deep_inside_us']:.2f} µs")
+    if args.json:
+        with open(args.json, "w") as stream:
+            json.dump(figures, stream, indent=1)
+    failed = rows[figures.pop("measured_frame")][1]
+    figure, axes = plt.subplots(figsize=(7.5, 4.5))
+    axes.scatter(failed[:, 0], -failed[:, 1], s=1, color="tab:red",
+                 label=f"crack-face nodes of {name}" if args.cracks else f"failed cells of {name}")
+    z = np.linspace(0, args.depth, 2)
+    axes.plot(figures["start_mm"] + z / np.tan(np.radians(figures["angle_deg"])), -z, color="k", lw=2,
+              label=f"cone fit {figures['angle_deg']:.1f}°")
+    axes.set_aspect("equal")
+    axes.set_xlabel("r [mm]")
+    axes.set_ylabel("height above the surface [mm]")
+    axes.legend(fontsize=8, loc="lower right")
+    axes.set_title(args.title or f"{run_name(args.input)}: cone at {figures['measured_at_us']:.2f} µs")
+    save(figure, args.output or os.path.join(folder, "cone.png"), args.dpi)
+
+
 def save(figure, output, dpi):
     figure.tight_layout()
     try:
@@ -1816,6 +1969,35 @@ particle part, or --part), with --frame (default last).""")
     speeds.add_argument("--title", help="title (default: the run folder's name)")
     speeds.add_argument("--dpi", type=int, default=150, help="resolution (default: %(default)s)")
     speeds.set_defaults(run=plot_crack_speeds)
+    cone = commands.add_parser(
+        "cone", help="angle and start of the Hertzian cone of an axisymmetric impact",
+        description="""The cone crack of an axisymmetric impact, from the frames' failure factor
+(failed: F >= --level), or with --cracks from the nodes on crack faces. In each frame the outermost failed cell of the part in each depth bin
+over the first --depth mm under its top surface (its highest initial point) is found, and a
+line r = r0 + z cot(alpha) fitted through them: alpha is the cone's angle to the surface, r0
+its start. Also: the contact radius (the part's surface nodes with contact pressure), the ring
+(the first frame in which the top bin failed within a bin of r0, and r0 over the contact radius
+then), and the first failure deeper than --depth and more than --margin inside the cone (a
+second cone). The impact
+time is the first history row with a contact force. Frames every 0.1 µs or closer resolve the
+times.""")
+    cone.add_argument("input", metavar="RUN", help="run folder")
+    cone.add_argument("--part", help="the impacted part (default: the first in resolved.yaml)")
+    cone.add_argument("--level", type=float, default=1.0, help="failure factor of a failed cell (default: %(default)s)")
+    cone.add_argument("--cracks", action="store_true",
+                      help="a run with discrete cracks: the crack faces' nodes instead of failed cells")
+    cone.add_argument("--depth", type=float, default=2.0, help="depth of the fit [mm] (default: %(default)s)")
+    cone.add_argument("--bin", type=float, default=0.2, help="depth bin [mm] (default: %(default)s)")
+    cone.add_argument("--margin", type=float, default=0.5,
+                      help="how far inside the cone a deeper failure must lie [mm] (default: %(default)s)")
+    cone.add_argument("--reach", type=float, default=1e9, help="ignore cells farther from the axis [mm]")
+    cone.add_argument("--until", type=float, default=None, help="last frame time to use [µs] (default: all)")
+    cone.add_argument("--table", action="store_true", help="print the contact radius and the fit of every frame")
+    cone.add_argument("--json", help="also write the figures to this JSON file")
+    cone.add_argument("-o", "--output", help="image file (default: RUN/cone.png)")
+    cone.add_argument("--title", help="title (default: the run folder's name)")
+    cone.add_argument("--dpi", type=int, default=150, help="resolution (default: %(default)s)")
+    cone.set_defaults(run=plot_cone)
     return parser.parse_args(argv)
 
 
