@@ -359,7 +359,7 @@ rebalanced("granular_rebalanced", granular, "granular_serial", "the settling gra
 
 # Comminution: the steel sphere on the alumina plate at 500 m/s (axisymmetric, 28 204 tri3 in
 # the plate), its cracks' small pieces and its crushed elements turned into debris particles, to
-# 0.2 us, when 54 particles have been made: each split and each conversion runs on the whole model,
+# 0.2 us, when 52 particles have been made: each split and each conversion runs on the whole model,
 # which is then cut anew; on 2 ranks, and on 3 rebalanced every 5 steps (the particles' contacts,
 # spread over the ranks, set the time-step note of summary.json and the checkpoint from 110 ns).
 comminution = os.path.join(source, "examples/sphere_on_alumina/sphere_on_alumina_500_debris.yaml")
