@@ -359,19 +359,19 @@ rebalanced("granular_rebalanced", granular, "granular_serial", "the settling gra
 
 # Comminution: the steel sphere on the alumina plate at 500 m/s (axisymmetric, 28 204 tri3 in
 # the plate), its cracks' small pieces and its crushed elements turned into debris particles, to
-# 0.2 us, when 52 particles have been made: each split and each conversion runs on the whole model,
+# 0.25 us, when 74 particles have been made: each split and each conversion runs on the whole model,
 # which is then cut anew; on 2 ranks, and on 3 rebalanced every 5 steps (the particles' contacts,
-# spread over the ranks, set the time-step note of summary.json and the checkpoint from 110 ns).
+# spread over the ranks, set the time-step note of summary.json and the checkpoint from 109 ns).
 comminution = os.path.join(source, "examples/sphere_on_alumina/sphere_on_alumina_500_debris.yaml")
-to_200ns = ["--set", "analysis.end_time=0.2us"]
-serial_then_ranks("comminution", comminution, (2,), "the sphere on alumina, comminution", to_200ns)
+to_250ns = ["--set", "analysis.end_time=0.25us"]
+serial_then_ranks("comminution", comminution, (2,), "the sphere on alumina, comminution", to_250ns)
 rebalanced("comminution_rebalanced", comminution, "comminution_serial", "the sphere on alumina, comminution", 5, 3,
-           to_200ns, ranks=3)
+           to_250ns, ranks=3)
 with open("comminution_serial/history.csv") as f:
     rows = f.read().splitlines()
     header = rows[0].split(",")
     if float(rows[-1].split(",")[header.index("particles_plate_particles")]) < 40:
-        failures.append("the sphere on alumina: fewer than 40 debris particles by 0.2 us: the case no longer tests comminution")
+        failures.append("the sphere on alumina: fewer than 40 debris particles by 0.25 us: the case no longer tests comminution")
 
 # Averaged nodal pressure with erosion by damage: the outer ghost rings' state must not decide
 # erosion, refused.
