@@ -10,9 +10,11 @@
 R = 25; H = 8.6;           // plate radius and thickness
 Rs = 2.5;                  // sphere radius
 gap = 0.03;                // lands at 0.1 us at 300 m/s
-h = 0.1;                   // element size near the impact
-hc = 0.5;                  // element size at the rim
-hs = 0.0735;               // element size in the sphere (0.735 h, as in the Hertz test)
+// The element sizes: a file that sets them first and then Includes this one keeps its own
+// (sphere_on_alumina_adaptive.geo).
+DefineConstant[ h = 0.1 ];         // element size near the impact
+DefineConstant[ hc = 0.5 ];        // element size at the rim
+DefineConstant[ hs = 0.0735 ];     // element size in the sphere (0.735 h, as in the Hertz test)
 rf = 12;                   // radius of the fine zone
 Mesh.Algorithm = 6;
 

@@ -206,7 +206,18 @@ void RemeshEvent::run(Model& model, EventContext& context) {
                        ": booked as remesh, but look at the frames around it");
     if (context.part_stored && p < context.part_stored->size()) (*context.part_stored)[p] -= elastic;
   }
-  if (changed) context.topology.changed(model, Remap{});
+  if (!changed) return;
+  rebuild_penalty(model.contact);
+  context.topology.changed(model, Remap{});
+}
+
+void RemeshEvent::rebuild_penalty(ContactState& contact) {
+  // The contact penalty is built on the element step of the first step with contact and on the
+  // masses of the nodes it joins (docs/theory/contact.md, "Normal force: penalty"). New elements
+  // have their own step: kept, the old one would make the springs of a refined surface as much
+  // softer as its nodes are lighter, and bodies in contact would sink into each other. The next
+  // step builds it again.
+  contact.penalty_time_step.clear();
 }
 
 std::vector<std::string> RemeshEvent::take_notes() {

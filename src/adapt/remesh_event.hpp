@@ -84,6 +84,9 @@ class RemeshEvent final : public StepEvent {
   std::vector<double> target_size(const Model& model, std::size_t part) const;
 
  private:
+  /// After a remesh: the contact penalty built again from the new elements' step.
+  static void rebuild_penalty(ContactState& contact);
+
   /// Why a part is due: empty `why` if it is not; `shape` when its elements' shape alone is the
   /// reason (a patch around them may do).
   struct Due {
