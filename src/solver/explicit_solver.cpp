@@ -556,7 +556,13 @@ void ExplicitSolver::advance() {
   run_events(StepEvent::Phase::after_forces);
   AdvanceCoefficients c;
   c.dt_next = state_.dt_next;
-  c.dt_n = state_.step == 0 ? 0.5 * c.dt_next : 0.5 * (state_.dt_half + c.dt_next);
+  // Where the stable step has fallen by more than half since the last increment (a remesh that
+  // refined the mesh), the last increment counts as the next one: the velocity update spans
+  // ½(Δt_n−1/2 + Δt_n+1/2), and with the old, long increment it would kick the new, stiffer
+  // elements and contact springs past their stable step once. The velocities are then taken
+  // half a new step, not half an old one, before t_n (docs/theory/time_integration_and_energy.md).
+  const double last = state_.dt_half > 2.0 * c.dt_next ? c.dt_next : state_.dt_half;
+  c.dt_n = state_.step == 0 ? 0.5 * c.dt_next : 0.5 * (last + c.dt_next);
   // Central difference with mass-proportional damping taken at the mid-point:
   // m (v+ − v−)/Δt = F − α m (v+ + v−)/2  ⇒  v+ = ((1 − αΔt/2) v− + Δt F/m) / (1 + αΔt/2).
   c.alpha = settings_.mass_damping;
@@ -566,7 +572,7 @@ void ExplicitSolver::advance() {
   // Work of a nodal force F_n is split at t_n: ½Δt_n−1/2 F_n·v_n−1/2 closes the interval
   // [t_n−1/2, t_n] and ½Δt_n+1/2 F_n·v_n+1/2 opens [t_n, t_n+1/2]. The second half is booked
   // next step, so that the reported energies all end at t_n, where the element stress work ends.
-  c.back = 0.5 * state_.dt_half;
+  c.back = 0.5 * last;
   c.ahead = 0.5 * c.dt_next;
   AdvanceSums sums;
   apply_prescribed_velocities(c, sums.external_back, sums.external_ahead);
