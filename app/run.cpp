@@ -1379,7 +1379,7 @@ class RunDriver {
       const double dt_used = s.dt_half;
       // Before advance(): its events (crack growth) may rebuild the contact system, which
       // clears the forces it applied in this step.
-      const double dt_n = step == 0 ? 0.5 * s.dt_next : 0.5 * (s.dt_half + s.dt_next);
+      const double dt_n = solver_.velocity_step();
       book_forces(dt_n);
       update_automata_contacts_across_ranks();  // where the solver's event would have run
       solver_.advance();

@@ -131,6 +131,9 @@ class ExplicitSolver : private TopologyListener {
   const ParticleContact* particle_contact() const { return particle_contact_; }
 
   bool finished() const;
+  /// Δt_n of the coming advance: the span of its velocity update, ½(Δt_n−1/2 + Δt_n+1/2) (half
+  /// Δt_1/2 in the first step), over which the work of the step's forces is booked.
+  double velocity_step() const;
   const SolverState& state() const { return state_; }
   SolverState& state() { return state_; }
   const SolverSettings& settings() const { return settings_; }
@@ -153,6 +156,8 @@ class ExplicitSolver : private TopologyListener {
   void book_particle_sums(const std::vector<ExactSum>& sums);
   double choose_time_step(double element_dt, double particle_dt);
   /// External work of the prescribed velocities of the nodes and particles (back, ahead halves).
+  /// Δt_n−1/2 as the velocity update takes it (velocity_step).
+  double last_increment() const;
   void apply_prescribed_velocities(const AdvanceCoefficients& c, ExactSum& external_back, ExactSum& external_ahead);
   /// The work of the contact forces and of their dashpots on the nodes over the halves of the
   /// step, summed exactly over the owned nodes (a decomposed run sums them over the ranks).
