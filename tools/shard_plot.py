@@ -864,13 +864,13 @@ def measure_cone(args):
 
 
 def cone_summary(rows, args, start):
-    """The figures the issue asks of the cone, from the frames' rows."""
+    """The cone's figures from the frames' rows, and the index of the frame they are measured at."""
     fitted = [(t, fit) for t, _, _, fit in rows if fit is not None and (args.until is None or t <= args.until * 1.001e-6)]
     if not fitted:
         raise PlotError(f"no frame has failed cells down to {args.depth:g} mm within {args.reach:g} mm of the axis")
     angles = np.array([fit[0] for _, fit in fitted])
     t_fit, (angle, r0, _) = fitted[-1]
-    figures = {"measured_frame": next(k for k, row in enumerate(rows) if row[0] == t_fit),"impact_time_us": None if start is None else start * 1e6,
+    figures = {"impact_time_us": None if start is None else start * 1e6,
                "cone_formed_us": fitted[0][0] * 1e6, "measured_at_us": t_fit * 1e6,
                "angle_deg": angle, "angle_median_deg": float(np.median(angles)),
                "angle_range_deg": [float(angles.min()), float(angles.max())], "start_mm": r0}
@@ -885,14 +885,14 @@ def cone_summary(rows, args, start):
         if deep.any():
             figures["deep_inside_us"] = t * 1e6
             break
-    return figures
+    return figures, next(k for k, row in enumerate(rows) if row[0] == t_fit)
 
 
 def plot_cone(args):
     """Measure the Hertzian cone of an axisymmetric impact from the failure factor in the frames."""
     folder, name, rows = measure_cone(args)
     start = impact_time(folder)
-    figures = cone_summary(rows, args, start)
+    figures, measured = cone_summary(rows, args, start)
     if args.table:
         for t, failed, radius, fit in rows:
             cone = f"{fit[0]:5.1f} deg from r = {fit[1]:6.3f} mm" if fit else "-"
@@ -910,7 +910,7 @@ def plot_cone(args):
     if args.json:
         with open(args.json, "w") as stream:
             json.dump(figures, stream, indent=1)
-    failed = rows[figures.pop("measured_frame")][1]
+    failed = rows[measured][1]
     figure, axes = plt.subplots(figsize=(7.5, 4.5))
     axes.scatter(failed[:, 0], -failed[:, 1], s=1, color="tab:red",
                  label=f"crack-face nodes of {name}" if args.cracks else f"failed cells of {name}")
@@ -1972,15 +1972,15 @@ particle part, or --part), with --frame (default last).""")
     cone = commands.add_parser(
         "cone", help="angle and start of the Hertzian cone of an axisymmetric impact",
         description="""The cone crack of an axisymmetric impact, from the frames' failure factor
-(failed: F >= --level), or with --cracks from the nodes on crack faces. In each frame the outermost failed cell of the part in each depth bin
-over the first --depth mm under its top surface (its highest initial point) is found, and a
-line r = r0 + z cot(alpha) fitted through them: alpha is the cone's angle to the surface, r0
-its start. Also: the contact radius (the part's surface nodes with contact pressure), the ring
-(the first frame in which the top bin failed within a bin of r0, and r0 over the contact radius
-then), and the first failure deeper than --depth and more than --margin inside the cone (a
-second cone). The impact
-time is the first history row with a contact force. Frames every 0.1 µs or closer resolve the
-times.""")
+(failed: F >= --level), or with --cracks from the nodes on crack faces. In each frame the
+outermost failed cell of the part in each depth bin over the first --depth mm under its top
+surface (its highest initial point) is found, and a line r = r0 + z cot(alpha) fitted through
+them: alpha is the cone's angle to the surface, r0 its start; the figures are those of the last
+frame (or the last up to --until). Also: the contact radius (the part's surface nodes with
+contact pressure), the ring (the first frame in which the top bin failed within a bin of r0, and
+r0 over the contact radius then), and the first failure deeper than --depth and more than
+--margin inside the cone (a second cone). The impact time is the first history row with a
+contact force. Frames every 0.1 µs or closer resolve the times.""")
     cone.add_argument("input", metavar="RUN", help="run folder")
     cone.add_argument("--part", help="the impacted part (default: the first in resolved.yaml)")
     cone.add_argument("--level", type=float, default=1.0, help="failure factor of a failed cell (default: %(default)s)")
