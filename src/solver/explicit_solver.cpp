@@ -553,15 +553,17 @@ void ExplicitSolver::book_contact_work(const AdvanceCoefficients& c, ContactWork
 }
 
 double ExplicitSolver::last_increment() const {
-  // Where a remesh has cut the stable step by more than half (the new elements smaller, their
-  // nodes lighter), the last increment counts as the next one: the velocity update spans
-  // ½(Δt_n−1/2 + Δt_n+1/2), and with the old, long increment it would kick the new elements and
-  // contact springs past their stable step once. The velocities are then taken half a new step,
-  // not half an old one, before t_n (docs/theory/time_integration_and_energy.md, section 1). Only
-  // in runs that remesh: elsewhere the step falls that fast only where particle contacts first
-  // engage, and those runs keep their bits.
+  // Where a remesh has cut the stable step of the elements and contact by more than half (the
+  // new elements smaller, their nodes lighter), the last increment counts as the next one: the
+  // velocity update spans ½(Δt_n−1/2 + Δt_n+1/2), and with the old, long increment it would kick
+  // the new elements and contact springs past their stable step once. The velocities are then
+  // taken half a new step, not half an old one, before t_n (docs/theory/
+  // time_integration_and_energy.md, section 1). The stable step, not the increment, decides: the
+  // last increment is cut short to land on the end time. Only in runs that remesh, so that runs
+  // without keep their bits.
   const bool remeshing = !model_.remesh_count.empty();
-  return remeshing && state_.dt_half > 2.0 * state_.dt_next ? state_.dt_next : state_.dt_half;
+  const bool fallen = state_.dt_half > 2.0 * settings_.time_step_safety * state_.stable_dt;
+  return remeshing && fallen ? state_.dt_next : state_.dt_half;
 }
 
 double ExplicitSolver::velocity_step() const {

@@ -155,9 +155,9 @@ class ExplicitSolver : private TopologyListener {
   /// Books the particle sums add_particle_forces gathered (summed over the ranks).
   void book_particle_sums(const std::vector<ExactSum>& sums);
   double choose_time_step(double element_dt, double particle_dt);
-  /// External work of the prescribed velocities of the nodes and particles (back, ahead halves).
   /// Δt_n−1/2 as the velocity update takes it (velocity_step).
   double last_increment() const;
+  /// External work of the prescribed velocities of the nodes and particles (back, ahead halves).
   void apply_prescribed_velocities(const AdvanceCoefficients& c, ExactSum& external_back, ExactSum& external_ahead);
   /// The work of the contact forces and of their dashpots on the nodes over the halves of the
   /// step, summed exactly over the owned nodes (a decomposed run sums them over the ranks).
