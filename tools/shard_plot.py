@@ -852,20 +852,31 @@ def measure_cone(args):
     formed, and the first failure inside the cone deeper than `depth` (the second cone)."""
     folder = run_folder(args.input)
     part, name = part_index(folder, args.part)
-    frames = read_pvd(run_frames(folder))
+    pvd = os.path.join(folder, "frames.pvd")
+    if not os.path.isfile(pvd):
+        raise PlotError(f"no such file: {pvd} (the cone is measured on the frames of a mesh)")
+    frames = read_pvd(pvd)
     first = read_mesh(frames[0][1])
+    if "triangle" not in first.cells_dict or "part" not in first.cell_data:
+        raise PlotError(f"{frames[0][1]}: the cone is measured on triangles with the cell field 'part' "
+                        "(output.fields: add part)")
     owned = np.unique(np.asarray(first.cells_dict["triangle"])[np.asarray(first.cell_data["part"][0]).ravel() == part])
-    top = float(first.points[owned, 1].max())
+    if owned.size == 0:
+        raise PlotError(f"part '{name}' has no triangles in the first frame")
+    # The top face and the thickness, as the part was made.
+    top, thickness = float(first.points[owned, 1].max()), float(np.ptp(first.points[owned, 1]))
     rows = []
     for time, vtu in frames:
+        if args.until is not None and time > args.until * 1.001e-6:
+            break
         failed, radius = cone_frame(read_mesh(vtu), part, top, args)
         rows.append((time, failed, radius, cone_fit(failed, args)))
-    return folder, name, rows
+    return folder, name, rows, 1e3 * thickness
 
 
-def cone_summary(rows, args, start):
+def cone_summary(rows, args, start, thickness):
     """The cone's figures from the frames' rows, and the index of the frame they are measured at."""
-    fitted = [(t, fit) for t, _, _, fit in rows if fit is not None and (args.until is None or t <= args.until * 1.001e-6)]
+    fitted = [(t, fit) for t, _, _, fit in rows if fit is not None]
     if not fitted:
         raise PlotError(f"no frame has failed cells down to {args.depth:g} mm within {args.reach:g} mm of the axis")
     angles = np.array([fit[0] for _, fit in fitted])
@@ -880,8 +891,9 @@ def cone_summary(rows, args, start):
             figures.update(ring_us=t * 1e6, contact_radius_mm=radius, ring_over_contact=r0 / radius)
             break
     for t, failed, _, _ in rows:  # the second cone: failure inside the first one, below its depth
+        # (and in the upper half of the part: failure near the back face is spall, not a cone)
         cone_r = r0 + failed[:, 1] / np.tan(np.radians(angle))
-        deep = (failed[:, 1] >= args.depth) & (failed[:, 0] < cone_r - args.margin)
+        deep = (failed[:, 1] >= args.depth) & (failed[:, 1] < 0.5 * thickness) & (failed[:, 0] < cone_r - args.margin)
         if deep.any():
             figures["deep_inside_us"] = t * 1e6
             break
@@ -890,9 +902,9 @@ def cone_summary(rows, args, start):
 
 def plot_cone(args):
     """Measure the Hertzian cone of an axisymmetric impact from the failure factor in the frames."""
-    folder, name, rows = measure_cone(args)
+    folder, name, rows, thickness = measure_cone(args)
     start = impact_time(folder)
-    figures, measured = cone_summary(rows, args, start)
+    figures, measured = cone_summary(rows, args, start, thickness)
     if args.table:
         for t, failed, radius, fit in rows:
             cone = f"{fit[0]:5.1f} deg from r = {fit[1]:6.3f} mm" if fit else "-"
@@ -906,7 +918,8 @@ def plot_cone(args):
         print(f"  ring at the cone's start first failed at {figures['ring_us']:.2f} µs, contact radius then "
               f"{figures['contact_radius_mm']:.3f} mm: {figures['ring_over_contact']:.2f} contact radii")
     if "deep_inside_us" in figures:
-        print(f"  first failure inside the cone deeper than {args.depth:g} mm at {figures['deep_inside_us']:.2f} µs")
+        print(f"  first failure inside the cone deeper than {args.depth:g} mm (in the upper half of the part) at "
+              f"{figures['deep_inside_us']:.2f} µs")
     if args.json:
         with open(args.json, "w") as stream:
             json.dump(figures, stream, indent=1)
@@ -1978,9 +1991,10 @@ surface (its highest initial point) is found, and a line r = r0 + z cot(alpha) f
 them: alpha is the cone's angle to the surface, r0 its start; the figures are those of the last
 frame (or the last up to --until). Also: the contact radius (the part's surface nodes with
 contact pressure), the ring (the first frame in which the top bin failed within a bin of r0, and
-r0 over the contact radius then), and the first failure deeper than --depth and more than
---margin inside the cone (a second cone). The impact time is the first history row with a
-contact force. Frames every 0.1 µs or closer resolve the times.""")
+r0 over the contact radius then), and the first failure deeper than --depth, more than --margin
+inside the cone and in the part's upper half (a second cone; deeper down is spall). Frames after
+--until are not read. The impact time is the first history row with a contact force. Frames
+every 0.1 µs or closer resolve the times.""")
     cone.add_argument("input", metavar="RUN", help="run folder")
     cone.add_argument("--part", help="the impacted part (default: the first in resolved.yaml)")
     cone.add_argument("--level", type=float, default=1.0, help="failure factor of a failed cell (default: %(default)s)")

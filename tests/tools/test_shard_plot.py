@@ -74,8 +74,9 @@ def history_column(folder, name):
 def write_cone_run(folder, angle, start, contact):
     """A run folder of three frames of a plate 10 mm wide and 5 mm deep (axisymmetric, triangles of
     0.05 mm) whose failed cells (failure factor 1) lie along a cone r = start + z cot(angle) from
-    1 µs on, with a deep failure inside it at 2 µs; the surface nodes within `contact` mm of the
-    axis carry contact pressure from 0.5 µs on, and the history has a contact force from 0.5 µs."""
+    1 µs on, with spall at the back face from 1 µs and a failure inside the cone 2.3 mm deep at
+    2 µs; the surface nodes within `contact` mm of the axis carry contact pressure from 0.5 µs on,
+    and the history has a contact force from 0.5 µs."""
     os.makedirs(folder)
     n, m, h = 200, 100, 0.05e-3
     x, y = numpy.meshgrid(numpy.arange(n + 1) * h, -numpy.arange(m + 1) * h, indexing="ij")
@@ -85,11 +86,12 @@ def write_cone_run(folder, angle, start, contact):
                           numpy.column_stack([corner, corner + m + 2, corner + 1])])
     centre = points[cells].mean(axis=1) * 1e3
     cone = numpy.abs(centre[:, 0] - start - (-centre[:, 1]) / math.tan(math.radians(angle))) < 0.06
-    deep = numpy.hypot(centre[:, 0] - 1.0, centre[:, 1] + 3.0) < 0.1
+    deep = numpy.hypot(centre[:, 0] - 1.0, centre[:, 1] + 2.3) < 0.1
+    spall = (centre[:, 0] < 1.0) & (centre[:, 1] < -4.8)
     surface = (points[:, 1] == 0) & (points[:, 0] * 1e3 <= contact + 1e-9)
     on_cone = numpy.abs(points[:, 0] * 1e3 - start + points[:, 1] * 1e3 / math.tan(math.radians(angle))) < 0.03
     frames = []
-    for k, (time, failed, pressed) in enumerate([(0.0, [], False), (1e-6, [cone], True), (2e-6, [cone, deep], True)]):
+    for k, (time, failed, pressed) in enumerate([(0.0, [], False), (1e-6, [cone, spall], True), (2e-6, [cone, spall, deep], True)]):
         factor = numpy.zeros(len(cells))
         for mask in failed:
             factor[mask] = 1.0
@@ -110,7 +112,8 @@ def write_cone_run(folder, angle, start, contact):
 
 def check_cone(plot, work):
     """cone on frames drawn here: a 30° cone from r = 2 mm, the contact 1.6 mm wide when it
-    forms, a failure inside the cone 3 mm deep at 2 µs."""
+    forms, spall at the back face from 1 µs (not a second cone), a failure inside the cone 2.3 mm
+    deep at 2 µs (one)."""
     folder = os.path.join(work, "cone")
     write_cone_run(folder, 30.0, 2.0, 1.6)
     figures_json = os.path.join(work, "cone.json")

@@ -9,7 +9,8 @@ Asserted (met):
   1 470 m/s at 500 m/s while the sphere's surface nodes started at the plate's radii);
 - the energy balance within 1 % at every history row;
 - at 300 m/s the cone's angle to the surface, fitted over its first 2 mm at 6 µs, 26 ± 4°.
-Printed and compared in docs/theory/rotating_crack.md, not asserted (not met):
+Printed, and compared in examples/sphere_on_alumina/README.md and docs/testing.md, not asserted
+(not met):
 - the 500 m/s cone at 26 ± 4° and not shallower than the 300 m/s one;
 - the ring at 1.0–1.3 contact radii;
 - no failure inside the cone below its first 2 mm before the back-face reflection returns,
