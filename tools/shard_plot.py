@@ -811,10 +811,10 @@ def cone_frame(mesh, part, top, args):
         if name not in mesh.cell_data:
             raise PlotError(f"the frames have no cell field '{name}' (output.fields: add state and part)")
     mine = np.asarray(mesh.cell_data["part"][0]).ravel() == part
+    nodes = np.unique(cells[mine])
     if args.cracks:  # the crack faces' nodes (a split resets the failure factor of its elements)
         if "crack_face" not in mesh.point_data:
             raise PlotError("the frames have no point field 'crack_face': the run inserted no cracks")
-        nodes = np.unique(cells[mine])
         centre = 1e3 * mesh.points[nodes[np.asarray(mesh.point_data["crack_face"]).ravel()[nodes] > 0], :2]
     else:
         failed = mine & (np.asarray(mesh.cell_data["failure_factor"][0]).ravel() >= args.level)
@@ -822,7 +822,6 @@ def cone_frame(mesh, part, top, args):
     where = np.column_stack([centre[:, 0], 1e3 * top - centre[:, 1]])
     radius = 0.0
     if "contact_pressure" in mesh.point_data:
-        nodes = np.unique(cells[mine])
         pressed = nodes[(np.asarray(mesh.point_data["contact_pressure"]).ravel()[nodes] > 0)
                         & (1e3 * (top - mesh.points[nodes, 1]) < args.bin)]
         radius = float(1e3 * mesh.points[pressed, 0].max()) if pressed.size else 0.0
