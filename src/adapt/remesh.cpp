@@ -235,6 +235,12 @@ struct Domain {
   std::vector<std::int32_t> loop_body;      ///< per domain loop
   std::vector<std::vector<std::int32_t>> loop_points;
   std::vector<Slit> slits;
+  /// Old elements of the bodies kept as they are (patches where a boundary crosses itself, which
+  /// Gmsh cannot mesh: make_new_mesh), in the order their triangles follow Gmsh's, and the loop of
+  /// each one's body.
+  std::vector<std::int32_t> kept_elements, kept_loop;
+  std::vector<std::int32_t> kept_triangles;  ///< their corners as domain points, three each
+  std::size_t kept_bodies = 0;
 };
 
 void point_position(const double* X, const BoundaryPoint& bp, double* out) {
@@ -244,7 +250,9 @@ void point_position(const double* X, const BoundaryPoint& bp, double* out) {
 
 void shift_lips(const std::vector<char>& crack_face, Domain& dom, double shift) {
   std::vector<double> moved = dom.planar.xy;
-  for (const auto& loop : dom.loop_points) {
+  for (std::size_t l = 0; l < dom.loop_points.size(); ++l) {
+    const auto& loop = dom.loop_points[l];
+    if (dom.planar.loops[l].empty()) continue;  // a kept body's: Gmsh does not see it
     const std::size_t n = loop.size();
     for (std::size_t i = 0; i < n; ++i) {
       const BoundaryPoint& bp = dom.points[loop[i]];
@@ -345,9 +353,103 @@ void collapse_closed_cracks(const Model& model, Domain& dom, std::vector<std::in
   if (loop.size() < 3) loop.clear();
 }
 
-Domain build_domain(const Model& model, const Part& part, const OldPart& old, const std::vector<char>& crack_face,
-                    const std::set<std::int32_t>& kept, const std::vector<double>& size, const RemeshSettings& s,
-                    double closed_lips) {
+/// The patch's connected pieces (elements sharing a node), each in increasing order.
+std::vector<std::vector<std::int32_t>> patch_pieces(const Part& part, const std::vector<std::int32_t>& patch,
+                                                    std::size_t node_count) {
+  std::vector<std::vector<std::int32_t>> at_node(node_count);
+  for (std::size_t i = 0; i < patch.size(); ++i)
+    for (int k = 0; k < 3; ++k) at_node[part.connectivity[3 * patch[i] + k]].push_back(static_cast<std::int32_t>(i));
+  std::vector<std::int32_t> piece(patch.size(), -1);
+  std::vector<std::vector<std::int32_t>> pieces;
+  for (std::size_t seed = 0; seed < patch.size(); ++seed) {
+    if (piece[seed] >= 0) continue;
+    const std::int32_t id = static_cast<std::int32_t>(pieces.size());
+    std::vector<std::int32_t> stack{static_cast<std::int32_t>(seed)}, members;
+    piece[seed] = id;
+    while (!stack.empty()) {
+      const std::int32_t i = stack.back();
+      stack.pop_back();
+      members.push_back(patch[i]);
+      for (int k = 0; k < 3; ++k)
+        for (const std::int32_t j : at_node[part.connectivity[3 * patch[i] + k]])
+          if (piece[j] < 0) {
+            piece[j] = id;
+            stack.push_back(j);
+          }
+    }
+    std::sort(members.begin(), members.end());
+    pieces.push_back(std::move(members));
+  }
+  return pieces;
+}
+
+/// Whether segments ab and cd cross at a point inside both (touching, or a shared end, is not).
+bool segments_cross(const double* a, const double* b, const double* c, const double* d) {
+  const double d1 = twice_area(c, d, a), d2 = twice_area(c, d, b), d3 = twice_area(a, b, c), d4 = twice_area(a, b, d);
+  return ((d1 > 0 && d2 < 0) || (d1 < 0 && d2 > 0)) && ((d3 > 0 && d4 < 0) || (d3 < 0 && d4 > 0));
+}
+
+/// Per body, the old nodes at the ends of the segments of its loops and lines in the domain that
+/// cross one another (a new point stands for the two old nodes of its segment): lips pressed into
+/// each other, a fragment folded over itself. Gmsh cannot recover such a boundary. Segments are
+/// sorted by their smallest x, each compared with those whose x-range meets its own.
+std::vector<std::vector<std::int32_t>> crossing_nodes(const Domain& dom, std::size_t bodies) {
+  const PlanarDomain& d = dom.planar;
+  struct Segment {
+    std::int32_t a, b, body;
+    double x0, x1, y0, y1;
+  };
+  std::vector<Segment> segments;
+  auto add = [&](std::int32_t a, std::int32_t b, std::int32_t body) {
+    const double* p = &d.xy[2 * a];
+    const double* q = &d.xy[2 * b];
+    segments.push_back({a, b, body, std::min(p[0], q[0]), std::max(p[0], q[0]), std::min(p[1], q[1]), std::max(p[1], q[1])});
+  };
+  for (std::size_t l = 0; l < d.loops.size(); ++l)
+    for (std::size_t i = 0; i < d.loops[l].size() && d.loops[l].size() >= 3; ++i)
+      add(d.loops[l][i], d.loops[l][(i + 1) % d.loops[l].size()], d.loop_body[l]);
+  for (std::size_t k = 0; k < d.lines.size(); ++k)
+    for (std::size_t i = 0; i + 1 < d.lines[k].size(); ++i) add(d.lines[k][i], d.lines[k][i + 1], d.line_body[k]);
+  std::sort(segments.begin(), segments.end(), [](const Segment& u, const Segment& v) {
+    return u.x0 < v.x0 || (u.x0 == v.x0 && (u.a < v.a || (u.a == v.a && u.b < v.b)));
+  });
+  std::vector<std::vector<std::int32_t>> out(bodies);
+  auto note = [&](const Segment& u) {
+    for (const std::int32_t q : {u.a, u.b}) {
+      const BoundaryPoint& bp = dom.points[q];
+      if (bp.node >= 0) {
+        out[u.body].push_back(bp.node);
+      } else {
+        out[u.body].push_back(bp.a);
+        out[u.body].push_back(bp.b);
+      }
+    }
+  };
+  for (std::size_t i = 0; i < segments.size(); ++i) {
+    const Segment& u = segments[i];
+    for (std::size_t j = i + 1; j < segments.size() && segments[j].x0 <= u.x1; ++j) {
+      const Segment& v = segments[j];
+      if (v.body != u.body || v.y0 > u.y1 || v.y1 < u.y0) continue;
+      if (u.a == v.a || u.a == v.b || u.b == v.a || u.b == v.b) continue;
+      if (!segments_cross(&d.xy[2 * u.a], &d.xy[2 * u.b], &d.xy[2 * v.a], &d.xy[2 * v.b])) continue;
+      note(u);
+      note(v);
+    }
+  }
+  for (auto& nodes : out) {
+    std::sort(nodes.begin(), nodes.end());
+    nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+  }
+  return out;
+}
+
+/// The domain for Gmsh. `keep_body` marks the bodies kept as they are: their loops are their old
+/// nodes (for the facets), Gmsh does not see them, and their old triangles follow Gmsh's.
+/// `unsplit` marks the nodes whose boundary segments are kept as they are (crack faces, and the
+/// nodes a kept body shares with a remeshed one, so that the two still meet edge for edge).
+Domain build_domain(const Model& model, const Part& part, const OldPart& old, const std::vector<char>& unsplit,
+                    const std::vector<char>& keep_body, const std::set<std::int32_t>& kept,
+                    const std::vector<double>& size, const RemeshSettings& s, double closed_lips) {
   Domain dom;
   std::vector<int> visits(model.nodes.count(), 0);
   for (const BoundaryLoop& loop : old.loops)
@@ -356,7 +458,11 @@ Domain build_domain(const Model& model, const Part& part, const OldPart& old, co
   std::unordered_map<std::int32_t, std::int32_t> point_of_node;
   auto add_point = [&](const BoundaryPoint& bp) {
     if (bp.node >= 0)
-      if (const auto it = point_of_node.find(bp.node); it != point_of_node.end()) return it->second;
+      if (const auto it = point_of_node.find(bp.node); it != point_of_node.end()) {
+        // A node a kept body shares with a remeshed one comes first without a segment.
+        if (dom.points[it->second].segment.first < 0) dom.points[it->second].segment = bp.segment;
+        return it->second;
+      }
     const std::int32_t index = static_cast<std::int32_t>(dom.points.size());
     dom.points.push_back(bp);
     double x[2];
@@ -366,22 +472,50 @@ Domain build_domain(const Model& model, const Part& part, const OldPart& old, co
     if (bp.node >= 0) point_of_node.emplace(bp.node, index);
     return index;
   };
+  auto node_point = [&](std::int32_t n) {
+    BoundaryPoint bp;
+    bp.node = n;
+    return add_point(bp);
+  };
   for (std::size_t l = 0; l < old.loops.size(); ++l) {
-    const auto fixed = fixed_points(model, old, old.loops[l], crack_face, kept, visits, s.feature_angle);
     std::vector<std::int32_t> loop;
-    for (const BoundaryPoint& bp : resample_loop(model, old.loops[l], fixed, crack_face, size, s.chord_tolerance))
-      loop.push_back(add_point(bp));
-    collapse_closed_cracks(model, dom, loop, closed_lips);
-    dom.planar.loops.push_back(loop);
+    if (keep_body[old.loop_body[l]]) {
+      for (const std::int32_t n : old.loops[l].nodes) loop.push_back(node_point(n));
+      dom.planar.loops.emplace_back();
+    } else {
+      const auto fixed = fixed_points(model, old, old.loops[l], unsplit, kept, visits, s.feature_angle);
+      for (const BoundaryPoint& bp : resample_loop(model, old.loops[l], fixed, unsplit, size, s.chord_tolerance))
+        loop.push_back(add_point(bp));
+      collapse_closed_cracks(model, dom, loop, closed_lips);
+      dom.planar.line_body.resize(dom.slits.size(), old.loop_body[l]);
+      dom.planar.loops.push_back(loop);
+    }
     dom.loop_points.push_back(loop);
     dom.loop_body.push_back(old.loop_body[l]);
   }
+  dom.planar.loop_body = dom.loop_body;
   for (const std::int32_t n : embedded_nodes(model, part, old, kept)) {
-    BoundaryPoint bp;
-    bp.node = n;
-    dom.planar.embedded.push_back(add_point(bp));
+    if (keep_body[old.body_of_node[n]]) continue;
+    dom.planar.embedded.push_back(node_point(n));
+    dom.planar.embedded_body.push_back(old.body_of_node[n]);
+  }
+  for (std::size_t b = 0; b < old.bodies.size(); ++b) {
+    if (!keep_body[b]) continue;
+    ++dom.kept_bodies;
+    const auto first_loop = std::find(old.loop_body.begin(), old.loop_body.end(), static_cast<std::int32_t>(b));
+    for (const std::int32_t e : old.bodies[b]) {
+      for (int k = 0; k < 3; ++k) dom.kept_triangles.push_back(node_point(part.connectivity[3 * static_cast<std::size_t>(e) + k]));
+      dom.kept_elements.push_back(e);
+      dom.kept_loop.push_back(static_cast<std::int32_t>(first_loop - old.loop_body.begin()));
+    }
   }
   return dom;
+}
+
+/// Appends the kept bodies' old triangles to a mesh.
+void append_kept(const Domain& dom, Triangulation& mesh) {
+  mesh.triangles.insert(mesh.triangles.end(), dom.kept_triangles.begin(), dom.kept_triangles.end());
+  mesh.outer_loop.insert(mesh.outer_loop.end(), dom.kept_loop.begin(), dom.kept_loop.end());
 }
 
 /// The positions the new mesh's nodes will have: the domain's points where they really are
@@ -425,6 +559,7 @@ Triangulation mesh_domain(const Model& model, const std::vector<char>& crack_fac
       mesh.min_angle = smallest;
       mesh.xy = xy;
     }
+    if (mesh.ok()) append_kept(dom, mesh);  // after the angles: Gmsh's own are the mesh's quality
     if (mesh.ok() && mesh.min_angle >= kAcceptedAngle) {
       outcome.algorithm = a.algorithm;
       return mesh;
@@ -541,9 +676,11 @@ NewMesh map_new_mesh(const Model& model, const Part& part, const OldPart& old, c
     nm.node[i] = nn + static_cast<std::int32_t>(nm.born.size());
     nm.born.push_back(born);
   }
-  // Integration points, body by body: the new triangles' centroids among the old ones.
+  // Integration points, body by body: the new triangles' centroids among the old ones. A kept
+  // body's triangles (the last ones) are their old selves.
+  const std::size_t n_made = n_tri - dom.kept_elements.size();
   std::vector<std::vector<std::int32_t>> of_body(old.bodies.size());
-  for (std::size_t t = 0; t < n_tri; ++t) of_body[nm.body[t]].push_back(static_cast<std::int32_t>(t));
+  for (std::size_t t = 0; t < n_made; ++t) of_body[nm.body[t]].push_back(static_cast<std::int32_t>(t));
   std::vector<WeightedParents> per_body(old.bodies.size());
   for (std::size_t b = 0; b < old.bodies.size(); ++b) {
     std::vector<double> centroids;
@@ -558,6 +695,12 @@ NewMesh map_new_mesh(const Model& model, const Part& part, const OldPart& old, c
   std::vector<std::size_t> next(old.bodies.size(), 0);
   nm.holder.resize(n_tri);
   for (std::size_t t = 0; t < n_tri; ++t) {
+    if (t >= n_made) {
+      nm.elements.add(dom.kept_elements[t - n_made], 1.0);
+      nm.elements.close();
+      nm.holder[t] = dom.kept_elements[t - n_made];
+      continue;
+    }
     const std::size_t b = static_cast<std::size_t>(nm.body[t]);
     const WeightedParents& wp = per_body[b];
     const std::size_t i = next[b]++;
@@ -580,7 +723,9 @@ bool split_slits(const Model& model, const Domain& dom, const Triangulation& mes
   std::unordered_map<std::int32_t, std::vector<std::size_t>> around;  // slit point → corners there
   for (const Slit& slit : dom.slits)
     for (const std::int32_t p : slit.line) around[p];
-  for (std::size_t c = 0; c < 3 * n_tri; ++c)
+  // A kept triangle (the last ones) has its own lip's node already.
+  const std::size_t n_made = n_tri - dom.kept_elements.size();
+  for (std::size_t c = 0; c < 3 * n_made; ++c)
     if (const auto it = around.find(mesh.triangles[c]); it != around.end()) it->second.push_back(c);
   const double* x = mesh.xy.data();
   auto angle = [&](std::int32_t from, const double* to) { return std::atan2(to[1] - x[2 * from + 1], to[0] - x[2 * from]); };
@@ -854,16 +999,20 @@ double kinetic_energy(const Model& model, const std::vector<std::int32_t>& body_
 /// Lumped masses of the new mesh, scaled per body to the old body's mass, and the velocities of
 /// the free components shifted per body so its linear momentum is the old one.
 void restore_mass_and_momentum(Model& model, std::size_t p, const Material& material,
-                               const std::vector<std::int32_t>& body_of_node, const BodySums& before) {
+                               const std::vector<std::int32_t>& body_of_node, const BodySums& before,
+                               const std::vector<char>& exact) {
   NodeArrays& nodes = model.nodes;
+  const std::vector<double> mass_before = nodes.mass;
   for (std::size_t n = 0; n < body_of_node.size(); ++n)
     if (body_of_node[n] >= 0) nodes.mass[n] = 0.0;
   add_lumped_masses(model.parts[p], nodes, material.density(), model.formulation, model.thickness, nodes.mass);
+  for (std::size_t n = 0; n < body_of_node.size(); ++n)
+    if (body_of_node[n] >= 0 && exact[body_of_node[n]]) nodes.mass[n] = mass_before[n];
   const BodySums now = body_sums(model, body_of_node, before.mass.size());
   std::vector<std::array<double, 2>> free_mass(before.mass.size(), {0.0, 0.0});
   for (std::size_t n = 0; n < body_of_node.size(); ++n) {
     const std::int32_t b = body_of_node[n];
-    if (b < 0) continue;
+    if (b < 0 || exact[b]) continue;
     if (now.mass[b] > 0) nodes.mass[n] *= before.mass[b] / now.mass[b];
     for (int d = 0; d < 2; ++d)
       if (nodes.prescribed[2 * n + d] < 0) free_mass[b][d] += nodes.mass[n];
@@ -871,7 +1020,7 @@ void restore_mass_and_momentum(Model& model, std::size_t p, const Material& mate
   const BodySums scaled = body_sums(model, body_of_node, before.mass.size());
   for (std::size_t n = 0; n < body_of_node.size(); ++n) {
     const std::int32_t b = body_of_node[n];
-    if (b < 0) continue;
+    if (b < 0 || exact[b]) continue;
     for (int d = 0; d < 2; ++d)
       if (nodes.prescribed[2 * n + d] < 0 && free_mass[b][d] > 0)
         nodes.v[2 * n + d] += (before.momentum[b][d] - scaled.momentum[b][d]) / free_mass[b][d];
@@ -935,19 +1084,123 @@ struct NewPartMesh {
   Domain dom;
   Triangulation mesh;
   NewMesh nm;
+  std::vector<char> keep_body;  ///< per body of the (re-cut) old part: kept as it was
   std::string failure;
 };
 
-NewPartMesh make_new_mesh(const Model& model, const Part& part, const OldPart& old, const std::vector<char>& crack_face,
+/// The elements of `body` with a corner among `nodes`, and `rings` rings of elements around them
+/// (each ring: every element of the body with a node in the patch so far).
+std::vector<std::int32_t> elements_around(const Part& part, const std::vector<std::int32_t>& body,
+                                          const std::vector<std::int32_t>& nodes, int rings, std::size_t node_count) {
+  std::vector<char> marked(node_count, 0), in(body.size(), 0);
+  for (const std::int32_t n : nodes) marked[n] = 1;
+  for (int r = 0; r <= rings; ++r) {
+    for (std::size_t i = 0; i < body.size(); ++i)
+      for (int k = 0; k < 3 && !in[i]; ++k) in[i] = marked[part.connectivity[3 * body[i] + k]];
+    for (std::size_t i = 0; i < body.size(); ++i)
+      if (in[i])
+        for (int k = 0; k < 3; ++k) marked[part.connectivity[3 * body[i] + k]] = 1;
+  }
+  std::vector<std::int32_t> out;
+  for (std::size_t i = 0; i < body.size(); ++i)
+    if (in[i]) out.push_back(body[i]);
+  return out;
+}
+
+/// Cuts each body whose boundary crosses itself (`crossing`: the old nodes there) into a patch
+/// around the crossings, kept as it is, and the rest, remeshed; each in its connected pieces. A
+/// body whose patch would hold more than half of it is kept whole (a fragment folded over).
+void keep_tangles(const Model& model, const Part& part, OldPart& old, std::vector<char>& keep_body,
+                  const std::vector<std::vector<std::int32_t>>& crossing, int rings) {
+  std::vector<std::vector<std::int32_t>> bodies;
+  std::vector<char> keep;
+  for (std::size_t b = 0; b < old.bodies.size(); ++b) {
+    const std::vector<std::int32_t>& body = old.bodies[b];
+    if (keep_body[b] || crossing[b].empty()) {
+      bodies.push_back(body);
+      keep.push_back(keep_body[b]);
+      continue;
+    }
+    const std::vector<std::int32_t> patch = elements_around(part, body, crossing[b], rings, model.nodes.count());
+    if (2 * patch.size() > body.size()) {
+      bodies.push_back(body);
+      keep.push_back(1);
+      continue;
+    }
+    std::vector<std::int32_t> rest;
+    std::set_difference(body.begin(), body.end(), patch.begin(), patch.end(), std::back_inserter(rest));
+    for (auto& piece : patch_pieces(part, patch, model.nodes.count())) {
+      bodies.push_back(std::move(piece));
+      keep.push_back(1);
+    }
+    for (auto& piece : patch_pieces(part, rest, model.nodes.count())) {
+      bodies.push_back(std::move(piece));
+      keep.push_back(0);
+    }
+  }
+  set_bodies(model, part, std::move(bodies), old);
+  keep_body = std::move(keep);
+}
+
+/// The nodes whose boundary segments a remesh keeps as they are: the crack faces, and the nodes a
+/// kept body shares with a remeshed one (so that the two meet edge for edge).
+std::vector<char> unsplit_nodes(const Part& part, const OldPart& old, const std::vector<char>& keep_body,
+                                const std::vector<char>& crack_face) {
+  std::vector<char> in_kept(crack_face.size(), 0), in_made(crack_face.size(), 0), out = crack_face;
+  for (std::size_t b = 0; b < old.bodies.size(); ++b)
+    for (const std::int32_t e : old.bodies[b])
+      for (int k = 0; k < 3; ++k) (keep_body[b] ? in_kept : in_made)[part.connectivity[3 * e + k]] = 1;
+  for (std::size_t n = 0; n < out.size(); ++n) out[n] = out[n] || (in_kept[n] && in_made[n]);
+  return out;
+}
+
+/// How many times the patches kept around crossings grow by a ring before the remesh gives up.
+constexpr int kUntangleRounds = 3;
+
+/// The new mesh of the part. Where a body's new boundary crosses itself (lips pressed into each
+/// other, a fragment folded over), a patch of its elements around the crossing is kept as it is
+/// and the rest remeshed: `old` is then cut into those bodies. Tried with the closed-crack reaches
+/// of kClosedLips in turn (empty `failure`: made).
+NewPartMesh make_new_mesh(const Model& model, const Part& part, OldPart& old, const std::vector<char>& crack_face,
                           const std::set<std::int32_t>& kept, const std::vector<double>& nodal, const SizeField& field,
                           const RemeshSettings& s, RemeshOutcome& out) {
   using Clock = std::chrono::steady_clock;
   auto since = [](Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); };
+  const OldPart original = old;
   NewPartMesh m;
   for (const double closed_lips : kClosedLips) {
     auto t0 = Clock::now();
-    m.dom = build_domain(model, part, old, crack_face, kept, nodal, s, closed_lips);
+    old = original;
+    m.keep_body.assign(old.bodies.size(), 0);
+    std::vector<std::vector<std::int32_t>> crossing;
+    bool tangled = false;
+    std::array<double, 2> where{0, 0};
+    for (int round = 0;; ++round) {
+      m.dom = build_domain(model, part, old, unsplit_nodes(part, old, m.keep_body, crack_face), m.keep_body, kept, nodal,
+                           s, closed_lips);
+      crossing = crossing_nodes(m.dom, old.bodies.size());
+      tangled = false;
+      for (const auto& nodes : crossing)
+        if (!nodes.empty() && !tangled) {
+          tangled = true;
+          if (round == 0) where = {model.nodes.x[2 * nodes[0]], model.nodes.x[2 * nodes[0] + 1]};
+        }
+      if (!tangled || round == kUntangleRounds) break;
+      keep_tangles(model, part, old, m.keep_body, crossing, round + 1);
+    }
     out.seconds_boundary += since(t0);
+    const std::size_t kept_elements = m.dom.kept_elements.size();
+    if (tangled || 2 * kept_elements > part.element_count()) {
+      // Keeping most of the part would leave nearly nothing to remesh, at every check.
+      char why[240];
+      std::snprintf(why, sizeof why,
+                    "the new boundary crosses itself near (%.6g, %.6g) m (lips pressed into each other, or a fragment "
+                    "folded over), which Gmsh cannot mesh, and %s",
+                    where[0], where[1],
+                    tangled ? "patches kept around the crossings did not remove it" : "keeping it would keep most of the part");
+      m.failure = why;
+      continue;
+    }
     t0 = Clock::now();
     m.mesh = mesh_domain(model, crack_face, m.dom, field, s, out);
     out.seconds_gmsh += since(t0);
@@ -964,6 +1217,7 @@ NewPartMesh make_new_mesh(const Model& model, const Part& part, const OldPart& o
     }
     m.failure = "a triangle at a closed crack turns over when its lips are given back";
   }
+  old = original;
   return m;
 }
 
@@ -1003,7 +1257,8 @@ RemeshOutcome remesh_part(Model& model, std::size_t p, const Material& material,
   using Clock = std::chrono::steady_clock;
   auto since = [](Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); };
   auto t0 = Clock::now();
-  const OldPart old = read_old_part(model, p);
+  OldPart old = read_old_part(model, p);
+  const std::size_t bodies_before = old.bodies.size();
   const std::vector<char> crack_face = model.crack_face_nodes();
   std::set<std::int32_t> kept;
   {
@@ -1032,12 +1287,14 @@ RemeshOutcome remesh_part(Model& model, std::size_t p, const Material& material,
   // The state before, and what the new mesh is made of.
   const std::size_t nn = model.nodes.count();
   const BodySums before = body_sums(model, old.body_of_node, old.bodies.size());
-  out.bodies = old.bodies.size();
+  out.bodies = bodies_before;
+  out.bodies_kept = dom.kept_bodies;
+  out.elements_kept = dom.kept_elements.size();
   out.elements_before = part.element_count();
   out.area_before = part_area(part, model.nodes);
   out.kinetic_before = kinetic_energy(model, old.body_of_node);
   out.stored_before = stored_energy(part, material, model.nodes, model.formulation, model.thickness);
-  for (std::size_t b = 0; b < out.bodies; ++b) {
+  for (std::size_t b = 0; b < old.bodies.size(); ++b) {
     out.mass_before += before.mass[b];
     for (int d = 0; d < 2; ++d) out.momentum_before[d] += before.momentum[b][d];
   }
@@ -1046,6 +1303,13 @@ RemeshOutcome remesh_part(Model& model, std::size_t p, const Material& material,
   std::vector<double> holder_state(size * n_tri);
   for (std::size_t t = 0; t < n_tri && size > 0; ++t)
     std::copy_n(&part.state[size * nm.holder[t]], size, &holder_state[size * t]);
+
+  // A kept body that shares no node with a remeshed one keeps its masses and velocities too.
+  const std::vector<char> shared = unsplit_nodes(part, old, made.keep_body, std::vector<char>(nn, 0));
+  std::vector<char> exact = made.keep_body;
+  for (std::size_t b = 0; b < old.bodies.size(); ++b)
+    for (const std::int32_t e : old.bodies[b])
+      for (int k = 0; k < 3 && exact[b]; ++k) exact[b] = !shared[part.connectivity[3 * e + k]];
 
   out.seconds_transfer += since(t0);
   t0 = Clock::now();
@@ -1069,8 +1333,16 @@ RemeshOutcome remesh_part(Model& model, std::size_t p, const Material& material,
   for (std::size_t n = 0; n < nn; ++n)
     if (new_of_old[n] >= 0) body_of_node[new_of_old[n]] = old.body_of_node[n];
   for (std::size_t k = 0; k < nm.born.size(); ++k) body_of_node[new_of_old[nn + k]] = nm.born[k].body;
-  restore_mass_and_momentum(model, p, material, body_of_node, before);
-  finish_points(model, p, material, holder_state, positions_of(model.parts[p], first_id, n_tri));
+  restore_mass_and_momentum(model, p, material, body_of_node, before, exact);
+  const std::vector<std::int32_t> position = positions_of(model.parts[p], first_id, n_tri);
+  finish_points(model, p, material, holder_state, position);
+  // The shapes distortion and angles are measured against: each element's now. A kept one's area
+  // is stored negative, so that the triggers leave it alone (no remesh changes it while the
+  // boundary crosses itself there).
+  Part& remeshed = model.parts[p];
+  measure_reference_shape(remeshed, model.nodes, remeshed.shape_reference);
+  for (std::size_t t = n_tri - dom.kept_elements.size(); t < n_tri; ++t)
+    remeshed.shape_reference[4 * static_cast<std::size_t>(position[t])] *= -1.0;
 
   const BodySums after = body_sums(model, body_of_node, old.bodies.size());
   const Part& now = model.parts[p];
@@ -1080,7 +1352,7 @@ RemeshOutcome remesh_part(Model& model, std::size_t p, const Material& material,
   out.area_after = part_area(now, model.nodes);
   out.kinetic_after = kinetic_energy(model, body_of_node);
   out.stored_after = stored_energy(now, material, model.nodes, model.formulation, model.thickness);
-  for (std::size_t b = 0; b < out.bodies; ++b) {
+  for (std::size_t b = 0; b < after.mass.size(); ++b) {
     out.mass_after += after.mass[b];
     for (int d = 0; d < 2; ++d) out.momentum_after[d] += after.momentum[b][d];
   }
@@ -1098,36 +1370,6 @@ RemeshOutcome remesh_part(Model& model, std::size_t p, const Material& material,
 namespace shard {
 
 namespace {
-
-/// The patch's connected pieces (elements sharing a node), each in increasing order.
-std::vector<std::vector<std::int32_t>> patch_pieces(const Part& part, const std::vector<std::int32_t>& patch,
-                                                    std::size_t node_count) {
-  std::vector<std::vector<std::int32_t>> at_node(node_count);
-  for (std::size_t i = 0; i < patch.size(); ++i)
-    for (int k = 0; k < 3; ++k) at_node[part.connectivity[3 * patch[i] + k]].push_back(static_cast<std::int32_t>(i));
-  std::vector<std::int32_t> piece(patch.size(), -1);
-  std::vector<std::vector<std::int32_t>> pieces;
-  for (std::size_t seed = 0; seed < patch.size(); ++seed) {
-    if (piece[seed] >= 0) continue;
-    const std::int32_t id = static_cast<std::int32_t>(pieces.size());
-    std::vector<std::int32_t> stack{static_cast<std::int32_t>(seed)}, members;
-    piece[seed] = id;
-    while (!stack.empty()) {
-      const std::int32_t i = stack.back();
-      stack.pop_back();
-      members.push_back(patch[i]);
-      for (int k = 0; k < 3; ++k)
-        for (const std::int32_t j : at_node[part.connectivity[3 * patch[i] + k]])
-          if (piece[j] < 0) {
-            piece[j] = id;
-            stack.push_back(j);
-          }
-    }
-    std::sort(members.begin(), members.end());
-    pieces.push_back(std::move(members));
-  }
-  return pieces;
-}
 
 /// The edges of facets (of any set) that patch elements own: a remap drops them with their
 /// owners, and the new mesh's boundary gives them back.

@@ -47,6 +47,10 @@ struct RemeshOutcome {
   std::string skipped;  ///< why the part was left as it was (remeshed false)
   std::size_t elements_before = 0, elements_after = 0, nodes_before = 0, nodes_after = 0;
   std::size_t bodies = 0;
+  /// Where a body's boundary crosses itself (lips pressed into each other, a fragment folded
+  /// over), which Gmsh cannot mesh, a patch of its elements around the crossing is kept as it was
+  /// (or the whole body, if the patch would hold most of it): how many such patches, and elements.
+  std::size_t bodies_kept = 0, elements_kept = 0;
   double area_before = 0, area_after = 0;      ///< of the part (m²)
   double mass_before = 0, mass_after = 0;      ///< of the part's nodes (kg)
   std::array<double, 2> momentum_before{0, 0}, momentum_after{0, 0};

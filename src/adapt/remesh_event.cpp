@@ -5,9 +5,11 @@
 #include <cmath>
 #include <cstdio>
 #include <numbers>
+#include <unordered_map>
 
 #include "adapt/planar_mesh.hpp"
 #include "adapt/size_field.hpp"
+#include "model/interaction_list.hpp"
 
 namespace shard {
 
@@ -25,6 +27,39 @@ std::vector<std::int32_t> all_elements(const Part& part) {
   return e;
 }
 
+/// The crack-face nodes and the nodes of the part's elements that hold one.
+std::vector<char> near_crack_nodes(const Part& part, const std::vector<char>& crack_face) {
+  std::vector<char> near = crack_face;
+  for (std::size_t e = 0; e < part.element_count(); ++e) {
+    const std::int32_t* c = &part.connectivity[3 * e];
+    if (crack_face[c[0]] || crack_face[c[1]] || crack_face[c[2]]) near[c[0]] = near[c[1]] = near[c[2]] = 1;
+  }
+  return near;
+}
+
+/// The nodes on the part's boundary: the ends of edges only one of its triangles has, but for
+/// the faces at a subdomain's cut (Model::cut_faces), which are no boundary of the body.
+std::vector<char> boundary_nodes(const Model& model, const Part& part) {
+  std::unordered_map<std::uint64_t, int> edges;
+  auto key = [](std::int32_t a, std::int32_t b) {
+    if (a > b) std::swap(a, b);
+    return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) | static_cast<std::uint32_t>(b);
+  };
+  const auto& cut = model.cut_faces;
+  for (std::size_t e = 0; e < part.element_count(); ++e)
+    for (int f = 0; f < 3; ++f) {
+      const auto& local = part.type->faces[static_cast<std::size_t>(f)];
+      const std::uint64_t edge = key(part.connectivity[3 * e + local[0]], part.connectivity[3 * e + local[1]]);
+      const std::int64_t id = part.id.empty() ? static_cast<std::int64_t>(e) : part.id[e];
+      // A face at the cut counts twice: its neighbour is on another rank.
+      edges[edge] += std::binary_search(cut.begin(), cut.end(), facet_key(id, f)) ? 2 : 1;
+    }
+  std::vector<char> out(model.nodes.count(), 0);
+  for (const auto& [edge, count] : edges)
+    if (count == 1) out[edge >> 32] = out[edge & 0xffffffffu] = 1;
+  return out;
+}
+
 }  // namespace
 
 RemeshEvent::RemeshEvent(const std::vector<std::unique_ptr<Material>>& materials, std::vector<RemeshedPart> parts,
@@ -32,7 +67,8 @@ RemeshEvent::RemeshEvent(const std::vector<std::unique_ptr<Material>>& materials
     : parts_(std::move(parts)),
       triggers_(triggers),
       kept_nodes_(std::move(kept_nodes)),
-      seconds_(parts_.size(), 0.0) {
+      seconds_(parts_.size(), 0.0),
+      kept_noted_(parts_.size(), 0) {
   for (const auto& m : materials) materials_.push_back(m.get());
 }
 
@@ -56,34 +92,59 @@ RemeshEvent::Due RemeshEvent::assess(const Model& model, std::size_t i, std::int
   const std::int64_t last = p < model.remesh_step.size() ? model.remesh_step[p] : 0;
   if (triggers_.max_interval > 0 && step - last >= triggers_.max_interval)
     return {format("%.0f steps since the last remesh", static_cast<double>(step - last))};
-  double worst = 0, smallest = std::numbers::pi, largest = 0;
+  double worst = 0;
+  PoorAngle low{std::numbers::pi, 0}, high{0, 0};
   for (const std::int32_t e : elements) {
     worst = std::max(worst, element_distortion(part, model.nodes, static_cast<std::size_t>(e)).value());
-    const std::int32_t* c = &part.connectivity[3 * static_cast<std::size_t>(e)];
-    for (const double a : triangle_angles(&model.nodes.x[2 * c[0]], &model.nodes.x[2 * c[1]], &model.nodes.x[2 * c[2]])) {
-      smallest = std::min(smallest, a);
-      largest = std::max(largest, a);
-    }
+    poor_angles(part, model.nodes, static_cast<std::size_t>(e), low, high);
   }
   // A size mismatch asks for the whole part, so it is looked for before the shapes (which a
   // patch may fix).
   if (triggers_.size_mismatch > 0) {
     const ElementSizes sizes = element_target_sizes(part, elements, model.nodes, *materials_[part.material],
                                                     model.formulation, parts_[i].settings.size);
+    // Elements whose size a remesh may not be able to change are not looked at, or they would
+    // ask for one at every check. Too large: those with a node on a crack face (the lips are
+    // kept node for node, and Gmsh grows the elements around a lip node from the lip's segments).
+    // Too small: those on the boundary (which keeps its corners, the nodes where node sets or
+    // prescribed motion change, and the lips, and coarsens only within a chord tolerance) or next
+    // to a crack face.
+    std::vector<char> crack_face, near_crack, boundary;
     for (std::size_t e = 0; e < sizes.target.size(); ++e) {
       const double ratio = sizes.current[e] / sizes.target[e];
-      if (ratio > triggers_.size_mismatch || ratio < 1.0 / triggers_.size_mismatch)
-        return {format("an element %.2f times the size asked for (allowed %.2f)", ratio, triggers_.size_mismatch)};
+      const bool too_large = ratio > triggers_.size_mismatch, too_small = ratio < 1.0 / triggers_.size_mismatch;
+      if (!too_large && !too_small) continue;
+      if (near_crack.empty()) {
+        crack_face = model.crack_face_nodes();
+        near_crack = near_crack_nodes(part, crack_face);
+        boundary = boundary_nodes(model, part);
+      }
+      const std::int32_t* c = &part.connectivity[3 * static_cast<std::size_t>(elements[e])];
+      if (too_large && (crack_face[c[0]] || crack_face[c[1]] || crack_face[c[2]])) continue;
+      if (too_small && (boundary[c[0]] || boundary[c[1]] || boundary[c[2]])) continue;
+      if (too_small && (near_crack[c[0]] || near_crack[c[1]] || near_crack[c[2]])) continue;
+      return {format("an element %.2f times the size asked for (allowed %.2f)", ratio, triggers_.size_mismatch)};
     }
   }
   const double degree = std::numbers::pi / 180.0;
   if (triggers_.distortion > 0 && worst > triggers_.distortion)
     return {format("an element distorted by %.2f %% (allowed %.2f %%)", 100 * worst, 100 * triggers_.distortion), true};
-  if (triggers_.min_angle > 0 && smallest < triggers_.min_angle)
-    return {format("an angle of %.1f deg (below %.1f)", smallest / degree, triggers_.min_angle / degree), true};
-  if (triggers_.max_angle > 0 && largest > triggers_.max_angle)
-    return {format("an angle of %.1f deg (above %.1f)", largest / degree, triggers_.max_angle / degree), true};
+  if (low.limit > 0) return {format("an angle of %.1f deg (below %.1f)", low.angle / degree, low.limit / degree), true};
+  if (high.limit > 0) return {format("an angle of %.1f deg (above %.1f)", high.angle / degree, high.limit / degree), true};
   return {};
+}
+
+void RemeshEvent::poor_angles(const Part& part, const NodeArrays& nodes, std::size_t e, PoorAngle& low,
+                              PoorAngle& high) const {
+  // An element a remesh kept as it was, where a boundary crosses itself, is marked by a negative
+  // reference area (remesh_part): no remesh changes it while the crossing lasts, so its shape is
+  // not looked at, or it would ask for a remesh at every check.
+  if (part.shape_reference.size() >= 4 * (e + 1) && part.shape_reference[4 * e] < 0) return;
+  const std::int32_t* c = &part.connectivity[3 * e];
+  for (const double a : triangle_angles(&nodes.x[2 * c[0]], &nodes.x[2 * c[1]], &nodes.x[2 * c[2]])) {
+    if (triggers_.min_angle > 0 && a < triggers_.min_angle && a < low.angle) low = {a, triggers_.min_angle};
+    if (triggers_.max_angle > 0 && a > triggers_.max_angle && a > high.angle) high = {a, triggers_.max_angle};
+  }
 }
 
 bool RemeshEvent::may_be_due(const Model& model, const std::vector<std::vector<std::int32_t>>& owned,
@@ -103,10 +164,10 @@ std::vector<std::int32_t> RemeshEvent::poor_elements(const Model& model, std::si
   const Part& part = model.parts[parts_[i].part];
   std::vector<std::int32_t> out;
   for (std::size_t e = 0; e < part.element_count(); ++e) {
-    bool poor = triggers_.distortion > 0 && element_distortion(part, model.nodes, e).value() > triggers_.distortion;
-    const std::int32_t* c = &part.connectivity[3 * e];
-    for (const double a : triangle_angles(&model.nodes.x[2 * c[0]], &model.nodes.x[2 * c[1]], &model.nodes.x[2 * c[2]]))
-      poor = poor || (triggers_.min_angle > 0 && a < triggers_.min_angle) || (triggers_.max_angle > 0 && a > triggers_.max_angle);
+    PoorAngle low{std::numbers::pi, 0}, high{0, 0};
+    poor_angles(part, model.nodes, e, low, high);
+    const bool poor = (triggers_.distortion > 0 && element_distortion(part, model.nodes, e).value() > triggers_.distortion) ||
+                      low.limit > 0 || high.limit > 0;
     if (poor) out.push_back(static_cast<std::int32_t>(e));
   }
   return out;
@@ -184,6 +245,15 @@ void RemeshEvent::run(Model& model, EventContext& context) {
                        " (t = " + format("%.6g s", context.time) + "), due to " + why + ": " + out.skipped +
                        "; not assessed again before step " + std::to_string(model.remesh_retry_step[p]));
       continue;
+    }
+    if (out.bodies_kept > 0 && !kept_noted_[i]) {
+      kept_noted_[i] = 1;
+      notes_.push_back("the remesh of part '" + model.parts[p].name + "' at step " + std::to_string(context.step) +
+                       " kept " + std::to_string(out.elements_kept) + " elements (" + std::to_string(out.bodies_kept) +
+                       (out.bodies_kept == 1 ? " patch" : " patches") +
+                       ") as they were, where its boundary crosses itself (crack faces pressed into each "
+                       "other, or a fragment folded over), which Gmsh cannot mesh; later remeshes that do the same "
+                       "are not noted");
     }
     model.remesh_failures[p] = 0;
     model.remesh_retry_step[p] = 0;

@@ -36,7 +36,11 @@ bool point_in_loop(const PlanarDomain& d, const std::vector<std::int32_t>& loop,
   return inside;
 }
 
-/// Each outer loop with the holes it holds (a hole goes to the smallest outer loop around it).
+/// The body of loop l (−1: the domain does not say).
+std::int32_t body_of_loop(const PlanarDomain& d, std::size_t l) { return l < d.loop_body.size() ? d.loop_body[l] : -1; }
+
+/// Each outer loop with the holes it holds (a hole goes to the smallest outer loop of its body
+/// around it).
 std::vector<std::vector<std::size_t>> surfaces_of(const PlanarDomain& d) {
   std::vector<std::vector<std::size_t>> surfaces;
   std::vector<std::size_t> outer;
@@ -50,6 +54,7 @@ std::vector<std::vector<std::size_t>> surfaces_of(const PlanarDomain& d) {
     std::size_t best = outer.size();
     double best_area = 0;
     for (std::size_t o = 0; o < outer.size(); ++o) {
+      if (body_of_loop(d, outer[o]) != body_of_loop(d, l)) continue;
       const double area = loop_twice_area(d, d.loops[outer[o]]);
       if (point_in_loop(d, d.loops[outer[o]], &d.xy[2 * d.loops[l][0]]) && (best == outer.size() || area < best_area)) {
         best = o;
@@ -61,10 +66,19 @@ std::vector<std::vector<std::size_t>> surfaces_of(const PlanarDomain& d) {
   return surfaces;
 }
 
-/// The surface (index into surfaces_of) whose region holds point p: inside its outer loop and
-/// none of its holes (−1: none).
-int surface_holding(const PlanarDomain& d, const std::vector<std::vector<std::size_t>>& groups, const double* p) {
+/// The surface (index into surfaces_of) of `body` (−1: any) whose region holds point p: inside its
+/// outer loop and none of its holes (−1: none). A body of one surface needs no test.
+int surface_holding(const PlanarDomain& d, const std::vector<std::vector<std::size_t>>& groups, const double* p,
+                    std::int32_t body) {
+  int only = -1, count = 0;
+  for (std::size_t s = 0; s < groups.size() && body >= 0; ++s)
+    if (body_of_loop(d, groups[s][0]) == body) {
+      only = static_cast<int>(s);
+      ++count;
+    }
+  if (count == 1) return only;
   for (std::size_t s = 0; s < groups.size(); ++s) {
+    if (body >= 0 && body_of_loop(d, groups[s][0]) != body) continue;
     bool in = point_in_loop(d, d.loops[groups[s][0]], p);
     for (std::size_t h = 1; h < groups[s].size() && in; ++h) in = !point_in_loop(d, d.loops[groups[s][h]], p);
     if (in) return static_cast<int>(s);
@@ -116,14 +130,17 @@ std::vector<int> build_geometry(const PlanarDomain& d) {
     const std::size_t n = d.lines[k].size();
     const double mid[2] = {0.5 * (d.xy[2 * d.lines[k][n - 2]] + d.xy[2 * d.lines[k][n - 1]]),
                            0.5 * (d.xy[2 * d.lines[k][n - 2] + 1] + d.xy[2 * d.lines[k][n - 1] + 1])};
-    const int s = surface_holding(d, groups, mid);
+    const int s = surface_holding(d, groups, mid, k < d.line_body.size() ? d.line_body[k] : -1);
     if (s >= 0) gmsh::model::mesh::embed(1, embedded_lines[k], 2, surfaces[s]);
   }
   if (!d.embedded.empty()) {
     // An embedded point belongs to the surface whose outer loop holds it and no hole of it does.
     std::vector<std::vector<int>> points(groups.size());
-    for (const std::int32_t p : d.embedded)
-      if (const int s = surface_holding(d, groups, &d.xy[2 * p]); s >= 0) points[s].push_back(p + 1);
+    for (std::size_t i = 0; i < d.embedded.size(); ++i) {
+      const std::int32_t p = d.embedded[i];
+      const std::int32_t body = i < d.embedded_body.size() ? d.embedded_body[i] : -1;
+      if (const int s = surface_holding(d, groups, &d.xy[2 * p], body); s >= 0) points[s].push_back(p + 1);
+    }
     for (std::size_t s = 0; s < groups.size(); ++s)
       if (!points[s].empty()) gmsh::model::mesh::embed(0, points[s], 2, surfaces[s]);
   }

@@ -21,6 +21,10 @@ struct PlanarDomain {
   /// Polylines inside the domain (each segment one element edge) that the mesh must follow: a
   /// closed crack, whose two lips the caller gives the triangles on either side.
   std::vector<std::vector<std::int32_t>> lines;
+  /// Optional: the body of each loop, line and embedded point. Given, a hole, a line or a point
+  /// goes to a surface of its own body, so two bodies that overlap (fragments pressed into each
+  /// other) cannot take each other's holes and cracks; empty, where it lies decides.
+  std::vector<std::int32_t> loop_body, line_body, embedded_body;
 };
 
 enum class MeshAlgorithm : std::uint8_t { frontal_delaunay, delaunay, mesh_adapt };
