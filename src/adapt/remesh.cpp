@@ -1166,11 +1166,17 @@ NewPartMesh make_new_mesh(const Model& model, const Part& part, OldPart& old, co
                           const RemeshSettings& s, RemeshOutcome& out) {
   using Clock = std::chrono::steady_clock;
   auto since = [](Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); };
-  const OldPart original = old;
+  // Only the bodies are cut (and their loops with them): they are what is given back.
+  const std::vector<std::vector<std::int32_t>> bodies = old.bodies;
+  bool cut = false;
+  auto uncut = [&] {
+    if (cut) set_bodies(model, part, bodies, old);
+    cut = false;
+  };
   NewPartMesh m;
   for (const double closed_lips : kClosedLips) {
     auto t0 = Clock::now();
-    old = original;
+    uncut();
     m.keep_body.assign(old.bodies.size(), 0);
     std::vector<std::vector<std::int32_t>> crossing;
     bool tangled = false;
@@ -1187,6 +1193,7 @@ NewPartMesh make_new_mesh(const Model& model, const Part& part, OldPart& old, co
         }
       if (!tangled || round == kUntangleRounds) break;
       keep_tangles(model, part, old, m.keep_body, crossing, round + 1);
+      cut = true;
     }
     out.seconds_boundary += since(t0);
     const std::size_t kept_elements = m.dom.kept_elements.size();
@@ -1217,7 +1224,7 @@ NewPartMesh make_new_mesh(const Model& model, const Part& part, OldPart& old, co
     }
     m.failure = "a triangle at a closed crack turns over when its lips are given back";
   }
-  old = original;
+  uncut();
   return m;
 }
 

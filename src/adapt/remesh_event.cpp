@@ -5,11 +5,10 @@
 #include <cmath>
 #include <cstdio>
 #include <numbers>
-#include <unordered_map>
 
 #include "adapt/planar_mesh.hpp"
 #include "adapt/size_field.hpp"
-#include "model/interaction_list.hpp"
+#include "contact/contact_surface.hpp"
 
 namespace shard {
 
@@ -37,27 +36,29 @@ std::vector<char> near_crack_nodes(const Part& part, const std::vector<char>& cr
   return near;
 }
 
-/// The nodes on the part's boundary: the ends of edges only one of its triangles has, but for
-/// the faces at a subdomain's cut (Model::cut_faces), which are no boundary of the body.
-std::vector<char> boundary_nodes(const Model& model, const Part& part) {
-  std::unordered_map<std::uint64_t, int> edges;
-  auto key = [](std::int32_t a, std::int32_t b) {
-    if (a > b) std::swap(a, b);
-    return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) | static_cast<std::uint32_t>(b);
-  };
+/// The nodes on part p's boundary: those of its faces no other face matches, but for the faces
+/// at a subdomain's cut (Model::cut_faces), which are no boundary of the body (as for contact).
+std::vector<char> boundary_nodes(const Model& model, std::size_t p) {
+  const FaceGroups groups = group_faces(model);
   const auto& cut = model.cut_faces;
-  for (std::size_t e = 0; e < part.element_count(); ++e)
-    for (int f = 0; f < 3; ++f) {
-      const auto& local = part.type->faces[static_cast<std::size_t>(f)];
-      const std::uint64_t edge = key(part.connectivity[3 * e + local[0]], part.connectivity[3 * e + local[1]]);
-      const std::int64_t id = part.id.empty() ? static_cast<std::int64_t>(e) : part.id[e];
-      // A face at the cut counts twice: its neighbour is on another rank.
-      edges[edge] += std::binary_search(cut.begin(), cut.end(), facet_key(id, f)) ? 2 : 1;
-    }
   std::vector<char> out(model.nodes.count(), 0);
-  for (const auto& [edge, count] : edges)
-    if (count == 1) out[edge >> 32] = out[edge & 0xffffffffu] = 1;
+  for (std::size_t k = 0; k < groups.group_count(); ++k) {
+    if (groups.group_begin[k + 1] - groups.group_begin[k] != 1) continue;
+    const FaceGroups::Face& face = groups.faces[groups.order[groups.group_begin[k]]];
+    if (static_cast<std::size_t>(face.part) != p || std::binary_search(cut.begin(), cut.end(), FaceGroups::key(model, face)))
+      continue;
+    const Part& part = model.parts[p];
+    for (const int local : part.type->faces[static_cast<std::size_t>(face.local)])
+      out[part.connectivity[3 * static_cast<std::size_t>(face.element) + static_cast<std::size_t>(local)]] = 1;
+  }
   return out;
+}
+
+/// Whether a remesh kept element e as it was, where a boundary crosses itself: remesh_part marks
+/// it by a negative reference area. No remesh changes it while the crossing lasts, so its shape
+/// is not looked at, or it would ask for a remesh at every check.
+bool kept_as_it_was(const Part& part, std::size_t e) {
+  return part.shape_reference.size() >= 4 * (e + 1) && part.shape_reference[4 * e] < 0;
 }
 
 }  // namespace
@@ -92,11 +93,15 @@ RemeshEvent::Due RemeshEvent::assess(const Model& model, std::size_t i, std::int
   const std::int64_t last = p < model.remesh_step.size() ? model.remesh_step[p] : 0;
   if (triggers_.max_interval > 0 && step - last >= triggers_.max_interval)
     return {format("%.0f steps since the last remesh", static_cast<double>(step - last))};
-  double worst = 0;
-  PoorAngle low{std::numbers::pi, 0}, high{0, 0};
+  double worst = 0, smallest = std::numbers::pi, largest = 0;
   for (const std::int32_t e : elements) {
+    if (kept_as_it_was(part, static_cast<std::size_t>(e))) continue;
     worst = std::max(worst, element_distortion(part, model.nodes, static_cast<std::size_t>(e)).value());
-    poor_angles(part, model.nodes, static_cast<std::size_t>(e), low, high);
+    const std::int32_t* c = &part.connectivity[3 * static_cast<std::size_t>(e)];
+    for (const double a : triangle_angles(&model.nodes.x[2 * c[0]], &model.nodes.x[2 * c[1]], &model.nodes.x[2 * c[2]])) {
+      smallest = std::min(smallest, a);
+      largest = std::max(largest, a);
+    }
   }
   // A size mismatch asks for the whole part, so it is looked for before the shapes (which a
   // patch may fix).
@@ -117,7 +122,7 @@ RemeshEvent::Due RemeshEvent::assess(const Model& model, std::size_t i, std::int
       if (near_crack.empty()) {
         crack_face = model.crack_face_nodes();
         near_crack = near_crack_nodes(part, crack_face);
-        boundary = boundary_nodes(model, part);
+        boundary = boundary_nodes(model, p);
       }
       const std::int32_t* c = &part.connectivity[3 * static_cast<std::size_t>(elements[e])];
       if (too_large && (crack_face[c[0]] || crack_face[c[1]] || crack_face[c[2]])) continue;
@@ -129,22 +134,11 @@ RemeshEvent::Due RemeshEvent::assess(const Model& model, std::size_t i, std::int
   const double degree = std::numbers::pi / 180.0;
   if (triggers_.distortion > 0 && worst > triggers_.distortion)
     return {format("an element distorted by %.2f %% (allowed %.2f %%)", 100 * worst, 100 * triggers_.distortion), true};
-  if (low.limit > 0) return {format("an angle of %.1f deg (below %.1f)", low.angle / degree, low.limit / degree), true};
-  if (high.limit > 0) return {format("an angle of %.1f deg (above %.1f)", high.angle / degree, high.limit / degree), true};
+  if (triggers_.min_angle > 0 && smallest < triggers_.min_angle)
+    return {format("an angle of %.1f deg (below %.1f)", smallest / degree, triggers_.min_angle / degree), true};
+  if (triggers_.max_angle > 0 && largest > triggers_.max_angle)
+    return {format("an angle of %.1f deg (above %.1f)", largest / degree, triggers_.max_angle / degree), true};
   return {};
-}
-
-void RemeshEvent::poor_angles(const Part& part, const NodeArrays& nodes, std::size_t e, PoorAngle& low,
-                              PoorAngle& high) const {
-  // An element a remesh kept as it was, where a boundary crosses itself, is marked by a negative
-  // reference area (remesh_part): no remesh changes it while the crossing lasts, so its shape is
-  // not looked at, or it would ask for a remesh at every check.
-  if (part.shape_reference.size() >= 4 * (e + 1) && part.shape_reference[4 * e] < 0) return;
-  const std::int32_t* c = &part.connectivity[3 * e];
-  for (const double a : triangle_angles(&nodes.x[2 * c[0]], &nodes.x[2 * c[1]], &nodes.x[2 * c[2]])) {
-    if (triggers_.min_angle > 0 && a < triggers_.min_angle && a < low.angle) low = {a, triggers_.min_angle};
-    if (triggers_.max_angle > 0 && a > triggers_.max_angle && a > high.angle) high = {a, triggers_.max_angle};
-  }
 }
 
 bool RemeshEvent::may_be_due(const Model& model, const std::vector<std::vector<std::int32_t>>& owned,
@@ -164,10 +158,11 @@ std::vector<std::int32_t> RemeshEvent::poor_elements(const Model& model, std::si
   const Part& part = model.parts[parts_[i].part];
   std::vector<std::int32_t> out;
   for (std::size_t e = 0; e < part.element_count(); ++e) {
-    PoorAngle low{std::numbers::pi, 0}, high{0, 0};
-    poor_angles(part, model.nodes, e, low, high);
-    const bool poor = (triggers_.distortion > 0 && element_distortion(part, model.nodes, e).value() > triggers_.distortion) ||
-                      low.limit > 0 || high.limit > 0;
+    if (kept_as_it_was(part, e)) continue;  // as in assess
+    bool poor = triggers_.distortion > 0 && element_distortion(part, model.nodes, e).value() > triggers_.distortion;
+    const std::int32_t* c = &part.connectivity[3 * e];
+    for (const double a : triangle_angles(&model.nodes.x[2 * c[0]], &model.nodes.x[2 * c[1]], &model.nodes.x[2 * c[2]]))
+      poor = poor || (triggers_.min_angle > 0 && a < triggers_.min_angle) || (triggers_.max_angle > 0 && a > triggers_.max_angle);
     if (poor) out.push_back(static_cast<std::int32_t>(e));
   }
   return out;

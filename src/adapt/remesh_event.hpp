@@ -96,14 +96,6 @@ class RemeshEvent final : public StepEvent {
   Due due(const Model& model, std::size_t i, std::int64_t step) const;
   /// Why part i is due by what the listed elements of it show (due: all of them).
   Due assess(const Model& model, std::size_t i, std::int64_t step, const std::vector<std::int32_t>& elements) const;
-  /// An angle beyond its limit: the angle and the limit (0: none found).
-  struct PoorAngle {
-    double angle = 0, limit = 0;
-  };
-  /// Looks at the angles of element e: the smallest below min_angle goes to `low` if it is smaller
-  /// than what `low` holds, the largest above max_angle to `high`; not those of an element a remesh
-  /// kept as it was.
-  void poor_angles(const Part& part, const NodeArrays& nodes, std::size_t e, PoorAngle& low, PoorAngle& high) const;
   /// The elements of part i whose shape is beyond the limits (distortion or angles).
   std::vector<std::int32_t> poor_elements(const Model& model, std::size_t i) const;
   /// Remeshes part i: a patch around its poor elements when the triggers allow it and that
