@@ -7,8 +7,8 @@
 L = 100; T = 15;           // beam length and thickness (the plane of the model)
 Lp = 20; Dp = 11; rf = 0.5; // projectile length, diameter, edge radius (a machined edge)
 gap = 0.0203;              // lands at 0.1 us at 203 m/s
-h = 0.25;                  // element size in the beam (mesh.size in the scenario caps it)
-hp = 0.5;                  // element size in the projectile
+DefineConstant[ h = 0.25 ];  // element size in the beam (mesh.size in the scenario caps it)
+DefineConstant[ hp = 0.5 ];  // element size in the projectile
 Mesh.Algorithm = 6;        // frontal-Delaunay: well-shaped triangles
 
 Point(1) = {0, -T/2, 0, h}; Point(2) = {L, -T/2, 0, h}; Point(3) = {L, T/2, 0, h}; Point(4) = {0, T/2, 0, h};

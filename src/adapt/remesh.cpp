@@ -44,6 +44,9 @@ struct BoundaryPoint {
 /// again with only the lips 2 % apart taken as closed.
 constexpr double kClosedLips[] = {0.25, 0.02};
 
+/// A new triangle with an angle below this is a sliver: a patch of old elements is kept there.
+constexpr double kSliverAngle = 1.0 * std::numbers::pi / 180.0;
+
 /// A mesh whose smallest angle is at least this is taken at once; otherwise the other attempts
 /// are made and the best kept.
 constexpr double kAcceptedAngle = 10.0 * std::numbers::pi / 180.0;
@@ -241,7 +244,13 @@ struct Domain {
   std::vector<std::int32_t> kept_elements, kept_loop;
   std::vector<std::int32_t> kept_triangles;  ///< their corners as domain points, three each
   std::size_t kept_bodies = 0;
+  /// Of them, the small fragments kept whole (kKeptFragment), and their elements.
+  std::size_t kept_fragments = 0, fragment_elements = 0;
 };
+
+/// keep_body's values: remeshed, kept (a patch where the boundary crosses itself or a closed
+/// crack cannot be given back), kept as a small fragment.
+constexpr char kRemeshed = 0, kKeptPatch = 1, kKeptFragment = 2;
 
 void point_position(const double* X, const BoundaryPoint& bp, double* out) {
   for (int d = 0; d < 2; ++d)
@@ -501,7 +510,12 @@ Domain build_domain(const Model& model, const Part& part, const OldPart& old, co
   }
   for (std::size_t b = 0; b < old.bodies.size(); ++b) {
     if (!keep_body[b]) continue;
-    ++dom.kept_bodies;
+    if (keep_body[b] == kKeptFragment) {
+      ++dom.kept_fragments;
+      dom.fragment_elements += old.bodies[b].size();
+    } else {
+      ++dom.kept_bodies;
+    }
     const auto first_loop = std::find(old.loop_body.begin(), old.loop_body.end(), static_cast<std::int32_t>(b));
     for (const std::int32_t e : old.bodies[b]) {
       for (int k = 0; k < 3; ++k) dom.kept_triangles.push_back(node_point(part.connectivity[3 * static_cast<std::size_t>(e) + k]));
@@ -714,8 +728,10 @@ NewMesh map_new_mesh(const Model& model, const Part& part, const OldPart& old, c
 /// Gives the triangles on the right of each closed crack's line (going to its tip) the other
 /// lip's nodes: at each point of the line the triangles around it are split by the line's two
 /// segments (the one towards the tip, and the one back, where there is one) into the left and the
-/// right sector. Returns false if a triangle would then turn over.
-bool split_slits(const Model& model, const Domain& dom, const Triangulation& mesh, NewMesh& nm) {
+/// right sector. Returns false if a triangle would then turn over, and marks the old nodes of
+/// such triangles in `turned` (when given).
+bool split_slits(const Model& model, const Domain& dom, const Triangulation& mesh, NewMesh& nm,
+                 std::vector<char>* turned = nullptr) {
   const std::size_t n_tri = mesh.triangles.size() / 3;
   nm.corner.resize(3 * n_tri);
   for (std::size_t c = 0; c < 3 * n_tri; ++c) nm.corner[c] = nm.node[mesh.triangles[c]];
@@ -746,15 +762,23 @@ bool split_slits(const Model& model, const Domain& dom, const Triangulation& mes
         if (turn > left_span) nm.corner[c] = dom.points[slit.twin[i]].node;
       }
     }
+  bool ok = true;
   for (std::size_t t = 0; t < n_tri; ++t) {
     const std::int32_t* c = &nm.corner[3 * t];
     auto position = [&](std::size_t k) {
       return c[k] < static_cast<std::int32_t>(model.nodes.count()) ? &model.nodes.x[2 * c[k]]
                                                                  : &mesh.xy[2 * mesh.triangles[3 * t + k]];
     };
-    if (!(twice_area(position(0), position(1), position(2)) > 0)) return false;
+    if (twice_area(position(0), position(1), position(2)) > 0) continue;
+    ok = false;
+    if (!turned) break;
+    for (int k = 0; k < 3; ++k) {
+      const auto point = static_cast<std::size_t>(mesh.triangles[3 * t + k]);
+      if (point < dom.points.size() && dom.points[point].node >= 0) (*turned)[dom.points[point].node] = 1;
+      if (c[k] < static_cast<std::int32_t>(model.nodes.count())) (*turned)[c[k]] = 1;
+    }
   }
-  return true;
+  return ok;
 }
 
 /// The first of the two remaps: the born nodes appended (every old node stays for now, so the
@@ -1124,18 +1148,18 @@ void keep_tangles(const Model& model, const Part& part, OldPart& old, std::vecto
     const std::vector<std::int32_t> patch = elements_around(part, body, crossing[b], rings, model.nodes.count());
     if (2 * patch.size() > body.size()) {
       bodies.push_back(body);
-      keep.push_back(1);
+      keep.push_back(kKeptPatch);
       continue;
     }
     std::vector<std::int32_t> rest;
     std::set_difference(body.begin(), body.end(), patch.begin(), patch.end(), std::back_inserter(rest));
     for (auto& piece : patch_pieces(part, patch, model.nodes.count())) {
       bodies.push_back(std::move(piece));
-      keep.push_back(1);
+      keep.push_back(kKeptPatch);
     }
     for (auto& piece : patch_pieces(part, rest, model.nodes.count())) {
       bodies.push_back(std::move(piece));
-      keep.push_back(0);
+      keep.push_back(kRemeshed);
     }
   }
   set_bodies(model, part, std::move(bodies), old);
@@ -1154,18 +1178,134 @@ std::vector<char> unsplit_nodes(const Part& part, const OldPart& old, const std:
   return out;
 }
 
-/// How many times the patches kept around crossings grow by a ring before the remesh gives up.
-constexpr int kUntangleRounds = 3;
+/// How many times patches are kept around crossings before the remesh gives up: a patch can
+/// reveal the next crossing (a closed crack whose tip it took is no longer collapsed, and its
+/// pressed lips cross further along), so there are several rounds. Each round's patches are a
+/// ring wider than the last, up to kMaxRings.
+constexpr int kUntangleRounds = 8;
+constexpr int kMaxRings = 3;
+/// How many times patches are kept around triangles that turned over when a closed crack's lips
+/// were given back, before the next reach of kClosedLips.
+constexpr int kTurnedRounds = 3;
+
+/// Fragments of fewer elements than this are kept whole, as they are: debris that no size rule
+/// needs to change, whose lips, pressed and tight, are where Gmsh fails, and which would each be
+/// a surface of its own to mesh (a cracked SiC beam has a thousand of them).
+constexpr std::size_t kSmallFragment = 16;
+
+/// keep_body before any cut: the small fragments kept (when the part has several bodies).
+std::vector<char> small_fragments(const OldPart& old) {
+  std::vector<char> keep(old.bodies.size(), kRemeshed);
+  for (std::size_t b = 0; b < old.bodies.size() && old.bodies.size() > 1; ++b)
+    if (old.bodies[b].size() < kSmallFragment) keep[b] = kKeptFragment;
+  return keep;
+}
+
+/// Per body of `old` that is remeshed, its nodes marked in `marked`.
+std::vector<std::vector<std::int32_t>> marked_nodes_by_body(const Part& part, const OldPart& old,
+                                                            const std::vector<char>& keep_body,
+                                                            const std::vector<char>& marked) {
+  std::vector<std::vector<std::int32_t>> out(old.bodies.size());
+  for (std::size_t b = 0; b < old.bodies.size(); ++b) {
+    if (keep_body[b] != kRemeshed) continue;
+    for (const std::int32_t e : old.bodies[b])
+      for (int k = 0; k < 3; ++k)
+        if (const std::int32_t n = part.connectivity[3 * static_cast<std::size_t>(e) + k]; marked[n]) out[b].push_back(n);
+    std::sort(out[b].begin(), out[b].end());
+    out[b].erase(std::unique(out[b].begin(), out[b].end()), out[b].end());
+  }
+  return out;
+}
+
+/// Marks the old nodes of new triangles (not kept ones) whose smallest angle is below
+/// kSliverAngle where their corners really are: Gmsh joins two copies of a node a few microns
+/// apart where lips or pieces nearly touch (four cracks' copies at a crossing point, say), and
+/// such a triangle would turn over in a few steps. True if any.
+bool mark_slivers(const Model& model, const Domain& dom, const Triangulation& mesh, const NewMesh& nm,
+                  std::vector<char>& marked) {
+  const std::size_t n_made = mesh.triangles.size() / 3 - dom.kept_elements.size();
+  const auto old_nodes = static_cast<std::int32_t>(model.nodes.count());
+  bool any = false;
+  for (std::size_t t = 0; t < n_made; ++t) {
+    const std::int32_t* c = &nm.corner[3 * t];
+    const double* x[3];
+    for (int k = 0; k < 3; ++k) x[k] = c[k] < old_nodes ? &model.nodes.x[2 * c[k]] : &mesh.xy[2 * mesh.triangles[3 * t + k]];
+    const auto angles = triangle_angles(x[0], x[1], x[2]);
+    if (*std::min_element(angles.begin(), angles.end()) >= kSliverAngle) continue;
+    for (int k = 0; k < 3; ++k)
+      if (c[k] < old_nodes) {
+        marked[c[k]] = 1;
+        any = true;
+      }
+  }
+  return any;
+}
+
+/// One try at the new mesh of the part as `old` is cut now: `made`, or why not, and where (per
+/// body, the old nodes) a kept patch may help.
+struct MeshTry {
+  bool made = false, tangled = false, turned = false, mostly_kept = false;
+  std::vector<std::vector<std::int32_t>> places;
+  std::array<double, 2> where{0, 0};  ///< a crossing
+};
+
+MeshTry try_new_mesh(const Model& model, const Part& part, OldPart& old, const std::vector<char>& crack_face,
+                     const std::set<std::int32_t>& kept, const std::vector<double>& nodal, const SizeField& field,
+                     const RemeshSettings& s, double closed_lips, NewPartMesh& m, RemeshOutcome& out) {
+  using Clock = std::chrono::steady_clock;
+  auto since = [](Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); };
+  MeshTry t;
+  m.failure.clear();
+  auto t0 = Clock::now();
+  m.dom = build_domain(model, part, old, unsplit_nodes(part, old, m.keep_body, crack_face), m.keep_body, kept, nodal, s,
+                       closed_lips);
+  t.places = crossing_nodes(m.dom, old.bodies.size());
+  out.seconds_boundary += since(t0);
+  for (const auto& nodes : t.places)
+    if (!nodes.empty() && !t.tangled) {
+      t.tangled = true;
+      t.where = {model.nodes.x[2 * nodes[0]], model.nodes.x[2 * nodes[0] + 1]};
+    }
+  if (t.tangled) return t;
+  if (2 * (m.dom.kept_elements.size() - m.dom.fragment_elements) > part.element_count()) {
+    // Keeping most of the part would leave nearly nothing to remesh, at every check.
+    m.failure = "the patches kept where its boundary crosses itself, or where a closed crack could not be given back, "
+                "would hold most of the part";
+    t.mostly_kept = true;
+    return t;
+  }
+  t0 = Clock::now();
+  m.mesh = mesh_domain(model, crack_face, m.dom, field, s, out);
+  out.seconds_gmsh += since(t0);
+  if (!m.mesh.ok()) {
+    m.failure = "Gmsh could not mesh the part's new boundary (" + m.mesh.failure + ")";
+    return t;
+  }
+  t0 = Clock::now();
+  m.nm = map_new_mesh(model, part, old, m.dom, m.mesh, s.transfer);
+  out.seconds_transfer += since(t0);
+  std::vector<char> turned(model.nodes.count(), 0);
+  t.made = split_slits(model, m.dom, m.mesh, m.nm, &turned);
+  if (!t.made)
+    m.failure = "a triangle at a closed crack turns over when its lips are given back";
+  else if (mark_slivers(model, m.dom, m.mesh, m.nm, turned))
+    m.failure = "a triangle joins two lips or two pieces that nearly touch (a sliver of under 1 degree)";
+  if (!m.failure.empty()) {
+    t.made = false;
+    t.places = marked_nodes_by_body(part, old, m.keep_body, turned);
+    for (const auto& nodes : t.places) t.turned = t.turned || !nodes.empty();
+  }
+  return t;
+}
 
 /// The new mesh of the part. Where a body's new boundary crosses itself (lips pressed into each
-/// other, a fragment folded over), a patch of its elements around the crossing is kept as it is
-/// and the rest remeshed: `old` is then cut into those bodies. Tried with the closed-crack reaches
-/// of kClosedLips in turn (empty `failure`: made).
+/// other, a fragment folded over), or where a triangle turns over when a closed crack's lips are
+/// given back, a patch of its elements around the place is kept as it is and the rest remeshed:
+/// `old` is then cut into those bodies. Tried with the closed-crack reaches of kClosedLips in turn
+/// (empty `failure`: made).
 NewPartMesh make_new_mesh(const Model& model, const Part& part, OldPart& old, const std::vector<char>& crack_face,
                           const std::set<std::int32_t>& kept, const std::vector<double>& nodal, const SizeField& field,
                           const RemeshSettings& s, RemeshOutcome& out) {
-  using Clock = std::chrono::steady_clock;
-  auto since = [](Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); };
   // Only the bodies are cut (and their loops with them): they are what is given back.
   const std::vector<std::vector<std::int32_t>> bodies = old.bodies;
   bool cut = false;
@@ -1174,55 +1314,37 @@ NewPartMesh make_new_mesh(const Model& model, const Part& part, OldPart& old, co
     cut = false;
   };
   NewPartMesh m;
+  std::array<double, 2> where{0, 0};  // the first crossing
   for (const double closed_lips : kClosedLips) {
-    auto t0 = Clock::now();
     uncut();
-    m.keep_body.assign(old.bodies.size(), 0);
-    std::vector<std::vector<std::int32_t>> crossing;
-    bool tangled = false;
-    std::array<double, 2> where{0, 0};
-    for (int round = 0;; ++round) {
-      m.dom = build_domain(model, part, old, unsplit_nodes(part, old, m.keep_body, crack_face), m.keep_body, kept, nodal,
-                           s, closed_lips);
-      crossing = crossing_nodes(m.dom, old.bodies.size());
-      tangled = false;
-      for (const auto& nodes : crossing)
-        if (!nodes.empty() && !tangled) {
-          tangled = true;
-          if (round == 0) where = {model.nodes.x[2 * nodes[0]], model.nodes.x[2 * nodes[0] + 1]};
-        }
-      if (!tangled || round == kUntangleRounds) break;
-      keep_tangles(model, part, old, m.keep_body, crossing, round + 1);
+    m.keep_body = small_fragments(old);
+    for (int untangled = 0, turned_rounds = 0;;) {
+      const MeshTry t = try_new_mesh(model, part, old, crack_face, kept, nodal, field, s, closed_lips, m, out);
+      if (t.made) {
+        m.failure.clear();
+        return m;
+      }
+      if (t.tangled && untangled == 0) where = t.where;
+      if (t.mostly_kept && untangled > 0) {
+        char at[96];
+        std::snprintf(at, sizeof at, " (it crosses itself near (%.6g, %.6g) m)", where[0], where[1]);
+        m.failure += at;
+      }
+      if (t.tangled && untangled == kUntangleRounds) {
+        char why[240];
+        std::snprintf(why, sizeof why,
+                      "the new boundary crosses itself near (%.6g, %.6g) m (lips pressed into each other, or a fragment "
+                      "folded over), which Gmsh cannot mesh, and patches kept around the crossings did not remove it",
+                      where[0], where[1]);
+        m.failure = why;
+      }
+      const bool again = t.tangled ? untangled < kUntangleRounds : t.turned && turned_rounds < kTurnedRounds;
+      if (!again) break;
+      // The rings grow with each round of the same cause.
+      const int rings = t.tangled ? ++untangled : ++turned_rounds;
+      keep_tangles(model, part, old, m.keep_body, t.places, std::min(rings, kMaxRings));
       cut = true;
     }
-    out.seconds_boundary += since(t0);
-    const std::size_t kept_elements = m.dom.kept_elements.size();
-    if (tangled || 2 * kept_elements > part.element_count()) {
-      // Keeping most of the part would leave nearly nothing to remesh, at every check.
-      char why[240];
-      std::snprintf(why, sizeof why,
-                    "the new boundary crosses itself near (%.6g, %.6g) m (lips pressed into each other, or a fragment "
-                    "folded over), which Gmsh cannot mesh, and %s",
-                    where[0], where[1],
-                    tangled ? "patches kept around the crossings did not remove it" : "keeping it would keep most of the part");
-      m.failure = why;
-      continue;
-    }
-    t0 = Clock::now();
-    m.mesh = mesh_domain(model, crack_face, m.dom, field, s, out);
-    out.seconds_gmsh += since(t0);
-    if (!m.mesh.ok()) {
-      m.failure = "Gmsh could not mesh the part's new boundary (" + m.mesh.failure + ")";
-      continue;
-    }
-    t0 = Clock::now();
-    m.nm = map_new_mesh(model, part, old, m.dom, m.mesh, s.transfer);
-    out.seconds_transfer += since(t0);
-    if (split_slits(model, m.dom, m.mesh, m.nm)) {
-      m.failure.clear();
-      return m;
-    }
-    m.failure = "a triangle at a closed crack turns over when its lips are given back";
   }
   uncut();
   return m;
@@ -1296,7 +1418,8 @@ RemeshOutcome remesh_part(Model& model, std::size_t p, const Material& material,
   const BodySums before = body_sums(model, old.body_of_node, old.bodies.size());
   out.bodies = bodies_before;
   out.bodies_kept = dom.kept_bodies;
-  out.elements_kept = dom.kept_elements.size();
+  out.elements_kept = dom.kept_elements.size() - dom.fragment_elements;
+  out.fragments_kept = dom.kept_fragments;
   out.elements_before = part.element_count();
   out.area_before = part_area(part, model.nodes);
   out.kinetic_before = kinetic_energy(model, old.body_of_node);

@@ -51,6 +51,8 @@ struct RemeshOutcome {
   /// over), which Gmsh cannot mesh, a patch of its elements around the crossing is kept as it was
   /// (or the whole body, if the patch would hold most of it): how many such patches, and elements.
   std::size_t bodies_kept = 0, elements_kept = 0;
+  /// Small fragments (fewer than 16 elements) kept whole, as they were.
+  std::size_t fragments_kept = 0;
   double area_before = 0, area_after = 0;      ///< of the part (m²)
   double mass_before = 0, mass_after = 0;      ///< of the part's nodes (kg)
   std::array<double, 2> momentum_before{0, 0}, momentum_after{0, 0};

@@ -119,6 +119,7 @@ RemeshEvent::Due RemeshEvent::assess(const Model& model, std::size_t i, std::int
       const double ratio = sizes.current[e] / sizes.target[e];
       const bool too_large = ratio > triggers_.size_mismatch, too_small = ratio < 1.0 / triggers_.size_mismatch;
       if (!too_large && !too_small) continue;
+      if (kept_as_it_was(part, static_cast<std::size_t>(elements[e]))) continue;  // a remesh keeps it again
       if (near_crack.empty()) {
         crack_face = model.crack_face_nodes();
         near_crack = near_crack_nodes(part, crack_face);
@@ -149,6 +150,8 @@ bool RemeshEvent::may_be_due(const Model& model, const std::vector<std::vector<s
     if (p < model.remesh_retry_step.size() && step < model.remesh_retry_step[p]) continue;
     // The energy-norm error is normalised over the whole part (eq. 6): a part of it cannot tell.
     if (triggers_.size_mismatch > 0 && parts_[i].settings.size.measure == SizeMeasure::error) return true;
+    // Refined ahead, an element's target depends on elements around it that may be another rank's.
+    if (triggers_.size_mismatch > 0 && parts_[i].settings.size.refine_ahead > 0) return true;
     if (!assess(model, i, step, owned[p]).why.empty()) return true;
   }
   return false;

@@ -70,7 +70,7 @@ class RemeshEvent final : public StepEvent {
   /// part may be due by what its `owned` elements (per part, their indices) show. Every element
   /// is some rank's, so whenever the whole model is due some rank says so (and a yes may find
   /// nothing due: the whole model then decides, `run`). A size rule of the energy-norm error,
-  /// normalised over the whole part, says yes at every check.
+  /// normalised over the whole part, says yes at every check, and so does one that refines ahead.
   bool may_be_due(const Model& model, const std::vector<std::vector<std::int32_t>>& owned, std::int64_t step) const;
   /// Wall-clock seconds spent remeshing each remeshed part (not in the history: it would differ
   /// from run to run).

@@ -6,6 +6,7 @@
 #include <limits>
 #include <numbers>
 #include <queue>
+#include <tuple>
 
 #include "adapt/planar_mesh.hpp"
 #include "fem/internal_forces.hpp"
@@ -156,6 +157,57 @@ EnergyNormError energy_norm_error(const Part& part, const std::vector<std::int32
   return out;
 }
 
+void spread_smallest_sizes(const Part& part, const std::vector<std::int32_t>& elements, const NodeArrays& nodes,
+                           std::vector<double>& target, double reach) {
+  const std::size_t n = elements.size();
+  std::vector<std::array<double, 2>> centre(n);
+  std::vector<std::int32_t> first(nodes.count() + 1, 0);  // node → listed elements, compressed rows
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::int32_t* c = &part.connectivity[3 * static_cast<std::size_t>(elements[i])];
+    for (int k = 0; k < 3; ++k) {
+      centre[i][0] += nodes.x[2 * c[k]] / 3.0;
+      centre[i][1] += nodes.x[2 * c[k] + 1] / 3.0;
+      ++first[c[k] + 1];
+    }
+  }
+  for (std::size_t a = 0; a < nodes.count(); ++a) first[a + 1] += first[a];
+  std::vector<std::int32_t> around(first.back()), fill(first.begin(), first.end() - 1);
+  for (std::size_t i = 0; i < n; ++i)
+    for (int k = 0; k < 3; ++k) around[fill[part.connectivity[3 * static_cast<std::size_t>(elements[i]) + k]]++] =
+        static_cast<std::int32_t>(i);
+  // A label is a size and the reach it has left. Labels are taken smallest size first, and of
+  // one size the one with most reach left: a label at an element where an earlier one (as small
+  // or smaller) had as much reach left can reach nothing new, and is dropped. An element is
+  // taken again only with more reach left, so a small size that arrives nearly spent does not
+  // stop a larger one from going further.
+  // A continuous field would give an element as many labels as it has smaller sizes within
+  // reach: the sizes spread are rounded down to steps of 2^(1/8) (9 %). An element keeps its own
+  // size exactly (its own label is the only one with the whole reach left), and takes another's
+  // only if it is a step or more below its own (its own label, with the whole reach, drops the
+  // rest): a uniform field is left as it is.
+  const auto step_down = [](double h) { return std::exp2(std::floor(8.0 * std::log2(h)) / 8.0); };
+  using Label = std::tuple<double, double, std::int32_t>;  // size, −reach left, element
+  std::priority_queue<Label, std::vector<Label>, std::greater<>> queue;
+  for (std::size_t i = 0; i < n; ++i)
+    if (std::isfinite(target[i]) && target[i] > 0) queue.emplace(step_down(target[i]), -reach, static_cast<std::int32_t>(i));
+  std::vector<double> left(n, -1.0);
+  while (!queue.empty()) {
+    const auto [h, minus_left, i] = queue.top();
+    queue.pop();
+    if (-minus_left <= left[i]) continue;
+    left[i] = -minus_left;
+    if (left[i] < reach) target[i] = std::min(target[i], h);
+    const std::int32_t* c = &part.connectivity[3 * static_cast<std::size_t>(elements[i])];
+    for (int k = 0; k < 3; ++k)
+      for (std::int32_t r = first[c[k]]; r < first[c[k] + 1]; ++r) {
+        const std::int32_t j = around[r];
+        const double dx = centre[j][0] - centre[i][0], dy = centre[j][1] - centre[i][1];
+        const double rest = left[i] - std::sqrt(dx * dx + dy * dy);
+        if (j != i && rest >= 0 && rest > left[j]) queue.emplace(h, -rest, j);
+      }
+  }
+}
+
 ElementSizes element_target_sizes(const Part& part, const std::vector<std::int32_t>& elements, const NodeArrays& nodes,
                                   const Material& material, Formulation formulation, const SizeRule& rule) {
   ElementSizes out;
@@ -187,6 +239,13 @@ ElementSizes element_target_sizes(const Part& part, const std::vector<std::int32
                           : size_from_table(rule, value);
     }
   }
+  // The bounds first: sizes below h_min are one level, which spreads as one.
+  const auto bound = [&rule](double h) {
+    if (rule.h_max > 0) h = std::min(h, rule.h_max);
+    return rule.h_min > 0 ? std::max(h, rule.h_min) : h;
+  };
+  for (double& h : out.target) h = bound(h);
+  if (rule.refine_ahead > 0) spread_smallest_sizes(part, elements, nodes, out.target, rule.refine_ahead);
   for (std::size_t i = 0; i < n; ++i) {
     double h = out.target[i];
     h = std::clamp(h, out.current[i] / rule.max_refinement, out.current[i] * rule.max_coarsening);

@@ -36,6 +36,10 @@ struct SizeRule {
   double max_coarsening = 2;   ///< … and at most this much larger
   std::int64_t max_elements = 0;  ///< budget of the part's new mesh (0: none)
   double gradation = 0.3;      ///< the size grows by at most this much per unit distance
+  /// Refine ahead (m): an element takes the smallest size asked for within this distance of it
+  /// along the mesh, so that a wave arriving before the next assessment finds the mesh already
+  /// fine (0: each element its own).
+  double refine_ahead = 0;
 };
 
 /// The size measure and target of each listed element, and its size now (equilateral edge of its
@@ -46,6 +50,12 @@ struct ElementSizes {
 
 /// The size-table lookup: linear between points, constant beyond the ends.
 double size_from_table(const SizeRule& rule, double value);
+
+/// Each listed element's target becomes the smallest target of the listed elements within
+/// `reach` of it, the distance measured from centroid to centroid across shared nodes; the others'
+/// targets rounded down to steps of 2^(1/8), and taken only if a step or more below its own.
+void spread_smallest_sizes(const Part& part, const std::vector<std::int32_t>& elements, const NodeArrays& nodes,
+                           std::vector<double>& target, double reach);
 
 /// Effective total strain rate sqrt(2/3 D:D) of a triangle from its nodes' velocities (the hoop
 /// rate v_r/r in axisymmetry).

@@ -77,6 +77,12 @@ KeyList remeshed_part_keys() {
       .at_least(0)
       .defaults_to("0");
   k.quantity("gradation", dim::none, "the size grows by at most this much per unit distance").above(0).defaults_to("0.3");
+  k.quantity("refine_ahead", dim::length,
+             "each element takes the smallest size asked for within this distance of it, so that a wave finds the "
+             "mesh fine where it arrives before the next assessment: at least the distance the fastest wave travels "
+             "in check_interval steps (0: each element its own)")
+      .at_least(0)
+      .defaults_to("0");
   k.choice("transfer", {"least_squares", "projection"},
            "how the integration-point state is carried: linear moving least squares, or the ceramics paper's "
            "projection through nodal averages (smears sharp fields; kept as a reference)")
@@ -161,6 +167,7 @@ RemeshedPartInput read_part(Section& s, const Scenario& sc) {
   rule.max_coarsening = s.number("max_coarsening");
   rule.max_elements = s.integer("max_elements");
   rule.gradation = s.number("gradation");
+  rule.refine_ahead = s.number("refine_ahead");
   in.settings.transfer =
       s.choice("transfer").value_or("least_squares") == "projection" ? PointTransfer::projection : PointTransfer::least_squares;
   in.settings.algorithm =

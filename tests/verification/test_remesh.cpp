@@ -8,13 +8,18 @@
 #include <cstdio>
 #include <map>
 #include <numbers>
+#include <numeric>
 #include <algorithm>
 #include <array>
+#include <limits>
+#include <queue>
+#include <random>
 #include <set>
 
 #include "adapt/planar_mesh.hpp"
 #include "adapt/remesh.hpp"
 #include "adapt/remesh_event.hpp"
+#include "adapt/size_field.hpp"
 #include "material/johnson_cook.hpp"
 #include "material/rotating_crack.hpp"
 #include "fracture/crack_insertion.hpp"
@@ -354,10 +359,10 @@ std::vector<std::int32_t> all_elements(const Model& model) {
 }
 
 TEST(Remesh, AFragmentFoldedOverItselfIsKeptAsItIsAndTheRestRemeshed) {
-  // A strip of 6 × 1 cells (12 triangles) wound into a spiral: a patch around where its boundary
+  // A strip of 10 × 1 cells (20 triangles) wound into a spiral: a patch around where its boundary
   // crosses itself would hold most of it, so it is kept whole, bit for bit, masses and velocities
   // too; the upper piece is remeshed.
-  auto folded = plate_with_a_folded_strip(6, 3, 1);
+  auto folded = plate_with_a_folded_strip(10, 3, 1);
   auto& [run, bodies, strip, strip_before, sums_before] = folded;
   Model& model = run.model;
   ASSERT_EQ(bodies.size(), 2u);
@@ -374,9 +379,32 @@ TEST(Remesh, AFragmentFoldedOverItselfIsKeptAsItIsAndTheRestRemeshed) {
   ASSERT_LT(kept, 2u) << "the folded strip was not kept bit for bit";
   std::printf("[remesh, a folded fragment] %zu elements kept; the rest %zu -> %zu elements, smallest angle %.1f deg\n",
               bodies[strip].size(), other_before, after[1 - kept].size(), out.min_angle * 180 / std::numbers::pi);
-  EXPECT_GT(after[1 - kept].size(), 2 * other_before);  // 24 triangles of 4 mm cells, remeshed at 2.5 mm
+  EXPECT_GT(after[1 - kept].size(), 2 * other_before);  // 40 triangles of 2.4 × 4 mm cells, remeshed at 2.5 mm
   // The lips and the kept patch's edges are kept as they are (4 and 1 mm), hence the floor.
   EXPECT_GE(out.min_angle, 15.0 * std::numbers::pi / 180);
+  expect_sums_kept(sums_before, model);
+}
+
+TEST(Remesh, SmallFragmentsAreKeptAsTheyAre) {
+  // A strip of 6 × 1 cells (12 triangles, fewer than 16) cut off by a crack and wound into a
+  // spiral: kept whole as a small fragment, bit for bit, before its crossing is even looked for;
+  // the upper piece is remeshed.
+  auto folded = plate_with_a_folded_strip(6, 3, 1);
+  auto& [run, bodies, strip, strip_before, sums_before] = folded;
+  Model& model = run.model;
+  ASSERT_EQ(bodies.size(), 2u);
+  const RemeshOutcome out = remesh_part(model, 0, *run.materials[0], uniform(2.5e-3), {});
+  ASSERT_TRUE(out.remeshed) << out.skipped;
+  EXPECT_EQ(out.fragments_kept, 1u);
+  EXPECT_EQ(out.bodies_kept, 0u);
+  EXPECT_EQ(out.elements_kept, 0u);
+  const auto after = bodies_of(model.parts[0]);
+  ASSERT_EQ(after.size(), 2u);
+  std::size_t kept = 2;
+  for (std::size_t b = 0; b < 2; ++b)
+    if (after[b].size() == bodies[strip].size() && body_record(model, after[b]) == strip_before) kept = b;
+  ASSERT_LT(kept, 2u) << "the small fragment was not kept bit for bit";
+  EXPECT_GT(after[1 - kept].size(), bodies[1 - strip].size());
   expect_sums_kept(sums_before, model);
 }
 
@@ -694,6 +722,85 @@ TEST(Remesh, CarriedStatesAreMadeConsistentByTheirMaterials) {
   const double vm = std::sqrt(1.5 * (dev[0] * dev[0] + dev[1] * dev[1] + dev[2] * dev[2]) + 3 * dev[3] * dev[3]);
   EXPECT_NEAR(vm, steel.flow_stress(0.1, 0, 293), 1e-9 * vm);
   EXPECT_NEAR(p, pressure, 1e-6);
+}
+
+}  // namespace
+}  // namespace shard
+
+namespace shard {
+namespace {
+
+/// Path lengths from one element to every other over the same graph spread_smallest_sizes walks:
+/// centroid to centroid between elements that share a node (Dijkstra).
+std::vector<double> path_lengths(const Part& part, const NodeArrays& nodes, std::size_t from) {
+  const std::size_t n = part.element_count();
+  std::vector<std::array<double, 2>> centre(n, {0, 0});
+  std::vector<std::vector<std::size_t>> at_node(nodes.count());
+  for (std::size_t e = 0; e < n; ++e)
+    for (int k = 0; k < 3; ++k) {
+      const std::int32_t a = part.connectivity[3 * e + k];
+      centre[e][0] += nodes.x[2 * a] / 3.0;
+      centre[e][1] += nodes.x[2 * a + 1] / 3.0;
+      at_node[a].push_back(e);
+    }
+  std::vector<double> length(n, std::numeric_limits<double>::infinity());
+  using Entry = std::pair<double, std::size_t>;
+  std::priority_queue<Entry, std::vector<Entry>, std::greater<>> queue;
+  length[from] = 0;
+  queue.emplace(0.0, from);
+  while (!queue.empty()) {
+    const auto [l, e] = queue.top();
+    queue.pop();
+    if (l > length[e]) continue;
+    for (int k = 0; k < 3; ++k)
+      for (const std::size_t f : at_node[part.connectivity[3 * e + k]]) {
+        const double d = std::hypot(centre[f][0] - centre[e][0], centre[f][1] - centre[e][1]);
+        if (l + d < length[f]) {
+          length[f] = l + d;
+          queue.emplace(length[f], f);
+        }
+      }
+  }
+  return length;
+}
+
+// refine_ahead: each element takes the smallest size asked for within the reach along the mesh
+// (the others' sizes rounded down to steps of 2^(1/8), and only those a step or more below its
+// own), checked against a search from every element on its own. The sizes are drawn at random, most of them coarse, on a distorted plate,
+// so that small sizes arrive nearly spent where larger ones still have reach left.
+TEST(RemeshSizes, RefineAheadGivesEachElementTheSmallestSizeWithinItsReach) {
+  auto run = plate(30, 10, 0.03, 0.01, 0.2);
+  const Part& part = run.model.parts[0];
+  const std::size_t n = part.element_count();
+  std::vector<std::int32_t> elements(n);
+  std::iota(elements.begin(), elements.end(), 0);
+  std::mt19937 random(11);
+  std::uniform_real_distribution<double> draw(0.0, 1.0);
+  std::vector<double> target(n);
+  for (double& h : target) {
+    const double u = draw(random);
+    h = u < 0.02 ? 0.4e-3 : u < 0.06 ? 1.1e-3 : u < 0.12 ? 2.3e-3 : 5e-3;
+  }
+  const double reach = 4e-3;
+  std::vector<double> spread = target;
+  spread_smallest_sizes(part, elements, run.model.nodes, spread, reach);
+  const auto step_down = [](double h) { return std::exp2(std::floor(8.0 * std::log2(h)) / 8.0); };
+  std::vector<double> expected = target;
+  for (std::size_t s = 0; s < n; ++s) {
+    const std::vector<double> length = path_lengths(part, run.model.nodes, s);
+    for (std::size_t e = 0; e < n; ++e)
+      if (e != s && length[e] <= reach && step_down(target[s]) < step_down(target[e]))
+        expected[e] = std::min(expected[e], step_down(target[s]));
+  }
+  std::size_t changed = 0, wrong = 0;
+  for (std::size_t e = 0; e < n; ++e) {
+    changed += spread[e] != target[e];
+    wrong += spread[e] != expected[e];
+  }
+  std::printf("[remesh sizes, refine ahead by 4 mm] %zu of %zu elements take a smaller size from around them\n",
+              changed, n);
+  EXPECT_EQ(wrong, 0u);
+  EXPECT_GT(changed, n / 4);
 }
 
 }  // namespace
