@@ -1193,11 +1193,16 @@ constexpr int kTurnedRounds = 3;
 /// a surface of its own to mesh (a cracked SiC beam has a thousand of them).
 constexpr std::size_t kSmallFragment = 16;
 
-/// keep_body before any cut: the small fragments kept (when the part has several bodies).
+/// keep_body before any cut: the small fragments kept, unless every body is one (then all are
+/// remeshed: there would be nothing else to do).
 std::vector<char> small_fragments(const OldPart& old) {
   std::vector<char> keep(old.bodies.size(), kRemeshed);
-  for (std::size_t b = 0; b < old.bodies.size() && old.bodies.size() > 1; ++b)
+  bool any_large = false;
+  for (std::size_t b = 0; b < old.bodies.size(); ++b) {
     if (old.bodies[b].size() < kSmallFragment) keep[b] = kKeptFragment;
+    any_large = any_large || keep[b] == kRemeshed;
+  }
+  if (!any_large) keep.assign(old.bodies.size(), kRemeshed);
   return keep;
 }
 
@@ -1218,9 +1223,10 @@ std::vector<std::vector<std::int32_t>> marked_nodes_by_body(const Part& part, co
 }
 
 /// Marks the old nodes of new triangles (not kept ones) whose smallest angle is below
-/// kSliverAngle where their corners really are: Gmsh joins two copies of a node a few microns
-/// apart where lips or pieces nearly touch (four cracks' copies at a crossing point, say), and
-/// such a triangle would turn over in a few steps. True if any.
+/// kSliverAngle where their corners really are, and for a corner on an old boundary segment its
+/// two ends: Gmsh joins two copies of a node a few microns apart where lips or pieces nearly
+/// touch (four cracks' copies at a crossing point, say), and such a triangle would turn over in a
+/// few steps. True if any (a sliver of Gmsh's inner nodes alone marks nothing: it is taken).
 bool mark_slivers(const Model& model, const Domain& dom, const Triangulation& mesh, const NewMesh& nm,
                   std::vector<char>& marked) {
   const std::size_t n_made = mesh.triangles.size() / 3 - dom.kept_elements.size();
@@ -1232,11 +1238,18 @@ bool mark_slivers(const Model& model, const Domain& dom, const Triangulation& me
     for (int k = 0; k < 3; ++k) x[k] = c[k] < old_nodes ? &model.nodes.x[2 * c[k]] : &mesh.xy[2 * mesh.triangles[3 * t + k]];
     const auto angles = triangle_angles(x[0], x[1], x[2]);
     if (*std::min_element(angles.begin(), angles.end()) >= kSliverAngle) continue;
-    for (int k = 0; k < 3; ++k)
+    for (int k = 0; k < 3; ++k) {
+      const auto point = static_cast<std::size_t>(mesh.triangles[3 * t + k]);
       if (c[k] < old_nodes) {
         marked[c[k]] = 1;
-        any = true;
+      } else if (point < dom.points.size() && dom.points[point].node < 0) {
+        marked[dom.points[point].a] = 1;
+        marked[dom.points[point].b] = 1;
+      } else {
+        continue;
       }
+      any = true;
+    }
   }
   return any;
 }
@@ -1267,10 +1280,10 @@ MeshTry try_new_mesh(const Model& model, const Part& part, OldPart& old, const s
       t.where = {model.nodes.x[2 * nodes[0]], model.nodes.x[2 * nodes[0] + 1]};
     }
   if (t.tangled) return t;
-  if (2 * (m.dom.kept_elements.size() - m.dom.fragment_elements) > part.element_count()) {
+  if (2 * (m.dom.kept_elements.size() - m.dom.fragment_elements) > part.element_count() - m.dom.fragment_elements) {
     // Keeping most of the part would leave nearly nothing to remesh, at every check.
-    m.failure = "the patches kept where its boundary crosses itself, or where a closed crack could not be given back, "
-                "would hold most of the part";
+    m.failure = "the patches kept where its boundary crosses itself, or where a closed crack's lips could not be given "
+                "back or Gmsh made a sliver, would hold most of what is not a small fragment";
     t.mostly_kept = true;
     return t;
   }

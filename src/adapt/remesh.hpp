@@ -48,8 +48,9 @@ struct RemeshOutcome {
   std::size_t elements_before = 0, elements_after = 0, nodes_before = 0, nodes_after = 0;
   std::size_t bodies = 0;
   /// Where a body's boundary crosses itself (lips pressed into each other, a fragment folded
-  /// over), which Gmsh cannot mesh, a patch of its elements around the crossing is kept as it was
-  /// (or the whole body, if the patch would hold most of it): how many such patches, and elements.
+  /// over), which Gmsh cannot mesh, or where a closed crack's lips turn a new triangle over or
+  /// Gmsh makes a sliver, a patch of its elements around the place is kept as it was (or the whole
+  /// body, if the patch would hold most of it): how many such patches, and elements.
   std::size_t bodies_kept = 0, elements_kept = 0;
   /// Small fragments (fewer than 16 elements) kept whole, as they were.
   std::size_t fragments_kept = 0;

@@ -54,9 +54,10 @@ std::vector<char> boundary_nodes(const Model& model, std::size_t p) {
   return out;
 }
 
-/// Whether a remesh kept element e as it was, where a boundary crosses itself: remesh_part marks
-/// it by a negative reference area. No remesh changes it while the crossing lasts, so its shape
-/// is not looked at, or it would ask for a remesh at every check.
+/// Whether a remesh kept element e as it was (a patch where a boundary crosses itself or lips
+/// could not be given back, or a small fragment): remesh_part marks it by a negative reference
+/// area. No remesh changes it while the cause lasts, so its shape and size are not looked at, or
+/// it would ask for a remesh at every check.
 bool kept_as_it_was(const Part& part, std::size_t e) {
   return part.shape_reference.size() >= 4 * (e + 1) && part.shape_reference[4 * e] < 0;
 }
@@ -250,8 +251,9 @@ void RemeshEvent::run(Model& model, EventContext& context) {
                        " kept " + std::to_string(out.elements_kept) + " elements (" + std::to_string(out.bodies_kept) +
                        (out.bodies_kept == 1 ? " patch" : " patches") +
                        ") as they were, where its boundary crosses itself (crack faces pressed into each "
-                       "other, or a fragment folded over), which Gmsh cannot mesh; later remeshes that do the same "
-                       "are not noted");
+                       "other, or a fragment folded over), which Gmsh cannot mesh, or where a closed crack's lips "
+                       "turned a new triangle over or Gmsh made a sliver; later remeshes that do the same are not "
+                       "noted");
     }
     model.remesh_failures[p] = 0;
     model.remesh_retry_step[p] = 0;

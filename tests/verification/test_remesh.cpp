@@ -408,6 +408,20 @@ TEST(Remesh, SmallFragmentsAreKeptAsTheyAre) {
   expect_sums_kept(sums_before, model);
 }
 
+TEST(Remesh, APartOfSmallPiecesOnlyIsRemeshedWhole) {
+  // A plate of 6 × 2 cells cut across by a crack: two pieces of 12 triangles. Were both kept as
+  // small fragments there would be nothing left to mesh: both are remeshed.
+  auto run = plate(6, 2, 0.024, 0.008, 0.2);
+  std::vector<std::int32_t> nodes;
+  for (int i = 0; i <= 6; ++i) nodes.push_back(7 + i);
+  insert_crack(run, nodes);
+  ASSERT_EQ(bodies_of(run.model.parts[0]).size(), 2u);
+  const RemeshOutcome out = remesh_part(run.model, 0, *run.materials[0], uniform(2e-3), {});
+  ASSERT_TRUE(out.remeshed) << out.skipped;
+  EXPECT_EQ(out.fragments_kept, 0u);
+  EXPECT_GT(run.model.parts[0].element_count(), 24u);
+}
+
 TEST(Remesh, ABodyWhoseBoundaryCrossesItselfKeepsAPatchThereAndIsRemeshedAround) {
   // A strip of 24 × 4 cells (192 triangles) wound into a spiral, as lips pressed into each other
   // are in a cracked plate: a patch around the crossings is kept, element for element, and the
@@ -766,8 +780,9 @@ std::vector<double> path_lengths(const Part& part, const NodeArrays& nodes, std:
 
 // refine_ahead: each element takes the smallest size asked for within the reach along the mesh
 // (the others' sizes rounded down to steps of 2^(1/8), and only those a step or more below its
-// own), checked against a search from every element on its own. The sizes are drawn at random, most of them coarse, on a distorted plate,
-// so that small sizes arrive nearly spent where larger ones still have reach left.
+// own), checked against a search from every element on its own. The sizes are drawn at random,
+// most of them coarse, on a distorted plate, so that small sizes arrive nearly spent where larger
+// ones still have reach left; 4.8 and 5 mm are on one step (4.65 mm), so neither takes the other.
 TEST(RemeshSizes, RefineAheadGivesEachElementTheSmallestSizeWithinItsReach) {
   auto run = plate(30, 10, 0.03, 0.01, 0.2);
   const Part& part = run.model.parts[0];
@@ -779,7 +794,7 @@ TEST(RemeshSizes, RefineAheadGivesEachElementTheSmallestSizeWithinItsReach) {
   std::vector<double> target(n);
   for (double& h : target) {
     const double u = draw(random);
-    h = u < 0.02 ? 0.4e-3 : u < 0.06 ? 1.1e-3 : u < 0.12 ? 2.3e-3 : 5e-3;
+    h = u < 0.02 ? 0.4e-3 : u < 0.06 ? 1.1e-3 : u < 0.12 ? 2.3e-3 : u < 0.4 ? 4.8e-3 : 5e-3;
   }
   const double reach = 4e-3;
   std::vector<double> spread = target;
