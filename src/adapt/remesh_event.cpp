@@ -62,6 +62,26 @@ bool kept_as_it_was(const Part& part, std::size_t e) {
   return part.shape_reference.size() >= 4 * (e + 1) && part.shape_reference[4 * e] < 0;
 }
 
+/// A corner's angle is poor when beyond min_angle or max_angle and worse, by a fifth (of the angle,
+/// or of π minus it), than the corner was made with (the element's shape_reference): a triangle
+/// made poor (by Gmsh between lip nodes kept as they are, or in the user's mesh) would be made so
+/// again by a remesh, and would ask for one at every check; one that has become poor since is
+/// what a remesh fixes. The smallest and largest poor angles go to `low` and `high`.
+constexpr double kAngleWorsening = 0.8;
+
+void poor_angles(const Part& part, const NodeArrays& nodes, std::size_t e, const RemeshTriggers& t, double& low,
+                 double& high) {
+  const std::int32_t* c = &part.connectivity[3 * e];
+  const auto angles = triangle_angles(&nodes.x[2 * c[0]], &nodes.x[2 * c[1]], &nodes.x[2 * c[2]]);
+  const bool made = part.shape_reference.size() >= 4 * (e + 1) && part.shape_reference[4 * e] > 0;
+  for (int k = 0; k < 3; ++k) {
+    const double a = angles[k], a0 = made ? part.shape_reference[4 * e + 1 + k] : 0.0;
+    if (t.min_angle > 0 && a < t.min_angle && (!made || a < kAngleWorsening * a0)) low = std::min(low, a);
+    const double pi = std::numbers::pi;
+    if (t.max_angle > 0 && a > t.max_angle && (!made || pi - a < kAngleWorsening * (pi - a0))) high = std::max(high, a);
+  }
+}
+
 }  // namespace
 
 RemeshEvent::RemeshEvent(const std::vector<std::unique_ptr<Material>>& materials, std::vector<RemeshedPart> parts,
@@ -98,11 +118,7 @@ RemeshEvent::Due RemeshEvent::assess(const Model& model, std::size_t i, std::int
   for (const std::int32_t e : elements) {
     if (kept_as_it_was(part, static_cast<std::size_t>(e))) continue;
     worst = std::max(worst, element_distortion(part, model.nodes, static_cast<std::size_t>(e)).value());
-    const std::int32_t* c = &part.connectivity[3 * static_cast<std::size_t>(e)];
-    for (const double a : triangle_angles(&model.nodes.x[2 * c[0]], &model.nodes.x[2 * c[1]], &model.nodes.x[2 * c[2]])) {
-      smallest = std::min(smallest, a);
-      largest = std::max(largest, a);
-    }
+    poor_angles(part, model.nodes, static_cast<std::size_t>(e), triggers_, smallest, largest);
   }
   // A size mismatch asks for the whole part, so it is looked for before the shapes (which a
   // patch may fix).
@@ -136,9 +152,9 @@ RemeshEvent::Due RemeshEvent::assess(const Model& model, std::size_t i, std::int
   const double degree = std::numbers::pi / 180.0;
   if (triggers_.distortion > 0 && worst > triggers_.distortion)
     return {format("an element distorted by %.2f %% (allowed %.2f %%)", 100 * worst, 100 * triggers_.distortion), true};
-  if (triggers_.min_angle > 0 && smallest < triggers_.min_angle)
+  if (smallest < std::numbers::pi)
     return {format("an angle of %.1f deg (below %.1f)", smallest / degree, triggers_.min_angle / degree), true};
-  if (triggers_.max_angle > 0 && largest > triggers_.max_angle)
+  if (largest > 0)
     return {format("an angle of %.1f deg (above %.1f)", largest / degree, triggers_.max_angle / degree), true};
   return {};
 }
@@ -163,10 +179,10 @@ std::vector<std::int32_t> RemeshEvent::poor_elements(const Model& model, std::si
   std::vector<std::int32_t> out;
   for (std::size_t e = 0; e < part.element_count(); ++e) {
     if (kept_as_it_was(part, e)) continue;  // as in assess
-    bool poor = triggers_.distortion > 0 && element_distortion(part, model.nodes, e).value() > triggers_.distortion;
-    const std::int32_t* c = &part.connectivity[3 * e];
-    for (const double a : triangle_angles(&model.nodes.x[2 * c[0]], &model.nodes.x[2 * c[1]], &model.nodes.x[2 * c[2]]))
-      poor = poor || (triggers_.min_angle > 0 && a < triggers_.min_angle) || (triggers_.max_angle > 0 && a > triggers_.max_angle);
+    double low = std::numbers::pi, high = 0;
+    poor_angles(part, model.nodes, e, triggers_, low, high);
+    const bool poor = (triggers_.distortion > 0 && element_distortion(part, model.nodes, e).value() > triggers_.distortion) ||
+                      low < std::numbers::pi || high > 0;
     if (poor) out.push_back(static_cast<std::int32_t>(e));
   }
   return out;
