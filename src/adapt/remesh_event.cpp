@@ -62,11 +62,11 @@ bool kept_as_it_was(const Part& part, std::size_t e) {
   return part.shape_reference.size() >= 4 * (e + 1) && part.shape_reference[4 * e] < 0;
 }
 
-/// A corner's angle is poor when beyond min_angle or max_angle and worse, by a fifth (of the angle,
-/// or of π minus it), than the corner was made with (the element's shape_reference): a triangle
-/// made poor (by Gmsh between lip nodes kept as they are, or in the user's mesh) would be made so
-/// again by a remesh, and would ask for one at every check; one that has become poor since is
-/// what a remesh fixes. The smallest and largest poor angles go to `low` and `high`.
+/// A corner's angle is poor when beyond min_angle or max_angle and, if the corner was made beyond
+/// it too (the element's shape_reference), worse than made by a fifth (of the angle, or of π minus
+/// it): a triangle made poor (by Gmsh between lip nodes kept as they are, or in the user's mesh)
+/// would be made so again by a remesh, and would ask for one at every check; one that has become
+/// poor since is what a remesh fixes. The smallest and largest poor angles go to `low` and `high`.
 constexpr double kAngleWorsening = 0.8;
 
 void poor_angles(const Part& part, const NodeArrays& nodes, std::size_t e, const RemeshTriggers& t, double& low,
@@ -75,10 +75,11 @@ void poor_angles(const Part& part, const NodeArrays& nodes, std::size_t e, const
   const auto angles = triangle_angles(&nodes.x[2 * c[0]], &nodes.x[2 * c[1]], &nodes.x[2 * c[2]]);
   const bool made = part.shape_reference.size() >= 4 * (e + 1) && part.shape_reference[4 * e] > 0;
   for (int k = 0; k < 3; ++k) {
-    const double a = angles[k], a0 = made ? part.shape_reference[4 * e + 1 + k] : 0.0;
-    if (t.min_angle > 0 && a < t.min_angle && (!made || a < kAngleWorsening * a0)) low = std::min(low, a);
-    const double pi = std::numbers::pi;
-    if (t.max_angle > 0 && a > t.max_angle && (!made || pi - a < kAngleWorsening * (pi - a0))) high = std::max(high, a);
+    const double a = angles[k], a0 = made ? part.shape_reference[4 * e + 1 + k] : 0.0, pi = std::numbers::pi;
+    const bool made_small = made && a0 < t.min_angle, made_large = made && a0 > t.max_angle;
+    if (t.min_angle > 0 && a < t.min_angle && (!made_small || a < kAngleWorsening * a0)) low = std::min(low, a);
+    if (t.max_angle > 0 && a > t.max_angle && (!made_large || pi - a < kAngleWorsening * (pi - a0)))
+      high = std::max(high, a);
   }
 }
 
