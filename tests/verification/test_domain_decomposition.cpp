@@ -895,8 +895,15 @@ TEST(DomainDecomposition, RanksVoteARemeshExactlyWhenTheWholeModelIsDue) {
         moved.nodes.x[2 * n] += cell / 3;
         moved.nodes.x[2 * n + 1] -= cell / 4;
         const std::array<double, 3> worst = worst_shapes(moved, materials);
+        // The angle trigger leaves alone corners made beyond the limit until they worsen by a
+        // fifth: for it, every corner is taken as made equilateral, so that the vote is on the
+        // angle alone.
+        Model made_equilateral = moved;
+        for (std::size_t e = 0; e < made_equilateral.parts[0].element_count(); ++e)
+          for (int k = 1; k < 4; ++k) made_equilateral.parts[0].shape_reference[4 * e + k] = std::numbers::pi / 3;
         for (int trigger = 0; trigger < 3; ++trigger)
           for (const double side : {-1.0, 1.0}) {  // just past the worst value (due), and short of it
+            const Model& model = trigger == 0 ? made_equilateral : moved;
             RemeshTriggers t;
             t.check_interval = 10;
             const double eps = 1e-9 * side;
@@ -905,13 +912,13 @@ TEST(DomainDecomposition, RanksVoteARemeshExactlyWhenTheWholeModelIsDue) {
             if (trigger == 2) t.size_mismatch = worst[2] * (1 - eps);
             const RemeshEvent event = remesh_event(materials, t);
             std::vector<std::vector<std::int32_t>> all(1);
-            for (std::size_t e = 0; e < moved.parts[0].element_count(); ++e) all[0].push_back(static_cast<std::int32_t>(e));
-            const bool whole_due = event.may_be_due(moved, all, 20);
+            for (std::size_t e = 0; e < model.parts[0].element_count(); ++e) all[0].push_back(static_cast<std::int32_t>(e));
+            const bool whole_due = event.may_be_due(model, all, 20);
             EXPECT_EQ(whole_due, side > 0) << "trigger " << trigger << ", node " << n;
-            EXPECT_FALSE(event.may_be_due(moved, all, 21)) << "not a check step";
+            EXPECT_FALSE(event.may_be_due(model, all, 21)) << "not a check step";
             bool voted = false;
             for (int r = 0; r < ranks; ++r) {
-              const Subdomain sub = make_subdomain(moved, partition, r);
+              const Subdomain sub = make_subdomain(model, partition, r);
               voted = voted || event.may_be_due(sub.model, sub.owned_elements(), 20);
             }
             EXPECT_EQ(voted, whole_due) << ranks << " ranks" << (scattered ? " at random" : "") << ", trigger "

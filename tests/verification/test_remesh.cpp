@@ -685,8 +685,8 @@ double smallest_angle(const Model& model) {
 // plate at rest whose smallest angle is 5 degrees below min_angle from the start is not
 // remeshed in 300 steps of checks every 10 (the rule before remeshed it at the first check; in
 // the sphere on alumina with discrete cracks, Gmsh's triangles between lips kept node for node
-// asked for 273 remeshes by 7.9 µs, now 7). Three nodes then squashed towards their neighbours
-// make angles a fifth below what they were made with: remeshed at the next check.
+// asked for 273 remeshes by 4.4 µs, now 5 by 3.2 µs). Three nodes then squashed towards their
+// neighbours make angles a fifth below what they were made with: remeshed at the next check.
 TEST(Remesh, CornersMadePoorDoNotAskForARemeshThoseThatBecomePoorDo) {
   auto run = plate(12, 6, 0.012, 0.006, 0.3);
   const double made = smallest_angle(run.model);
