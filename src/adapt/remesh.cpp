@@ -244,13 +244,14 @@ struct Domain {
   std::vector<std::int32_t> kept_elements, kept_loop;
   std::vector<std::int32_t> kept_triangles;  ///< their corners as domain points, three each
   std::size_t kept_bodies = 0;
-  /// Of them, the small fragments kept whole (kKeptFragment), and their elements.
-  std::size_t kept_fragments = 0, fragment_elements = 0;
+  /// Of them, the small fragments kept whole (kKeptFragment), and their elements; the elements
+  /// kept as cracked (kKeptCracked).
+  std::size_t kept_fragments = 0, fragment_elements = 0, cracked_elements = 0;
 };
 
 /// keep_body's values: remeshed, kept (a patch where the boundary crosses itself or a closed
-/// crack cannot be given back), kept as a small fragment.
-constexpr char kRemeshed = 0, kKeptPatch = 1, kKeptFragment = 2;
+/// crack cannot be given back), kept as a small fragment, kept as cracked (RemeshSettings::keep_cracked).
+constexpr char kRemeshed = 0, kKeptPatch = 1, kKeptFragment = 2, kKeptCracked = 3;
 
 void point_position(const double* X, const BoundaryPoint& bp, double* out) {
   for (int d = 0; d < 2; ++d)
@@ -513,6 +514,8 @@ Domain build_domain(const Model& model, const Part& part, const OldPart& old, co
     if (keep_body[b] == kKeptFragment) {
       ++dom.kept_fragments;
       dom.fragment_elements += old.bodies[b].size();
+    } else if (keep_body[b] == kKeptCracked) {
+      dom.cracked_elements += old.bodies[b].size();
     } else {
       ++dom.kept_bodies;
     }
@@ -1206,6 +1209,45 @@ std::vector<char> small_fragments(const OldPart& old) {
   return keep;
 }
 
+/// With RemeshSettings::keep_cracked: cuts each body to be remeshed into its elements with a node
+/// on a crack face, kept as they are (kKeptCracked), and the rest, remeshed. A piece of the rest
+/// smaller than kSmallFragment stays with the kept ones: Gmsh would mesh it on its own, between
+/// nodes it must keep, to much the same triangles.
+void keep_cracked_elements(const Model& model, const Part& part, OldPart& old, std::vector<char>& keep_body,
+                           const std::vector<char>& crack_face) {
+  const std::size_t nodes = model.nodes.count();
+  std::vector<std::vector<std::int32_t>> bodies;
+  std::vector<char> keep;
+  for (std::size_t b = 0; b < old.bodies.size(); ++b) {
+    std::vector<std::int32_t> cracked, rest;
+    if (!keep_body[b])
+      for (const std::int32_t e : old.bodies[b]) {
+        const std::int32_t* c = &part.connectivity[3 * static_cast<std::size_t>(e)];
+        (crack_face[c[0]] || crack_face[c[1]] || crack_face[c[2]] ? cracked : rest).push_back(e);
+      }
+    if (cracked.empty()) {
+      bodies.push_back(old.bodies[b]);
+      keep.push_back(keep_body[b]);
+      continue;
+    }
+    for (auto& piece : patch_pieces(part, rest, nodes)) {
+      if (piece.size() < kSmallFragment) {
+        cracked.insert(cracked.end(), piece.begin(), piece.end());
+        continue;
+      }
+      bodies.push_back(std::move(piece));
+      keep.push_back(kRemeshed);
+    }
+    std::sort(cracked.begin(), cracked.end());
+    for (auto& piece : patch_pieces(part, cracked, nodes)) {
+      bodies.push_back(std::move(piece));
+      keep.push_back(kKeptCracked);
+    }
+  }
+  set_bodies(model, part, std::move(bodies), old);
+  keep_body = std::move(keep);
+}
+
 /// Per body of `old` that is remeshed, its nodes marked in `marked`.
 std::vector<std::vector<std::int32_t>> marked_nodes_by_body(const Part& part, const OldPart& old,
                                                             const std::vector<char>& keep_body,
@@ -1280,7 +1322,12 @@ MeshTry try_new_mesh(const Model& model, const Part& part, OldPart& old, const s
       t.where = {model.nodes.x[2 * nodes[0]], model.nodes.x[2 * nodes[0] + 1]};
     }
   if (t.tangled) return t;
-  if (2 * (m.dom.kept_elements.size() - m.dom.fragment_elements) > part.element_count() - m.dom.fragment_elements) {
+  if (std::find(m.keep_body.begin(), m.keep_body.end(), kRemeshed) == m.keep_body.end()) {
+    m.failure = "every element is kept as it is (small fragments, or elements on a crack face with keep_cracked)";
+    return t;
+  }
+  const std::size_t kept_anyway = m.dom.fragment_elements + m.dom.cracked_elements;  // not patches
+  if (2 * (m.dom.kept_elements.size() - kept_anyway) > part.element_count() - kept_anyway) {
     // Keeping most of the part would leave nearly nothing to remesh, at every check.
     m.failure = "the patches kept where its boundary crosses itself, or where a closed crack's lips could not be given "
                 "back or Gmsh made a sliver, would hold most of what is not a small fragment";
@@ -1331,6 +1378,10 @@ NewPartMesh make_new_mesh(const Model& model, const Part& part, OldPart& old, co
   for (const double closed_lips : kClosedLips) {
     uncut();
     m.keep_body = small_fragments(old);
+    if (s.keep_cracked) {
+      keep_cracked_elements(model, part, old, m.keep_body, crack_face);
+      cut = true;
+    }
     for (int untangled = 0, turned_rounds = 0;;) {
       const MeshTry t = try_new_mesh(model, part, old, crack_face, kept, nodal, field, s, closed_lips, m, out);
       if (t.made) {
@@ -1431,7 +1482,8 @@ RemeshOutcome remesh_part(Model& model, std::size_t p, const Material& material,
   const BodySums before = body_sums(model, old.body_of_node, old.bodies.size());
   out.bodies = bodies_before;
   out.bodies_kept = dom.kept_bodies;
-  out.elements_kept = dom.kept_elements.size() - dom.fragment_elements;
+  out.elements_kept = dom.kept_elements.size() - dom.fragment_elements - dom.cracked_elements;
+  out.cracked_kept = dom.cracked_elements;
   out.fragments_kept = dom.kept_fragments;
   out.elements_before = part.element_count();
   out.area_before = part_area(part, model.nodes);

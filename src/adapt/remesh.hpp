@@ -34,6 +34,10 @@ struct RemeshSettings {
   /// with one, 540 on its structured mesh), but costs 0.3 s for 30 000 triangles, and moves the
   /// new nodes further from the old ones (a wave loses more energy in the transfer).
   int smoothing = 0;
+  /// Keep the elements with a node on a crack face as they are, and remesh only the material
+  /// around them: Gmsh then never meshes between lips (which are kept node for node and would give
+  /// it thin triangles there), and a cracked zone keeps the elements it cracked in.
+  bool keep_cracked = false;
   /// A boundary node where the boundary turns by more than this (radians) is kept as a corner.
   double feature_angle = 0.5235987755982988;  // 30°
   /// A boundary node is dropped (coarsening) only if the nodes dropped between two kept ones lie
@@ -54,6 +58,9 @@ struct RemeshOutcome {
   std::size_t bodies_kept = 0, elements_kept = 0;
   /// Small fragments (fewer than 16 elements) kept whole, as they were.
   std::size_t fragments_kept = 0;
+  /// With RemeshSettings::keep_cracked: the elements kept because they touch a crack face (and
+  /// uncracked pieces of fewer than 16 elements between them).
+  std::size_t cracked_kept = 0;
   double area_before = 0, area_after = 0;      ///< of the part (m²)
   double mass_before = 0, mass_after = 0;      ///< of the part's nodes (kg)
   std::array<double, 2> momentum_before{0, 0}, momentum_after{0, 0};

@@ -83,6 +83,11 @@ KeyList remeshed_part_keys() {
              "in check_interval steps (0: each element its own)")
       .at_least(0)
       .defaults_to("0");
+  k.add("keep_cracked", ValueKind::boolean,
+        "keep the elements with a node on a crack face as they are and remesh only the material around them: Gmsh "
+        "never meshes between crack lips (kept node for node, they would give it thin triangles and a short step), "
+        "and a cracked zone keeps the elements it cracked in")
+      .defaults_to("false");
   k.choice("transfer", {"least_squares", "projection"},
            "how the integration-point state is carried: linear moving least squares, or the ceramics paper's "
            "projection through nodal averages (smears sharp fields; kept as a reference)")
@@ -173,6 +178,7 @@ RemeshedPartInput read_part(Section& s, const Scenario& sc) {
   in.settings.algorithm =
       s.choice("algorithm").value_or("delaunay") == "frontal_delaunay" ? MeshAlgorithm::frontal_delaunay : MeshAlgorithm::delaunay;
   in.settings.smoothing = static_cast<int>(s.integer("smoothing"));
+  in.settings.keep_cracked = s.boolean("keep_cracked");
   return in;
 }
 

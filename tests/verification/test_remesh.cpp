@@ -412,6 +412,90 @@ TEST(Remesh, SmallFragmentsAreKeptAsTheyAre) {
   expect_sums_kept(sums_before, model);
 }
 
+/// The elements of the part with a node on a crack face.
+std::vector<std::int32_t> cracked_elements(const Model& model) {
+  const std::vector<char> face = model.crack_face_nodes();
+  const Part& part = model.parts[0];
+  std::vector<std::int32_t> out;
+  for (std::size_t e = 0; e < part.element_count(); ++e) {
+    const std::int32_t* c = &part.connectivity[3 * e];
+    if (face[c[0]] || face[c[1]] || face[c[2]]) out.push_back(static_cast<std::int32_t>(e));
+  }
+  return out;
+}
+
+/// body_record without the velocities: corners and stress.
+std::vector<std::vector<double>> shape_record(const Model& model, const std::vector<std::int32_t>& body) {
+  auto rows = body_record(model, body);
+  for (auto& row : rows)
+    for (int k = 0; k < 3; ++k) row[4 * k + 2] = row[4 * k + 3] = 0.0;
+  std::sort(rows.begin(), rows.end());
+  return rows;
+}
+
+TEST(Remesh, KeepCrackedKeepsTheElementsOnACrackFaceAndRemeshesTheRest) {
+  // The 24 × 12 mm plate of 1 mm cells with an edge crack five nodes deep, in arbitrary motion and
+  // with a stress that differs from element to element, remeshed at 1.6 mm with keep_cracked: the
+  // elements with a node on the crack keep their corners and stresses bit for bit (their
+  // velocities take the body's momentum correction with the rest), the rest is coarser, and mass,
+  // momentum and the lips' pairs are kept.
+  const int nx = 24, ny = 12;
+  auto run = plate(nx, ny, 0.024, 0.012, 0.2);
+  Model& model = run.model;
+  std::vector<std::int32_t> crack;
+  for (int i = 0; i < 5; ++i) crack.push_back(6 * (nx + 1) + i);
+  insert_crack(run, crack);
+  for (std::size_t i = 0; i < model.nodes.count(); ++i) {
+    const double x = model.nodes.x[2 * i], y = model.nodes.x[2 * i + 1];
+    model.nodes.v[2 * i] = 40.0 + 3e5 * x * y + 50.0 * std::sin(300.0 * x);
+    model.nodes.v[2 * i + 1] = -15.0 + 2e4 * x * x - 80.0 * std::cos(500.0 * y);
+  }
+  Part& part = model.parts[0];
+  for (std::size_t k = 0; k < part.stress.size(); ++k) part.stress[k] = 1e6 * std::sin(0.37 * static_cast<double>(k));
+  const std::vector<std::int32_t> cracked = cracked_elements(model);
+  const auto cracked_before = shape_record(model, cracked);
+  const Totals before = totals(model);
+  const Shape shape_before = shape_of(model);
+  const std::size_t elements_before = part.element_count();
+  RemeshSettings s = uniform(1.6e-3);
+  s.keep_cracked = true;
+  const RemeshOutcome out = remesh_part(model, 0, *run.materials[0], s, {});
+  ASSERT_TRUE(out.remeshed) << out.skipped;
+  const Totals after = totals(model);
+  const Shape shape_after = shape_of(model);
+  std::printf("[remesh with keep_cracked] %zu -> %zu elements, %zu kept on the crack, smallest angle %.1f deg\n",
+              elements_before, model.parts[0].element_count(), out.cracked_kept, out.min_angle * 180 / std::numbers::pi);
+  EXPECT_EQ(out.cracked_kept, cracked.size());
+  EXPECT_EQ(out.elements_kept, 0u);  // no patch: nothing crosses
+  EXPECT_EQ(out.bodies_kept, 0u);
+  EXPECT_EQ(shape_record(model, cracked_elements(model)), cracked_before);
+  EXPECT_LT(model.parts[0].element_count(), elements_before);
+  EXPECT_LE(std::abs(after.mass - before.mass), 1e-13 * before.mass);
+  EXPECT_LE(std::abs(after.px - before.px), 1e-13 * before.p_scale);
+  EXPECT_LE(std::abs(after.py - before.py), 1e-13 * before.p_scale);
+  EXPECT_LE(std::abs(after.area - before.area), 1e-5 * before.area);
+  EXPECT_EQ(shape_after.crack_nodes, shape_before.crack_nodes);
+  EXPECT_EQ(shape_after.paired, shape_before.paired);
+  EXPECT_EQ(shape_after.holes, shape_before.holes);
+}
+
+TEST(Remesh, KeepCrackedLeavesAPartWhoseEveryElementIsCrackedAsItWasAndSaysWhy) {
+  // A plate of 6 × 2 cells cut across its middle row of nodes: every triangle has a node on the
+  // crack, so keep_cracked leaves nothing to mesh.
+  auto run = plate(6, 2, 0.024, 0.008, 0.2);
+  std::vector<std::int32_t> nodes;
+  for (int i = 0; i <= 6; ++i) nodes.push_back(7 + i);
+  insert_crack(run, nodes);
+  const std::vector<double> x_before = run.model.nodes.x;
+  RemeshSettings s = uniform(2e-3);
+  s.keep_cracked = true;
+  const RemeshOutcome out = remesh_part(run.model, 0, *run.materials[0], s, {});
+  EXPECT_FALSE(out.remeshed);
+  EXPECT_NE(out.skipped.find("every element is kept"), std::string::npos) << out.skipped;
+  EXPECT_EQ(run.model.parts[0].element_count(), 24u);
+  EXPECT_EQ(run.model.nodes.x, x_before);
+}
+
 TEST(Remesh, APartOfSmallPiecesOnlyIsRemeshedWhole) {
   // A plate of 6 × 2 cells cut across by a crack: two pieces of 12 triangles. Were both kept as
   // small fragments there would be nothing left to mesh: both are remeshed.
