@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <limits>
 #include <numbers>
 
@@ -291,18 +292,19 @@ TEST(RemeshScenarios, BodiesInContactRemeshedFinerStayApart) {
 }
 
 /// The sphere on alumina with discrete cracks in the plate, run to `until`: the sphere's velocity
-/// (its nodes' momentum over their mass), the plate's remeshes, those skipped, and how many of
-/// them found crack faces in it; the worst balance error.
+/// (its nodes' momentum over their mass), the steps taken, the plate's remeshes, those skipped,
+/// and how many of them found crack faces in it; the worst balance error.
 struct CrackedPlate {
   double sphere_velocity = 0;
-  std::int64_t remeshes = 0, skipped = 0, remeshes_of_cracked = 0;
+  std::int64_t steps = 0, remeshes = 0, skipped = 0, remeshes_of_cracked = 0;
   double worst_error = 0;
 };
 
-CrackedPlate sphere_on_cracked_plate(const std::string& file, double until, const std::string& mesh = "") {
+CrackedPlate sphere_on_cracked_plate(const std::string& file, double until,
+                                     const std::function<void(Scenario&)>& adjust = {}) {
   testing::ScenarioRun run(file, [&](Scenario& sc) {
     sc.end_time = until;
-    if (!mesh.empty()) sc.mesh_file = mesh;
+    if (adjust) adjust(sc);
   });
   const Model& m = run.sim.model;
   CrackedPlate out;
@@ -319,6 +321,7 @@ CrackedPlate sphere_on_cracked_plate(const std::string& file, double until, cons
     remeshes = now;
     failures = failed;
   }
+  out.steps = run.solver->state().step;
   out.remeshes = remeshes;
   std::vector<char> in_sphere(m.nodes.count(), 0);
   for (const auto n : m.parts[1].connectivity) in_sphere[n] = 1;
@@ -334,26 +337,32 @@ CrackedPlate sphere_on_cracked_plate(const std::string& file, double until, cons
 
 // The paper's case 2 with both of its methods: the adaptive sphere on alumina with discrete
 // cracks in the plate (examples/sphere_on_alumina/sphere_on_alumina_300_adaptive_cracks.yaml),
-// against the flagship's fixed mesh (0.1 mm within 12 mm of the axis), to 3 µs: two remeshes of
-// the cracked plate while the sphere presses it. The sphere has slowed from 300 to 218.2 m/s
-// against 225.1 m/s on the fixed mesh (asserted within 5 %); none skipped; the balance within 1 %
-// (0.033 % measured). Started on the paper's uniform 0.75 mm mesh instead, the plate cracks in
-// 0.75 mm elements before its first remesh, and those lips stay: the sphere is at 138.2 m/s
-// (39 % off).
+// against the flagship's fixed mesh (0.1 mm within 12 mm of the axis), to 4 µs, while the sphere
+// presses the cracked plate. The sphere has slowed from 300 to 169.2 m/s against 166.7 m/s on the
+// fixed mesh (asserted within 5 %), the plate was remeshed after it cracked, none skipped, the
+// balance within 1 % (0.04 % measured), in 1 453 steps against the fixed mesh's 1 379 (asserted
+// within 12 %). Each departure of the example from the paper is needed:
+//   - started on the paper's uniform 0.75 mm mesh, the plate cracks in 0.75 mm elements before its
+//     first remesh, and those lips stay: the sphere is at 79.4 m/s (52 % off), in 1 924 steps;
+//   - without keep_cracked, Gmsh remeshes the crushed zone between lips kept node for node: the
+//     sphere is at 183.0 m/s (9.7 % off); with Gmsh's Delaunay as well, 1 661 steps (20 % more
+//     than the fixed mesh).
 TEST(RemeshScenarios, CrackedPlateRemeshedUnderTheSphereSlowsItAsTheFixedMesh) {
   const std::string dir = std::string(SHARD_SOURCE_DIR) + "/examples/sphere_on_alumina/";
-  const CrackedPlate fixed = sphere_on_cracked_plate(dir + "sphere_on_alumina_300_cracks.yaml", 3e-6);
-  const CrackedPlate adaptive = sphere_on_cracked_plate(dir + "sphere_on_alumina_300_adaptive_cracks.yaml", 3e-6);
-  std::printf("[sphere on a cracking plate to 3 us] fixed mesh: sphere at %.1f m/s; adaptive: %.1f m/s (%+.2f %%), "
-              "%lld remeshes of the plate (%lld of it cracked), %lld skipped, balance within %.3f %%\n",
-              fixed.sphere_velocity, adaptive.sphere_velocity,
-              100 * (adaptive.sphere_velocity / fixed.sphere_velocity - 1), static_cast<long long>(adaptive.remeshes),
-              static_cast<long long>(adaptive.remeshes_of_cracked), static_cast<long long>(adaptive.skipped),
-              100 * adaptive.worst_error);
-  EXPECT_LT(fixed.sphere_velocity, -150);  // still going down, but well slowed
-  EXPECT_GT(fixed.sphere_velocity, -280);
+  const CrackedPlate fixed = sphere_on_cracked_plate(dir + "sphere_on_alumina_300_cracks.yaml", 4e-6);
+  const CrackedPlate adaptive = sphere_on_cracked_plate(dir + "sphere_on_alumina_300_adaptive_cracks.yaml", 4e-6);
+  std::printf("[sphere on a cracking plate to 4 us] fixed mesh: sphere at %.1f m/s, %lld steps; adaptive: %.1f m/s "
+              "(%+.2f %%), %lld steps, %lld remeshes of the plate (%lld of it cracked), %lld skipped, balance within "
+              "%.3f %%\n",
+              fixed.sphere_velocity, static_cast<long long>(fixed.steps), adaptive.sphere_velocity,
+              100 * (adaptive.sphere_velocity / fixed.sphere_velocity - 1), static_cast<long long>(adaptive.steps),
+              static_cast<long long>(adaptive.remeshes), static_cast<long long>(adaptive.remeshes_of_cracked),
+              static_cast<long long>(adaptive.skipped), 100 * adaptive.worst_error);
+  EXPECT_LT(fixed.sphere_velocity, -100);  // still going down, but well slowed
+  EXPECT_GT(fixed.sphere_velocity, -250);
   EXPECT_NEAR(adaptive.sphere_velocity, fixed.sphere_velocity, 0.05 * std::abs(fixed.sphere_velocity));
-  EXPECT_GE(adaptive.remeshes_of_cracked, 2);
+  EXPECT_LT(static_cast<double>(adaptive.steps), 1.12 * static_cast<double>(fixed.steps));
+  EXPECT_GE(adaptive.remeshes_of_cracked, 1);
   EXPECT_EQ(adaptive.skipped, 0);
   EXPECT_LT(adaptive.worst_error, 0.01);
 }
@@ -367,10 +376,13 @@ struct CrackedBeam {
   double worst_error = 0;
 };
 
-CrackedBeam sic_beam_with_cracks(const std::string& file, double until, const std::string& mesh = "") {
+CrackedBeam sic_beam_with_cracks(const std::string& file, double until, const std::string& mesh = "",
+                                 bool keep_cracked = true) {
   testing::ScenarioRun run(file, [&](Scenario& sc) {
     sc.end_time = until;
     if (!mesh.empty()) sc.mesh_file = mesh;
+    if (!keep_cracked)
+      for (auto& part : sc.remeshing->parts) part.settings.keep_cracked = false;
   });
   const Model& m = run.sim.model;
   CrackedBeam out;
@@ -393,31 +405,34 @@ CrackedBeam sic_beam_with_cracks(const std::string& file, double until, const st
 }
 
 // The adaptive SiC example (a start graded from 0.5 mm at the impact edge to 2.5 mm, remeshed
-// every 50 steps, 0.5 mm where the strain rate is high and 12 mm ahead of it) against the same
-// beam on a uniform 0.5 mm mesh, both with
-// discrete cracks, to 3 µs (the cracks 30 mm into the beam). Asked for by issue 18: the same
-// crack front within 5 %. Checked also: as many split nodes within 20 %, no remesh skipped (a
-// closed crack whose lips turn a new triangle over, a pinch node, a sliver where four copies of a
-// node meet: a patch of old elements is kept there), the balance within 1 %. Without refine_ahead
-// the beam cracks in coarse elements (2 301 split nodes against 4 294); without the kept patches,
-// a remesh is skipped.
+// every 50 steps, 0.5 mm where the strain rate is high and 12 mm ahead of it, the cracked elements
+// kept) against the same beam on a uniform 0.5 mm mesh, both with discrete cracks, to 3 µs (the
+// cracks 30 mm into the beam). Asked for by issue 18: the same crack front within 5 %. Checked
+// also: as many split nodes within 20 %, no remesh skipped, the balance within 1 %. The same run
+// without keep_cracked remeshes between the lips, where the closed cracks, pinch nodes and slivers
+// of four copies of a node meet (a patch of old elements is kept there): it must crack alike too,
+// and skip no remesh. Measured: fronts at 30.05 and 30.08 against 30.02 mm, 3 602 and 3 708
+// against 4 294 split nodes, 5 and 6 remeshes. Without refine_ahead the beam cracks in coarse
+// elements: 2 079 split nodes, the front at 27.8 mm.
 TEST(RemeshScenarios, CrackedSicBeamRemeshedAheadOfItsFrontCracksAsTheFineMesh) {
   const std::string dir = std::string(SHARD_SOURCE_DIR) + "/examples/sic_edge_on_impact/";
   const CrackedBeam fine = sic_beam_with_cracks(dir + "sic_edge_on_impact_cracks.yaml", 3e-6,
                                                 std::string(SHARD_TEST_DATA_DIR) + "/remesh/sic_beam_0.5mm.geo");
-  const CrackedBeam adaptive = sic_beam_with_cracks(dir + "sic_edge_on_impact_adaptive.yaml", 3e-6);
-  std::printf("[SiC beam with cracks to 3 us] uniform 0.5 mm: front at %.2f mm, %zu split nodes; adaptive: %.2f mm, "
-              "%zu split nodes, %lld remeshes, %lld skipped, balance within %.3f %%\n",
-              fine.front * 1e3, fine.crack_nodes, adaptive.front * 1e3, adaptive.crack_nodes,
-              static_cast<long long>(adaptive.remeshes), static_cast<long long>(adaptive.skipped),
-              100 * adaptive.worst_error);
-  EXPECT_GT(fine.front, 0.02);
-  EXPECT_NEAR(adaptive.front, fine.front, 0.05 * fine.front);
-  EXPECT_NEAR(static_cast<double>(adaptive.crack_nodes), static_cast<double>(fine.crack_nodes),
-              0.2 * static_cast<double>(fine.crack_nodes));
-  EXPECT_GE(adaptive.remeshes, 5);
-  EXPECT_EQ(adaptive.skipped, 0);
-  EXPECT_LT(adaptive.worst_error, 0.01);
+  for (const bool keep_cracked : {true, false}) {
+    const CrackedBeam adaptive = sic_beam_with_cracks(dir + "sic_edge_on_impact_adaptive.yaml", 3e-6, "", keep_cracked);
+    std::printf("[SiC beam with cracks to 3 us] uniform 0.5 mm: front at %.2f mm, %zu split nodes; adaptive%s: %.2f mm, "
+                "%zu split nodes, %lld remeshes, %lld skipped, balance within %.3f %%\n",
+                fine.front * 1e3, fine.crack_nodes, keep_cracked ? "" : " without keep_cracked", adaptive.front * 1e3,
+                adaptive.crack_nodes, static_cast<long long>(adaptive.remeshes),
+                static_cast<long long>(adaptive.skipped), 100 * adaptive.worst_error);
+    EXPECT_GT(fine.front, 0.02);
+    EXPECT_NEAR(adaptive.front, fine.front, 0.05 * fine.front);
+    EXPECT_NEAR(static_cast<double>(adaptive.crack_nodes), static_cast<double>(fine.crack_nodes),
+                0.2 * static_cast<double>(fine.crack_nodes));
+    EXPECT_GE(adaptive.remeshes, 4);
+    EXPECT_EQ(adaptive.skipped, 0);
+    EXPECT_LT(adaptive.worst_error, 0.01);
+  }
 }
 
 void expect_same_bits_for_threads_and_restart(const std::string& options) {
