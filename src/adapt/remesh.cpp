@@ -1322,16 +1322,17 @@ MeshTry try_new_mesh(const Model& model, const Part& part, OldPart& old, const s
       t.where = {model.nodes.x[2 * nodes[0]], model.nodes.x[2 * nodes[0] + 1]};
     }
   if (t.tangled) return t;
-  if (std::find(m.keep_body.begin(), m.keep_body.end(), kRemeshed) == m.keep_body.end()) {
-    m.failure = "every element is kept as it is (small fragments, or elements on a crack face with keep_cracked)";
-    return t;
-  }
   const std::size_t kept_anyway = m.dom.fragment_elements + m.dom.cracked_elements;  // not patches
   if (2 * (m.dom.kept_elements.size() - kept_anyway) > part.element_count() - kept_anyway) {
     // Keeping most of the part would leave nearly nothing to remesh, at every check.
     m.failure = "the patches kept where its boundary crosses itself, or where a closed crack's lips could not be given "
-                "back or Gmsh made a sliver, would hold most of what is not a small fragment";
+                "back or Gmsh made a sliver, would hold most of what is not a small fragment or kept as cracked";
     t.mostly_kept = true;
+    return t;
+  }
+  // Without patches (they would have been refused above), a part may still have nothing to mesh.
+  if (std::find(m.keep_body.begin(), m.keep_body.end(), kRemeshed) == m.keep_body.end()) {
+    m.failure = "every element is kept as it is (small fragments, or elements on a crack face with keep_cracked)";
     return t;
   }
   t0 = Clock::now();
@@ -1533,7 +1534,7 @@ RemeshOutcome remesh_part(Model& model, std::size_t p, const Material& material,
   finish_points(model, p, material, holder_state, position);
   // The shapes distortion and angles are measured against: each element's now. A kept one's area
   // is stored negative, so that the triggers leave it alone (no remesh changes it while the
-  // boundary crosses itself there).
+  // boundary crosses itself there, while it is a small fragment, or, with keep_cracked, at all).
   Part& remeshed = model.parts[p];
   measure_reference_shape(remeshed, model.nodes, remeshed.shape_reference);
   for (std::size_t t = n_tri - dom.kept_elements.size(); t < n_tri; ++t)

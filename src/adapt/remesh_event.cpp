@@ -55,9 +55,9 @@ std::vector<char> boundary_nodes(const Model& model, std::size_t p) {
 }
 
 /// Whether a remesh kept element e as it was (a patch where a boundary crosses itself or lips
-/// could not be given back, or a small fragment): remesh_part marks it by a negative reference
-/// area. No remesh changes it while the cause lasts, so its shape and size are not looked at, or
-/// it would ask for a remesh at every check.
+/// could not be given back, a small fragment, or with keep_cracked an element on a crack face):
+/// remesh_part marks it by a negative reference area. No remesh changes it while the cause lasts,
+/// so its shape and size are not looked at, or it would ask for a remesh at every check.
 bool kept_as_it_was(const Part& part, std::size_t e) {
   return part.shape_reference.size() >= 4 * (e + 1) && part.shape_reference[4 * e] < 0;
 }
