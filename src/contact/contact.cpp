@@ -373,16 +373,27 @@ bool ContactSystem::segment_hit(const Model& model, std::int32_t f, std::int32_t
   const double* a = &X[2 * fn[0]];
   const double* b = &X[2 * fn[1]];
   const double tx = b[0] - a[0], ty = b[1] - a[1];
-  const double l2 = tx * tx + ty * ty, l = std::sqrt(l2);
+  const double l2 = tx * tx + ty * ty;
+  const double xi = ((x[0] - a[0]) * tx + (x[1] - a[1]) * ty) / l2;
+  // Most candidates are in front of the facet or project past its far end: they are turned away
+  // before the lookups below, by the tests further down that would turn them away anyway (the
+  // margin is at most kProjectionMargin; a node clearly in front, by far more than rounding, has
+  // gap > 0). Only a node before the facet's start may be behind a sibling's reflex corner.
+  if (xi > 1.0 + kProjectionMargin) return false;
+  const bool in_front = (x[0] - a[0]) * ty - (x[1] - a[1]) * tx > 1e-9 * l2;  // gap · l
+  if (in_front && xi >= 0.0) return false;
   // Copies of one split node start on top of each other, so a copy always sits at a corner of
   // its siblings' wedges. Near such a corner the contact must follow the true distance to the
   // sibling's surface, which is continuous as the copy moves around the corner; otherwise a copy
   // switches on at a finite depth and the penalty returns energy it never stored
   // (docs/theory/contact.md, "Split nodes").
-  const bool sibling_a = is_sibling(origin, s, fn[0]), sibling_b = is_sibling(origin, s, fn[1]);
+  const bool sibling_a = is_sibling(origin, s, fn[0]);
+  if (in_front && !(xi < 0.0 && sibling_a)) return false;
+  if (xi < -kProjectionMargin && !sibling_a) return false;
+  const bool sibling_b = is_sibling(origin, s, fn[1]);
   hit.crack_faces = ps == pf && (crack_face_[s] != 0 || crack_face_[fn[0]] != 0 || crack_face_[fn[1]] != 0);
-  const double xi = ((x[0] - a[0]) * tx + (x[1] - a[1]) * ty) / l2;
   if (xi < 0.0 && sibling_a) return reflex_corner_hit(X, f, x, hit);
+  const double l = std::sqrt(l2);
   hit.normal[0] = ty / l;
   hit.normal[1] = -tx / l;
   hit.gap = (x[0] - a[0]) * hit.normal[0] + (x[1] - a[1]) * hit.normal[1];
