@@ -735,37 +735,69 @@ def crack_edge_speeds(mesh, box=None):
     return length[grown] / dt[grown], int(np.count_nonzero(~grown))
 
 
+def node_tip_speeds(mesh, box=None):
+    """The speed of the tip that reached each node as the run recorded it (point field crack_speed:
+    the edge it came along over the time since the crack had reached that edge's other end), for the
+    nodes a running tip reached, and the count of nodes where a crack started (0). None for a frame
+    written before shard recorded it. Copies of a split node are counted each."""
+    if "crack_speed" not in mesh.point_data:
+        return None
+    speed = np.asarray(mesh.point_data["crack_speed"], dtype=float).ravel()
+    inside = np.ones(speed.size, dtype=bool)
+    if box is not None:
+        p = mesh.points[:, :2]
+        inside = (p[:, 0] >= box[0]) & (p[:, 0] <= box[1]) & (p[:, 1] >= box[2]) & (p[:, 1] <= box[3])
+    return speed[inside & (speed > 0)], int(np.count_nonzero(inside & (speed == 0)))
+
+
+def speed_figures(speeds, limit):
+    q1, median, q3, p90 = np.percentile(speeds, [25, 50, 75, 90])
+    figures = {"median_m_per_s": float(median), "quartiles_m_per_s": [float(q1), float(q3)],
+               "p90_m_per_s": float(p90), "max_m_per_s": float(speeds.max())}
+    text = (f"median {median:.0f} m/s (quartiles {q1:.0f}–{q3:.0f}, 90 % below {p90:.0f}, "
+            f"largest {speeds.max():.0f})")
+    if limit:
+        above = int(np.count_nonzero(speeds > limit))
+        figures.update(limit_m_per_s=limit, above_limit=above)
+        text += f"; {above} ({above / speeds.size:.1%}) above {limit:.0f} m/s"
+    return figures, text
+
+
 def plot_crack_speeds(args):
-    """Distribution of the crack-tip speeds of a 2D cracking run, from the frame's crack_time."""
+    """Distribution of the crack-tip speeds of a 2D cracking run: as recorded at each node
+    (crack_speed), and over the crack-face edges from crack_time."""
     vtu, _, label = pick_frame(args)
     box = [1e-3 * v for v in args.box] if args.box else None
-    speeds, nucleated = crack_edge_speeds(read_mesh(vtu), box)
+    mesh = read_mesh(vtu)
+    speeds, nucleated = crack_edge_speeds(mesh, box)
     if speeds.size == 0:
         raise PlotError(f"{vtu}: no crack has grown from one node to the next" + (" in --box" if box else ""))
-    q1, median, q3, p90 = np.percentile(speeds, [25, 50, 75, 90])
-    figures = {"edges": int(speeds.size), "edges_opened_at_once": nucleated, "median_m_per_s": float(median),
-               "quartiles_m_per_s": [float(q1), float(q3)], "p90_m_per_s": float(p90),
-               "max_m_per_s": float(speeds.max())}
+    figures, text = speed_figures(speeds, args.limit)
+    figures.update(edges=int(speeds.size), edges_opened_at_once=nucleated)
     where = f" in x {args.box[0]:g}–{args.box[1]:g} mm, y {args.box[2]:g}–{args.box[3]:g} mm" if box else ""
-    line = (f"{vtu} ({label}){where}: {speeds.size} crack-face edges crossed by a tip, {nucleated} opened at once; "
-            f"tip speed median {median:.0f} m/s (quartiles {q1:.0f}–{q3:.0f}, 90 % below {p90:.0f}, "
-            f"largest {speeds.max():.0f})")
-    if args.limit:
-        above = int(np.count_nonzero(speeds > args.limit))
-        figures.update(limit_m_per_s=args.limit, above_limit=above)
-        line += f"; {above} ({above / speeds.size:.1%}) above {args.limit:.0f} m/s"
-    print(line)
+    print(f"{vtu} ({label}){where}: over crack-face edges (crack_time): {speeds.size} edges crossed by a tip, "
+          f"{nucleated} opened at once; tip speed {text}")
+    shown, what = speeds, "over one crack-face edge"
+    nodes = node_tip_speeds(mesh, box)
+    if nodes is not None and nodes[0].size > 0:
+        node_figures, node_text = speed_figures(nodes[0], args.limit)
+        node_figures.update(nodes=int(nodes[0].size), nodes_where_a_crack_started=nodes[1])
+        figures["recorded_at_nodes"] = node_figures
+        print(f"  as recorded at the nodes (crack_speed): {nodes[0].size} nodes reached by a running tip, "
+              f"{nodes[1]} where a crack started; tip speed {node_text}")
+        shown, what = nodes[0], "of the tip that reached a node"
     if args.json:
         with open(args.json, "w") as stream:
             json.dump(figures, stream, indent=1)
+    median = float(np.median(shown))
     figure, axes = plt.subplots(figsize=(6.4, 4.2))
-    top = np.percentile(speeds, 99) * 1.1
-    axes.hist(np.clip(speeds, 0, top), bins=40, range=(0, top), color="tab:blue", alpha=0.8)
+    top = np.percentile(shown, 99) * 1.1
+    axes.hist(np.clip(shown, 0, top), bins=40, range=(0, top), color="tab:blue", alpha=0.8)
     axes.axvline(median, color="k", label=f"median {median:.0f} m/s")
     if args.limit:
         axes.axvline(args.limit, color="tab:red", linestyle="--", label=f"limit {args.limit:.0f} m/s")
-    axes.set_xlabel("tip speed over one edge [m/s] (the last bin holds everything above)")
-    axes.set_ylabel("crack-face edges")
+    axes.set_xlabel(f"tip speed {what} [m/s] (the last bin holds everything above)")
+    axes.set_ylabel("nodes" if shown is not speeds else "crack-face edges")
     axes.legend(fontsize=8)
     axes.set_title(args.title or f"{run_name(args.input)}: crack-tip speeds")
     output = args.output or os.path.join(run_folder(args.input), "crack_speeds.png")

@@ -6,6 +6,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <tuple>
 #include <unordered_map>
 #include <unordered_set>
 
@@ -552,14 +553,27 @@ std::vector<std::pair<int, std::size_t>> elements_around(const Fans& fans, std::
 }
 
 // Both ends of each opened edge: reached by a crack now, unless one reached them before. Set
-// before the split, so that the copies of a node inherit its time.
+// before the split, so that the copies of a node inherit its time. An end reached now from an
+// end a crack reached at an earlier update takes the tip's speed along the edge; the ends of an
+// edge opened between two new ends (a nucleus), or from an end reached in this same update, 0.
 void record_crack_time(Model& model, std::span<const std::array<std::int32_t, 2>> edges, double time) {
   if (edges.empty()) return;
   std::vector<double>& t = model.nodes.crack_time;
+  std::vector<double>& speed = model.nodes.crack_speed;
   if (t.empty()) t.assign(model.nodes.count(), -1.0);
-  for (const auto& edge : edges)
-    for (const std::int32_t p : edge)
-      if (t[static_cast<std::size_t>(p)] < 0) t[static_cast<std::size_t>(p)] = time;
+  if (speed.empty()) speed.assign(model.nodes.count(), -1.0);
+  const double* x = model.nodes.x.data();
+  for (const auto& edge : edges) {
+    const auto a = static_cast<std::size_t>(edge[0]), b = static_cast<std::size_t>(edge[1]);
+    const double ta = t[a], tb = t[b];
+    for (const auto [to, from, t_from] : {std::tuple{a, b, tb}, std::tuple{b, a, ta}}) {
+      if (t[to] >= 0) continue;
+      t[to] = time;
+      speed[to] = 0.0;
+      if (t_from >= 0 && time > t_from)
+        speed[to] = std::hypot(x[2 * to] - x[2 * from], x[2 * to + 1] - x[2 * from + 1]) / (time - t_from);
+    }
+  }
 }
 
 }  // namespace

@@ -55,6 +55,10 @@ VtuGrid make_frame(const Model& model, const std::vector<std::unique_ptr<Materia
     std::vector<double> reached = model.nodes.crack_time;
     if (reached.empty()) reached.assign(nn, -1.0);
     grid.point_fields.push_back({"crack_time", 1, std::move(reached)});
+    // The speed of the tip that reached each node (0 where a crack started, −1: none).
+    std::vector<double> speed = model.nodes.crack_speed;
+    if (speed.empty()) speed.assign(nn, -1.0);
+    grid.point_fields.push_back({"crack_speed", 1, std::move(speed)});
   }
 
   if (model.cohesive.element_count() > 0) {

@@ -47,6 +47,12 @@ struct NodeArrays {
   /// over the difference of its ends' times is the speed of the tip that crossed it
   /// (docs/theory/crack_insertion.md, "Crack-tip speed").
   std::vector<double> crack_time;
+  /// The speed of the crack tip that reached each node: the length of the edge it came along
+  /// over the time since the crack had reached that edge's other end; 0 where a crack started
+  /// (both ends of the edge reached in one update: a nucleus), −1 where none has. Sized with
+  /// crack_time. A node two cracks reach keeps the first one's speed, so a crack joining
+  /// another is not read as a tip crossing the edge between them.
+  std::vector<double> crack_speed;
 
   std::size_t count() const { return mass.size(); }
   /// n nodes at rest at the origin, free, with ids and origins 0 … n−1.
@@ -64,6 +70,7 @@ struct NodeArrays {
     f(field("origin", Location::node, 1), origin);
     f(field("prescribed", Location::node, d, Follow::copy, -1), prescribed);
     f(field("crack_time", Location::node, 0, Follow::copy, -1), crack_time);
+    f(field("crack_speed", Location::node, 0, Follow::copy, -1), crack_speed);
   }
 };
 

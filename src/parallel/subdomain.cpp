@@ -861,6 +861,11 @@ std::vector<std::int32_t> follow_split(Subdomain& sub, Model& local, const Whole
     for (std::size_t i = 0; i < n_before; ++i)
       local.nodes.crack_time[i] = whole.nodes.crack_time[static_cast<std::size_t>(sub.global_node[i])];
   }
+  if (!whole.nodes.crack_speed.empty()) {
+    local.nodes.crack_speed.resize(n_before);
+    for (std::size_t i = 0; i < n_before; ++i)
+      local.nodes.crack_speed[i] = whole.nodes.crack_speed[static_cast<std::size_t>(sub.global_node[i])];
+  }
   if (!split.split->nodes) return from;
   const EntityRemap& whole_nodes = *split.split->nodes;
   const std::vector<std::int32_t> local_node = local_node_index(sub, whole_nodes.old_count);

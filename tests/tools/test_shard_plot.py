@@ -15,7 +15,8 @@ what the plotting tool reads from them:
   two pieces, every row is of part 'plate', the count equals the history's last 'fragments'
   and 'fragments_plate' values, and the last frame's 'fragment' field holds each fragment's
   elements;
-- crack-speeds on the same run: the median tip speed from the frame's crack_time between 0.5 and
+- crack-speeds on the same run: the median tip speed from the frame's crack_time, and of the
+  speeds recorded at the nodes (crack_speed), between 0.5 and
   1 of the ceramic's Rayleigh speed, over at least 40 crack-face edges; --box over half the
   ligament keeps some of the edges, one off the crack none (status 2);
 - debris on the plate perforation example to 6 µs: the particles drawn, their mass, and the debris
@@ -240,6 +241,10 @@ def main():
           f"({speeds['median_m_per_s'] / c_r:.2f} c_R), {speeds['above_limit']} above c_R")
     if speeds["edges"] < 40 or not 0.5 * c_r < speeds["median_m_per_s"] < c_r:
         fail("the crack through the notched plate's ligament did not run at 0.5-1 c_R by crack-speeds")
+    # The speeds the run recorded at the nodes (crack_speed): the same bounds on their median.
+    nodes = speeds.get("recorded_at_nodes")
+    if nodes is None or nodes["nodes"] < 40 or not 0.5 * c_r < nodes["median_m_per_s"] < c_r:
+        fail(f"crack-speeds gave no median of the recorded tip speeds within 0.5-1 c_R ({nodes})")
     if not os.path.getsize(os.path.join(plate, "crack_speeds.png")) > 0:
         fail("no crack_speeds.png")
     # --box keeps the edges whose midpoint lies inside: the first half of the ligament holds some
