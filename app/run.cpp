@@ -1058,6 +1058,9 @@ class RunDriver {
     // The search runs between a step's forces and its advance, which a new cut of a mesh would
     // disturb (its loads' lists are local); the automata alone have nothing of the kind.
     if (automata_contacts_ && !sim_.model.parts.empty()) return "the automata's contact update in a model with elements";
+    if (cracks_ && cracks_->holds_nodes_back())
+      return "a limit on the crack-tip speed (cracking.tip_speed_limit) or cracks drawn from a damage that does not "
+             "heal (denoual_forquin_hild): their rules look at crack nodes beyond a subdomain";
     for (const auto& event : sim_.events)
       if (event.get() != cracks_ && event.get() != automata_contacts_ && event.get() != remesher_)
         return "step events (" + std::string(event->name()) + ")";

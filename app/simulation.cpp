@@ -592,7 +592,7 @@ std::vector<int> cracking_parts(const Scenario& sc, Simulation& sim) {
     if (named && !can)
       throw InputError(file, sc.cracking->line, "cracking.parts",
                        "part '" + part.name + "' cannot crack: cracks are inserted in tri3 parts of "
-                       "a material with a failure map (rotating_crack); it has " +
+                       "a material with a failure map (rotating_crack, denoual_forquin_hild); it has " +
                            part.type->name + " elements of '" +
                            std::string(sim.materials[part.material]->model()) + "'");
     if (named || (sc.cracking->parts.empty() && can)) out.push_back(static_cast<int>(p));
@@ -600,8 +600,25 @@ std::vector<int> cracking_parts(const Scenario& sc, Simulation& sim) {
   if (out.empty())
     throw InputError(file, sc.cracking->line, "cracking",
                      "no part can crack: cracks are inserted in tri3 parts of a material with a "
-                     "failure map (rotating_crack)");
-  sim.cracking = CrackGrowthSettings{out, sc.cracking->failure_threshold, sc.cracking->min_fragment_elements};
+                     "failure map (rotating_crack, denoual_forquin_hild)");
+  for (const int p : out) {
+    const Material& m = *sim.materials[sim.model.parts[p].material];
+    if (sc.cracking->failure_threshold >= m.failure_map_slots()->factor_bound)
+      throw InputError(file, sc.cracking->line, "cracking.failure_threshold",
+                       "part '" + sim.model.parts[p].name + "' ('" + std::string(m.model()) +
+                           "') never reaches the threshold " + [&] {
+                             std::ostringstream t;
+                             t << sc.cracking->failure_threshold;
+                             return t.str();
+                           }() + ": its failure factor is its largest damage, below 1; give the damage at "
+                           "which a crack is drawn (e.g. failure_threshold: 0.5)");
+  }
+  CrackGrowthSettings cracking;
+  cracking.parts = out;
+  cracking.failure_threshold = sc.cracking->failure_threshold;
+  cracking.min_fragment_elements = sc.cracking->min_fragment_elements;
+  cracking.speed_limit = {sc.cracking->tip_speed_limit, sc.cracking->nucleation_spacing};
+  sim.cracking = cracking;
   return out;
 }
 

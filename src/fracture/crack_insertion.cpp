@@ -612,7 +612,7 @@ bool cracks_would_change(Model& model, std::span<const CrackingPart> parts, std:
         const auto& offset = planner.fans().part_begin;
         const std::size_t pi = std::upper_bound(offset.begin(), offset.end(), g) - offset.begin() - 1;
         const CrackingPart& cp = parts[pi];
-        if (cp.cracks && cp.factor_index >= 0 &&
+        if (cp.cracks && cp.heals && cp.factor_index >= 0 &&
             element_failed(model.parts[pi], static_cast<std::size_t>(g - offset[pi]), cp.factor_index,
                            settings.failure_threshold))
           return true;
@@ -627,7 +627,7 @@ ReinitialisedElements reinitialise_failed(Model& model, std::span<const Cracking
   for (std::size_t k = 0; k < elements.size(); ++k) {
     const auto [pi, e] = elements[k];
     const CrackingPart& cp = parts[static_cast<std::size_t>(pi)];
-    if (!cp.cracks || cp.factor_index < 0) continue;
+    if (!cp.cracks || !cp.heals || cp.factor_index < 0) continue;
     Part& part = model.parts[static_cast<std::size_t>(pi)];
     if (!element_failed(part, e, cp.factor_index, threshold)) continue;
     const double volume =

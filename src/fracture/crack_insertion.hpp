@@ -38,6 +38,10 @@ struct CrackingPart {
   /// Comminution: a piece a crack would cut off below min_fragment_elements is handed back (in
   /// CrackInsertion::comminuted) to become particles, instead of the crack being refused.
   bool comminutes = false;
+  /// Whether the failed elements around a cracked node are re-initialised (a softening model:
+  /// its smeared crack is now the discrete one); false for a damage that stands for the cracks
+  /// the mesh does not resolve (Material::FailureMapSlots::heals).
+  bool heals = true;
 };
 
 struct CrackInsertionSettings {

@@ -193,6 +193,16 @@ KeyList cracking_keys() {
            "crack is refused, the material stays a smeared crack) or particles (comminution: the "
            "piece's elements become particles; the material needs erosion with on_failure: particles)")
       .defaults_to("smeared");
+  k.quantity("tip_speed_limit", dim::velocity,
+             "the fastest a crack tip may run (e.g. 4300 m/s): a node a crack has reached opens its next "
+             "edge only once the tip could have crossed it at this speed, and a new crack starts only "
+             "nucleation_spacing away from every crack; not given: a node splits as soon as it fails")
+      .above(0);
+  k.quantity("nucleation_spacing", dim::length,
+             "with tip_speed_limit: no new crack starts nearer than this to a crack node or to another "
+             "new crack of the same update")
+      .above(0)
+      .defaults_to("three times the node's longest edge");
   return k;
 }
 
@@ -1160,6 +1170,12 @@ class ScenarioReader {
     ci.friction = k.number("friction");
     ci.small_pieces_to_particles = k.choice("small_pieces").value_or("smeared") == "particles";
     ci.small_pieces_line = k.has("small_pieces") ? k.line("small_pieces") : ci.line;
+    if (k.has("tip_speed_limit")) ci.tip_speed_limit = k.number("tip_speed_limit");
+    if (k.has("nucleation_spacing")) {
+      if (!k.has("tip_speed_limit"))
+        k.fail("nucleation_spacing", "acts only with tip_speed_limit (the fastest a crack tip may run, e.g. 4300 m/s)");
+      ci.nucleation_spacing = k.number("nucleation_spacing");
+    }
     sc.cracking = ci;
   }
 

@@ -259,6 +259,8 @@ struct CrackingInput {
   /// particles (comminution) instead of the crack being refused.
   bool small_pieces_to_particles = false;
   int small_pieces_line = 0;
+  double tip_speed_limit = 0;     ///< m/s; 0: a node splits as soon as it fails
+  double nucleation_spacing = 0;  ///< m; 0: three times the node's longest edge
   int line = 0;
 };
 

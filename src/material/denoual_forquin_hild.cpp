@@ -21,7 +21,7 @@ std::vector<std::string> DenoualForquinHild::state_names() const {
                              "crack_density_", "damage_"})
       names.push_back(base + s);
   }
-  names.insert(names.end(), {"damage", "energy_density"});
+  names.insert(names.end(), {"damage", "energy_density", "crack_normal_x", "crack_normal_y", "crack_normal_z"});
   return names;
 }
 
@@ -39,6 +39,17 @@ double DenoualForquinHild::damaged_stress(const double value[3], const double ax
   }
   from_principal(carried, axis, stress);
   return energy;
+}
+
+void DenoualForquinHild::record_largest(const double axis[3][3], double* state) {
+  double largest = 0.0;
+  int most = -1;
+  for (int i = 0; i < 3; ++i) {
+    const double d = state[first_direction + i * direction_slots + damage];
+    if (d > largest) largest = d, most = i;
+  }
+  state[largest_damage] = largest;
+  for (int k = 0; k < 3; ++k) state[crack_normal_x + k] = most >= 0 ? axis[most][k] : 0.0;
 }
 
 double DenoualForquinHild::activated_flaws(double stress) const {
@@ -93,7 +104,6 @@ void DenoualForquinHild::update(MaterialPointBatch& batch) const {
 
     // 2. Flaws activated by each principal direction's new peak; their zones grow while it is
     //    in tension (a closed crack does not run).
-    double largest = 0.0;
     for (int i = 0; i < 3; ++i) {
       double* d = hs + first_direction + i * direction_slots;
       double added = 0.0;
@@ -106,9 +116,8 @@ void DenoualForquinHild::update(MaterialPointBatch& batch) const {
       d[damage] = -std::expm1(-obscuring * d[moment_3]);
       // Only a flaw outside every obscured zone starts a crack: dN = (1 − D) dλ_t (trapezoid).
       d[cracks] += added * (1.0 - 0.5 * (before + d[damage]));
-      largest = std::max(largest, d[damage]);
     }
-    hs[largest_damage] = largest;
+    record_largest(axis, hs);
 
     // 3. The damaged stress, its recoverable energy ½ Σ σ_i ε_i (ε_i the elastic strains of σ̃,
     //    same axes), and the fracture work as the work done less the change of that energy, per
@@ -134,6 +143,8 @@ std::vector<Material::Transfer> DenoualForquinHild::state_transfer() const {
   }
   rule[largest_damage] = {Transfer::interpolate, 0.0, 1.0};
   rule[energy_density].min = 0.0;
+  // The crack normal is made again from the carried σ̃ and damage (after_transfer).
+  for (int k = 0; k < 3; ++k) rule[crack_normal_x + k].rule = Transfer::nearest;
   return rule;
 }
 
@@ -143,15 +154,13 @@ void DenoualForquinHild::after_transfer(MaterialPointBatch& batch) const {
   const double obscuring = p_.shape_factor * p_.crack_speed * p_.crack_speed * p_.crack_speed;
   for (std::size_t q = 0; q < batch.count; ++q) {
     double* hs = batch.state + slot_count * q;
-    double largest = 0.0;
     for (int i = 0; i < 3; ++i) {
       double* d = hs + first_direction + i * direction_slots;
       d[damage] = -std::expm1(-obscuring * d[moment_3]);
-      largest = std::max(largest, d[damage]);
     }
-    hs[largest_damage] = largest;
     double value[3], axis[3][3];
     principal(hs + effective_stress, value, axis);
+    record_largest(axis, hs);
     hs[energy_density] = damaged_stress(value, axis, hs, batch.stress + kTensorSize * q);
   }
 }

@@ -45,6 +45,11 @@ class DenoualForquinHild final : public Material {
     first_direction = effective_stress + kTensorSize,    ///< 3 × direction_slots
     largest_damage = first_direction + 3 * direction_slots,  ///< max_i D_i, for plots
     energy_density,  ///< Ψ = ½ σ : C⁻¹σ̃, the recoverable energy per unit volume
+    /// The axis of the most damaged direction (0 while undamaged): the normal of the crack a
+    /// discrete insertion draws through the point (3 components).
+    crack_normal_x,
+    crack_normal_y,
+    crack_normal_z,
     slot_count
   };
 
@@ -57,6 +62,12 @@ class DenoualForquinHild final : public Material {
   int stored_energy_index() const override { return energy_density; }
   /// Its strength rises with the stress rate (slope n/(m+n)) and its damage needs time to grow.
   bool failure_depends_on_loading_rate() const override { return true; }
+  /// Discrete cracks are drawn where the largest damage reaches cracking.failure_threshold,
+  /// normal to the most damaged direction. The damage is not healed when a crack passes: it is
+  /// the crack density the mesh does not resolve, which the drawn crack does not take away.
+  std::optional<FailureMapSlots> failure_map_slots() const override {
+    return FailureMapSlots{largest_damage, crack_normal_x, energy_density, {}, /*heals=*/false, /*factor_bound=*/1.0};
+  }
   void update(MaterialPointBatch& batch) const override;
   std::vector<Transfer> state_transfer() const override;
   void after_transfer(MaterialPointBatch& batch) const override;
@@ -75,6 +86,8 @@ class DenoualForquinHild final : public Material {
   /// The stress a point carries (eq. 8) from the principal values and axes of its effective
   /// stress and its damages; returns its recoverable energy ½ Σ σ_i ε_i per unit volume.
   double damaged_stress(const double value[3], const double axis[3][3], const double* state, double* stress) const;
+  /// The largest damage and the axis of its direction, into the point's state.
+  static void record_largest(const double axis[3][3], double* state);
 
   FragmentationParameters p_;
 };

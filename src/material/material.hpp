@@ -94,6 +94,13 @@ class Material {
     int normal = -1;
     int energy_density = -1;
     std::vector<int> reset;
+    /// Whether a failed element a crack passes is re-initialised (stress and state to zero, its
+    /// stored energy booked as fracture): a softening model's smeared crack becomes the discrete
+    /// one; a damage model whose damage stands for unresolved cracks keeps it.
+    bool heals = true;
+    /// The failure factor stays below this (a damage: 1), so a threshold at or above it is
+    /// never reached.
+    double factor_bound = std::numeric_limits<double>::infinity();
   };
   /// Empty for a model that does not crack discretely.
   virtual std::optional<FailureMapSlots> failure_map_slots() const { return std::nullopt; }

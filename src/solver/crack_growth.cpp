@@ -27,6 +27,7 @@ CrackGrowth::CrackGrowth(const Model& model, const std::vector<std::unique_ptr<M
     cp.cracks = true;
     cp.factor_index = slots->factor;
     cp.reset_indices = slots->reset;
+    cp.heals = slots->heals;
     cp.energy_density_index = slots->energy_density;
     cp.comminutes = settings_.comminution && part.erosion.to_particles;
     fields_.push_back({static_cast<std::size_t>(p), PointFailureField{}});
@@ -66,6 +67,8 @@ void CrackGrowth::book_released(const CrackInsertion& ins, EnergyLedger& energy,
 std::size_t CrackGrowth::insert(Model& model, EnergyLedger& energy, Topology& topology, double time,
                                 std::int64_t* eroded, std::vector<double>* part_stored) {
   if (!map_failure(model)) return 0;
+  keep_to_crack_tips(model, parts_, settings_.failure_threshold, map_.factor);
+  hold_back_cracks(model, parts_, settings_.speed_limit, time, settings_.failure_threshold, map_.factor);
   const CrackInsertion ins = insert_cracks(model, parts_, map_.factor, map_.direction, insertion_settings(time));
   book_released(ins, energy, part_stored);
   const std::int64_t comminuted = comminute(model, ins, energy, part_stored);

@@ -5,6 +5,7 @@
 // energy is booked as fracture. Theory: docs/theory/crack_insertion.md.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <memory>
 #include <span>
@@ -12,6 +13,7 @@
 
 #include "fracture/crack_insertion.hpp"
 #include "fracture/failure_map.hpp"
+#include "fracture/growth_limit.hpp"
 #include "material/material.hpp"
 #include "model/model.hpp"
 #include "core/energy_ledger.hpp"
@@ -26,6 +28,8 @@ struct CrackGrowthSettings {
   int min_fragment_elements = 1;   ///< no crack cuts off a piece of fewer elements (1: no limit)
   /// Pieces below min_fragment_elements become particles (parts whose erosion makes particles).
   bool comminution = false;
+  /// A finite crack-tip speed and the spacing of new cracks (fracture/growth_limit.hpp).
+  CrackSpeedLimit speed_limit;
 };
 
 class CrackGrowth final : public StepEvent {
@@ -71,6 +75,13 @@ class CrackGrowth final : public StepEvent {
   double failure_threshold() const { return settings_.failure_threshold; }
   /// Whether a piece a crack would cut off may become particles (then a split needs the whole model).
   bool comminutes() const { return settings_.comminution; }
+  /// Whether failed nodes may be held back (a tip-speed limit, or a cracking part whose damage
+  /// does not heal): the rules look at crack nodes near a candidate and at every copy of a
+  /// node, which a subdomain does not hold.
+  bool holds_nodes_back() const {
+    return settings_.speed_limit.tip_speed > 0 ||
+           std::any_of(parts_.begin(), parts_.end(), [](const CrackingPart& p) { return p.cracks && !p.heals; });
+  }
 
   std::int64_t inserted_nodes() const { return inserted_; }
   /// Elements that became particles instead of a crack cutting them off, since the start.

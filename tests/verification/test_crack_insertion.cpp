@@ -14,7 +14,11 @@
 //    corner triangle is cut off at a minimum of 1 and not at 2;
 //  - the halves then separate freely: no force crosses the crack, the free half stays at rest
 //    and the pulled half's reaction equals its m·a (an uncracked plate, the control, fails both);
-//  - failed elements around the crack are re-initialised and give up σ²/2E·V.
+//  - failed elements around the crack are re-initialised and give up σ²/2E·V;
+//  - a limit on the tip speed holds a tip until the limit could have crossed its longest edge, the
+//    node it reaches records the speed it came at, and no crack starts within the nucleation
+//    spacing of a crack or of a stronger nucleus; where the damage does not heal, only tips
+//    extend.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -29,6 +33,7 @@
 #include "fracture/crack_insertion.hpp"
 #include "fracture/failure_map.hpp"
 #include "fracture/fragments.hpp"
+#include "fracture/growth_limit.hpp"
 #include "support/model_runner.hpp"
 
 namespace shard {
@@ -838,6 +843,104 @@ TEST(CrackInsertion, FailedElementsAroundTheCrackAreReinitialised) {
   const auto after = nodal_failure_map(model, 0, failure_field_from_state(part, 0, 1));
   EXPECT_LT(*std::max_element(after.factor.begin(), after.factor.end()), 1.0);
   EXPECT_EQ(max_point_factor(part, failure_field_from_state(part, 0, 1)), 0.5);
+}
+
+// ---------------------------------------------------------------------------------------------
+// A limit on the crack-tip speed (fracture/growth_limit.hpp)
+
+/// A 6 × 6 plate, 1 m square, cracked at t = 0 through its centre (3,3): the crack ends at the
+/// tips (3,2) and (3,4), both reached at 0.
+struct CrackedAtTheCentre {
+  static constexpr int n = 6;
+  testing::ElasticRun run = plate(n, n, 1.0, 1.0, 0.0);
+  CrackedAtTheCentre() {
+    FailedNodes first(run.model, {node_id(n, 3, 3)}, 1.0, 0.0);
+    CrackInsertionSettings at_zero;
+    at_zero.time = 0.0;
+    insert_cracks(run.model, cracking(run), first.factor, first.normal, at_zero);
+  }
+};
+
+TEST(CrackSpeedLimit, TipOpensItsNextEdgeOnlyOnceTheLimitCouldHaveCrossedIt) {
+  CrackedAtTheCentre c;
+  Model& model = c.run.model;
+  const int n = c.n;
+  const std::int32_t tip = node_id(n, 3, 4), ahead = node_id(n, 3, 5);
+  // A nucleus: the centre and both tips reached at 0, at no speed (a crack started there).
+  for (const std::int32_t p : {node_id(n, 3, 2), node_id(n, 3, 3), tip}) {
+    EXPECT_EQ(model.nodes.crack_time[p], 0.0);
+    EXPECT_EQ(model.nodes.crack_speed[p], 0.0);
+  }
+  const CrackSpeedLimit limit{1000.0, 0.0};
+  const double longest = std::sqrt(2.0) / n;  // the tip's diagonal edges
+  const double due = longest / limit.tip_speed;
+  FailedNodes held(model, {tip}, 1.0, 0.0);
+  const HeldNodes early = hold_back_cracks(model, cracking(c.run), limit, 0.99 * due, 1.0, held.factor);
+  EXPECT_EQ(early.tips, 1u);
+  EXPECT_EQ(held.factor[tip], 0.0);
+  FailedNodes kept(model, {tip}, 1.0, 0.0);
+  const HeldNodes late = hold_back_cracks(model, cracking(c.run), limit, 1.01 * due, 1.0, kept.factor);
+  EXPECT_EQ(late.tips, 0u);
+  EXPECT_EQ(kept.factor[tip], 1.0);
+  CrackInsertionSettings then;
+  then.time = 1.01 * due;
+  const auto ins = insert_cracks(model, cracking(c.run), kept.factor, kept.normal, then);
+  EXPECT_EQ(edge_set(ins), (std::set{edge(tip, ahead)}));
+  // The node ahead records the tip's speed along the edge it came: (1/6 m) / t, below the limit.
+  EXPECT_EQ(model.nodes.crack_time[ahead], then.time);
+  EXPECT_NEAR(model.nodes.crack_speed[ahead], (1.0 / n) / then.time, 1e-12 * limit.tip_speed);
+  EXPECT_LT(model.nodes.crack_speed[ahead], limit.tip_speed);
+}
+
+TEST(CrackSpeedLimit, NoCrackStartsWithinTheSpacingOfACrackOrOfAStrongerNucleus) {
+  CrackedAtTheCentre c;
+  const Model& model = c.run.model;
+  const int n = c.n;
+  const CrackSpeedLimit limit{1000.0, 0.3};  // 1.8 cells
+  const std::int32_t beside = node_id(n, 4, 3), clear = node_id(n, 5, 1);
+  const std::int32_t far = node_id(n, 1, 1), next_to_far = node_id(n, 1, 2);
+  auto held_with = [&](double f_far, double f_next, std::vector<double>& factor) {
+    factor.assign(model.nodes.count(), 0.0);
+    factor[beside] = 1.0;    // 1/6 m from the crack's centre: inside the spacing
+    factor[clear] = 1.0;     // 0.37 m from the nearest crack node (3,2): outside it
+    factor[far] = f_far;     // far from the crack, 1/6 m from next_to_far: the stronger
+    factor[next_to_far] = f_next;  // of the two starts a crack, the other waits
+    return hold_back_cracks(model, cracking(c.run), limit, 1.0, 1.0, factor);
+  };
+  std::vector<double> factor;
+  HeldNodes held = held_with(1.2, 1.1, factor);
+  EXPECT_EQ(held.nuclei, 2u);
+  EXPECT_EQ(held.tips, 0u);
+  EXPECT_EQ(factor[beside], 0.0);
+  EXPECT_EQ(factor[clear], 1.0);
+  EXPECT_EQ(factor[far], 1.2);
+  EXPECT_EQ(factor[next_to_far], 0.0);
+  held = held_with(1.1, 1.3, factor);
+  EXPECT_EQ(held.nuclei, 2u);
+  EXPECT_EQ(factor[far], 0.0);
+  EXPECT_EQ(factor[next_to_far], 1.3);
+  // Without a limit nothing is held.
+  factor.assign(model.nodes.count(), 1.0);
+  held = hold_back_cracks(model, cracking(c.run), CrackSpeedLimit{}, 1.0, 1.0, factor);
+  EXPECT_EQ(held.nuclei + held.tips, 0u);
+  EXPECT_EQ(*std::min_element(factor.begin(), factor.end()), 1.0);
+}
+
+TEST(CrackSpeedLimit, ADamageThatDoesNotHealExtendsOnlyAtTheTips) {
+  CrackedAtTheCentre c;
+  const Model& model = c.run.model;
+  const int n = c.n;
+  const std::int32_t centre = node_id(n, 3, 3), tip = node_id(n, 3, 4);
+  std::vector<CrackingPart> parts = cracking(c.run);
+  FailedNodes healing(model, {centre, tip}, 1.0, 0.0);
+  EXPECT_EQ(keep_to_crack_tips(model, parts, 1.0, healing.factor), 0u);
+  EXPECT_EQ(healing.factor[centre], 1.0);
+  for (CrackingPart& p : parts) p.heals = false;
+  FailedNodes lasting(model, {centre, tip}, 1.0, 0.0);
+  // The centre is split (the crack passes through it): it would branch from the faces.
+  EXPECT_EQ(keep_to_crack_tips(model, parts, 1.0, lasting.factor), 1u);
+  EXPECT_EQ(lasting.factor[centre], 0.0);
+  EXPECT_EQ(lasting.factor[tip], 1.0);
 }
 
 }  // namespace

@@ -177,6 +177,12 @@ TEST(FragmentationDamage, RigidRotationKeepsTheDamageAndTurnsTheStress) {
   EXPECT_NEAR(turned.stress[yy], sxx, 1e-12 * sxx);
   EXPECT_NEAR(turned.stress[xx], held.stress[yy], 1e-12 * sxx);
   EXPECT_NEAR(turned.stress[xy], 0.0, 1e-12 * sxx);
+  // The crack normal a discrete insertion reads (the most damaged direction's axis) turns too.
+  const double* n_held = &held.state[DenoualForquinHild::crack_normal_x];
+  const double* n_turned = &turned.state[DenoualForquinHild::crack_normal_x];
+  EXPECT_NEAR(std::abs(n_held[0]), 1.0, 1e-12);
+  EXPECT_NEAR(std::abs(n_turned[1]), 1.0, 1e-12);
+  EXPECT_NEAR(n_turned[0], 0.0, 1e-12);
 }
 
 TEST(FragmentationDamage, WorkIsStoredOrDissipated) {

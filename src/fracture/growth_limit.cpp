@@ -1,0 +1,142 @@
+#include "fracture/growth_limit.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include "core/cell_grid.hpp"
+
+namespace shard {
+
+namespace {
+
+/// The longest edge at each failed node, over the live triangles of cracking parts (0 elsewhere).
+std::vector<double> longest_edges(const Model& model, std::span<const CrackingPart> parts,
+                                  std::span<const double> nodal_factor, double threshold) {
+  std::vector<double> longest(nodal_factor.size(), 0.0);
+  const double* x = model.nodes.x.data();
+  const int dim = model.dim();
+  for (std::size_t pi = 0; pi < model.parts.size(); ++pi) {
+    const Part& part = model.parts[pi];
+    if (pi >= parts.size() || !parts[pi].cracks || !part.type->is_triangle()) continue;
+    for (std::size_t e = 0; e < part.element_count(); ++e) {
+      if (!part.eroded.empty() && part.eroded[e]) continue;
+      const std::int32_t* cn = &part.connectivity[3 * e];
+      for (int a = 0; a < 3; ++a) {
+        const std::int32_t p = cn[a];
+        if (nodal_factor[p] < threshold) continue;
+        for (int b = 0; b < 3; ++b) {
+          if (b == a) continue;
+          double d2 = 0;
+          for (int k = 0; k < dim; ++k) d2 += (x[dim * cn[b] + k] - x[dim * p + k]) * (x[dim * cn[b] + k] - x[dim * p + k]);
+          longest[p] = std::max(longest[p], std::sqrt(d2));
+        }
+      }
+    }
+  }
+  return longest;
+}
+
+double distance2(const double* a, const double* b, int dim) {
+  double d2 = 0;
+  for (int k = 0; k < dim; ++k) d2 += (a[k] - b[k]) * (a[k] - b[k]);
+  return d2;
+}
+
+}  // namespace
+
+HeldNodes hold_back_cracks(const Model& model, std::span<const CrackingPart> parts, const CrackSpeedLimit& limit,
+                           double time, double threshold, std::span<double> nodal_factor) {
+  HeldNodes held;
+  if (!(limit.tip_speed > 0)) return held;
+  const std::size_t nn = nodal_factor.size();
+  std::vector<std::int32_t> failed;
+  for (std::size_t i = 0; i < nn; ++i)
+    if (nodal_factor[i] >= threshold) failed.push_back(static_cast<std::int32_t>(i));
+  if (failed.empty()) return held;
+  // The planner's order: the most failed first (ids increasing among equals).
+  std::stable_sort(failed.begin(), failed.end(),
+                   [&](std::int32_t a, std::int32_t b) { return nodal_factor[a] > nodal_factor[b]; });
+  const std::vector<double> longest = longest_edges(model, parts, nodal_factor, threshold);
+  const std::vector<double>& stamp = model.nodes.crack_time;
+  const auto reached = [&](std::size_t p) { return p < stamp.size() && stamp[p] >= 0; };
+  const auto spacing = [&](std::size_t p) {
+    return limit.nucleation_spacing > 0 ? limit.nucleation_spacing : 3.0 * longest[p];
+  };
+
+  // The crack nodes, binned by the widest spacing a candidate nucleus asks for.
+  const int dim = model.dim();
+  const double* x = model.nodes.x.data();
+  double widest = 0;
+  for (const std::int32_t p : failed)
+    if (!reached(p)) widest = std::max(widest, spacing(p));
+  std::vector<std::int32_t> crack_nodes;
+  std::vector<double> crack_points;
+  CellGrid grid;
+  if (widest > 0) {
+    for (std::size_t i = 0; i < stamp.size() && i < nn; ++i)
+      if (stamp[i] >= 0) {
+        crack_nodes.push_back(static_cast<std::int32_t>(i));
+        crack_points.insert(crack_points.end(), x + dim * i, x + dim * i + dim);
+      }
+    if (!crack_nodes.empty()) grid.build_points(crack_points, dim, widest);
+  }
+
+  std::vector<std::int32_t> nuclei;
+  for (const std::int32_t p : failed) {
+    const double* xp = x + dim * p;
+    if (reached(p)) {
+      // A tip: the next edge is crossed no faster than the limit.
+      if (limit.tip_speed * (time - stamp[p]) < longest[p]) {
+        nodal_factor[p] = 0;
+        ++held.tips;
+      }
+      continue;
+    }
+    const double s2 = spacing(p) * spacing(p);
+    const bool near_crack = grid.any_near(xp, [&](std::int32_t k) {
+      return distance2(xp, &crack_points[dim * static_cast<std::size_t>(k)], dim) < s2;
+    });
+    const bool near_nucleus = std::any_of(nuclei.begin(), nuclei.end(),
+                                          [&](std::int32_t q) { return distance2(xp, x + dim * q, dim) < s2; });
+    if (near_crack || near_nucleus) {
+      nodal_factor[p] = 0;
+      ++held.nuclei;
+    } else {
+      nuclei.push_back(p);
+    }
+  }
+  return held;
+}
+
+std::size_t keep_to_crack_tips(const Model& model, std::span<const CrackingPart> parts, double threshold,
+                               std::span<double> nodal_factor) {
+  const std::vector<double>& stamp = model.nodes.crack_time;
+  if (stamp.empty() || std::all_of(parts.begin(), parts.end(), [](const CrackingPart& cp) { return cp.heals; }))
+    return 0;
+  // Nodes next to an element of a cracking part that heals keep the usual rules.
+  std::vector<char> heals(nodal_factor.size(), 0);
+  for (std::size_t pi = 0; pi < model.parts.size() && pi < parts.size(); ++pi) {
+    if (!parts[pi].cracks || !parts[pi].heals) continue;
+    for (const std::int32_t n : model.parts[pi].connectivity) heals[static_cast<std::size_t>(n)] = 1;
+  }
+  // Split nodes: a crack node whose origin another node shares.
+  std::vector<std::int64_t> origins;
+  for (std::size_t i = 0; i < stamp.size(); ++i)
+    if (stamp[i] >= 0) origins.push_back(model.nodes.origin[i]);
+  std::sort(origins.begin(), origins.end());
+  const auto split = [&](std::size_t i) {
+    const auto [lo, hi] = std::equal_range(origins.begin(), origins.end(), model.nodes.origin[i]);
+    return hi - lo > 1;
+  };
+  std::size_t held = 0;
+  for (std::size_t i = 0; i < nodal_factor.size() && i < stamp.size(); ++i)
+    if (nodal_factor[i] >= threshold && stamp[i] >= 0 && !heals[i] && split(i)) {
+      nodal_factor[i] = 0;
+      ++held;
+    }
+  return held;
+}
+
+}  // namespace shard
