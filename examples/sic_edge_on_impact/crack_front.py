@@ -12,7 +12,10 @@ straight line through the front positions between 10 % and 90 % of the beam leng
 --window FROM TO µs after impact (least squares). --failed damage:0.5 takes the damage of the
 denoual_forquin_hild model instead of the failure factor. Writes OUT/crack_front.json and OUT/crack_front.png; with --pictures, draws the failure
 factor (or --field crack_face: the crack faces) at those times after impact (µs) with
-tools/shard_plot.py into OUT/failure_<t>us.png (crack_face_<t>us.png).
+tools/shard_plot.py into OUT/failure_<t>us.png (crack_face_<t>us.png). --crossing X counts at each
+frame the separate cracks that cross the line X mm from the impact edge: the crack-face edges that
+straddle it, their crossings along y merged where they lie within --merge mm of each other (the
+two lips of one crack).
 Needs Debian's python3-numpy, python3-matplotlib and python3-meshio.
 """
 import argparse
@@ -35,6 +38,27 @@ def frames(folder):
         yield float(item.get("timestep")), os.path.join(folder, item.get("file"))
 
 
+def cracks_crossing(mesh, x_line, merge):
+    """Separate cracks crossing the vertical line x = x_line (m): the crack-face edges (edges of one
+    triangle, both ends on a crack face) that straddle it, their crossings sorted along y and merged
+    where they lie within `merge` (m) of the previous one."""
+    if "crack_face" not in mesh.point_data:
+        return 0
+    triangles = mesh.cells_dict["triangle"]
+    edges = np.sort(np.concatenate([triangles[:, [0, 1]], triangles[:, [1, 2]], triangles[:, [2, 0]]]), axis=1)
+    unique, count = np.unique(edges, axis=0, return_counts=True)
+    face = unique[count == 1]
+    on_face = np.asarray(mesh.point_data["crack_face"]).ravel() > 0
+    face = face[on_face[face[:, 0]] & on_face[face[:, 1]]]
+    a, b = mesh.points[face[:, 0], :2], mesh.points[face[:, 1], :2]
+    straddles = (a[:, 0] - x_line) * (b[:, 0] - x_line) < 0
+    a, b = a[straddles], b[straddles]
+    if a.shape[0] == 0:
+        return 0
+    y = np.sort(a[:, 1] + (b[:, 1] - a[:, 1]) * (x_line - a[:, 0]) / (b[:, 0] - a[:, 0]))
+    return int(1 + np.count_nonzero(np.diff(y) > merge))
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("folder", metavar="OUT")
@@ -53,6 +77,10 @@ def main():
     parser.add_argument("--field", default=None,
                         help="field the pictures show (failure_factor, or crack_face for the faces "
                              "of inserted cracks)")
+    parser.add_argument("--crossing", type=float, default=None, metavar="X",
+                        help="count the separate cracks crossing the line X mm from the impact edge")
+    parser.add_argument("--merge", type=float, default=0.1,
+                        help="crossings closer than this along the line are one crack [mm] (default 0.1)")
     args = parser.parse_args()
     failed_field, threshold = args.failed.split(":")
     threshold = float(threshold)
@@ -73,10 +101,11 @@ def main():
             cracked_nodes = int(on_face.sum())
             if on_face.any():
                 crack = float(mesh.points[on_face, 0].max() * 1e3 - args.edge)
-        rows.append((time * 1e6, smeared, crack, int(failed.sum()), cracked_nodes))
+        crossing = cracks_crossing(mesh, 1e-3 * (args.edge + args.crossing), 1e-3 * args.merge) if args.crossing else 0
+        rows.append((time * 1e6, smeared, crack, int(failed.sum()), cracked_nodes, crossing))
     data = np.array(rows)
     result = {"frames": [dict(zip(("time_us", "failed_front_mm", "crack_front_mm", "failed_cells",
-                                   "crack_face_nodes"), r)) for r in rows]}
+                                   "crack_face_nodes", "cracks_crossing"), r)) for r in rows]}
     figure, axes = plt.subplots(figsize=(6.5, 4.2))
     for column, label, colour in ((1, f"failed material ({failed_field} ≥ {threshold:g})", "tab:orange"),
                                   (2, "inserted cracks", "tab:red")):
@@ -104,7 +133,8 @@ def main():
         json.dump(result, stream, indent=2)
     for r in rows:
         print(f"t = {r[0]:6.2f} us: failed front {r[1]:7.2f} mm, crack front {r[2]:7.2f} mm, "
-              f"{r[3]} failed cells, {r[4]} crack-face nodes")
+              f"{r[3]} failed cells, {r[4]} crack-face nodes" +
+              (f", {r[5]} cracks across x = {args.crossing:g} mm" if args.crossing else ""))
     plot = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tools", "shard_plot.py")
     times = data[:, 0]
     for after in args.pictures:
