@@ -916,6 +916,10 @@ void fix_born_nodes(Model& model, const OldPart& old, const NewMesh& nm, std::si
     for (int d = 0; d < dim; ++d) nodes.x[dim * n + d] = b.x[d];
     corrected_velocity(model, b, velocity_gradient, &nodes.v[dim * n]);
     nodes.origin[n] = nodes.id[n];
+    // No crack has reached a born node (segments on a crack face are not split): the rule's copy
+    // of its first parent's time and tip speed would make it a crack tip.
+    if (!nodes.crack_time.empty()) nodes.crack_time[n] = -1.0;
+    if (!nodes.crack_speed.empty()) nodes.crack_speed[n] = -1.0;
     for (int d = 0; d < dim; ++d) {
       std::int32_t common = nodes.prescribed[dim * b.parent[0] + d];
       for (int q = 1; q < b.parents; ++q)

@@ -462,10 +462,21 @@ TEST(Remesh, KeepCrackedKeepsTheElementsOnACrackFaceAndRemeshesTheRest) {
   const Totals before = totals(model);
   const Shape shape_before = shape_of(model);
   const std::size_t elements_before = part.element_count();
+  const std::int64_t last_old_id = *std::max_element(model.nodes.id.begin(), model.nodes.id.end());
   RemeshSettings s = uniform(1.6e-3);
   s.keep_cracked = true;
   const RemeshOutcome out = remesh_part(model, 0, *run.materials[0], s, {});
   ASSERT_TRUE(out.remeshed) << out.skipped;
+  // No crack reached a node the remesh made: none takes a crack time or a tip speed from the old
+  // nodes it is interpolated from (those around the tip would make it a crack tip).
+  std::size_t born = 0, born_reached = 0;
+  for (std::size_t i = 0; i < model.nodes.count(); ++i)
+    if (model.nodes.id[i] > last_old_id) {
+      ++born;
+      born_reached += model.nodes.crack_time[i] >= 0 || model.nodes.crack_speed[i] >= 0;
+    }
+  EXPECT_GT(born, 0u);
+  EXPECT_EQ(born_reached, 0u);
   const Totals after = totals(model);
   const Shape shape_after = shape_of(model);
   std::printf("[remesh with keep_cracked] %zu -> %zu elements, %zu kept on the crack, smallest angle %.1f deg\n",
