@@ -737,9 +737,11 @@ def crack_edge_speeds(mesh, box=None):
 
 def node_tip_speeds(mesh, box=None):
     """The speed of the tip that reached each node as the run recorded it (point field crack_speed:
-    the edge it came along over the time since the crack had reached that edge's other end), for the
-    nodes a running tip reached, and the count of nodes where a crack started (0). None for a frame
-    written before shard recorded it. Copies of a split node are counted each."""
+    the edge it came along over the time since the crack had reached that edge's other end): the
+    finite speeds of the nodes a running tip reached, the count of nodes a tip reached within the
+    update that reached the node before (+inf: faster than the run resolves), and the count of nodes
+    where a crack started (0). None for a frame written before shard recorded it. Copies of a split
+    node are counted each."""
     if "crack_speed" not in mesh.point_data:
         return None
     speed = np.asarray(mesh.point_data["crack_speed"], dtype=float).ravel()
@@ -747,7 +749,9 @@ def node_tip_speeds(mesh, box=None):
     if box is not None:
         p = mesh.points[:, :2]
         inside = (p[:, 0] >= box[0]) & (p[:, 0] <= box[1]) & (p[:, 1] >= box[2]) & (p[:, 1] <= box[3])
-    return speed[inside & (speed > 0)], int(np.count_nonzero(inside & (speed == 0)))
+    finite = inside & np.isfinite(speed) & (speed > 0)
+    return (speed[finite], int(np.count_nonzero(inside & np.isposinf(speed))),
+            int(np.count_nonzero(inside & (speed == 0))))
 
 
 def speed_figures(speeds, limit):
@@ -780,12 +784,17 @@ def plot_crack_speeds(args):
     shown, what = speeds, "over one crack-face edge"
     nodes = node_tip_speeds(mesh, box)
     if nodes is not None and nodes[0].size > 0:
-        node_figures, node_text = speed_figures(nodes[0], args.limit)
-        node_figures.update(nodes=int(nodes[0].size), nodes_where_a_crack_started=nodes[1])
+        finite, unresolved, started = nodes
+        node_figures, node_text = speed_figures(finite, args.limit)
+        node_figures.update(nodes=int(finite.size), nodes_crossed_within_one_update=unresolved,
+                            nodes_where_a_crack_started=started)
+        if args.limit:  # a crossing within one update is faster than any limit
+            node_figures["above_limit"] += unresolved
         figures["recorded_at_nodes"] = node_figures
-        print(f"  as recorded at the nodes (crack_speed): {nodes[0].size} nodes reached by a running tip, "
-              f"{nodes[1]} where a crack started; tip speed {node_text}")
-        shown, what = nodes[0], "of the tip that reached a node"
+        print(f"  as recorded at the nodes (crack_speed): {finite.size} nodes reached by a running tip at a "
+              f"finite speed, {unresolved} crossed within one update (faster than the run resolves), {started} "
+              f"where a crack started; tip speed over the finite ones {node_text}")
+        shown, what = finite, "of the tip that reached a node"
     if args.json:
         with open(args.json, "w") as stream:
             json.dump(figures, stream, indent=1)

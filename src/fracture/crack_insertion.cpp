@@ -2,11 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <optional>
 #include <stdexcept>
 #include <string>
-#include <tuple>
 #include <unordered_map>
 #include <unordered_set>
 
@@ -553,9 +553,12 @@ std::vector<std::pair<int, std::size_t>> elements_around(const Fans& fans, std::
 }
 
 // Both ends of each opened edge: reached by a crack now, unless one reached them before. Set
-// before the split, so that the copies of a node inherit its time. An end reached now from an
-// end a crack reached at an earlier update takes the tip's speed along the edge; the ends of an
-// edge opened between two new ends (a nucleus), or from an end reached in this same update, 0.
+// before the split, so that the copies of a node inherit its time. The speed each new end
+// records does not depend on the edges' order:
+//  - reached from an end a crack reached at an earlier update: the tip's speed along the edge;
+//  - reached from an end reached in this update: that end's kind, 0 along a new crack, +∞ ahead
+//    of a running tip (it crossed more than one edge within a step, faster than the run resolves);
+//  - both ends new and reached from neither (a nucleus): 0.
 void record_crack_time(Model& model, std::span<const std::array<std::int32_t, 2>> edges, double time) {
   if (edges.empty()) return;
   std::vector<double>& t = model.nodes.crack_time;
@@ -563,16 +566,38 @@ void record_crack_time(Model& model, std::span<const std::array<std::int32_t, 2>
   if (t.empty()) t.assign(model.nodes.count(), -1.0);
   if (speed.empty()) speed.assign(model.nodes.count(), -1.0);
   const double* x = model.nodes.x.data();
-  for (const auto& edge : edges) {
-    const auto a = static_cast<std::size_t>(edge[0]), b = static_cast<std::size_t>(edge[1]);
-    const double ta = t[a], tb = t[b];
-    for (const auto [to, from, t_from] : {std::tuple{a, b, tb}, std::tuple{b, a, ta}}) {
-      if (t[to] >= 0) continue;
-      t[to] = time;
-      speed[to] = 0.0;
-      if (t_from >= 0 && time > t_from)
-        speed[to] = std::hypot(x[2 * to] - x[2 * from], x[2 * to + 1] - x[2 * from + 1]) / (time - t_from);
+  const auto earlier = [&](std::size_t p) { return t[p] >= 0 && t[p] < time; };
+  const auto reach = [&](std::size_t to, double v) {
+    t[to] = time;
+    speed[to] = v;
+  };
+  // Tips that ran on from earlier updates first, then along the edges of this update from the ends
+  // already reached, then nuclei, until every edge's ends are reached.
+  for (const auto& edge : edges)
+    for (int k = 0; k < 2; ++k) {
+      const auto to = static_cast<std::size_t>(edge[k]), from = static_cast<std::size_t>(edge[1 - k]);
+      if (t[to] < 0 && earlier(from))
+        reach(to, std::hypot(x[2 * to] - x[2 * from], x[2 * to + 1] - x[2 * from + 1]) / (time - t[from]));
     }
+  for (bool open = true; open;) {
+    open = false;
+    bool grew = true;
+    while (grew) {
+      grew = false;
+      for (const auto& edge : edges)
+        for (int k = 0; k < 2; ++k) {
+          const auto to = static_cast<std::size_t>(edge[k]), from = static_cast<std::size_t>(edge[1 - k]);
+          if (t[to] >= 0 || t[from] < 0) continue;
+          reach(to, speed[from] > 0 ? std::numeric_limits<double>::infinity() : 0.0);
+          grew = true;
+        }
+    }
+    for (const auto& edge : edges)
+      if (t[static_cast<std::size_t>(edge[0])] < 0 && t[static_cast<std::size_t>(edge[1])] < 0) {
+        reach(static_cast<std::size_t>(edge[0]), 0.0);  // a nucleus; its edges follow in the next pass
+        open = true;
+        break;
+      }
   }
 }
 

@@ -102,6 +102,7 @@ std::size_t differences(const Subdomain& followed, const Model& local, const Sub
     bad += local.whole_crack_faces[n] != fresh.whole_crack_faces[i];
     bad += local.nodes.id[n] != fresh.nodes.id[i] || local.nodes.origin[n] != fresh.nodes.origin[i];
     bad += local.nodes.crack_time[n] != fresh.nodes.crack_time[i];
+    bad += local.nodes.crack_speed[n] != fresh.nodes.crack_speed[i];
     if (cut.node_owned[i]) bad += local.nodes.mass[n] != fresh.nodes.mass[i];
     for (std::size_t k = 0; k < dim; ++k) {
       bad += local.nodes.x[dim * n + k] != fresh.nodes.x[dim * i + k];
@@ -152,6 +153,7 @@ std::size_t owned_differences(const Subdomain& sub, const Model& local, const Mo
     const auto n = static_cast<std::size_t>(it - sub.global_node.begin());
     bad += !sub.node_owned[n] || local.nodes.id[n] != whole.nodes.id[g] || local.nodes.mass[n] != whole.nodes.mass[g];
     bad += local.nodes.crack_time[n] != whole.nodes.crack_time[g];
+    bad += local.nodes.crack_speed[n] != whole.nodes.crack_speed[g];
     for (std::size_t k = 0; k < 2; ++k)
       bad += local.nodes.x[2 * n + k] != whole.nodes.x[2 * g + k] || local.nodes.v[2 * n + k] != whole.nodes.v[2 * g + k] ||
              local.nodes.force[2 * n + k] != whole.nodes.force[2 * g + k] ||
