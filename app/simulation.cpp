@@ -16,6 +16,7 @@
 #include "io/particle_sample.hpp"
 #include "solver/element_conversion.hpp"
 #include "fracture/interface_split.hpp"
+#include "material/denoual_forquin_hild.hpp"
 #include "material/laminate.hpp"
 #include "solver/setup.hpp"
 
@@ -579,7 +580,34 @@ int part_index(const Model& model, const std::string& name) {
   return -1;
 }
 
-// Cracking parts: those named (or, when none is named, every part that can crack).
+/// The rules a part of a damage that does not heal (denoual_forquin_hild) needs: a threshold its
+/// factor reaches, and a tip-speed limit (without it every failed node beside a crack starts a crack
+/// that joins it, and its faces branch).
+void check_lasting_damage_part(const Scenario& sc, const Part& part, const Material& m) {
+  const auto slots = m.failure_map_slots();
+  if (slots->heals) return;
+  const std::string file = shown_path(sc.file);
+  const std::string who = "part '" + part.name + "' ('" + std::string(m.model()) + "')";
+  if (sc.cracking->failure_threshold >= slots->factor_bound) {
+    std::ostringstream t;
+    t << sc.cracking->failure_threshold;
+    throw InputError(file, sc.cracking->line, "cracking.failure_threshold",
+                     who + " cannot crack at the threshold " + t.str() +
+                         ": its failure factor is its largest damage, which reaches 1 only where a point is "
+                         "wholly damaged; give the damage at which a crack is drawn (e.g. failure_threshold: 0.5)");
+  }
+  if (!(sc.cracking->tip_speed_limit > 0)) {
+    const auto* dfh = dynamic_cast<const DenoualForquinHild*>(&m);
+    std::ostringstream v;
+    if (dfh) v << " (its crack speed kC0, " << dfh->parameters_in_use().crack_speed << " m/s)";
+    throw InputError(file, sc.cracking->line, "cracking.tip_speed_limit",
+                     who + " keeps its damage where a crack passes, so its cracks need a limit on the tip speed" +
+                         v.str() + ": without it every failed node beside a crack starts a crack of its own");
+  }
+}
+
+// Cracking parts: those named (or, when none is named, every part that can crack and whose
+// damage heals where a crack passes: a fragmentation damage is cracked only when named).
 std::vector<int> cracking_parts(const Scenario& sc, Simulation& sim) {
   std::vector<int> out;
   if (!sc.cracking) return out;
@@ -588,31 +616,21 @@ std::vector<int> cracking_parts(const Scenario& sc, Simulation& sim) {
     const Part& part = sim.model.parts[p];
     const bool named = std::find(sc.cracking->parts.begin(), sc.cracking->parts.end(), part.name) !=
                        sc.cracking->parts.end();
-    const bool can = part.type->is_triangle() && sim.materials[part.material]->failure_map_slots();
+    const auto slots = sim.materials[part.material]->failure_map_slots();
+    const bool can = part.type->is_triangle() && slots;
     if (named && !can)
       throw InputError(file, sc.cracking->line, "cracking.parts",
                        "part '" + part.name + "' cannot crack: cracks are inserted in tri3 parts of "
                        "a material with a failure map (rotating_crack, denoual_forquin_hild); it has " +
                            part.type->name + " elements of '" +
                            std::string(sim.materials[part.material]->model()) + "'");
-    if (named || (sc.cracking->parts.empty() && can)) out.push_back(static_cast<int>(p));
+    if (named || (sc.cracking->parts.empty() && can && slots->heals)) out.push_back(static_cast<int>(p));
   }
   if (out.empty())
     throw InputError(file, sc.cracking->line, "cracking",
                      "no part can crack: cracks are inserted in tri3 parts of a material with a "
-                     "failure map (rotating_crack, denoual_forquin_hild)");
-  for (const int p : out) {
-    const Material& m = *sim.materials[sim.model.parts[p].material];
-    if (sc.cracking->failure_threshold >= m.failure_map_slots()->factor_bound)
-      throw InputError(file, sc.cracking->line, "cracking.failure_threshold",
-                       "part '" + sim.model.parts[p].name + "' ('" + std::string(m.model()) +
-                           "') never reaches the threshold " + [&] {
-                             std::ostringstream t;
-                             t << sc.cracking->failure_threshold;
-                             return t.str();
-                           }() + ": its failure factor is its largest damage, below 1; give the damage at "
-                           "which a crack is drawn (e.g. failure_threshold: 0.5)");
-  }
+                     "failure map (rotating_crack; denoual_forquin_hild when named in cracking.parts)");
+  for (const int p : out) check_lasting_damage_part(sc, sim.model.parts[p], *sim.materials[sim.model.parts[p].material]);
   CrackGrowthSettings cracking;
   cracking.parts = out;
   cracking.failure_threshold = sc.cracking->failure_threshold;

@@ -47,7 +47,8 @@ double distance2(const double* a, const double* b, int dim) {
 }  // namespace
 
 HeldNodes hold_back_cracks(const Model& model, std::span<const CrackingPart> parts, const CrackSpeedLimit& limit,
-                           double time, double threshold, std::span<double> nodal_factor) {
+                           double time, double threshold, std::span<const double> nodal_normal,
+                           std::span<double> nodal_factor) {
   HeldNodes held;
   if (!(limit.tip_speed > 0)) return held;
   const std::size_t nn = nodal_factor.size();
@@ -61,9 +62,12 @@ HeldNodes hold_back_cracks(const Model& model, std::span<const CrackingPart> par
   const std::vector<double> longest = longest_edges(model, parts, nodal_factor, threshold);
   const std::vector<double>& stamp = model.nodes.crack_time;
   const auto reached = [&](std::size_t p) { return p < stamp.size() && stamp[p] >= 0; };
+  // Never below the longest edge: a nucleus next to a crack node would open an edge onto it.
   const auto spacing = [&](std::size_t p) {
-    return limit.nucleation_spacing > 0 ? limit.nucleation_spacing : 3.0 * longest[p];
+    return limit.nucleation_spacing > 0 ? std::max(limit.nucleation_spacing, (1 + 1e-9) * longest[p])
+                                        : 3.0 * longest[p];
   };
+  const auto has_direction = [&](std::size_t p) { return nodal_normal[2 * p] != 0 || nodal_normal[2 * p + 1] != 0; };
 
   // The crack nodes, binned by the widest spacing a candidate nucleus asks for.
   const int dim = model.dim();
@@ -94,6 +98,7 @@ HeldNodes hold_back_cracks(const Model& model, std::span<const CrackingPart> par
       }
       continue;
     }
+    if (!has_direction(p)) continue;  // the planner skips it: it starts no crack
     const double s2 = spacing(p) * spacing(p);
     const bool near_crack = grid.any_near(xp, [&](std::int32_t k) {
       return distance2(xp, &crack_points[dim * static_cast<std::size_t>(k)], dim) < s2;

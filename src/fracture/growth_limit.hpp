@@ -24,7 +24,8 @@ namespace shard {
 
 struct CrackSpeedLimit {
   double tip_speed = 0;  ///< v_max (m/s); 0: no limit (every failed node splits at once)
-  /// A nucleus needs no crack node nearer than this (m); 0: three times its longest edge.
+  /// A nucleus needs no crack node nearer than this (m; at least its longest edge); 0: three
+  /// times its longest edge.
   double nucleation_spacing = 0;
 };
 
@@ -37,9 +38,13 @@ struct HeldNodes {
 /// Sets to 0 the factor of the failed nodes (nodal_factor ≥ threshold) that may not split at
 /// `time` under `limit`, in the planner's order (largest factor first, then lowest id), so that
 /// which nuclei are accepted does not depend on threads. Edges are those of the live triangles
-/// of cracking parts; distances are in the current configuration.
+/// of cracking parts; distances are in the current configuration. The spacing is never less than
+/// a candidate's longest edge, so no nucleus opens an edge onto a crack. A candidate without a
+/// crack direction (`nodal_normal`, 2 per node, zero) is left to the planner, which skips it,
+/// and keeps no other from starting.
 HeldNodes hold_back_cracks(const Model& model, std::span<const CrackingPart> parts, const CrackSpeedLimit& limit,
-                           double time, double threshold, std::span<double> nodal_factor);
+                           double time, double threshold, std::span<const double> nodal_normal,
+                           std::span<double> nodal_factor);
 
 /// In parts whose damage does not heal when a crack passes (CrackingPart::heals false), the
 /// nodes a crack already passes through (split into copies) stay failed for good, and each would

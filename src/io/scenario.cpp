@@ -175,7 +175,7 @@ KeyList contact_keys() {
 KeyList cracking_keys() {
   KeyList k;
   k.add("parts", ValueKind::list, "the parts that crack")
-      .defaults_to("every tri3 part whose material has a failure map (rotating_crack)");
+      .defaults_to("every tri3 part whose material has a failure map (rotating_crack; a denoual_forquin_hild part only when named)");
   k.quantity("failure_threshold", dim::none, "nodal failure factor at which a node splits")
       .above(0)
       .defaults_to("1");

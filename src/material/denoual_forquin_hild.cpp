@@ -42,11 +42,15 @@ double DenoualForquinHild::damaged_stress(const double value[3], const double ax
 }
 
 void DenoualForquinHild::record_largest(const double axis[3][3], double* state) {
-  double largest = 0.0;
+  // The crack normal: the most damaged direction whose axis leaves the z axis. Discrete cracks
+  // are drawn in planar models, where z is a principal axis and no crack can be normal to it; a
+  // normal with no in-plane part would leave its nodes without a direction to crack along.
+  double largest = 0.0, in_plane = 0.0;
   int most = -1;
   for (int i = 0; i < 3; ++i) {
     const double d = state[first_direction + i * direction_slots + damage];
-    if (d > largest) largest = d, most = i;
+    largest = std::max(largest, d);
+    if (d > in_plane && (axis[i][0] != 0.0 || axis[i][1] != 0.0)) in_plane = d, most = i;
   }
   state[largest_damage] = largest;
   for (int k = 0; k < 3; ++k) state[crack_normal_x + k] = most >= 0 ? axis[most][k] : 0.0;

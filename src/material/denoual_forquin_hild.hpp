@@ -45,8 +45,8 @@ class DenoualForquinHild final : public Material {
     first_direction = effective_stress + kTensorSize,    ///< 3 × direction_slots
     largest_damage = first_direction + 3 * direction_slots,  ///< max_i D_i, for plots
     energy_density,  ///< Ψ = ½ σ : C⁻¹σ̃, the recoverable energy per unit volume
-    /// The axis of the most damaged direction (0 while undamaged): the normal of the crack a
-    /// discrete insertion draws through the point (3 components).
+    /// The axis of the most damaged direction that leaves the z axis (0 while undamaged): the
+    /// normal of the crack a discrete insertion draws through the point (3 components).
     crack_normal_x,
     crack_normal_y,
     crack_normal_z,

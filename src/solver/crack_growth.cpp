@@ -68,7 +68,8 @@ std::size_t CrackGrowth::insert(Model& model, EnergyLedger& energy, Topology& to
                                 std::int64_t* eroded, std::vector<double>* part_stored) {
   if (!map_failure(model)) return 0;
   keep_to_crack_tips(model, parts_, settings_.failure_threshold, map_.factor);
-  hold_back_cracks(model, parts_, settings_.speed_limit, time, settings_.failure_threshold, map_.factor);
+  hold_back_cracks(model, parts_, settings_.speed_limit, time, settings_.failure_threshold, map_.direction,
+                   map_.factor);
   const CrackInsertion ins = insert_cracks(model, parts_, map_.factor, map_.direction, insertion_settings(time));
   book_released(ins, energy, part_stored);
   const std::int64_t comminuted = comminute(model, ins, energy, part_stored);

@@ -6,8 +6,8 @@ Riou et al. (1998), as issue 20 states the measured figures. One run to 12 µs a
 Asserted:
 - the front of inserted cracks, least squares over 2–8 µs after impact, at 8 200 ± 500 m/s
   (measured 8 294 m/s), and the front of damage ≥ 0.5 too (8 304 m/s);
-- the median tip speed recorded at the nodes the tips reached at 4 000 ± 800 m/s (3 988 m/s) and
-  none above the Rayleigh speed, about 6 700 m/s (largest 4 289 m/s);
+- the median tip speed recorded at the nodes the tips reached at 4 000 ± 800 m/s (3 989 m/s) and
+  none above the Rayleigh speed, about 6 700 m/s (largest 4 294 m/s);
 - at least three separate cracks cross the line 20 mm from the impact face 6 µs after impact (21);
 - the energy balance within 1 % at every history row (0.015 %).
 

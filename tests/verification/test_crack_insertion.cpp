@@ -25,6 +25,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <numbers>
 #include <set>
 
@@ -875,11 +876,11 @@ TEST(CrackSpeedLimit, TipOpensItsNextEdgeOnlyOnceTheLimitCouldHaveCrossedIt) {
   const double longest = std::sqrt(2.0) / n;  // the tip's diagonal edges
   const double due = longest / limit.tip_speed;
   FailedNodes held(model, {tip}, 1.0, 0.0);
-  const HeldNodes early = hold_back_cracks(model, cracking(c.run), limit, 0.99 * due, 1.0, held.factor);
+  const HeldNodes early = hold_back_cracks(model, cracking(c.run), limit, 0.99 * due, 1.0, held.normal, held.factor);
   EXPECT_EQ(early.tips, 1u);
   EXPECT_EQ(held.factor[tip], 0.0);
   FailedNodes kept(model, {tip}, 1.0, 0.0);
-  const HeldNodes late = hold_back_cracks(model, cracking(c.run), limit, 1.01 * due, 1.0, kept.factor);
+  const HeldNodes late = hold_back_cracks(model, cracking(c.run), limit, 1.01 * due, 1.0, kept.normal, kept.factor);
   EXPECT_EQ(late.tips, 0u);
   EXPECT_EQ(kept.factor[tip], 1.0);
   CrackInsertionSettings then;
@@ -899,13 +900,15 @@ TEST(CrackSpeedLimit, NoCrackStartsWithinTheSpacingOfACrackOrOfAStrongerNucleus)
   const CrackSpeedLimit limit{1000.0, 0.3};  // 1.8 cells
   const std::int32_t beside = node_id(n, 4, 3), clear = node_id(n, 5, 1);
   const std::int32_t far = node_id(n, 1, 1), next_to_far = node_id(n, 1, 2);
+  std::vector<double> normal(2 * model.nodes.count(), 0.0);
+  for (const std::int32_t p : {beside, clear, far, next_to_far}) normal[2 * p] = 1.0;
   auto held_with = [&](double f_far, double f_next, std::vector<double>& factor) {
     factor.assign(model.nodes.count(), 0.0);
     factor[beside] = 1.0;    // 1/6 m from the crack's centre: inside the spacing
     factor[clear] = 1.0;     // 0.37 m from the nearest crack node (3,2): outside it
     factor[far] = f_far;     // far from the crack, 1/6 m from next_to_far: the stronger
     factor[next_to_far] = f_next;  // of the two starts a crack, the other waits
-    return hold_back_cracks(model, cracking(c.run), limit, 1.0, 1.0, factor);
+    return hold_back_cracks(model, cracking(c.run), limit, 1.0, 1.0, normal, factor);
   };
   std::vector<double> factor;
   HeldNodes held = held_with(1.2, 1.1, factor);
@@ -919,11 +922,42 @@ TEST(CrackSpeedLimit, NoCrackStartsWithinTheSpacingOfACrackOrOfAStrongerNucleus)
   EXPECT_EQ(held.nuclei, 2u);
   EXPECT_EQ(factor[far], 0.0);
   EXPECT_EQ(factor[next_to_far], 1.3);
+  // A stronger candidate without a crack direction starts no crack, and holds none back.
+  normal[2 * next_to_far] = 0.0;
+  held = held_with(1.1, 1.3, factor);
+  EXPECT_EQ(held.nuclei, 1u);
+  EXPECT_EQ(factor[far], 1.1);
+  normal[2 * next_to_far] = 1.0;
+  // A spacing given below the longest edge is raised to it: a node beside the crack stays held.
+  factor.assign(model.nodes.count(), 0.0);
+  factor[beside] = 1.0;
+  held = hold_back_cracks(model, cracking(c.run), CrackSpeedLimit{1000.0, 0.01}, 1.0, 1.0, normal, factor);
+  EXPECT_EQ(held.nuclei, 1u);
   // Without a limit nothing is held.
   factor.assign(model.nodes.count(), 1.0);
-  held = hold_back_cracks(model, cracking(c.run), CrackSpeedLimit{}, 1.0, 1.0, factor);
+  held = hold_back_cracks(model, cracking(c.run), CrackSpeedLimit{}, 1.0, 1.0, normal, factor);
   EXPECT_EQ(held.nuclei + held.tips, 0u);
   EXPECT_EQ(*std::min_element(factor.begin(), factor.end()), 1.0);
+}
+
+TEST(CrackSpeedLimit, ANodeReachedWithinTheUpdateOfARunningTipRecordsNoFiniteSpeed) {
+  // From the tip (3,4), reached at 0, the crack crosses two edges at t = 1 ms: (3,5) records the
+  // tip's speed over its edge, (3,6) beyond it +∞ (it crossed within one update), whichever of the
+  // two failed nodes the planner takes first.
+  for (const double f_ahead : {1.1, 1.0}) {
+    CrackedAtTheCentre c;
+    Model& model = c.run.model;
+    const int n = c.n;
+    const std::int32_t tip = node_id(n, 3, 4), next = node_id(n, 3, 5), edge_node = node_id(n, 3, 6);
+    FailedNodes failed(model, {tip, next}, 1.0, 0.0);
+    failed.factor[next] = f_ahead;  // 1.1: (3,5) is planned first and opens both its edges
+    CrackInsertionSettings then;
+    then.time = 1e-3;
+    insert_cracks(model, cracking(c.run), failed.factor, failed.normal, then);
+    EXPECT_NEAR(model.nodes.crack_speed[next], (1.0 / n) / then.time, 1e-12 * (1.0 / n) / then.time) << f_ahead;
+    EXPECT_EQ(model.nodes.crack_speed[edge_node], std::numeric_limits<double>::infinity()) << f_ahead;
+    EXPECT_EQ(model.nodes.crack_time[edge_node], then.time);
+  }
 }
 
 TEST(CrackSpeedLimit, ADamageThatDoesNotHealExtendsOnlyAtTheTips) {
