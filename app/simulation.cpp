@@ -580,12 +580,11 @@ int part_index(const Model& model, const std::string& name) {
   return -1;
 }
 
-/// The rules a part of a damage that does not heal (denoual_forquin_hild) needs: a threshold its
-/// factor reaches, and a tip-speed limit (without it every failed node beside a crack starts a crack
+/// What a cracking part's failure map needs: a threshold below the bound of its factor, and, for a
+/// damage that does not heal (denoual_forquin_hild), a tip-speed limit (without it every failed node beside a crack starts a crack
 /// that joins it, and its faces branch).
 void check_lasting_damage_part(const Scenario& sc, const Part& part, const Material& m) {
   const auto slots = m.failure_map_slots();
-  if (slots->heals) return;
   const std::string file = shown_path(sc.file);
   const std::string who = "part '" + part.name + "' ('" + std::string(m.model()) + "')";
   if (sc.cracking->failure_threshold >= slots->factor_bound) {
@@ -596,6 +595,7 @@ void check_lasting_damage_part(const Scenario& sc, const Part& part, const Mater
                          ": its failure factor is its largest damage, which reaches 1 only where a point is "
                          "wholly damaged; give the damage at which a crack is drawn (e.g. failure_threshold: 0.5)");
   }
+  if (slots->heals) return;
   if (!(sc.cracking->tip_speed_limit > 0)) {
     const auto* dfh = dynamic_cast<const DenoualForquinHild*>(&m);
     std::ostringstream v;

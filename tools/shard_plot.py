@@ -783,18 +783,22 @@ def plot_crack_speeds(args):
           f"{nucleated} opened at once; tip speed {text}")
     shown, what = speeds, "over one crack-face edge"
     nodes = node_tip_speeds(mesh, box)
-    if nodes is not None and nodes[0].size > 0:
+    if nodes is not None and nodes[0].size + nodes[1] > 0:
         finite, unresolved, started = nodes
-        node_figures, node_text = speed_figures(finite, args.limit)
+        node_figures, node_text = speed_figures(finite, None) if finite.size else ({}, "")
         node_figures.update(nodes=int(finite.size), nodes_crossed_within_one_update=unresolved,
                             nodes_where_a_crack_started=started)
         if args.limit:  # a crossing within one update is faster than any limit
-            node_figures["above_limit"] += unresolved
+            above = int(np.count_nonzero(finite > args.limit)) + unresolved
+            node_figures.update(limit_m_per_s=args.limit, above_limit=above)
+            node_text += f"; {above} ({above / (finite.size + unresolved):.1%}) above {args.limit:.0f} m/s"
         figures["recorded_at_nodes"] = node_figures
         print(f"  as recorded at the nodes (crack_speed): {finite.size} nodes reached by a running tip at a "
               f"finite speed, {unresolved} crossed within one update (faster than the run resolves), {started} "
-              f"where a crack started; tip speed over the finite ones {node_text}")
-        shown, what = finite, "of the tip that reached a node"
+              f"where a crack started" + (f"; tip speed over the finite ones {node_text}" if finite.size else
+                                          node_text))
+        if finite.size:
+            shown, what = finite, "of the tip that reached a node"
     if args.json:
         with open(args.json, "w") as stream:
             json.dump(figures, stream, indent=1)

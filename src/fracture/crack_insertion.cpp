@@ -555,10 +555,11 @@ std::vector<std::pair<int, std::size_t>> elements_around(const Fans& fans, std::
 // Both ends of each opened edge: reached by a crack now, unless one reached them before. Set
 // before the split, so that the copies of a node inherit its time. The speed each new end
 // records does not depend on the edges' order:
-//  - reached from an end a crack reached at an earlier update: the tip's speed along the edge;
+//  - reached from ends a crack reached at earlier updates: the fastest tip's speed along its edge;
 //  - reached from an end reached in this update: that end's kind, 0 along a new crack, +∞ ahead
 //    of a running tip (it crossed more than one edge within a step, faster than the run resolves);
 //  - both ends new and reached from neither (a nucleus): 0.
+// A breadth-first walk over the opened edges from the ends reached first, O(E log E).
 void record_crack_time(Model& model, std::span<const std::array<std::int32_t, 2>> edges, double time) {
   if (edges.empty()) return;
   std::vector<double>& t = model.nodes.crack_time;
@@ -566,39 +567,43 @@ void record_crack_time(Model& model, std::span<const std::array<std::int32_t, 2>
   if (t.empty()) t.assign(model.nodes.count(), -1.0);
   if (speed.empty()) speed.assign(model.nodes.count(), -1.0);
   const double* x = model.nodes.x.data();
-  const auto earlier = [&](std::size_t p) { return t[p] >= 0 && t[p] < time; };
-  const auto reach = [&](std::size_t to, double v) {
-    t[to] = time;
-    speed[to] = v;
-  };
-  // Tips that ran on from earlier updates first, then along the edges of this update from the ends
-  // already reached, then nuclei, until every edge's ends are reached.
-  for (const auto& edge : edges)
-    for (int k = 0; k < 2; ++k) {
-      const auto to = static_cast<std::size_t>(edge[k]), from = static_cast<std::size_t>(edge[1 - k]);
-      if (t[to] < 0 && earlier(from))
-        reach(to, std::hypot(x[2 * to] - x[2 * from], x[2 * to + 1] - x[2 * from + 1]) / (time - t[from]));
-    }
-  for (bool open = true; open;) {
-    open = false;
-    bool grew = true;
-    while (grew) {
-      grew = false;
-      for (const auto& edge : edges)
-        for (int k = 0; k < 2; ++k) {
-          const auto to = static_cast<std::size_t>(edge[k]), from = static_cast<std::size_t>(edge[1 - k]);
-          if (t[to] >= 0 || t[from] < 0) continue;
-          reach(to, speed[from] > 0 ? std::numeric_limits<double>::infinity() : 0.0);
-          grew = true;
-        }
-    }
-    for (const auto& edge : edges)
-      if (t[static_cast<std::size_t>(edge[0])] < 0 && t[static_cast<std::size_t>(edge[1])] < 0) {
-        reach(static_cast<std::size_t>(edge[0]), 0.0);  // a nucleus; its edges follow in the next pass
-        open = true;
-        break;
-      }
+  std::vector<std::pair<std::int32_t, std::int32_t>> next;  // (node, neighbour) along opened edges
+  next.reserve(2 * edges.size());
+  for (const auto& edge : edges) next.insert(next.end(), {{edge[0], edge[1]}, {edge[1], edge[0]}});
+  std::sort(next.begin(), next.end());
+  // 1. Tips that ran on from ends reached at earlier updates (t unset here, so unreached ends keep
+  //    −1 while the fastest speed is taken).
+  std::vector<std::int32_t> queue;
+  for (const auto& [to, from] : next) {
+    if (t[to] >= 0 || t[from] < 0) continue;
+    const double v = std::hypot(x[2 * to] - x[2 * from], x[2 * to + 1] - x[2 * from + 1]) / (time - t[from]);
+    if (speed[to] < 0) queue.push_back(to);
+    speed[to] = std::max(speed[to], v);
   }
+  for (const std::int32_t n : queue) t[n] = time;
+  // 2. Along this update's edges from the ends reached, then from each nucleus left.
+  const auto walk = [&](std::size_t from_queue) {
+    for (std::size_t k = from_queue; k < queue.size(); ++k) {
+      const std::int32_t u = queue[k];
+      const auto first = std::lower_bound(next.begin(), next.end(), std::pair{u, std::int32_t{-1}});
+      for (auto it = first; it != next.end() && it->first == u; ++it) {
+        const auto w = static_cast<std::size_t>(it->second);
+        if (t[w] >= 0) continue;
+        t[w] = time;
+        speed[w] = speed[u] > 0 ? std::numeric_limits<double>::infinity() : 0.0;
+        queue.push_back(static_cast<std::int32_t>(w));
+      }
+    }
+  };
+  walk(0);
+  for (const auto& edge : edges)
+    if (t[static_cast<std::size_t>(edge[0])] < 0) {
+      const std::size_t start = queue.size();
+      t[edge[0]] = time;
+      speed[edge[0]] = 0.0;  // a nucleus
+      queue.push_back(edge[0]);
+      walk(start);
+    }
 }
 
 }  // namespace

@@ -67,7 +67,10 @@ HeldNodes hold_back_cracks(const Model& model, std::span<const CrackingPart> par
     return limit.nucleation_spacing > 0 ? std::max(limit.nucleation_spacing, (1 + 1e-9) * longest[p])
                                         : 3.0 * longest[p];
   };
-  const auto has_direction = [&](std::size_t p) { return nodal_normal[2 * p] != 0 || nodal_normal[2 * p + 1] != 0; };
+  // The planner's own test (a NaN or vanishing normal gives no crack line).
+  const auto has_direction = [&](std::size_t p) {
+    return nodal_normal[2 * p] * nodal_normal[2 * p] + nodal_normal[2 * p + 1] * nodal_normal[2 * p + 1] > 0;
+  };
 
   // The crack nodes, binned by the widest spacing a candidate nucleus asks for.
   const int dim = model.dim();

@@ -98,8 +98,8 @@ class Material {
     /// stored energy booked as fracture): a softening model's smeared crack becomes the discrete
     /// one; a damage model whose damage stands for unresolved cracks keeps it.
     bool heals = true;
-    /// The failure factor stays below this (a damage: 1), so a threshold at or above it is
-    /// never reached.
+    /// The failure factor reaches this only where a point is wholly failed (a damage: 1), so a
+    /// threshold at or above it is refused.
     double factor_bound = std::numeric_limits<double>::infinity();
   };
   /// Empty for a model that does not crack discretely.
