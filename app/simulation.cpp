@@ -581,8 +581,8 @@ int part_index(const Model& model, const std::string& name) {
 }
 
 /// What a cracking part's failure map needs: a threshold below the bound of its factor, and, for a
-/// damage that does not heal (denoual_forquin_hild), a tip-speed limit (without it every failed node beside a crack starts a crack
-/// that joins it, and its faces branch).
+/// damage that does not heal (denoual_forquin_hild), a tip-speed limit (without it every failed
+/// node beside a crack starts a crack that joins it).
 void check_lasting_damage_part(const Scenario& sc, const Part& part, const Material& m) {
   const auto slots = m.failure_map_slots();
   const std::string file = shown_path(sc.file);
