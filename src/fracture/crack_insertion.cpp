@@ -608,9 +608,6 @@ void record_crack_time(Model& model, std::span<const std::array<std::int32_t, 2>
 
 }  // namespace
 
-namespace {
-
-/// The failed nodes (F̄ ≥ threshold), the most failed first: the order the planner takes them in.
 std::vector<std::int32_t> failed_nodes(std::span<const double> nodal_factor, double threshold) {
   std::vector<std::int32_t> failed;
   for (std::size_t i = 0; i < nodal_factor.size(); ++i)
@@ -620,8 +617,6 @@ std::vector<std::int32_t> failed_nodes(std::span<const double> nodal_factor, dou
                    [&](std::int32_t a, std::int32_t b) { return nodal_factor[a] > nodal_factor[b]; });
   return failed;
 }
-
-}  // namespace
 
 bool cracks_would_change(Model& model, std::span<const CrackingPart> parts, std::span<const double> nodal_factor,
                          std::span<const double> nodal_normal, const CrackInsertionSettings& settings) {

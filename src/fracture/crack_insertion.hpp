@@ -86,6 +86,10 @@ struct CrackInsertion {
   std::size_t new_node_count() const { return parent.size(); }
 };
 
+/// The failed nodes (nodal_factor ≥ threshold), the most failed first (lowest id among equals):
+/// the order the planner takes them in.
+std::vector<std::int32_t> failed_nodes(std::span<const double> nodal_factor, double threshold);
+
 /// Inserts cracks at every node with nodal_factor ≥ threshold, in one topological update:
 /// the edges to open are chosen node by node (largest F̄ first, then lowest id), each node seeing
 /// the edges already chosen in this update (so that a line of failed nodes makes one crack),

@@ -52,13 +52,8 @@ HeldNodes hold_back_cracks(const Model& model, std::span<const CrackingPart> par
   HeldNodes held;
   if (!(limit.tip_speed > 0)) return held;
   const std::size_t nn = nodal_factor.size();
-  std::vector<std::int32_t> failed;
-  for (std::size_t i = 0; i < nn; ++i)
-    if (nodal_factor[i] >= threshold) failed.push_back(static_cast<std::int32_t>(i));
+  const std::vector<std::int32_t> failed = failed_nodes(nodal_factor, threshold);
   if (failed.empty()) return held;
-  // The planner's order: the most failed first (ids increasing among equals).
-  std::stable_sort(failed.begin(), failed.end(),
-                   [&](std::int32_t a, std::int32_t b) { return nodal_factor[a] > nodal_factor[b]; });
   const std::vector<double> longest = longest_edges(model, parts, nodal_factor, threshold);
   const std::vector<double>& stamp = model.nodes.crack_time;
   const auto reached = [&](std::size_t p) { return p < stamp.size() && stamp[p] >= 0; };
@@ -129,18 +124,11 @@ std::size_t keep_to_crack_tips(const Model& model, std::span<const CrackingPart>
     if (!parts[pi].cracks || !parts[pi].heals) continue;
     for (const std::int32_t n : model.parts[pi].connectivity) heals[static_cast<std::size_t>(n)] = 1;
   }
-  // Split nodes: a crack node whose origin another node shares.
-  std::vector<std::int64_t> origins;
-  for (std::size_t i = 0; i < stamp.size(); ++i)
-    if (stamp[i] >= 0) origins.push_back(model.nodes.origin[i]);
-  std::sort(origins.begin(), origins.end());
-  const auto split = [&](std::size_t i) {
-    const auto [lo, hi] = std::equal_range(origins.begin(), origins.end(), model.nodes.origin[i]);
-    return hi - lo > 1;
-  };
+  // Split nodes: on a crack face (a copy of the node exists).
+  const std::vector<char> split = model.crack_face_nodes();
   std::size_t held = 0;
   for (std::size_t i = 0; i < nodal_factor.size() && i < stamp.size(); ++i)
-    if (nodal_factor[i] >= threshold && stamp[i] >= 0 && !heals[i] && split(i)) {
+    if (nodal_factor[i] >= threshold && stamp[i] >= 0 && !heals[i] && split[i]) {
       nodal_factor[i] = 0;
       ++held;
     }
