@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "material/linear_elastic.hpp"
+#include "material/weibull_field.hpp"
 #include "core/principal.hpp"
 #include "core/voigt.hpp"
 
@@ -134,35 +135,13 @@ void RotatingCrack::initialise(double* state, std::size_t points) const {
   for (std::size_t q = 0; q < points; ++q) state[slot_count * q + strength] = p_.tensile_strength;
 }
 
-namespace {
-
-/// A uniform number in (0, 1) from a 64-bit key: the SplitMix64 finaliser (Steele, Lea & Flood
-/// 2014), whose output bits all depend on every input bit, so that neighbouring ids give
-/// independent draws; 53 bits, shifted off 0.
-double uniform_from(std::uint64_t key) {
-  std::uint64_t z = key + 0x9e3779b97f4a7c15ULL;
-  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-  z ^= z >> 31;
-  return (static_cast<double>(z >> 11) + 0.5) * 0x1.0p-53;
-}
-
-/// The key of an element's draw: its stable id and the seed, spread by two odd constants so
-/// that seed s and id i never meet seed s' and id i' on the same key for small s, i.
-std::uint64_t uniform_key(std::uint64_t seed, std::int64_t id) {
-  return static_cast<std::uint64_t>(id) * 0xd1b54a32d192ed03ULL + seed * 0x8cb92ba72f3d8dd7ULL;
-}
-
-}  // namespace
-
 void RotatingCrack::seed_elements(double* state, std::size_t points_per_element, std::size_t elements,
                                   const std::int64_t* element_ids, const double* element_volumes) const {
   const double m = p_.weibull_modulus;
   if (!(m > 0.0)) return;
   for (std::size_t e = 0; e < elements; ++e) {
     // One draw per element and seed: the element is the volume the weakest link is taken over.
-    const std::uint64_t key = uniform_key(p_.seed, element_ids[e]);
-    const double u = uniform_from(key);
+    const double u = element_uniform(p_.seed, element_ids[e]);
     const double size = std::pow(p_.weibull_volume / std::abs(element_volumes[e]), 1.0 / m);
     const double f = p_.tensile_strength * size * std::pow(std::log(1.0 / u) / std::log(2.0), 1.0 / m);
     for (std::size_t q = 0; q < points_per_element; ++q) state[slot_count * (points_per_element * e + q) + strength] = f;
@@ -432,10 +411,7 @@ RotatingCrackParameters RotatingCrack::from(const ParameterValues& v) {
   if (v.has("weibull_modulus")) {
     p.weibull_modulus = v.number("weibull_modulus");
     p.weibull_volume = v.number("weibull_volume");
-    const double seed = v.number("seed");
-    if (seed != std::floor(seed) || seed > 9.0e15)
-      throw ParameterError("seed", "the seed must be a whole number from 0 to 9e15");
-    p.seed = static_cast<std::uint64_t>(seed);
+    p.seed = seed_from(v, "seed");
   }
   return p;
 }
