@@ -640,6 +640,22 @@ std::vector<int> cracking_parts(const Scenario& sc, Simulation& sim) {
   return out;
 }
 
+/// A seeded field of weakest flaws (denoual_forquin_hild's seed) orders where discrete cracks
+/// start and acts nowhere else: on a part that does not crack it would do nothing, silently.
+void check_weakest_flaw_fields(const Scenario& sc, const Simulation& sim, const std::vector<int>& cracking) {
+  for (std::size_t p = 0; p < sim.model.parts.size(); ++p) {
+    const Part& part = sim.model.parts[p];
+    const auto slots = sim.materials[part.material]->failure_map_slots();
+    if (!slots || slots->weakest_flaw < 0 || !sc.materials[part.material].values.has("seed")) continue;
+    if (std::find(cracking.begin(), cracking.end(), static_cast<int>(p)) != cracking.end()) continue;
+    const MaterialInput& mi = sc.materials[part.material];
+    throw InputError(shown_path(sc.file), mi.line, "materials." + mi.name + ".seed",
+                     "the field of weakest flaws orders where discrete cracks start, and part '" + part.name +
+                         "' draws none: name it in cracking.parts (with a tip_speed_limit), or remove the seed "
+                         "(the damage itself is the mean over the flaw population and takes no seed)");
+  }
+}
+
 // The pairs of parts in contact and the friction of each pair of materials, from `contact:`.
 void contact_pairs_and_friction(const Scenario& sc, const Model& model, ContactSettings& cs) {
   const std::size_t np = model.parts.size(), nm = sc.materials.size();
@@ -945,7 +961,9 @@ Simulation build_simulation(Scenario& sc, const MeshData& mesh) {
   apply_initial_velocities(sc, mesh, model, sets);
   apply_boundary_conditions(sc, mesh, sim, sets);
   apply_pressures(sc, mesh, sim, sets, renumber);
-  build_contact(sc, sim, cracking_parts(sc, sim));
+  const std::vector<int> cracking = cracking_parts(sc, sim);
+  check_weakest_flaw_fields(sc, sim, cracking);
+  build_contact(sc, sim, cracking);
   build_particle_parts(sc, sim);
   apply_initial_particle_velocities(sc, model);
   erosion_rules(sc, sim, file);

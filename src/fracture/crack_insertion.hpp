@@ -42,6 +42,9 @@ struct CrackingPart {
   /// its smeared crack is now the discrete one); false for a damage that stands for the cracks
   /// the mesh does not resolve (Material::FailureMapSlots::heals).
   bool heals = true;
+  /// State index of the stress of each point's weakest flaw (a seeded field; −1: none): the
+  /// nuclei of one update are taken weakest first (Material::FailureMapSlots::weakest_flaw).
+  int weakest_flaw_index = -1;
 };
 
 struct CrackInsertionSettings {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "core/cell_grid.hpp"
@@ -38,6 +39,34 @@ std::vector<double> longest_edges(const Model& model, std::span<const CrackingPa
   return longest;
 }
 
+/// The weakest flaw around each node: the least σ_w over the points of the live elements that
+/// hold it, in cracking parts with a seeded field (+∞ where none has one): the weakest link of
+/// the elements that share the node.
+std::vector<double> nodal_weakest_flaws(const Model& model, std::span<const CrackingPart> parts,
+                                        std::size_t nn) {
+  std::vector<double> weakest(nn, std::numeric_limits<double>::infinity());
+  for (std::size_t pi = 0; pi < model.parts.size() && pi < parts.size(); ++pi) {
+    const Part& part = model.parts[pi];
+    const int slot = parts[pi].weakest_flaw_index;
+    if (!parts[pi].cracks || slot < 0 || !part.type->is_triangle() || part.point_count() == 0) continue;
+    const std::size_t points = static_cast<std::size_t>(part.type->points);
+    const std::size_t stride = part.state.size() / part.point_count();
+    for (std::size_t e = 0; e < part.element_count(); ++e) {
+      if (!part.eroded.empty() && part.eroded[e]) continue;
+      double least = std::numeric_limits<double>::infinity();
+      for (std::size_t q = 0; q < points; ++q) {
+        const double s = part.state[stride * (points * e + q) + static_cast<std::size_t>(slot)];
+        if (s > 0) least = std::min(least, s);
+      }
+      for (int a = 0; a < 3; ++a) {
+        double& w = weakest[static_cast<std::size_t>(part.connectivity[3 * e + a])];
+        w = std::min(w, least);
+      }
+    }
+  }
+  return weakest;
+}
+
 double distance2(const double* a, const double* b, int dim) {
   double d2 = 0;
   for (int k = 0; k < dim; ++k) d2 += (a[k] - b[k]) * (a[k] - b[k]);
@@ -52,8 +81,17 @@ HeldNodes hold_back_cracks(const Model& model, std::span<const CrackingPart> par
   HeldNodes held;
   if (!(limit.tip_speed > 0)) return held;
   const std::size_t nn = nodal_factor.size();
-  const std::vector<std::int32_t> failed = failed_nodes(nodal_factor, threshold);
+  std::vector<std::int32_t> failed = failed_nodes(nodal_factor, threshold);
   if (failed.empty()) return held;
+  // With a seeded field of weakest flaws, the nuclei of this update are taken weakest flaw first
+  // (a crack starts at a flaw, and the weakest near the failed zone is the first to run); ties,
+  // and parts without a field, in the planner's order.
+  const auto has_field = [](const CrackingPart& cp) { return cp.cracks && cp.weakest_flaw_index >= 0; };
+  if (std::any_of(parts.begin(), parts.end(), has_field)) {
+    const std::vector<double> weakest = nodal_weakest_flaws(model, parts, nn);
+    std::stable_sort(failed.begin(), failed.end(),
+                     [&](std::int32_t a, std::int32_t b) { return weakest[a] < weakest[b]; });
+  }
   const std::vector<double> longest = longest_edges(model, parts, nodal_factor, threshold);
   const std::vector<double>& stamp = model.nodes.crack_time;
   const auto reached = [&](std::size_t p) { return p < stamp.size() && stamp[p] >= 0; };

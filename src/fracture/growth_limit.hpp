@@ -7,7 +7,8 @@
 //   - a node no crack has reached starts a crack of its own (a nucleation) only if no crack node,
 //     and no nucleus accepted in the same update, lies within the nucleation spacing of it: a
 //     crack unloads the material around it, and new cracks start outside that zone (the
-//     obscuration of Denoual & Hild 2000, Comput. Methods Appl. Mech. Eng. 183).
+//     obscuration of Denoual & Hild 2000, Comput. Methods Appl. Mech. Eng. 183); with a seeded
+//     field of weakest flaws, the candidates of one update are taken weakest flaw first.
 // It acts on the nodal factor before the planner reads it, and so holds back the drawing of the
 // crack, not the material: with a softening model the smeared band still fails ahead of a held
 // tip; with fragmentation damage (denoual_forquin_hild) the damage carries the crack density and
@@ -37,7 +38,9 @@ struct HeldNodes {
 
 /// Sets to 0 the factor of the failed nodes (nodal_factor ≥ threshold) that may not split at
 /// `time` under `limit`, in the planner's order (largest factor first, then lowest id), so that
-/// which nuclei are accepted does not depend on threads. Edges are those of the live triangles
+/// which nuclei are accepted does not depend on threads; where a cracking part has a seeded
+/// field of weakest flaws (CrackingPart::weakest_flaw_index), the candidates are taken weakest
+/// flaw first (the least over the elements around the node), the planner's order breaking ties. Edges are those of the live triangles
 /// of cracking parts; distances are in the current configuration. The spacing is never less than
 /// a candidate's longest edge, so no nucleus opens an edge onto a crack. A candidate without a
 /// crack direction (`nodal_normal`, 2 per node, zero) is left to the planner, which skips it,

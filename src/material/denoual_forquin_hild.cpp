@@ -9,6 +9,7 @@
 #include "core/tensor_ops.hpp"
 #include "core/voigt.hpp"
 #include "material/linear_elastic.hpp"
+#include "material/weibull_field.hpp"
 
 namespace shard {
 
@@ -21,7 +22,8 @@ std::vector<std::string> DenoualForquinHild::state_names() const {
                              "crack_density_", "damage_"})
       names.push_back(base + s);
   }
-  names.insert(names.end(), {"damage", "energy_density", "crack_normal_x", "crack_normal_y", "crack_normal_z"});
+  names.insert(names.end(), {"damage", "energy_density", "crack_normal_x", "crack_normal_y", "crack_normal_z",
+                                     "weakest_flaw_stress"});
   return names;
 }
 
@@ -64,6 +66,20 @@ double DenoualForquinHild::characteristic_time(double stress_rate) const {
   const double m = p_.weibull_modulus, c = p_.crack_speed;
   const double scale = std::pow(p_.weibull_stress / stress_rate, m) / (p_.flaw_density * p_.shape_factor * c * c * c);
   return std::pow(scale, 1.0 / (m + 3.0));
+}
+
+void DenoualForquinHild::seed_elements(double* state, std::size_t points_per_element, std::size_t elements,
+                                       const std::int64_t* element_ids, const double* element_volumes) const {
+  if (!p_.weakest_flaw_field) return;
+  const double m = p_.weibull_modulus;
+  for (std::size_t e = 0; e < elements; ++e) {
+    // The weakest of the Poisson(λ_t(σ) V_e) flaws of the element: one draw per element and seed.
+    const double u = element_uniform(p_.seed, element_ids[e]);
+    const double flaws_at_sigma0 = p_.flaw_density * std::abs(element_volumes[e]);
+    const double weakest = p_.weibull_stress * std::pow(std::log(1.0 / u) / flaws_at_sigma0, 1.0 / m);
+    for (std::size_t q = 0; q < points_per_element; ++q)
+      state[slot_count * (points_per_element * e + q) + weakest_flaw_stress] = weakest;
+  }
 }
 
 namespace {
@@ -149,6 +165,9 @@ std::vector<Material::Transfer> DenoualForquinHild::state_transfer() const {
   rule[energy_density].min = 0.0;
   // The crack normal is made again from the carried σ̃ and damage (after_transfer).
   for (int k = 0; k < 3; ++k) rule[crack_normal_x + k].rule = Transfer::nearest;
+  // A new element takes the draw of the old one its centre lies in, as the rotating crack's
+  // strength field does: a remesh does not draw the flaws again.
+  rule[weakest_flaw_stress].rule = Transfer::nearest;
   return rule;
 }
 
@@ -187,6 +206,11 @@ KeyList DenoualForquinHild::parameters() {
   keys.quantity("shape_factor", dim::none, "S: an obscured zone is S (kC0 t)^3 (4π/3: a sphere)")
       .above(0)
       .defaults_to("4.1887902047863905");
+  keys.quantity("seed", dim::none,
+                "draws the weakest flaw of each element from the population over its volume, and the "
+                "discrete cracks of one update start at the weakest first (a whole number; same seed, "
+                "same field; needs the part in cracking.parts); absent: most damaged first")
+      .at_least(0);
   return keys;
 }
 
@@ -197,6 +221,7 @@ FragmentationParameters DenoualForquinHild::from(const ParameterValues& v) {
   p.weibull_stress = v.number("weibull_stress");
   p.flaw_density = v.number("flaw_density");
   p.shape_factor = v.number("shape_factor");
+  if (v.has("seed")) p.weakest_flaw_field = true, p.seed = seed_from(v, "seed");
   const double bulk = p.moduli.bulk, shear = p.moduli.shear;
   const double bar_speed = std::sqrt(9.0 * bulk * shear / (3.0 * bulk + shear) / v.number("density"));
   p.crack_speed = v.has("crack_speed") ? v.number("crack_speed") : v.number("crack_speed_ratio") * bar_speed;

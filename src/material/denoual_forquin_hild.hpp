@@ -24,6 +24,11 @@ struct FragmentationParameters {
   double flaw_density = 0;     ///< λ0 (1/m³): flaws per unit volume active at σ0
   double crack_speed = 0;      ///< kC0 (m/s): the speed at which an obscured zone grows
   double shape_factor = 0;     ///< S: the obscured volume is S (kC0 t)³
+  /// A field of weakest flaws: each element draws the stress that activates the weakest flaw
+  /// of its own volume, and the discrete cracks of one update start at the weakest first
+  /// (false: no field; they start most damaged first).
+  bool weakest_flaw_field = false;
+  std::uint64_t seed = 0;  ///< the field's seed
 };
 
 class DenoualForquinHild final : public Material {
@@ -50,6 +55,10 @@ class DenoualForquinHild final : public Material {
     crack_normal_x,
     crack_normal_y,
     crack_normal_z,
+    /// σ_w: the stress that activates the weakest flaw of the point's element (a random field,
+    /// weakest_flaw_field); 0: no field. It orders where discrete cracks start, and does not
+    /// enter the damage, which is the mean over the flaw population.
+    weakest_flaw_stress,
     slot_count
   };
 
@@ -66,8 +75,14 @@ class DenoualForquinHild final : public Material {
   /// normal to the most damaged direction. The damage is not healed when a crack passes: it is
   /// the crack density the mesh does not resolve, which the drawn crack does not take away.
   std::optional<FailureMapSlots> failure_map_slots() const override {
-    return FailureMapSlots{largest_damage, crack_normal_x, energy_density, {}, /*heals=*/false, /*factor_bound=*/1.0};
+    return FailureMapSlots{largest_damage, crack_normal_x, energy_density, {}, /*heals=*/false, /*factor_bound=*/1.0,
+                           weakest_flaw_stress};
   }
+  /// With weakest_flaw_field: σ_w,e = σ0 (ln(1/U)/(λ0 V_e))^(1/m), U uniform in (0, 1) from
+  /// (seed, element id): the weakest link of the flaw population over the element's volume,
+  /// P(σ_w,e ≤ σ) = 1 − exp(−λ_t(σ) V_e) (Brannon, Wells & Strack 2007; theory note, eq. 10).
+  void seed_elements(double* state, std::size_t points_per_element, std::size_t elements,
+                     const std::int64_t* element_ids, const double* element_volumes) const override;
   void update(MaterialPointBatch& batch) const override;
   std::vector<Transfer> state_transfer() const override;
   void after_transfer(MaterialPointBatch& batch) const override;

@@ -28,6 +28,7 @@ CrackGrowth::CrackGrowth(const Model& model, const std::vector<std::unique_ptr<M
     cp.factor_index = slots->factor;
     cp.reset_indices = slots->reset;
     cp.heals = slots->heals;
+    cp.weakest_flaw_index = slots->weakest_flaw;
     cp.energy_density_index = slots->energy_density;
     cp.comminutes = settings_.comminution && part.erosion.to_particles;
     fields_.push_back({static_cast<std::size_t>(p), PointFailureField{}});

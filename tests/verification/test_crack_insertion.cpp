@@ -940,6 +940,46 @@ TEST(CrackSpeedLimit, NoCrackStartsWithinTheSpacingOfACrackOrOfAStrongerNucleus)
   EXPECT_EQ(*std::min_element(factor.begin(), factor.end()), 1.0);
 }
 
+// With a seeded field of weakest flaws (fragmentation damage with a seed), the nuclei of one
+// update are taken weakest flaw first, the least over the elements around each node: of two
+// candidates 1/6 m apart (spacing 0.3 m), the one beside an element whose weakest flaw is at
+// 300 MPa (against 500 MPa everywhere else) starts its crack though its factor is the smaller;
+// with the field flat, or without it, the larger factor starts first as before.
+TEST(CrackSpeedLimit, NucleiOfOneUpdateStartAtTheWeakestFlawFirst) {
+  CrackedAtTheCentre c;
+  Model& model = c.run.model;
+  const int n = c.n;
+  const std::int32_t far = node_id(n, 1, 1), next_to_far = node_id(n, 1, 2);
+  Part& part = model.parts[0];
+  part.state.assign(part.point_count(), 500e6);  // one history variable per point: σ_w
+  std::size_t weak = 0;
+  for (std::size_t e = 0; e < part.element_count(); ++e) {
+    const std::int32_t* cn = &part.connectivity[3 * e];
+    const bool holds_next = std::count(cn, cn + 3, next_to_far) > 0, holds_far = std::count(cn, cn + 3, far) > 0;
+    if (holds_next && !holds_far && weak == 0) part.state[e] = 300e6, ++weak;
+  }
+  ASSERT_EQ(weak, 1u);
+  std::vector<double> normal(2 * model.nodes.count(), 0.0);
+  normal[2 * far] = normal[2 * next_to_far] = 1.0;
+  const CrackSpeedLimit limit{1000.0, 0.3};
+  auto accepted = [&](const std::vector<CrackingPart>& parts) {
+    std::vector<double> factor(model.nodes.count(), 0.0);
+    factor[far] = 1.2;
+    factor[next_to_far] = 1.1;
+    const HeldNodes held = hold_back_cracks(model, parts, limit, 1.0, 1.0, normal, factor);
+    EXPECT_EQ(held.nuclei, 1u);
+    return factor[far] > 0 ? far : next_to_far;
+  };
+  std::vector<CrackingPart> parts = cracking(c.run);
+  EXPECT_EQ(accepted(parts), far);
+  parts[0].weakest_flaw_index = 0;
+  EXPECT_EQ(accepted(parts), next_to_far);
+  part.state.assign(part.point_count(), 500e6);
+  EXPECT_EQ(accepted(parts), far);
+  part.state.assign(part.point_count(), 0.0);  // 0: no field at these points
+  EXPECT_EQ(accepted(parts), far);
+}
+
 TEST(CrackSpeedLimit, ANodeReachedWithinTheUpdateOfARunningTipRecordsNoFiniteSpeed) {
   // From the tip (3,4), reached at 0, the crack crosses two edges at t = 1 ms: (3,5) records the
   // tip's speed over its edge, (3,6) beyond it +∞ (it crossed within one update), whichever of the

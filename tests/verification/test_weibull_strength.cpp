@@ -6,6 +6,11 @@
 //    ranks) is m (3 %);
 // 3. the field is a function of (seed, element id) alone: the same ids in another order give the
 //    same strengths, another seed an uncorrelated field (|r| < 0.05 over 20 000 elements).
+// 4. The weakest flaws of the fragmentation damage (denoual_forquin_hild with a seed): the least
+//    of the element's Poisson population of flaws, P(σ_w,e ≤ σ) = 1 − exp[−λ0 V_e (σ/σ0)^m], so
+//    the median is σ0 (ln 2/(λ0 V_e))^(1/m) (1 %) on elements of V and of 8 V, the fitted modulus
+//    is m (3 %), and the fraction of elements whose weakest flaw is below σ0 is 1 − exp(−λ0 V_e)
+//    (binomial: within 4 standard deviations); without a seed every point keeps 0 (no field).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -14,6 +19,7 @@
 #include <numeric>
 #include <vector>
 
+#include "material/denoual_forquin_hild.hpp"
 #include "material/rotating_crack.hpp"
 
 namespace shard {
@@ -33,15 +39,35 @@ RotatingCrack sic(std::uint64_t seed) {
   return RotatingCrack("sic", 3150, p);
 }
 
-/// The strengths of elements with ids `ids` and volume `volume` (one point each).
-std::vector<double> strengths(const RotatingCrack& m, const std::vector<std::int64_t>& ids, double volume) {
-  const std::size_t n = ids.size(), size = RotatingCrack::slot_count;
+/// The slot `slot` of elements with ids `ids` and volume `volume` (one point each, `size` slots)
+/// after the material has seeded them.
+std::vector<double> drawn(const Material& m, std::size_t size, int slot, const std::vector<std::int64_t>& ids,
+                          double volume) {
+  const std::size_t n = ids.size();
   std::vector<double> state(n * size), volumes(n, volume);
   m.initialise(state.data(), n);
   m.seed_elements(state.data(), 1, n, ids.data(), volumes.data());
   std::vector<double> f(n);
-  for (std::size_t e = 0; e < n; ++e) f[e] = state[size * e + RotatingCrack::strength];
+  for (std::size_t e = 0; e < n; ++e) f[e] = state[size * e + static_cast<std::size_t>(slot)];
   return f;
+}
+
+/// The strengths of elements with ids `ids` and volume `volume` (one point each).
+std::vector<double> strengths(const RotatingCrack& m, const std::vector<std::int64_t>& ids, double volume) {
+  return drawn(m, RotatingCrack::slot_count, RotatingCrack::strength, ids, volume);
+}
+
+/// Least squares of ln ln(1/(1 − F)) on ln σ over the sorted draws, median ranks (Benard).
+double fitted_modulus(std::vector<double> f) {
+  std::sort(f.begin(), f.end());
+  double sx = 0, sy = 0, sxx = 0, sxy = 0;
+  const double n = static_cast<double>(f.size());
+  for (std::size_t i = 0; i < f.size(); ++i) {
+    const double F = (i + 1 - 0.3) / (n + 0.4);
+    const double x = std::log(f[i]), y = std::log(std::log(1 / (1 - F)));
+    sx += x, sy += y, sxx += x * x, sxy += x * y;
+  }
+  return (n * sxy - sx * sy) / (n * sxx - sx * sx);
 }
 
 std::vector<std::int64_t> ids_from(std::int64_t first) {
@@ -66,16 +92,7 @@ TEST(WeibullStrength, MedianAndSizeEffect) {
 }
 
 TEST(WeibullStrength, FittedModulusIsTheGivenOne) {
-  std::vector<double> f = strengths(sic(3), ids_from(100), kVref);
-  std::sort(f.begin(), f.end());
-  double sx = 0, sy = 0, sxx = 0, sxy = 0;
-  const double n = static_cast<double>(f.size());
-  for (std::size_t i = 0; i < f.size(); ++i) {
-    const double F = (i + 1 - 0.3) / (n + 0.4);  // median rank (Benard)
-    const double x = std::log(f[i]), y = std::log(std::log(1 / (1 - F)));
-    sx += x, sy += y, sxx += x * x, sxy += x * y;
-  }
-  const double modulus = (n * sxy - sx * sy) / (n * sxx - sx * sx);
+  const double modulus = fitted_modulus(strengths(sic(3), ids_from(100), kVref));
   std::printf("fitted Weibull modulus %.3f (m = %g)\n", modulus, kM);
   EXPECT_NEAR(modulus, kM, 0.03 * kM);
 }
@@ -96,6 +113,43 @@ TEST(WeibullStrength, FieldDependsOnSeedAndIdOnly) {
   const double r = sac / std::sqrt(saa * scc);
   std::printf("correlation between seeds 11 and 12: %.4f\n", r);
   EXPECT_LT(std::abs(r), 0.05);
+}
+
+/// A SiC-like flaw population (the edge-on impact example's: σ0 370 MPa, λ0 1e4 /m³, m 10).
+DenoualForquinHild flaws(bool seeded) {
+  FragmentationParameters p;
+  p.moduli = {192e9, 175e9};
+  p.weibull_modulus = kM;
+  p.weibull_stress = 370e6;
+  p.flaw_density = 1e4;
+  p.crack_speed = 4300;
+  p.shape_factor = 4.1887902047863905;
+  p.weakest_flaw_field = seeded;
+  p.seed = 5;
+  return DenoualForquinHild("sic", 3150, p);
+}
+
+std::vector<double> weakest_flaws(const DenoualForquinHild& m, double volume) {
+  return drawn(m, DenoualForquinHild::slot_count, DenoualForquinHild::weakest_flaw_stress, ids_from(300), volume);
+}
+
+TEST(WeibullStrength, WeakestFlawsOfTheFragmentationDamage) {
+  const DenoualForquinHild m = flaws(true);
+  const double volume = 3e-5;  // λ0 V = 0.3: some elements have no flaw below σ0
+  for (const double v : {volume, 8 * volume}) {
+    const std::vector<double> w = weakest_flaws(m, v);
+    const double expected = 370e6 * std::pow(std::log(2.0) / (1e4 * v), 1 / kM);
+    const auto under_sigma0 = [](double s) { return s < 370e6; };
+    const double below = static_cast<double>(std::count_if(w.begin(), w.end(), under_sigma0));
+    const double p = -std::expm1(-1e4 * v), spread = std::sqrt(kCount * p * (1 - p));
+    std::printf("V %.3g m^3: median weakest flaw %.4g MPa (%.4g); below sigma0 %.0f of %zu (%.0f); fitted m %.3f\n", v,
+                median(w) / 1e6, expected / 1e6, below, kCount, kCount * p, fitted_modulus(w));
+    EXPECT_NEAR(median(w), expected, 0.01 * expected);
+    EXPECT_NEAR(below, kCount * p, 4 * spread);
+    EXPECT_NEAR(fitted_modulus(w), kM, 0.03 * kM);
+  }
+  const std::vector<double> none = weakest_flaws(flaws(false), volume);
+  EXPECT_EQ(*std::max_element(none.begin(), none.end()), 0.0);
 }
 
 }  // namespace
