@@ -155,24 +155,20 @@ void DenoualForquinHild::update(MaterialPointBatch& batch) const {
 }
 
 std::vector<Material::Transfer> DenoualForquinHild::state_transfer() const {
+  // Every slot from the old point that holds the new one: the damage of a direction belongs to
+  // the principal axis of σ̃ it was grown on, and σ̃ in a damaged point grows without bound as
+  // the material opens (it carries (1 − D) of it). A fit across points mixes the directions of
+  // one point with those of another: a large σ̃ lands on a direction with little damage and
+  // carries a stress, and an energy, that no point had (on the SiC beam remeshed every 50 steps,
+  // the remeshes made 2 280 J against 355 J of impact energy by 5 µs). A copy is consistent.
   std::vector<Transfer> rule(slot_count);
-  for (int i = 0; i < 3; ++i) {
-    const int base = first_direction + i * direction_slots;
-    for (int k = peak_stress; k < direction_slots; ++k) rule[base + k].min = 0.0;
-    rule[base + damage].max = 1.0;
-  }
-  rule[largest_damage] = {Transfer::interpolate, 0.0, 1.0};
-  rule[energy_density].min = 0.0;
-  // The crack normal is made again from the carried σ̃ and damage (after_transfer).
-  for (int k = 0; k < 3; ++k) rule[crack_normal_x + k].rule = Transfer::nearest;
-  // A new element takes the draw of the old one its centre lies in, as the rotating crack's
-  // strength field does: a remesh does not draw the flaws again.
-  rule[weakest_flaw_stress].rule = Transfer::nearest;
+  for (Transfer& r : rule) r.rule = Transfer::nearest;
   return rule;
 }
 
-// A remesh interpolates σ̃ and the moments; the damage is made the obscuration of the carried
-// A_3 again and the stress is rebuilt from σ̃, so that σ, D and Ψ agree at every new point.
+// A remesh copies the state of the old point that holds the new one; the damage is made the
+// obscuration of the carried A_3 again and the stress is rebuilt from σ̃, so that σ, D and Ψ
+// agree at every new point (the stress the remesh fitted is replaced).
 void DenoualForquinHild::after_transfer(MaterialPointBatch& batch) const {
   const double obscuring = p_.shape_factor * p_.crack_speed * p_.crack_speed * p_.crack_speed;
   for (std::size_t q = 0; q < batch.count; ++q) {
