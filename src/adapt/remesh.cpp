@@ -1019,6 +1019,37 @@ BodySums body_sums(const Model& model, const std::vector<std::int32_t>& body_of_
   return s;
 }
 
+/// The pieces of `old` joined where they share a node (a body cut into kept patches and the
+/// remeshed rest), as the least piece index of each group. A shared node is owned by one piece
+/// only, so a remeshed piece whose old nodes are all on a kept piece owns no mass: given back
+/// piece by piece, its new nodes were scaled to none (the SiC beam with fragmentation cracks and
+/// adaptive remeshing stopped on a massless node). Given back per group, the group's mass is
+/// what it was.
+std::vector<std::int32_t> groups_of_pieces(const Part& part, const OldPart& old) {
+  std::vector<std::int32_t> parent(old.bodies.size());
+  std::iota(parent.begin(), parent.end(), 0);
+  const auto root = [&](std::int32_t b) {
+    while (parent[b] != b) b = parent[b] = parent[parent[b]];
+    return b;
+  };
+  for (std::size_t b = 0; b < old.bodies.size(); ++b)
+    for (const std::int32_t e : old.bodies[b])
+      for (int k = 0; k < 3; ++k) {
+        const std::int32_t owner = old.body_of_node[part.connectivity[3 * e + k]];
+        const std::int32_t r1 = root(static_cast<std::int32_t>(b)), r2 = root(owner);
+        if (owner >= 0 && r1 != r2) parent[std::max(r1, r2)] = std::min(r1, r2);
+      }
+  for (std::size_t b = 0; b < parent.size(); ++b) parent[b] = root(static_cast<std::int32_t>(b));
+  return parent;
+}
+
+/// Each node's piece replaced by its group (−1 stays −1).
+std::vector<std::int32_t> in_groups(std::vector<std::int32_t> body_of_node, const std::vector<std::int32_t>& group) {
+  for (std::int32_t& b : body_of_node)
+    if (b >= 0) b = group[b];
+  return body_of_node;
+}
+
 double kinetic_energy(const Model& model, const std::vector<std::int32_t>& body_of_node) {
   double k = 0;
   for (std::size_t n = 0; n < body_of_node.size(); ++n)
@@ -1484,7 +1515,8 @@ RemeshOutcome remesh_part(Model& model, std::size_t p, const Material& material,
   const NewMesh& nm = made.nm;
   // The state before, and what the new mesh is made of.
   const std::size_t nn = model.nodes.count();
-  const BodySums before = body_sums(model, old.body_of_node, old.bodies.size());
+  const std::vector<std::int32_t> group = groups_of_pieces(part, old);
+  const BodySums before = body_sums(model, in_groups(old.body_of_node, group), old.bodies.size());
   out.bodies = bodies_before;
   out.bodies_kept = dom.kept_bodies;
   out.elements_kept = dom.kept_elements.size() - dom.fragment_elements - dom.cracked_elements;
@@ -1533,7 +1565,10 @@ RemeshOutcome remesh_part(Model& model, std::size_t p, const Material& material,
   for (std::size_t n = 0; n < nn; ++n)
     if (new_of_old[n] >= 0) body_of_node[new_of_old[n]] = old.body_of_node[n];
   for (std::size_t k = 0; k < nm.born.size(); ++k) body_of_node[new_of_old[nn + k]] = nm.born[k].body;
-  restore_mass_and_momentum(model, p, material, body_of_node, before, exact);
+  // A group keeps its masses and velocities only if each of its pieces does.
+  std::vector<char> exact_group(old.bodies.size(), 1);
+  for (std::size_t b = 0; b < old.bodies.size(); ++b) exact_group[group[b]] &= exact[b];
+  restore_mass_and_momentum(model, p, material, in_groups(body_of_node, group), before, exact_group);
   const std::vector<std::int32_t> position = positions_of(model.parts[p], first_id, n_tri);
   finish_points(model, p, material, holder_state, position);
   // The shapes distortion and angles are measured against: each element's now. A kept one's area

@@ -493,6 +493,45 @@ TEST(Remesh, KeepCrackedKeepsTheElementsOnACrackFaceAndRemeshesTheRest) {
   EXPECT_EQ(shape_after.holes, shape_before.holes);
 }
 
+// Two cracks across the 24 × 12 mm plate, along y = 4 and 7 mm, and keep_cracked: the strip
+// between them is cut into the elements on its faces (kept) and its middle row (remeshed at
+// 0.5 mm). Every node of that row is also a corner of a kept element, which owns it: the remeshed
+// piece owned no mass of its own, and given back piece by piece its new nodes were scaled to no
+// mass at all (the SiC beam with fragmentation cracks and remeshing stopped on one). Given back
+// per group of pieces that share nodes: every node has mass, and each of the three bodies keeps
+// its mass and momentum (1e-13).
+TEST(Remesh, APieceWhoseNodesAKeptPieceOwnsGetsItsMass) {
+  const int nx = 24, ny = 12;
+  auto run = plate(nx, ny, 0.024, 0.012, 0.2);
+  Model& model = run.model;
+  std::vector<std::int32_t> cracks;
+  for (const int row : {4, 7})
+    for (int i = 0; i <= nx; ++i) cracks.push_back(row * (nx + 1) + i);
+  insert_crack(run, cracks);
+  for (std::size_t i = 0; i < model.nodes.count(); ++i) {
+    model.nodes.v[2 * i] = 20.0 + 3e5 * model.nodes.x[2 * i] * model.nodes.x[2 * i + 1];
+    model.nodes.v[2 * i + 1] = -5.0 + 60.0 * std::sin(400.0 * model.nodes.x[2 * i]);
+  }
+  const auto before = body_sums(model);
+  ASSERT_EQ(before.size(), 3u);
+  RemeshSettings s = uniform(0.5e-3);
+  s.keep_cracked = true;
+  const RemeshOutcome out = remesh_part(model, 0, *run.materials[0], s, {});
+  ASSERT_TRUE(out.remeshed) << out.skipped;
+  const auto after = body_sums(model);
+  const double lightest = *std::min_element(model.nodes.mass.begin(), model.nodes.mass.end());
+  std::printf("[remesh, a piece whose nodes a kept piece owns] %zu -> %zu elements, lightest node %.3g kg\n",
+              out.elements_before, out.elements_after, lightest);
+  EXPECT_GT(out.elements_after, out.elements_before);
+  EXPECT_GT(lightest, 0.0);
+  ASSERT_EQ(after.size(), 3u);
+  for (std::size_t b = 0; b < 3; ++b) {
+    EXPECT_NEAR(after[b][0], before[b][0], 1e-13 * before[b][0]);
+    EXPECT_NEAR(after[b][1], before[b][1], 1e-13 * std::abs(before[b][1]) + 1e-13 * before[b][0]);
+    EXPECT_NEAR(after[b][2], before[b][2], 1e-13 * std::abs(before[b][2]) + 1e-13 * before[b][0]);
+  }
+}
+
 TEST(Remesh, KeepCrackedLeavesAPartWhoseEveryElementIsCrackedAsItWasAndSaysWhy) {
   // A plate of 6 × 2 cells cut across its middle row of nodes: every triangle has a node on the
   // crack, so keep_cracked leaves nothing to mesh.
