@@ -1036,8 +1036,9 @@ std::vector<std::int32_t> groups_of_pieces(const Part& part, const OldPart& old)
     for (const std::int32_t e : old.bodies[b])
       for (int k = 0; k < 3; ++k) {
         const std::int32_t owner = old.body_of_node[part.connectivity[3 * e + k]];
+        if (owner < 0) continue;
         const std::int32_t r1 = root(static_cast<std::int32_t>(b)), r2 = root(owner);
-        if (owner >= 0 && r1 != r2) parent[std::max(r1, r2)] = std::min(r1, r2);
+        if (r1 != r2) parent[std::max(r1, r2)] = std::min(r1, r2);
       }
   for (std::size_t b = 0; b < parent.size(); ++b) parent[b] = root(static_cast<std::int32_t>(b));
   return parent;
@@ -1058,34 +1059,51 @@ double kinetic_energy(const Model& model, const std::vector<std::int32_t>& body_
   return k;
 }
 
-/// Lumped masses of the new mesh, scaled per body to the old body's mass, and the velocities of
-/// the free components shifted per body so its linear momentum is the old one.
+/// Lumped masses of the new mesh, scaled per group of pieces (`group_of_node`: −1 outside the
+/// part) to the group's old mass, and the velocities of the free components shifted per group so
+/// its linear momentum is the old one. The nodes of pieces kept exactly (`exact_node`: kept, and
+/// sharing no node with a remeshed piece) keep their masses and velocities; the rest of their
+/// group takes what they do not carry.
 void restore_mass_and_momentum(Model& model, std::size_t p, const Material& material,
-                               const std::vector<std::int32_t>& body_of_node, const BodySums& before,
-                               const std::vector<char>& exact) {
+                               const std::vector<std::int32_t>& group_of_node, const BodySums& before,
+                               const std::vector<char>& exact_node) {
   NodeArrays& nodes = model.nodes;
   const std::vector<double> mass_before = nodes.mass;
-  for (std::size_t n = 0; n < body_of_node.size(); ++n)
-    if (body_of_node[n] >= 0) nodes.mass[n] = 0.0;
+  for (std::size_t n = 0; n < group_of_node.size(); ++n)
+    if (group_of_node[n] >= 0) nodes.mass[n] = 0.0;
   add_lumped_masses(model.parts[p], nodes, material.density(), model.formulation, model.thickness, nodes.mass);
-  for (std::size_t n = 0; n < body_of_node.size(); ++n)
-    if (body_of_node[n] >= 0 && exact[body_of_node[n]]) nodes.mass[n] = mass_before[n];
-  const BodySums now = body_sums(model, body_of_node, before.mass.size());
-  std::vector<std::array<double, 2>> free_mass(before.mass.size(), {0.0, 0.0});
-  for (std::size_t n = 0; n < body_of_node.size(); ++n) {
-    const std::int32_t b = body_of_node[n];
-    if (b < 0 || exact[b]) continue;
-    if (now.mass[b] > 0) nodes.mass[n] *= before.mass[b] / now.mass[b];
-    for (int d = 0; d < 2; ++d)
-      if (nodes.prescribed[2 * n + d] < 0) free_mass[b][d] += nodes.mass[n];
+  // What the exactly kept nodes carry, and the lumped mass of the others, per group.
+  const std::size_t groups = before.mass.size();
+  BodySums kept{std::vector<double>(groups, 0.0), std::vector<std::array<double, 2>>(groups, {0.0, 0.0})};
+  std::vector<double> lumped(groups, 0.0);
+  for (std::size_t n = 0; n < group_of_node.size(); ++n) {
+    const std::int32_t g = group_of_node[n];
+    if (g < 0) continue;
+    if (!exact_node[n]) {
+      lumped[g] += nodes.mass[n];
+      continue;
+    }
+    nodes.mass[n] = mass_before[n];
+    kept.mass[g] += nodes.mass[n];
+    for (int d = 0; d < 2; ++d) kept.momentum[g][d] += nodes.mass[n] * nodes.v[2 * n + d];
   }
-  const BodySums scaled = body_sums(model, body_of_node, before.mass.size());
-  for (std::size_t n = 0; n < body_of_node.size(); ++n) {
-    const std::int32_t b = body_of_node[n];
-    if (b < 0 || exact[b]) continue;
+  std::vector<std::array<double, 2>> free_mass(groups, {0.0, 0.0});
+  for (std::size_t n = 0; n < group_of_node.size(); ++n) {
+    const std::int32_t g = group_of_node[n];
+    if (g < 0 || exact_node[n]) continue;
+    // (A group whose kept nodes carried all its mass keeps the lumped masses: none is left.)
+    const double rest = before.mass[g] - kept.mass[g];
+    if (lumped[g] > 0 && rest > 0) nodes.mass[n] *= rest / lumped[g];
     for (int d = 0; d < 2; ++d)
-      if (nodes.prescribed[2 * n + d] < 0 && free_mass[b][d] > 0)
-        nodes.v[2 * n + d] += (before.momentum[b][d] - scaled.momentum[b][d]) / free_mass[b][d];
+      if (nodes.prescribed[2 * n + d] < 0) free_mass[g][d] += nodes.mass[n];
+  }
+  const BodySums scaled = body_sums(model, group_of_node, groups);
+  for (std::size_t n = 0; n < group_of_node.size(); ++n) {
+    const std::int32_t g = group_of_node[n];
+    if (g < 0 || exact_node[n]) continue;
+    for (int d = 0; d < 2; ++d)
+      if (nodes.prescribed[2 * n + d] < 0 && free_mass[g][d] > 0)
+        nodes.v[2 * n + d] += (before.momentum[g][d] - scaled.momentum[g][d]) / free_mass[g][d];
   }
 }
 
@@ -1565,10 +1583,9 @@ RemeshOutcome remesh_part(Model& model, std::size_t p, const Material& material,
   for (std::size_t n = 0; n < nn; ++n)
     if (new_of_old[n] >= 0) body_of_node[new_of_old[n]] = old.body_of_node[n];
   for (std::size_t k = 0; k < nm.born.size(); ++k) body_of_node[new_of_old[nn + k]] = nm.born[k].body;
-  // A group keeps its masses and velocities only if each of its pieces does.
-  std::vector<char> exact_group(old.bodies.size(), 1);
-  for (std::size_t b = 0; b < old.bodies.size(); ++b) exact_group[group[b]] &= exact[b];
-  restore_mass_and_momentum(model, p, material, in_groups(body_of_node, group), before, exact_group);
+  std::vector<char> exact_node(body_of_node.size(), 0);
+  for (std::size_t n = 0; n < body_of_node.size(); ++n) exact_node[n] = body_of_node[n] >= 0 && exact[body_of_node[n]];
+  restore_mass_and_momentum(model, p, material, in_groups(body_of_node, group), before, exact_node);
   const std::vector<std::int32_t> position = positions_of(model.parts[p], first_id, n_tri);
   finish_points(model, p, material, holder_state, position);
   // The shapes distortion and angles are measured against: each element's now. A kept one's area
