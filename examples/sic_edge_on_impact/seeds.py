@@ -6,7 +6,7 @@ figures move from one realisation of the flaws to another.
   examples/sic_edge_on_impact/seeds.py OUT [--seeds 1 2 3 4 5] [--size 0.25] [--shard build/shard]
 
 Each seed s runs sic_edge_on_impact_fragmentation_cracks.yaml with materials.sic.seed = s (into
-OUT/seed_<s>), at the beam's element size --size mm (another size is a copy of the mesh file with
+OUT/seed_<s>, or OUT/seed_<s>_h<size>), at the beam's element size --size mm (another size is a copy of the mesh file with
 h changed, in OUT). Each run is measured as the example's README does: crack_front.py (the fronts
 of inserted cracks and of damage >= 0.5, least squares over 2-8 us after impact, and the cracks
 across x = 20 mm) and tools/shard_plot.py crack-speeds (the tips' speeds recorded at the nodes).
@@ -34,13 +34,15 @@ def mesh_of_size(out, size):
     text, count = re.subn(r"DefineConstant\[ h = [0-9.]+ \]", f"DefineConstant[ h = {size} ]", text)
     if count != 1:
         sys.exit("seeds.py: the mesh file no longer defines the element size as DefineConstant[ h = ... ]")
-    path = os.path.join(out, f"sic_{size}.geo")
+    path = os.path.abspath(os.path.join(out, f"sic_{size}.geo"))  # mesh.file is read from the scenario's folder
     with open(path, "w") as stream:
         stream.write(text)
     return path
 
 
 def run(command, quiet=True):
+    if not quiet:
+        print("$", " ".join(command), flush=True)
     result = subprocess.run(command, capture_output=True, text=True)
     if result.returncode != 0:
         sys.exit(f"seeds.py: {' '.join(command[:3])} ended with status {result.returncode}:\n"
@@ -50,14 +52,14 @@ def run(command, quiet=True):
     return result
 
 
-def measure(folder):
+def measure(folder, quiet=True):
     """One run measured as the README does: its fronts, the tips recorded at the nodes, the cracks
     across x = 20 mm at 6 us and the worst balance over the history."""
     run([sys.executable, os.path.join(HERE, "crack_front.py"), folder, "--failed", "damage:0.5", "--field",
-         "crack_face", "--window", "2", "8", "--crossing", "20"])
+         "crack_face", "--window", "2", "8", "--crossing", "20"], quiet)
     speeds = os.path.join(folder, "crack_speeds.json")
     run([sys.executable, os.path.join(TOOLS, "shard_plot.py"), "crack-speeds", folder, "--limit", "6700",
-         "--json", speeds])
+         "--json", speeds], quiet)
     with open(os.path.join(folder, "crack_front.json")) as stream:
         front = json.load(stream)
     with open(speeds) as stream:
@@ -69,7 +71,8 @@ def measure(folder):
             "damage_front_m_per_s": front["failed_front_speed_m_per_s"],
             "tip_median_m_per_s": tips["median_m_per_s"], "tip_max_m_per_s": tips["max_m_per_s"],
             "tip_nodes": tips["nodes"], "tips_above_6700": tips["above_limit"],
-            "cracks_across_20mm_at_6us": at_6us["cracks_crossing"], "worst_balance": balance}
+            "cracks_across_20mm_at_6us": at_6us["cracks_crossing"],
+            "crack_face_nodes_at_6us": at_6us["crack_face_nodes"], "worst_balance": balance}
 
 
 def outside_bounds(r):
@@ -89,7 +92,7 @@ def outside_bounds(r):
 
 
 def one_seed(args, seed, mesh):
-    folder = os.path.join(args.out, f"seed_{seed}")
+    folder = os.path.join(args.out, f"seed_{seed}" if args.size == 0.25 else f"seed_{seed}_h{args.size}")
     summary = os.path.join(folder, "summary.json")
     done = os.path.isfile(summary) and json.load(open(summary)).get("status") == "completed"
     if args.force or not done:

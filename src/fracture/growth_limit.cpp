@@ -84,8 +84,8 @@ HeldNodes hold_back_cracks(const Model& model, std::span<const CrackingPart> par
   std::vector<std::int32_t> failed = failed_nodes(nodal_factor, threshold);
   if (failed.empty()) return held;
   // With a seeded field of weakest flaws, the nuclei of this update are taken weakest flaw first
-  // (a crack starts at a flaw, and the weakest near the failed zone is the first to run); ties,
-  // and parts without a field, in the planner's order.
+  // (a crack starts at a flaw, and the weakest near the failed zone is the first to run); ties in
+  // the planner's order, and nodes of parts without a field (+∞) after the others.
   const auto has_field = [](const CrackingPart& cp) { return cp.cracks && cp.weakest_flaw_index >= 0; };
   if (std::any_of(parts.begin(), parts.end(), has_field)) {
     const std::vector<double> weakest = nodal_weakest_flaws(model, parts, nn);

@@ -76,7 +76,7 @@ class DenoualForquinHild final : public Material {
   /// the crack density the mesh does not resolve, which the drawn crack does not take away.
   std::optional<FailureMapSlots> failure_map_slots() const override {
     return FailureMapSlots{largest_damage, crack_normal_x, energy_density, {}, /*heals=*/false, /*factor_bound=*/1.0,
-                           weakest_flaw_stress};
+                           p_.weakest_flaw_field ? int{weakest_flaw_stress} : -1};
   }
   /// With weakest_flaw_field: σ_w,e = σ0 (ln(1/U)/(λ0 V_e))^(1/m), U uniform in (0, 1) from
   /// (seed, element id): the weakest link of the flaw population over the element's volume,

@@ -28,8 +28,9 @@ def main():
     sys.path.insert(0, example)
     from seeds import measure, outside_bounds, run
     out = os.path.join(work, "sic_fc")
-    run([shard, "run", os.path.join(example, "sic_edge_on_impact_fragmentation_cracks.yaml"), "-o", out, "--quiet"])
-    r = measure(out)
+    run([shard, "run", os.path.join(example, "sic_edge_on_impact_fragmentation_cracks.yaml"), "-o", out, "--quiet"],
+        quiet=False)
+    r = measure(out, quiet=False)
     print(f"crack front {r['crack_front_m_per_s']:.0f} m/s, damage front {r['damage_front_m_per_s']:.0f} m/s; tips: "
           f"median {r['tip_median_m_per_s']:.0f} m/s over {r['tip_nodes']} nodes, largest {r['tip_max_m_per_s']:.0f} "
           f"m/s, {r['tips_above_6700']} above 6 700 m/s; {r['cracks_across_20mm_at_6us']} cracks across x = 20 mm at "
