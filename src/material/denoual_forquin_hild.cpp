@@ -23,7 +23,7 @@ std::vector<std::string> DenoualForquinHild::state_names() const {
       names.push_back(base + s);
   }
   names.insert(names.end(), {"damage", "energy_density", "crack_normal_x", "crack_normal_y", "crack_normal_z",
-                                     "weakest_flaw_stress"});
+                             "weakest_flaw_stress"});
   return names;
 }
 

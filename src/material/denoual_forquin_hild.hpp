@@ -9,8 +9,9 @@
 //   - the stress is the effective (undamaged) stress with each tensile principal value scaled
 //     by (1 − D) of its direction; compression is carried whole.
 // The integral is carried as four moments about the current time (exact for a flaw density that
-// grows linearly within a step), so no flaw history is stored. Theory note:
-// docs/theory/fragmentation_damage.md.
+// grows linearly within a step), so no flaw history is stored. With a seed, each element also
+// draws the stress of its weakest flaw, which orders where discrete cracks start and does not
+// enter the damage. Theory note: docs/theory/fragmentation_damage.md.
 #pragma once
 
 #include "material/material.hpp"

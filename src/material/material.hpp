@@ -101,9 +101,10 @@ class Material {
     /// The failure factor reaches this only where a point is wholly failed (a damage: 1), so a
     /// threshold at or above it is refused.
     double factor_bound = std::numeric_limits<double>::infinity();
-    /// The stress that activates the weakest flaw of the point's element, for a model with a
-    /// seeded field of them (−1: none; a value ≤ 0 in the state: none at that point): the cracks
-    /// that start in one update start at the weakest first (fracture/growth_limit.hpp).
+    /// Where a model with a seeded field of weakest flaws keeps the stress that activates the
+    /// weakest flaw of each point's element (−1: no field; a value ≤ 0 in the state: none at that
+    /// point): the cracks that start in one update start at the weakest first
+    /// (fracture/growth_limit.hpp).
     int weakest_flaw = -1;
   };
   /// Empty for a model that does not crack discretely.
