@@ -2,8 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numeric>
 #include <unordered_map>
+
+#include "core/disjoint_sets.hpp"
 
 namespace shard {
 
@@ -12,14 +13,6 @@ namespace {
 double angle_at(const double* p, const double* q, const double* r) {
   const double ux = q[0] - p[0], uy = q[1] - p[1], vx = r[0] - p[0], vy = r[1] - p[1];
   return std::atan2(std::abs(ux * vy - uy * vx), ux * vx + uy * vy);
-}
-
-std::int32_t find_root(std::vector<std::int32_t>& parent, std::int32_t i) {
-  while (parent[i] != i) {
-    parent[i] = parent[parent[i]];
-    i = parent[i];
-  }
-  return i;
 }
 
 std::uint64_t edge_key(std::int32_t a, std::int32_t b) {
@@ -52,23 +45,20 @@ std::vector<std::vector<std::int32_t>> bodies_of(const Part& part) {
   const int npe = part.type->nodes;
   // Union–find over elements through their nodes: the first element seen at a node joins the
   // others that hold it.
-  std::vector<std::int32_t> parent(ne);
-  std::iota(parent.begin(), parent.end(), 0);
+  DisjointSets sets(ne);
   std::unordered_map<std::int32_t, std::int32_t> first_at;
   for (std::size_t e = 0; e < ne; ++e) {
     if (!part.eroded.empty() && part.eroded[e]) continue;
     for (int a = 0; a < npe; ++a) {
       const auto [it, inserted] = first_at.emplace(part.connectivity[npe * e + a], static_cast<std::int32_t>(e));
-      if (inserted) continue;
-      const std::int32_t r1 = find_root(parent, it->second), r2 = find_root(parent, static_cast<std::int32_t>(e));
-      if (r1 != r2) parent[std::max(r1, r2)] = std::min(r1, r2);
+      if (!inserted) sets.join(it->second, static_cast<std::int32_t>(e));
     }
   }
   std::vector<std::vector<std::int32_t>> bodies;
   std::vector<std::int32_t> body_of_root(ne, -1);
   for (std::size_t e = 0; e < ne; ++e) {
     if (!part.eroded.empty() && part.eroded[e]) continue;
-    const std::int32_t r = find_root(parent, static_cast<std::int32_t>(e));
+    const std::int32_t r = sets.find(static_cast<std::int32_t>(e));
     if (body_of_root[r] < 0) {
       body_of_root[r] = static_cast<std::int32_t>(bodies.size());
       bodies.emplace_back();

@@ -12,6 +12,7 @@
 #include <unordered_map>
 
 #include "adapt/planar_mesh.hpp"
+#include "core/disjoint_sets.hpp"
 #include "fem/internal_forces.hpp"
 
 namespace shard {
@@ -1026,22 +1027,15 @@ BodySums body_sums(const Model& model, const std::vector<std::int32_t>& body_of_
 /// adaptive remeshing stopped on a massless node). Given back per group, the group's mass is
 /// what it was.
 std::vector<std::int32_t> groups_of_pieces(const Part& part, const OldPart& old) {
-  std::vector<std::int32_t> parent(old.bodies.size());
-  std::iota(parent.begin(), parent.end(), 0);
-  const auto root = [&](std::int32_t b) {
-    while (parent[b] != b) b = parent[b] = parent[parent[b]];
-    return b;
-  };
+  DisjointSets sets(old.bodies.size());
   for (std::size_t b = 0; b < old.bodies.size(); ++b)
     for (const std::int32_t e : old.bodies[b])
-      for (int k = 0; k < 3; ++k) {
-        const std::int32_t owner = old.body_of_node[part.connectivity[3 * e + k]];
-        if (owner < 0) continue;
-        const std::int32_t r1 = root(static_cast<std::int32_t>(b)), r2 = root(owner);
-        if (r1 != r2) parent[std::max(r1, r2)] = std::min(r1, r2);
-      }
-  for (std::size_t b = 0; b < parent.size(); ++b) parent[b] = root(static_cast<std::int32_t>(b));
-  return parent;
+      for (int k = 0; k < 3; ++k)
+        if (const std::int32_t owner = old.body_of_node[part.connectivity[3 * e + k]]; owner >= 0)
+          sets.join(static_cast<std::int32_t>(b), owner);
+  std::vector<std::int32_t> group(old.bodies.size());
+  for (std::size_t b = 0; b < group.size(); ++b) group[b] = sets.find(static_cast<std::int32_t>(b));
+  return group;
 }
 
 /// Each node's piece replaced by its group (−1 stays −1).

@@ -2,32 +2,13 @@
 
 #include <fstream>
 #include <limits>
-#include <numeric>
 #include <stdexcept>
+
+#include "core/disjoint_sets.hpp"
 
 namespace shard {
 
 namespace {
-
-/// Union–find over nodes with path halving; the root is the smaller id, so roots do not depend
-/// on the order of the unions.
-struct DisjointSets {
-  std::vector<std::int32_t> up;
-  explicit DisjointSets(std::size_t n) : up(n) { std::iota(up.begin(), up.end(), 0); }
-  std::int32_t find(std::int32_t i) {
-    while (up[i] != i) {
-      up[i] = up[up[i]];
-      i = up[i];
-    }
-    return i;
-  }
-  void join(std::int32_t a, std::int32_t b) {
-    a = find(a);
-    b = find(b);
-    if (a < b) up[b] = a;
-    else if (b < a) up[a] = b;
-  }
-};
 
 bool live(const Part& part, std::size_t e) { return part.eroded.empty() || part.eroded[e] == 0; }
 
