@@ -3,40 +3,53 @@
 field of weakest flaws (docs/theory/fragmentation_damage.md, section 8a): how much the measured
 figures move from one realisation of the flaws to another.
 
-  examples/sic_edge_on_impact/seeds.py OUT [--seeds 1 2 3 4 5] [--size 0.25] [--shard build/shard]
+  examples/sic_edge_on_impact/seeds.py OUT [--seeds 1 2 3 4 5 | --no-seed] [--size 0.25 ...] [--shard build/shard]
 
 Each seed s runs sic_edge_on_impact_fragmentation_cracks.yaml with materials.sic.seed = s (into
-OUT/seed_<s>, or OUT/seed_<s>_h<size>), at the beam's element size --size mm (another size is a copy of the mesh file with
-h changed, in OUT). Each run is measured as the example's README does: crack_front.py (the fronts
-of inserted cracks and of damage >= 0.5, least squares over 2-8 us after impact, and the cracks
-across x = 20 mm) and tools/shard_plot.py crack-speeds (the tips' speeds recorded at the nodes).
-Prints a table, the mean and the standard deviation (n - 1) of each front, and writes
-OUT/seeds.json. A run that completed before is measured again, not rerun (--force reruns).
+OUT/seed_<s>, or OUT/seed_<s>_h<size>; --no-seed: the scenario as it is, into OUT/no_seed...) at
+each of the beam's element sizes --size mm (a size other than 0.25 is a small mesh file in OUT that
+sets h and includes the example's). Sizes a few per cent apart are different meshes of about the
+same size: how much the figures move with the triangles' pattern alone. Each run is measured as
+the example's README does: crack_front.py (the fronts of inserted cracks and of damage >= 0.5,
+least squares over 2-8 us after impact, and the cracks across x = 20 mm) and tools/shard_plot.py
+crack-speeds (the tips' speeds recorded at the nodes).
+Prints a table, the mean and the standard deviation (n - 1) of each front over all the runs, and
+writes OUT/seeds.json. A run that completed before is measured again, not rerun (--force reruns).
 Needs Debian's python3-numpy, python3-matplotlib and python3-meshio.
 """
 import argparse
 import csv
 import json
 import os
-import re
 import statistics
 import subprocess
 import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 TOOLS = os.path.join(HERE, "..", "..", "tools")
+SCENARIO = os.path.join(HERE, "sic_edge_on_impact_fragmentation_cracks.yaml")
+
+
+def scenario_mesh(scenario):
+    """The mesh file a scenario names (mesh.file), as an absolute path."""
+    import yaml
+
+    with open(scenario) as stream:
+        name = yaml.safe_load(stream)["mesh"]["file"]
+    return os.path.abspath(os.path.join(os.path.dirname(scenario), name))
 
 
 def mesh_of_size(out, size):
-    """The example's mesh file with the beam's element size h set to `size` mm (a copy in OUT)."""
-    with open(os.path.join(HERE, "sic_edge_on_impact.geo")) as stream:
+    """A mesh file that sets the beam's element size h to `size` mm and includes the example's own
+    (whose DefineConstant[ h ] then keeps the value set before it), in OUT."""
+    base = scenario_mesh(SCENARIO)
+    with open(base) as stream:
         text = stream.read()
-    text, count = re.subn(r"DefineConstant\[ h = [0-9.]+ \]", f"DefineConstant[ h = {size} ]", text)
-    if count != 1:
-        sys.exit("seeds.py: the mesh file no longer defines the element size as DefineConstant[ h = ... ]")
-    path = os.path.abspath(os.path.join(out, f"sic_{size}.geo"))  # mesh.file is read from the scenario's folder
+    if "DefineConstant[ h = " not in text and "Include" not in text:
+        sys.exit(f"seeds.py: {base} neither defines the element size as DefineConstant[ h = ... ] nor includes a file that does")
+    path = os.path.abspath(os.path.join(out, f"sic_{size:g}.geo"))  # mesh.file is read from the scenario's folder
     with open(path, "w") as stream:
-        stream.write(text)
+        stream.write(f'h = {size:g};\nInclude "{base}";\n')
     return path
 
 
@@ -91,47 +104,61 @@ def outside_bounds(r):
     return out
 
 
-def one_seed(args, seed, mesh):
-    folder = os.path.join(args.out, f"seed_{seed}" if args.size == 0.25 else f"seed_{seed}_h{args.size}")
+def one_run(args, size, seed, mesh):
+    """One run of the example at `size` mm with `seed` (None: the scenario as it is, no field)."""
+    name = "no_seed" if seed is None else f"seed_{seed}"
+    folder = os.path.join(args.out, name if size == 0.25 else f"{name}_h{size:g}")
     summary = os.path.join(folder, "summary.json")
     done = os.path.isfile(summary) and json.load(open(summary)).get("status") == "completed"
     if args.force or not done:
-        command = [args.shard, "run", os.path.join(HERE, "sic_edge_on_impact_fragmentation_cracks.yaml"),
-                   "-o", folder, "--quiet", "--set", f"materials.sic.seed={seed}"]
+        command = [args.shard, "run", SCENARIO, "-o", folder, "--quiet"]
+        if seed is not None:
+            command += ["--set", f"materials.sic.seed={seed}"]
         if mesh:
             command += ["--set", f"mesh.file={mesh}"]
         run(command)
-    return {"seed": seed, **measure(folder)}
+    return {"size_mm": size, "seed": seed, **measure(folder)}
+
+
+def statistics_of(rows):
+    """Mean and standard deviation (n - 1) of each front over `rows`."""
+    result = {}
+    for key in ("crack_front_m_per_s", "damage_front_m_per_s"):
+        values = [r[key] for r in rows]
+        result[key.replace("_m_per_s", "_mean_m_per_s")] = statistics.mean(values)
+        result[key.replace("_m_per_s", "_stdev_m_per_s")] = statistics.stdev(values) if len(values) > 1 else 0.0
+    return result
 
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("out", metavar="OUT")
     parser.add_argument("--seeds", type=int, nargs="+", default=[1, 2, 3, 4, 5])
-    parser.add_argument("--size", type=float, default=0.25, help="element size in the beam [mm]")
+    parser.add_argument("--no-seed", action="store_true",
+                        help="run the scenario as it is (no field of weakest flaws), once per size")
+    parser.add_argument("--size", type=float, nargs="+", default=[0.25],
+                        help="element sizes in the beam [mm], each a mesh of its own")
     parser.add_argument("--shard", default=os.path.join(HERE, "..", "..", "build", "shard"))
     parser.add_argument("--force", action="store_true", help="rerun runs that completed before")
     args = parser.parse_args()
     os.makedirs(args.out, exist_ok=True)
-    mesh = mesh_of_size(args.out, args.size) if args.size != 0.25 else None
+    seeds = [None] if args.no_seed else args.seeds
     rows = []
-    print(f"{'seed':>5} {'crack front':>12} {'damage front':>13} {'tips median':>12} {'largest':>8} "
+    print(f"{'size':>5} {'seed':>5} {'crack front':>12} {'damage front':>13} {'tips median':>12} {'largest':>8} "
           f"{'> 6700':>7} {'across 20 mm':>13} {'balance':>8}")
-    for seed in args.seeds:
-        r = one_seed(args, seed, mesh)
-        rows.append(r)
-        print(f"{seed:>5} {r['crack_front_m_per_s']:>10.0f} m/s {r['damage_front_m_per_s']:>9.0f} m/s "
-              f"{r['tip_median_m_per_s']:>8.0f} m/s {r['tip_max_m_per_s']:>8.0f} {r['tips_above_6700']:>7} "
-              f"{r['cracks_across_20mm_at_6us']:>13} {100 * r['worst_balance']:>7.3f}%", flush=True)
-    result = {"size_mm": args.size, "runs": rows}
-    for key in ("crack_front_m_per_s", "damage_front_m_per_s"):
-        values = [r[key] for r in rows]
-        result[key.replace("_m_per_s", "_mean_m_per_s")] = statistics.mean(values)
-        result[key.replace("_m_per_s", "_stdev_m_per_s")] = statistics.stdev(values) if len(values) > 1 else 0.0
+    for size in args.size:
+        mesh = mesh_of_size(args.out, size) if size != 0.25 else None
+        for seed in seeds:
+            r = one_run(args, size, seed, mesh)
+            rows.append(r)
+            print(f"{size:>5g} {'-' if seed is None else seed:>5} {r['crack_front_m_per_s']:>10.0f} m/s "
+                  f"{r['damage_front_m_per_s']:>9.0f} m/s {r['tip_median_m_per_s']:>8.0f} m/s "
+                  f"{r['tip_max_m_per_s']:>8.0f} {r['tips_above_6700']:>7} {r['cracks_across_20mm_at_6us']:>13} "
+                  f"{100 * r['worst_balance']:>7.3f}%", flush=True)
+    result = {"sizes_mm": args.size, "runs": rows, **statistics_of(rows)}
     print(f"crack front {result['crack_front_mean_m_per_s']:.0f} m/s, standard deviation "
           f"{result['crack_front_stdev_m_per_s']:.0f} m/s; damage front {result['damage_front_mean_m_per_s']:.0f} m/s, "
-          f"standard deviation {result['damage_front_stdev_m_per_s']:.0f} m/s, over {len(rows)} seeds at "
-          f"{args.size} mm")
+          f"standard deviation {result['damage_front_stdev_m_per_s']:.0f} m/s, over {len(rows)} runs")
     with open(os.path.join(args.out, "seeds.json"), "w") as stream:
         json.dump(result, stream, indent=1)
 
