@@ -2,7 +2,7 @@
 """Validation (ctest label "validation"): the SiC edge-on impact with fragmentation damage and
 discrete cracks over five seeds of its field of weakest flaws (examples/sic_edge_on_impact/seeds.py),
 as issue 20 states it: the front stable over five seeds, standard deviation at most 300 m/s.
-Five runs to 12 us at 0.25 mm, about 75 s each on 2 threads. Asserted, for every seed:
+Five runs to 12 us at 0.25 mm, about 2 minutes each on 2 threads. Asserted, for every seed:
 - the fronts of inserted cracks and of damage >= 0.5 (least squares over 2-8 us after impact) at
   8 200 +- 500 m/s (Riou et al. 1998);
 - the median tip speed recorded at the nodes at 4 000 +- 800 m/s, none above 6 700 m/s (the
