@@ -14,13 +14,16 @@ the example's README does: crack_front.py (the fronts of inserted cracks and of 
 least squares over 2-8 us after impact, and the cracks across x = 20 mm) and tools/shard_plot.py
 crack-speeds (the tips' speeds recorded at the nodes).
 Prints a table, the mean and the standard deviation (n - 1) of each front over all the runs, and
-writes OUT/seeds.json. A run that completed before is measured again, not rerun (--force reruns).
-Needs Debian's python3-numpy, python3-matplotlib and python3-meshio.
+writes OUT/seeds.json (with the same per size, under by_size). A run that completed before from the
+same scenario, mesh files and options is measured again, not rerun (--force reruns).
+Needs Debian's python3-numpy, python3-matplotlib, python3-meshio and python3-yaml.
 """
 import argparse
 import csv
+import hashlib
 import json
 import os
+import re
 import statistics
 import subprocess
 import sys
@@ -39,18 +42,41 @@ def scenario_mesh(scenario):
     return os.path.abspath(os.path.join(os.path.dirname(scenario), name))
 
 
+def geo_chain(path):
+    """The text of a .geo file and of every file it includes, in order."""
+    with open(path) as stream:
+        text = stream.read()
+    texts = [text]
+    for name in re.findall(r'^\s*Include\s+"([^"]+)"\s*;', text, re.M):
+        texts += geo_chain(os.path.join(os.path.dirname(path), name))
+    return texts
+
+
 def mesh_of_size(out, size):
     """A mesh file that sets the beam's element size h to `size` mm and includes the example's own
     (whose DefineConstant[ h ] then keeps the value set before it), in OUT."""
     base = scenario_mesh(SCENARIO)
-    with open(base) as stream:
-        text = stream.read()
-    if "DefineConstant[ h = " not in text and "Include" not in text:
-        sys.exit(f"seeds.py: {base} neither defines the element size as DefineConstant[ h = ... ] nor includes a file that does")
+    chain = geo_chain(base)
+    if not any("DefineConstant[ h = " in text for text in chain) or \
+            any(re.search(r"^\s*h\s*=", text, re.M) for text in chain):
+        sys.exit(f"seeds.py: {base} and the files it includes must set the element size only as "
+                 "DefineConstant[ h = ... ], which a value set before them overrides")
     path = os.path.abspath(os.path.join(out, f"sic_{size:g}.geo"))  # mesh.file is read from the scenario's folder
     with open(path, "w") as stream:
         stream.write(f'h = {size:g};\nInclude "{base}";\n')
     return path
+
+
+def fingerprint(command, mesh):
+    """What a run was made from: the scenario, its mesh files and the command's options (not the
+    executable). A run folder is reused only when this is unchanged."""
+    digest = hashlib.sha256()
+    with open(SCENARIO, "rb") as stream:
+        digest.update(stream.read())
+    for text in geo_chain(mesh or scenario_mesh(SCENARIO)):
+        digest.update(text.encode())
+    digest.update("\0".join(command[1:]).encode())
+    return digest.hexdigest()
 
 
 def run(command, quiet=True):
@@ -108,16 +134,22 @@ def one_run(args, size, seed, mesh):
     """One run of the example at `size` mm with `seed` (None: the scenario as it is, no field)."""
     name = "no_seed" if seed is None else f"seed_{seed}"
     folder = os.path.join(args.out, name if size == 0.25 else f"{name}_h{size:g}")
-    summary = os.path.join(folder, "summary.json")
-    done = os.path.isfile(summary) and json.load(open(summary)).get("status") == "completed"
+    command = [args.shard, "run", SCENARIO, "-o", folder, "--quiet"]
+    if seed is not None:
+        command += ["--set", f"materials.sic.seed={seed}"]
+    if mesh:
+        command += ["--set", f"mesh.file={mesh}"]
+    made_from = fingerprint(command, mesh)
+    summary, stamp = os.path.join(folder, "summary.json"), os.path.join(folder, "seeds_run.txt")
+    done = (os.path.isfile(summary) and json.load(open(summary)).get("status") == "completed"
+            and os.path.isfile(stamp) and open(stamp).read().strip() == made_from)
     if args.force or not done:
-        command = [args.shard, "run", SCENARIO, "-o", folder, "--quiet"]
-        if seed is not None:
-            command += ["--set", f"materials.sic.seed={seed}"]
-        if mesh:
-            command += ["--set", f"mesh.file={mesh}"]
         run(command)
-    return {"size_mm": size, "seed": seed, **measure(folder)}
+        with open(stamp, "w") as stream:
+            stream.write(made_from + "\n")
+    with open(summary) as stream:
+        elements = json.load(stream)["elements"]
+    return {"size_mm": size, "seed": seed, "elements": elements, **measure(folder)}
 
 
 def statistics_of(rows):
@@ -133,9 +165,10 @@ def statistics_of(rows):
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("out", metavar="OUT")
-    parser.add_argument("--seeds", type=int, nargs="+", default=[1, 2, 3, 4, 5])
-    parser.add_argument("--no-seed", action="store_true",
-                        help="run the scenario as it is (no field of weakest flaws), once per size")
+    which = parser.add_mutually_exclusive_group()
+    which.add_argument("--seeds", type=int, nargs="+", default=[1, 2, 3, 4, 5])
+    which.add_argument("--no-seed", action="store_true",
+                       help="run the scenario as it is (no field of weakest flaws), once per size")
     parser.add_argument("--size", type=float, nargs="+", default=[0.25],
                         help="element sizes in the beam [mm], each a mesh of its own")
     parser.add_argument("--shard", default=os.path.join(HERE, "..", "..", "build", "shard"))
@@ -155,10 +188,13 @@ def main():
                   f"{r['damage_front_m_per_s']:>9.0f} m/s {r['tip_median_m_per_s']:>8.0f} m/s "
                   f"{r['tip_max_m_per_s']:>8.0f} {r['tips_above_6700']:>7} {r['cracks_across_20mm_at_6us']:>13} "
                   f"{100 * r['worst_balance']:>7.3f}%", flush=True)
-    result = {"sizes_mm": args.size, "runs": rows, **statistics_of(rows)}
-    print(f"crack front {result['crack_front_mean_m_per_s']:.0f} m/s, standard deviation "
-          f"{result['crack_front_stdev_m_per_s']:.0f} m/s; damage front {result['damage_front_mean_m_per_s']:.0f} m/s, "
-          f"standard deviation {result['damage_front_stdev_m_per_s']:.0f} m/s, over {len(rows)} runs")
+    result = {"sizes_mm": args.size, "runs": rows, **statistics_of(rows),
+              "by_size": {f"{size:g}": statistics_of([r for r in rows if r["size_mm"] == size]) for size in args.size}}
+    for name, figures in [(f"h = {size} mm", result["by_size"][size]) for size in result["by_size"]] + \
+            ([("all the runs", result)] if len(args.size) > 1 else []):
+        print(f"{name}: crack front {figures['crack_front_mean_m_per_s']:.0f} m/s, standard deviation "
+              f"{figures['crack_front_stdev_m_per_s']:.0f} m/s; damage front {figures['damage_front_mean_m_per_s']:.0f} "
+              f"m/s, standard deviation {figures['damage_front_stdev_m_per_s']:.0f} m/s")
     with open(os.path.join(args.out, "seeds.json"), "w") as stream:
         json.dump(result, stream, indent=1)
 
