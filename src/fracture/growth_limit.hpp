@@ -41,10 +41,10 @@ struct HeldNodes {
 /// which nuclei are accepted does not depend on threads; where a cracking part has a seeded
 /// field of weakest flaws (CrackingPart::weakest_flaw_index), the candidates are taken weakest
 /// flaw first (the least over the elements around the node), the planner's order breaking ties.
-/// Edges are those of the live triangles of cracking parts; distances are in the current configuration. The spacing is never less than
-/// a candidate's longest edge, so no nucleus opens an edge onto a crack. A candidate without a
-/// crack direction (`nodal_normal`, 2 per node, zero) is left to the planner, which skips it,
-/// and keeps no other from starting.
+/// Edges are those of the live triangles of cracking parts; distances are in the current
+/// configuration. The spacing is never less than a candidate's longest edge, so no nucleus opens
+/// an edge onto a crack. A candidate without a crack direction (`nodal_normal`, 2 per node, zero)
+/// is left to the planner, which skips it, and keeps no other from starting.
 HeldNodes hold_back_cracks(const Model& model, std::span<const CrackingPart> parts, const CrackSpeedLimit& limit,
                            double time, double threshold, std::span<const double> nodal_normal,
                            std::span<double> nodal_factor);
