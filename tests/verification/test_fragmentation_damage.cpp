@@ -14,11 +14,15 @@
 // 4. A damaged point held at fixed strain and turned rigidly has the damage of one held without
 //    turning, and its stress turned (1e-12).
 // 5. The energy: work done = recoverable energy + fracture work, at every step (1e-9).
+// 6. After a remesh (after_transfer): a point whose copied damage is below 10⁻³ in every
+//    direction takes the stress the remesh fitted as its effective stress; a damaged one keeps
+//    its copied σ̃ and carries (1 − D) of it in tension (1e-12).
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
 #include <numbers>
+#include <utility>
 #include <vector>
 
 #include "core/tensor_ops.hpp"
@@ -195,6 +199,39 @@ TEST(FragmentationDamage, WorkIsStoredOrDissipated) {
   }
   // Fully damaged: everything done on the point was dissipated.
   EXPECT_GT(p.fracture, 0.999 * p.work);
+}
+
+/// The point's state as a remesh copies it, with `fitted` as the stress the remesh fitted there;
+/// returns the effective stress and the stress after after_transfer.
+std::pair<std::vector<double>, std::vector<double>> after_remesh(const PointDriver& p, const double* fitted) {
+  std::vector<double> state = p.state, stress(fitted, fitted + kTensorSize);
+  double temperature = p.temperature, length = 1e-4;
+  MaterialPointBatch b = testing::one_point(nullptr, 0.0, stress.data(), state.data(), &temperature, &p.volume, &length);
+  p.material.after_transfer(b);
+  const auto sigma = state.begin() + DenoualForquinHild::effective_stress;
+  return {std::vector<double>(sigma, sigma + kTensorSize), stress};
+}
+
+TEST(FragmentationDamage, RemeshGivesAnIntactPointTheFittedStressAndADamagedOneItsOwn) {
+  const double rate = 1e12;
+  PointDriver intact, damaged;
+  const double tc = intact.material.characteristic_time(rate);
+  for (int i = 0; i < 500; ++i) intact.tension_step(rate, tc / 1000);  // t = tc/2: D ~ 1e-6
+  while (damaged.damage() < 0.5) damaged.tension_step(rate, tc / 1000);
+  ASSERT_LT(intact.damage(), 1e-3);
+  // A fitted stress unlike the copied one: other values, and a shear that turns the axes.
+  const double fitted[kTensorSize] = {0.8 * intact.stress[xx], 0.1 * intact.stress[xx], -0.05 * intact.stress[xx],
+                                      0.2 * intact.stress[xx], 0, 0};
+  const auto [sigma, stress] = after_remesh(intact, fitted);
+  for (int k = 0; k < kTensorSize; ++k) {
+    EXPECT_NEAR(sigma[k], fitted[k], 1e-12 * intact.stress[xx]) << "effective stress " << k;
+    EXPECT_NEAR(stress[k], fitted[k], 2e-3 * intact.stress[xx]) << "stress " << k;  // (1 − D) with D < 1e-3
+  }
+  const std::vector<double> copied(damaged.state.begin() + DenoualForquinHild::effective_stress,
+                                   damaged.state.begin() + DenoualForquinHild::effective_stress + kTensorSize);
+  const auto [kept, carried] = after_remesh(damaged, fitted);
+  for (int k = 0; k < kTensorSize; ++k) EXPECT_EQ(kept[k], copied[k]) << "effective stress " << k;
+  EXPECT_NEAR(carried[xx], (1 - damaged.damage()) * copied[xx], 1e-12 * copied[xx]);
 }
 
 }  // namespace
