@@ -852,7 +852,7 @@ def cone_frame(mesh, part, top, args):
     cells = np.asarray(mesh.cells_dict.get("triangle", np.zeros((0, 3), dtype=int)))
     if cells.size == 0:
         raise PlotError("the cone is measured on 2D (axisymmetric) runs of triangles")
-    for name in ("part",) if args.cracks else ("failure_factor", "part"):
+    for name in ("part",) if args.cracks else (args.field, "part"):
         if name not in mesh.cell_data:
             raise PlotError(f"the frames have no cell field '{name}' (output.fields: add state and part)")
     mine = np.asarray(mesh.cell_data["part"][0]).ravel() == part
@@ -862,7 +862,7 @@ def cone_frame(mesh, part, top, args):
             raise PlotError("the frames have no point field 'crack_face': the run inserted no cracks")
         centre = 1e3 * mesh.points[nodes[np.asarray(mesh.point_data["crack_face"]).ravel()[nodes] > 0], :2]
     else:
-        failed = mine & (np.asarray(mesh.cell_data["failure_factor"][0]).ravel() >= args.level)
+        failed = mine & (np.asarray(mesh.cell_data[args.field][0]).ravel() >= args.level)
         centre = 1e3 * mesh.points[cells[failed]].mean(axis=1)[:, :2]
     where = np.column_stack([centre[:, 0], 1e3 * top - centre[:, 1]])
     radius = 0.0
@@ -922,7 +922,9 @@ def cone_summary(rows, args, start, thickness):
     """The cone's figures from the frames' rows, and the index of the frame they are measured at."""
     fitted = [(t, fit) for t, _, _, fit in rows if fit is not None]
     if not fitted:
-        raise PlotError(f"no frame has failed cells down to {args.depth:g} mm within {args.reach:g} mm of the axis")
+        hint = "" if args.cracks or args.field != "failure_factor" else \
+            " (the failure factor is 0 where a material has none: --field damage --level 0.5 for the fragmentation damage)"
+        raise PlotError(f"no frame has failed cells down to {args.depth:g} mm within {args.reach:g} mm of the axis{hint}")
     angles = np.array([fit[0] for _, fit in fitted])
     t_fit, (angle, r0, _) = fitted[-1]
     figures = {"impact_time_us": None if start is None else start * 1e6,
@@ -2029,7 +2031,7 @@ particle part, or --part), with --frame (default last).""")
     cone = commands.add_parser(
         "cone", help="angle and start of the Hertzian cone of an axisymmetric impact",
         description="""The cone crack of an axisymmetric impact, from the frames' failure factor
-(failed: F >= --level), or with --cracks from the nodes on crack faces. In each frame the
+(failed: F >= --level; --field names another cell field), or with --cracks from the nodes on crack faces. In each frame the
 outermost failed cell of the part in each depth bin over the first --depth mm under its top
 surface (its highest initial point) is found, and a line r = r0 + z cot(alpha) fitted through
 them: alpha is the cone's angle to the surface, r0 its start; the figures are those of the last
@@ -2041,7 +2043,11 @@ inside the cone and in the part's upper half (a second cone; deeper down is spal
 every 0.1 µs or closer resolve the times.""")
     cone.add_argument("input", metavar="RUN", help="run folder")
     cone.add_argument("--part", help="the impacted part (default: the first in resolved.yaml)")
-    cone.add_argument("--level", type=float, default=1.0, help="failure factor of a failed cell (default: %(default)s)")
+    cone.add_argument("--field", default="failure_factor",
+                      help="the cell field that marks a failed cell: failure_factor for the rotating crack, damage "
+                           "for the fragmentation damage (default: %(default)s)")
+    cone.add_argument("--level", type=float, default=1.0,
+                      help="the field's value at which a cell has failed (default: %(default)s)")
     cone.add_argument("--cracks", action="store_true",
                       help="a run with discrete cracks: the crack faces' nodes instead of failed cells")
     cone.add_argument("--depth", type=float, default=2.0, help="depth of the fit [mm] (default: %(default)s)")
