@@ -854,7 +854,10 @@ def cone_frame(mesh, part, top, args):
         raise PlotError("the cone is measured on 2D (axisymmetric) runs of triangles")
     for name in ("part",) if args.cracks else (args.field, "part"):
         if name not in mesh.cell_data:
-            raise PlotError(f"the frames have no cell field '{name}' (output.fields: add state and part)")
+            hint = " (the fragmentation damage has none: --field damage --level 0.5)" if name == "failure_factor" else ""
+            raise PlotError(f"the frames have no cell field '{name}' (output.fields: add state and part){hint}")
+    if not args.cracks and np.asarray(mesh.cell_data[args.field][0]).ndim > 1:
+        raise PlotError(f"--field {args.field} has several components per cell: name one scalar field, such as damage")
     mine = np.asarray(mesh.cell_data["part"][0]).ravel() == part
     nodes = np.unique(cells[mine])
     if args.cracks:  # the crack faces' nodes (a split resets the failure factor of its elements)

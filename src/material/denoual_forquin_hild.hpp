@@ -102,6 +102,9 @@ class DenoualForquinHild final : public Material {
   /// The stress a point carries (eq. 8) from the principal values and axes of its effective
   /// stress and its damages; returns its recoverable energy ½ Σ σ_i ε_i per unit volume.
   double damaged_stress(const double value[3], const double axis[3][3], const double* state, double* stress) const;
+  /// The effective stress of a point that carries `stress` with its damages: eq. (8) inverted,
+  /// each tensile principal value over (1 − D_i).
+  static void effective_of_carried(const double* stress, const double* state, double* effective);
   /// The largest damage and the axis of its direction, into the point's state.
   static void record_largest(const double axis[3][3], double* state);
 

@@ -29,7 +29,8 @@ what the plotting tool reads from them:
 - cone on frames written here: a drawn 30° cone from r = 2 mm gives its angle within 2 % and its
   start within 5 %, the contact radius and the times of the ring, the impact and a failure inside
   the cone exactly; with --cracks, from crack-face nodes along it, angle and start within 2 %;
-  with --field damage (cells damaged to 0.7), the angle within 2 % at --level 0.5 and no cone at 0.8;
+  with --field damage (cells damaged to 0.7), the angle within 2 % at --level 0.5 and at 0.8 no
+  cone (status 2, 'no frame has failed cells'); --field of a tensor stops with status 2;
 - a misspelt group name stops with exit status 2 (bad input, as argparse) and names the groups there are.
 
 Usage: test_shard_plot.py SHARD_EXECUTABLE SOURCE_DIR WORK_DIR
@@ -102,7 +103,7 @@ def write_cone_run(folder, angle, start, contact):
         name = f"frame_{k:05d}.vtu"
         meshio.write(os.path.join(folder, name), meshio.Mesh(
             points, [("triangle", cells)], point_data={"contact_pressure": pressure, "crack_face": crack_face},
-            cell_data={"failure_factor": [factor], "damage": [0.7 * factor], "part": [numpy.zeros(len(cells))]}))
+            cell_data={"failure_factor": [factor], "damage": [0.7 * factor], "stress": [numpy.zeros((len(cells), 6))], "part": [numpy.zeros(len(cells))]}))
         frames.append(f'<DataSet timestep="{time:g}" file="{name}"/>')
     with open(os.path.join(folder, "frames.pvd"), "w") as stream:
         stream.write('<VTKFile type="Collection"><Collection>' + "".join(frames) + "</Collection></VTKFile>\n")
@@ -144,8 +145,12 @@ def check_cone(plot, work):
     with open(figures_json) as stream:
         figures = json.load(stream)
     check_close("cone angle from the damage", figures["angle_deg"], 30.0, 0.02)
-    if run(plot + ["cone", folder, "--field", "damage", "--level", "0.8"]).returncode == 0:
-        fail("cone --field damage --level 0.8 found a cone where no cell is damaged that far")
+    result = run(plot + ["cone", folder, "--field", "damage", "--level", "0.8"])
+    if result.returncode != 2 or "no frame has failed cells" not in result.stderr:
+        fail("cone --field damage --level 0.8 did not stop with status 2 and 'no frame has failed cells'")
+    result = run(plot + ["cone", folder, "--field", "stress"])
+    if result.returncode != 2 or "several components" not in result.stderr:
+        fail("cone --field stress (a tensor) did not stop with status 2 and say it has several components")
 
 
 def main():

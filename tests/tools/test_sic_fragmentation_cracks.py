@@ -14,7 +14,7 @@ Asserted:
 
 With SCENARIO, another scenario of the example measured against the same bounds
 (sic_edge_on_impact_fragmentation_adaptive.yaml: the same with adaptive remeshing from a coarse
-mesh, about 5 minutes: fronts 8 483 and 8 403 m/s, tips' median 3 242 m/s, 11 cracks, 0.11 %).
+mesh, about 5 minutes: fronts 8 389 and 8 484 m/s, tips' median 3 213 m/s, 10 cracks, 0.11 %).
 
 Usage: test_sic_fragmentation_cracks.py SHARD_EXECUTABLE SOURCE_DIR WORK_DIR [SCENARIO]
 """

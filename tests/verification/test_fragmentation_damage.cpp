@@ -15,8 +15,9 @@
 //    turning, and its stress turned (1e-12).
 // 5. The energy: work done = recoverable energy + fracture work, at every step (1e-9).
 // 6. After a remesh (after_transfer): a point whose copied damage is below 10⁻³ in every
-//    direction takes the stress the remesh fitted as its effective stress; a damaged one keeps
-//    its copied σ̃ and carries (1 − D) of it in tension (1e-12).
+//    direction carries the stress the remesh carried to it, with σ̃ from eq. (8) inverted (a kept
+//    element's own stress gives back its own σ̃); points damaged to 0.01 and 0.5 keep their copied
+//    σ̃ and carry (1 − D) of it in tension (1e-12).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -212,26 +213,39 @@ std::pair<std::vector<double>, std::vector<double>> after_remesh(const PointDriv
   return {std::vector<double>(sigma, sigma + kTensorSize), stress};
 }
 
-TEST(FragmentationDamage, RemeshGivesAnIntactPointTheFittedStressAndADamagedOneItsOwn) {
+TEST(FragmentationDamage, RemeshGivesAnIntactPointTheCarriedStressAndADamagedOneItsOwn) {
   const double rate = 1e12;
-  PointDriver intact, damaged;
+  PointDriver intact, slightly, damaged;
   const double tc = intact.material.characteristic_time(rate);
-  for (int i = 0; i < 500; ++i) intact.tension_step(rate, tc / 1000);  // t = tc/2: D ~ 1e-6
+  for (int i = 0; i < 500; ++i) intact.tension_step(rate, tc / 1000);  // t = tc/2: D ~ 4e-7
+  while (slightly.damage() < 0.01) slightly.tension_step(rate, tc / 1000);
   while (damaged.damage() < 0.5) damaged.tension_step(rate, tc / 1000);
+  ASSERT_GT(intact.damage(), 0.0);
   ASSERT_LT(intact.damage(), 1e-3);
-  // A fitted stress unlike the copied one: other values, and a shear that turns the axes.
-  const double fitted[kTensorSize] = {0.8 * intact.stress[xx], 0.1 * intact.stress[xx], -0.05 * intact.stress[xx],
-                                      0.2 * intact.stress[xx], 0, 0};
+  const double scale = intact.stress[xx];
+  // A carried stress unlike the copied one: other values, and a shear that turns the axes. The
+  // point carries it as it is, and its σ̃ is it with the tension over (1 − D).
+  const double fitted[kTensorSize] = {0.8 * scale, 0.1 * scale, -0.05 * scale, 0.2 * scale, 0, 0};
   const auto [sigma, stress] = after_remesh(intact, fitted);
   for (int k = 0; k < kTensorSize; ++k) {
-    EXPECT_NEAR(sigma[k], fitted[k], 1e-12 * intact.stress[xx]) << "effective stress " << k;
-    EXPECT_NEAR(stress[k], fitted[k], 2e-3 * intact.stress[xx]) << "stress " << k;  // (1 − D) with D < 1e-3
+    EXPECT_NEAR(stress[k], fitted[k], 1e-12 * scale) << "stress " << k;
+    EXPECT_NEAR(sigma[k], fitted[k], 2 * intact.damage() * scale) << "effective stress " << k;
   }
-  const std::vector<double> copied(damaged.state.begin() + DenoualForquinHild::effective_stress,
-                                   damaged.state.begin() + DenoualForquinHild::effective_stress + kTensorSize);
-  const auto [kept, carried] = after_remesh(damaged, fitted);
-  for (int k = 0; k < kTensorSize; ++k) EXPECT_EQ(kept[k], copied[k]) << "effective stress " << k;
-  EXPECT_NEAR(carried[xx], (1 - damaged.damage()) * copied[xx], 1e-12 * copied[xx]);
+  EXPECT_GT(sigma[xx], fitted[xx]);  // the tension was carried at (1 − D) of σ̃
+  // A kept element (its own stress carried) gets its own σ̃ back.
+  const auto [own, same] = after_remesh(intact, intact.stress);
+  for (int k = 0; k < kTensorSize; ++k) {
+    EXPECT_NEAR(own[k], intact.state[DenoualForquinHild::effective_stress + k], 1e-12 * scale) << k;
+    EXPECT_NEAR(same[k], intact.stress[k], 1e-12 * scale) << k;
+  }
+  // Damaged beyond 10⁻³, a point keeps its copied σ̃ and carries (1 − D) of it in tension.
+  for (const PointDriver* p : {&slightly, &damaged}) {
+    const std::vector<double> copied(p->state.begin() + DenoualForquinHild::effective_stress,
+                                     p->state.begin() + DenoualForquinHild::effective_stress + kTensorSize);
+    const auto [kept, carried] = after_remesh(*p, fitted);
+    for (int k = 0; k < kTensorSize; ++k) EXPECT_EQ(kept[k], copied[k]) << "D " << p->damage() << ", " << k;
+    EXPECT_NEAR(carried[xx], (1 - p->damage()) * copied[xx], 1e-12 * copied[xx]);
+  }
 }
 
 }  // namespace
