@@ -202,10 +202,10 @@ TEST(FragmentationDamage, WorkIsStoredOrDissipated) {
   EXPECT_GT(p.fracture, 0.999 * p.work);
 }
 
-/// The point's state as a remesh copies it, with `fitted` as the stress the remesh fitted there;
+/// The point's state as a remesh copies it, with `carried` as the stress the remesh carried there;
 /// returns the effective stress and the stress after after_transfer.
-std::pair<std::vector<double>, std::vector<double>> after_remesh(const PointDriver& p, const double* fitted) {
-  std::vector<double> state = p.state, stress(fitted, fitted + kTensorSize);
+std::pair<std::vector<double>, std::vector<double>> after_remesh(const PointDriver& p, const double* carried) {
+  std::vector<double> state = p.state, stress(carried, carried + kTensorSize);
   double temperature = p.temperature, length = 1e-4;
   MaterialPointBatch b = testing::one_point(nullptr, 0.0, stress.data(), state.data(), &temperature, &p.volume, &length);
   p.material.after_transfer(b);
@@ -225,13 +225,13 @@ TEST(FragmentationDamage, RemeshGivesAnIntactPointTheCarriedStressAndADamagedOne
   const double scale = intact.stress[xx];
   // A carried stress unlike the copied one: other values, and a shear that turns the axes. The
   // point carries it as it is, and its σ̃ is it with the tension over (1 − D).
-  const double fitted[kTensorSize] = {0.8 * scale, 0.1 * scale, -0.05 * scale, 0.2 * scale, 0, 0};
-  const auto [sigma, stress] = after_remesh(intact, fitted);
+  const double elsewhere[kTensorSize] = {0.8 * scale, 0.1 * scale, -0.05 * scale, 0.2 * scale, 0, 0};
+  const auto [sigma, stress] = after_remesh(intact, elsewhere);
   for (int k = 0; k < kTensorSize; ++k) {
-    EXPECT_NEAR(stress[k], fitted[k], 1e-12 * scale) << "stress " << k;
-    EXPECT_NEAR(sigma[k], fitted[k], 2 * intact.damage() * scale) << "effective stress " << k;
+    EXPECT_NEAR(stress[k], elsewhere[k], 1e-12 * scale) << "stress " << k;
+    EXPECT_NEAR(sigma[k], elsewhere[k], 2 * intact.damage() * scale) << "effective stress " << k;
   }
-  EXPECT_GT(sigma[xx], fitted[xx]);  // the tension was carried at (1 − D) of σ̃
+  EXPECT_GT(sigma[xx], elsewhere[xx]);  // the tension was carried at (1 − D) of σ̃
   // A kept element (its own stress carried) gets its own σ̃ back.
   const auto [own, same] = after_remesh(intact, intact.stress);
   for (int k = 0; k < kTensorSize; ++k) {
@@ -242,7 +242,7 @@ TEST(FragmentationDamage, RemeshGivesAnIntactPointTheCarriedStressAndADamagedOne
   for (const PointDriver* p : {&slightly, &damaged}) {
     const std::vector<double> copied(p->state.begin() + DenoualForquinHild::effective_stress,
                                      p->state.begin() + DenoualForquinHild::effective_stress + kTensorSize);
-    const auto [kept, carried] = after_remesh(*p, fitted);
+    const auto [kept, carried] = after_remesh(*p, elsewhere);
     for (int k = 0; k < kTensorSize; ++k) EXPECT_EQ(kept[k], copied[k]) << "D " << p->damage() << ", " << k;
     EXPECT_NEAR(carried[xx], (1 - p->damage()) * copied[xx], 1e-12 * copied[xx]);
   }
