@@ -2034,12 +2034,12 @@ particle part, or --part), with --frame (default last).""")
     cone = commands.add_parser(
         "cone", help="angle and start of the Hertzian cone of an axisymmetric impact",
         description="""The cone crack of an axisymmetric impact, from the frames' failure factor
-(failed: F >= --level; --field names another cell field), or with --cracks from the nodes on crack faces. In each frame the
-outermost failed cell of the part in each depth bin over the first --depth mm under its top
-surface (its highest initial point) is found, and a line r = r0 + z cot(alpha) fitted through
-them: alpha is the cone's angle to the surface, r0 its start; the figures are those of the last
-frame (or the last up to --until). Also: the contact radius (the part's surface nodes with
-contact pressure), the ring (the first frame in which the top bin failed within a bin of r0, and
+(failed: F >= --level; --field names another cell field), or with --cracks from the nodes on
+crack faces. In each frame the outermost failed cell of the part in each depth bin over the first
+--depth mm under its top surface (its highest initial point) is found, and a line
+r = r0 + z cot(alpha) fitted through them: alpha is the cone's angle to the surface, r0 its
+start; the figures are those of the last frame (or the last up to --until). Also: the contact
+radius (the part's surface nodes with contact pressure), the ring (the first frame in which the top bin failed within a bin of r0, and
 r0 over the contact radius then), and the first failure deeper than --depth, more than --margin
 inside the cone and in the part's upper half (a second cone; deeper down is spall). Frames after
 --until are not read. The impact time is the first history row with a contact force. Frames
