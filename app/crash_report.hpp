@@ -1,8 +1,8 @@
 // Crash outputs of a crush test (scenario section `crash`, docs/outputs.md "Crash outputs"): from
 // the crushing force on a wall and the stroke, sampled in history.csv, the absorbed energy, the
-// force filtered with SAE J211 CFC (src/core/cfc_filter.hpp), its peak and mean, the crush-force
-// efficiency, the trigger ratio and the specific energy absorption; written to crash.csv and
-// summary.json at the end of a run.
+// force filtered with SAE J211 CFC (src/core/cfc_filter.hpp), its peak and mean, the largest mean
+// force over a window if one is asked for, the crush-force efficiency, the trigger ratio and the
+// specific energy absorption; written to crash.csv and summary.json at the end of a run.
 #pragma once
 
 #include <filesystem>
@@ -24,6 +24,10 @@ struct CrashReport {
   double specific_energy = 0;         ///< SEA, J/kg
   std::size_t samples = 0;
   double duration = 0;  ///< of the record (s)
+  /// With `peak_window`: the largest mean of the (unfiltered) force over that many samples, and
+  /// the time and stroke at the middle of its window. Unset (window 0) when the record is shorter.
+  std::size_t window_samples = 0;
+  double window_peak_force = 0, window_peak_time = 0, window_peak_stroke = 0;
 };
 
 /// Reads time, crash_force and crash_stroke from history.csv, writes crash.csv (time, stroke,

@@ -614,6 +614,9 @@ def plot_crash(args):
     figure, left = plt.subplots(figsize=(7, 4.2))
     left.plot(stroke, col["force"] / 1e3, color="0.75", lw=0.6, label="force (raw)")
     left.plot(stroke, col[filtered] / 1e3, color="tab:blue", lw=1.4, label=f"force, {filtered[6:].upper()}")
+    if "peak_window_force" in figures:
+        left.plot([figures["peak_window_stroke"] * 1e3], [figures["peak_window_force"] / 1e3], "v", color="tab:purple",
+                  label=f"largest {figures['peak_window'] * 1e6:.3g} µs mean {figures['peak_window_force'] / 1e3:.1f} kN")
     if figures.get("mean_force"):
         left.axhline(figures["mean_force"] / 1e3, color="tab:green", ls="--", lw=1,
                      label=f"mean {figures['mean_force'] / 1e3:.1f} kN")
@@ -635,6 +638,9 @@ def plot_crash(args):
               f"peak ({filtered[6:].upper()}) {figures['peak_force'] / 1e3:.3g} kN, mean {figures['mean_force'] / 1e3:.3g} kN, "
               f"CFE {figures['crush_force_efficiency']:.3g}, trigger ratio {figures['trigger_ratio']:.3g}, "
               f"SEA {figures['specific_energy_absorption'] / 1e3:.4g} kJ/kg")
+        if "peak_window_force" in figures:
+            print(f"largest {figures['peak_window'] * 1e6:.3g} us mean force {figures['peak_window_force'] / 1e3:.3g} kN "
+                  f"at {figures['peak_window_stroke'] * 1e3:.3g} mm of stroke ({figures['peak_window_time'] * 1e3:.4g} ms)")
     print(f"wrote {out}")
 
 

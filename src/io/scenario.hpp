@@ -143,6 +143,7 @@ struct CrashInput {
   double cfc = 600;          ///< SAE J211 channel class of the force filter
   double sample_interval = 1e-6;
   double scale = 1;          ///< multiplies forces and energies (a slice of a wider specimen)
+  double peak_window = 0;    ///< the largest mean force over a window this long is reported; 0: not
   int line = 0;
 };
 

@@ -129,6 +129,10 @@ KeyList crash_keys() {
   k.quantity("scale", dim::none, "multiplies forces and energies: the width of the specimen over the slice modelled")
       .above(0)
       .defaults_to("1");
+  k.quantity("peak_window", dim::time,
+             "also report the largest mean force over a window this long (a multiple of sample_interval); 0: not")
+      .at_least(0)
+      .defaults_to("0");
   return k;
 }
 
@@ -162,6 +166,10 @@ void read_crash(Section& top, Scenario& sc) {
     s.fail("sample_interval", "CFC " + std::to_string(static_cast<int>(in.cfc)) + " needs a sample interval of at most " +
                                   format_si(0.1 / in.cfc, dim::time) + " (1/(10 CFC))");
   in.scale = s.number("scale");
+  in.peak_window = s.number("peak_window");
+  if (in.peak_window > 0 && in.peak_window < in.sample_interval * (1 - 1e-9))
+    s.fail("peak_window", "shorter than sample_interval (" + format_si(in.sample_interval, dim::time) +
+                              "): the window holds at least one sample");
   sc.crash = in;
 }
 

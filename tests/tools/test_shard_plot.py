@@ -339,7 +339,7 @@ def main():
         fail("the target's fragment count is not 2 (its two pieces, without the striker and the debris particle)")
 
     # Crash outputs: the four-ply laminate crush; the tool's absorbed energy against ∫ F ds of
-    # crash.csv, and the mean force it prints against the summary.
+    # crash.csv, and the mean force and largest window mean it prints against the summary.
     crush = os.path.join(work, "crush")
     if run([shard, "run", os.path.join(source, "tests", "data", "composite", "laminate_crush.yaml"),
             "-o", crush, "--threads", "1", "--quiet"]).returncode != 0:
@@ -351,6 +351,8 @@ def main():
         figures = json.load(stream)["crash"]
     printed = float(result.stdout.split("mean ")[1].split(" kN")[0])
     check_close("printed mean force against the summary", printed, figures["mean_force"] / 1e3, 2e-3)
+    printed = float(result.stdout.split("us mean force ")[1].split(" kN")[0])
+    check_close("printed largest 2 us mean force against the summary", printed, figures["peak_window_force"] / 1e3, 2e-3)
     with open(os.path.join(crush, "crash.csv")) as stream:
         rows = list(csv.DictReader(stream))
     energy = sum(0.5 * (float(a["force"]) + float(b["force"])) * (float(b["stroke"]) - float(a["stroke"]))

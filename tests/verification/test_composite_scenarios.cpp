@@ -4,7 +4,7 @@
 // + 9 faces: 120 points between plies, 16 under the carriage), interface elements opening to the
 // contact, the energy balance within 1 %, the
 // same history and frames for one and two threads and across a restart, and crash.csv's absorbed energy equal to
-// ∫ F ds of the history's raw columns (1 %); debris kept in a plane-strain slice by walls on
+// ∫ F ds of the history's raw columns (1 %), and its largest 2 µs mean force that of crash.csv; debris kept in a plane-strain slice by walls on
 // its symmetry faces. Theory: docs/theory/composite_damage.md,
 // docs/theory/cohesive_interfaces.md, docs/outputs.md.
 #include <gtest/gtest.h>
@@ -78,6 +78,25 @@ TEST(CompositeScenarios, LaminateCrushWithInterfacesAndCrashOutputs) {
   EXPECT_NEAR(field("absorbed_energy"), energy, 0.01 * energy);
   EXPECT_NEAR(field("mean_force"), field("absorbed_energy") / field("stroke"), 1e-6 * field("mean_force"));
   EXPECT_NE(summary.find("shorter than the filter's response"), std::string::npos);
+  // peak_window 2 µs: the largest mean of crash.csv's force over 20 consecutive samples, found
+  // here by summing every window afresh, and the stroke inside that window.
+  const testing::History crash = testing::read_history(dir / "one" / "crash.csv");
+  double largest = -INFINITY, low = 0, high = 0;
+  for (std::size_t first = 0; first + 20 <= crash.rows.size(); ++first) {
+    double sum = 0;
+    for (std::size_t i = first; i < first + 20; ++i) sum += crash.at(i, "force");
+    if (sum / 20 > largest) {
+      largest = sum / 20;
+      low = crash.at(first, "stroke");
+      high = crash.at(first + 19, "stroke");
+    }
+  }
+  std::printf("[laminate] largest 2 us mean force %.4f kN (summary %.4f kN) at %.4f mm\n", largest / 1e3,
+              field("peak_window_force") / 1e3, 1e3 * field("peak_window_stroke"));
+  EXPECT_NEAR(field("peak_window"), 2e-6, 1e-15);
+  EXPECT_NEAR(field("peak_window_force"), largest, 1e-7 * largest);  // summary.json keeps 8 digits
+  EXPECT_GE(field("peak_window_stroke"), std::min(low, high));
+  EXPECT_LE(field("peak_window_stroke"), std::max(low, high));
 
   // crash_force is the mean over each row's interval: rows every 0.5 µs carry the same impulse
   // ∫F dt as rows every 0.1 µs (point samples of the penalty's ringing would not).
