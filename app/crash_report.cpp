@@ -79,8 +79,9 @@ CrashReport write_crash_report(const std::filesystem::path& history, const std::
   r.trigger_ratio = r.mean_force > 0 ? r.peak_force / r.mean_force : 0.0;
   r.crushed_mass = crash.scale * mass_per_length * std::max(r.stroke, 0.0);
   r.specific_energy = r.crushed_mass > 0 ? energy / r.crushed_mass : 0.0;
+  // A window of n samples spans n sample intervals: it must fit in the record's (samples − 1).
   const auto window = static_cast<std::size_t>(std::llround(crash.peak_window / T));
-  if (window > 0 && window <= force.size()) {
+  if (window > 0 && window < force.size()) {
     const auto [first, mean] = largest_window_mean(force, window);
     r.window_samples = window;
     r.window_peak_force = mean;

@@ -638,6 +638,8 @@ def plot_crash(args):
               f"peak ({filtered[6:].upper()}) {figures['peak_force'] / 1e3:.3g} kN, mean {figures['mean_force'] / 1e3:.3g} kN, "
               f"CFE {figures['crush_force_efficiency']:.3g}, trigger ratio {figures['trigger_ratio']:.3g}, "
               f"SEA {figures['specific_energy_absorption'] / 1e3:.4g} kJ/kg")
+        if "peak_window_note" in figures:
+            print(f"no largest window mean: {figures['peak_window_note']}")
         if "peak_window_force" in figures:
             print(f"largest {figures['peak_window'] * 1e6:.3g} us mean force {figures['peak_window_force'] / 1e3:.3g} kN "
                   f"at {figures['peak_window_stroke'] * 1e3:.3g} mm of stroke ({figures['peak_window_time'] * 1e3:.4g} ms)")

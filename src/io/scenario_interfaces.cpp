@@ -1,6 +1,7 @@
 #include "io/scenario_interfaces.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 namespace shard::scenario_detail {
 
@@ -170,6 +171,10 @@ void read_crash(Section& top, Scenario& sc) {
   if (in.peak_window > 0 && in.peak_window < in.sample_interval * (1 - 1e-9))
     s.fail("peak_window", "shorter than sample_interval (" + format_si(in.sample_interval, dim::time) +
                               "): the window holds at least one sample");
+  const double samples = in.peak_window / in.sample_interval;
+  if (std::abs(samples - std::round(samples)) > 1e-6 * std::max(1.0, samples))
+    s.fail("peak_window", "not a whole number of sample intervals (" + format_si(in.sample_interval, dim::time) +
+                              "): the window is a run of whole samples");
   sc.crash = in;
 }
 
