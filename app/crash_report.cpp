@@ -3,9 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <utility>
 #include <fstream>
 #include <sstream>
+#include <utility>
 
 #include "core/cfc_filter.hpp"
 
