@@ -8,11 +8,14 @@ Asserted (met):
 - no node moves faster than twice the impact speed, in any frame (the plate's axis node reached
   1 470 m/s at 500 m/s while the sphere's surface nodes started at the plate's radii);
 - the energy balance within 1 % at every history row;
-- at 300 m/s the cone's angle to the surface, fitted over its first 2 mm at 6 µs, 26 ± 4°.
+- at 300 m/s the cone's angle to the surface, fitted over its first 2 mm at 6 µs, 26 ± 4°;
+- the 500 m/s cone not shallower than the 300 m/s one (on the frontal-Delaunay mesh that the
+  examples had before sphere_on_alumina_delaunay.geo, 18.1° against 24.9°).
 Printed, and compared in examples/sphere_on_alumina/README.md and docs/testing.md, not asserted
 (not met):
-- the 500 m/s cone at 26 ± 4° and not shallower than the 300 m/s one;
-- the ring at 1.0–1.3 contact radii;
+- the 500 m/s cone at 26 ± 4°;
+- the ring at 1.0–1.3 contact radii (met by the tool's figure at 500 m/s only, where the surface
+  at the cone's start fails late, 5.4 µs after impact);
 - no failure inside the cone below its first 2 mm before the back-face reflection returns,
   2H/c_L = 1.93 µs after impact.
 
@@ -87,6 +90,9 @@ def main():
             failures.append(f"{speed} m/s: the balance reached {100 * balance:.2f} %")
     if not abs(cones[300]["angle_deg"] - 26) <= 4:
         failures.append(f"300 m/s: cone at {cones[300]['angle_deg']:.1f}° to the surface, not 26 ± 4°")
+    if not cones[500]["angle_deg"] >= cones[300]["angle_deg"]:
+        failures.append(f"500 m/s: cone at {cones[500]['angle_deg']:.1f}° to the surface, shallower than the "
+                        f"300 m/s one's {cones[300]['angle_deg']:.1f}°")
     for failure in failures:
         print("FAIL:", failure)
     if failures:
