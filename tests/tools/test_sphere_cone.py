@@ -9,15 +9,17 @@ Asserted (met):
   1 470 m/s at 500 m/s while the sphere's surface nodes started at the plate's radii);
 - the energy balance within 1 % at every history row;
 - at 300 m/s the cone's angle to the surface, fitted over its first 2 mm at 6 µs, 26 ± 4°;
-- the 500 m/s cone not shallower than the 300 m/s one (on the frontal-Delaunay mesh that the
-  examples had before sphere_on_alumina_delaunay.geo, 18.1° against 24.9°).
-Printed, and compared in examples/sphere_on_alumina/README.md and docs/testing.md, not asserted
-(not met):
-- the 500 m/s cone at 26 ± 4°;
-- the ring at 1.0–1.3 contact radii (met by the tool's figure at 500 m/s only, where the surface
-  at the cone's start fails late, 5.4 µs after impact);
+- the 500 m/s cone, over its first 2 mm, not shallower than the 300 m/s one (on the
+  frontal-Delaunay mesh that the examples had before sphere_on_alumina_delaunay.geo it was 18.1°
+  against 24.9°, and this assertion fails there; over its whole length the 500 m/s crack is
+  shallower, about 22°).
+Printed, and compared in examples/sphere_on_alumina/README.md and docs/testing.md, not asserted:
+- the 500 m/s cone at 26 ± 4° (not met);
+- the ring at 1.0–1.3 contact radii (not met at 300 m/s; within it by the tool's figure at
+  500 m/s, but there it is a crack that reaches the surface 5.4 µs after impact, not a ring
+  crack that started the cone);
 - no failure inside the cone below its first 2 mm before the back-face reflection returns,
-  2H/c_L = 1.93 µs after impact.
+  2H/c_L = 1.93 µs after impact (not met).
 
 Usage: test_sphere_cone.py SHARD_EXECUTABLE SOURCE_DIR WORK_DIR
 """

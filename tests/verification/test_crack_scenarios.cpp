@@ -404,6 +404,7 @@ std::pair<testing::History, double> run_alumina_example(const std::string& file,
   }
   // The mesh file by its path in the examples: the scenario is written elsewhere.
   const auto at = text.find("file: sphere_on_alumina");
+  EXPECT_NE(at, std::string::npos) << file << " names no mesh file of the example";
   if (at != std::string::npos) text.insert(at + 6, example);
   text += appended;
   const auto dir = testing::fresh_dir("alumina_" + file);
