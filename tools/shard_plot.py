@@ -369,7 +369,8 @@ def is_planar(mesh, points):
 
 
 def colour_scale(values, args):
-    """(cmap, vmin, vmax): signed data gets a diverging map centred on zero."""
+    """(colormap, vmin, vmax): signed data gets a diverging map centred on zero; NaN (a state
+    field in a part whose material has no such variable) is drawn light grey."""
     finite = values[np.isfinite(values)]
     low = float(finite.min()) if finite.size else 0.0
     high = float(finite.max()) if finite.size else 1.0
@@ -384,7 +385,9 @@ def colour_scale(values, args):
         high = args.vmax
     if low == high:  # a constant field still needs a colour bar with a range
         low, high = low - 0.5 * (abs(low) or 1.0), high + 0.5 * (abs(high) or 1.0)
-    return cmap or "viridis", low, high
+    colormap = plt.get_cmap(cmap or "viridis").copy()
+    colormap.set_bad("0.85")
+    return colormap, low, high
 
 
 def cell_outlines(mesh, xy, types):
@@ -934,7 +937,7 @@ def cone_summary(rows, args, start, thickness):
     fitted = [(t, fit) for t, _, _, fit in rows if fit is not None]
     if not fitted:
         hint = "" if args.cracks or args.field != "failure_factor" else \
-            " (the failure factor is 0 where a material has none: --field damage --level 0.5 for the fragmentation damage)"
+            " (the failure factor is NaN where a material has none: --field damage --level 0.5 for the fragmentation damage)"
         raise PlotError(f"no frame has failed cells down to {args.depth:g} mm within {args.reach:g} mm of the axis{hint}")
     angles = np.array([fit[0] for _, fit in fitted])
     t_fit, (angle, r0, _) = fitted[-1]
@@ -1509,8 +1512,10 @@ def plot_debris(args):
             parts = np.asarray(parts).ravel()
             first = parts == 0
             if failure is not None:
+                blues = plt.get_cmap("Blues").copy()
+                blues.set_bad("0.85")  # NaN: the part's material has no failure factor
                 coloured = PolyCollection(cells[first], array=np.clip(np.asarray(failure).ravel()[first], 0, 1),
-                                          cmap="Blues", edgecolors="none")
+                                          cmap=blues, edgecolors="none")
                 coloured.set_clim(0, 1)
                 axes.add_collection(coloured)
                 figure.colorbar(coloured, ax=axes, label="failure factor", shrink=0.7)

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace shard {
 
@@ -125,7 +126,8 @@ VtuGrid make_frame(const Model& model, const std::vector<std::unique_ptr<Materia
     cell_field("part", 1, [](std::size_t p, const Part&, std::size_t, int) { return static_cast<double>(p); });
   {
     // One field per history variable name ("state": all of them, or those named in `fields`);
-    // zero in parts whose material lacks it.
+    // NaN in parts whose material lacks it: there is no such quantity there, and a zero would
+    // read as a value (a failure factor of 0, "intact", in a material that has none).
     const bool all = wants(fields, "state");
     std::vector<std::string> names;
     for (const auto& part : model.parts)
@@ -142,7 +144,7 @@ VtuGrid make_frame(const Model& model, const std::vector<std::unique_ptr<Materia
         stride.push_back(static_cast<int>(own.size()));
       }
       cell_field(name.c_str(), 1, [&](std::size_t p, const Part& part, std::size_t q, int) {
-        if (slot[p] < 0) return 0.0;
+        if (slot[p] < 0) return std::numeric_limits<double>::quiet_NaN();
         return part.state[static_cast<std::size_t>(stride[p]) * q + static_cast<std::size_t>(slot[p])];
       });
     }

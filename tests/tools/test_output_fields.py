@@ -8,7 +8,10 @@ axisymmetry with a wall, automata with conditions, loose grains) and checks that
   for the whole series only then: crack_face used to appear with the first crack);
 - every frame field, history column and column of a particle sample file is listed with its unit
   in docs/fields.csv, the one machine-readable list of them (names with <part>, <axis>, ... stand
-  for a family).
+  for a family);
+- a material's state field is NaN in the cells of the parts whose material has no such variable,
+  and finite in the others (it was written as 0, which reads as a value: a failure factor of 0,
+  "intact", in a material that has none). The runs with two materials must show such a field.
 
 Usage: test_output_fields.py SHARD_EXECUTABLE SOURCE_DIR WORK_DIR
 """
@@ -21,6 +24,8 @@ import shutil
 import subprocess
 import sys
 
+NOT_STATE = {"stress", "strain", "von_mises", "pressure", "temperature", "part", "crack_face"}
+TWO_MATERIALS = {"laminate", "debris"}  # a part whose material lacks the other's state fields
 RUNS = [  # scenario, --until, label
     ("tests/data/fracture/notched_plate_coarse.yaml", "50us", "cracks"),  # cracks from about 30 us
     ("tests/data/composite/laminate_crush.yaml", "0.3us", "laminate"),
@@ -82,6 +87,29 @@ def check_series(table, frames, prefix, label):
     return sum(len(v) for v in first.values())
 
 
+def check_absent_state(path, label):
+    """Each state cell field, part by part, all NaN or all finite; the number of (field, part)
+    pairs that are NaN, where the part's material has no such variable."""
+    import meshio
+    import numpy
+
+    mesh = meshio.read(path)
+    if "part" not in mesh.cell_data:
+        return 0
+    part = numpy.concatenate([numpy.ravel(b) for b in mesh.cell_data["part"]])
+    absent = 0
+    for name, blocks in mesh.cell_data.items():
+        if name in NOT_STATE or any(numpy.ndim(b) > 1 for b in blocks):
+            continue
+        values = numpy.concatenate([numpy.ravel(b) for b in blocks])
+        for p in numpy.unique(part):
+            nan = numpy.isnan(values[part == p])
+            if nan.any() and not nan.all():
+                fail(f"{label}: {os.path.basename(path)}: '{name}' is NaN in some cells of part {int(p)} only")
+            absent += int(nan.all())
+    return absent
+
+
 def check_sample_columns(table, path, label):
     """The column line of a particle sample file (the first line that is not a comment)."""
     with open(path) as stream:
@@ -110,6 +138,10 @@ def main():
         mesh = sorted(glob.glob(os.path.join(out, "frame_*.vtu")))
         if mesh:
             counted += check_series(table, mesh, "frame", label)
+            absent = check_absent_state(mesh[-1], label)
+            if label in TWO_MATERIALS and absent == 0:
+                fail(f"{label}: no state field is NaN in a part whose material lacks it")
+            print(f"{label}: {absent} (state field, part) pairs NaN where the material has no such variable")
         for pvd in sorted(glob.glob(os.path.join(out, "particles_*.pvd"))):
             part = os.path.basename(pvd)[len("particles_"):-len(".pvd")]
             frames = sorted(glob.glob(os.path.join(out, f"particles_{part}_*.vtu")))
