@@ -1511,7 +1511,7 @@ def plot_debris(args):
             cells = x[block.data][:, :, :2]
             parts = np.asarray(parts).ravel()
             first = parts == 0
-            if failure is not None:
+            if failure is not None and np.isfinite(np.asarray(failure).ravel()[first]).any():
                 blues = plt.get_cmap("Blues").copy()
                 blues.set_bad("0.85")  # NaN: the part's material has no failure factor
                 coloured = PolyCollection(cells[first], array=np.clip(np.asarray(failure).ravel()[first], 0, 1),

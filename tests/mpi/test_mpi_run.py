@@ -20,8 +20,8 @@ its failed elements turned into debris particles in contact with each other and 
 laminate's cohesive interfaces, without erosion, on 2 ranks and on 3 and 4 cut at random, and
 with erosion into particles on 2 ranks and from 2 to 3 ranks across a restart; the
 bonded automata of the MCA tension test, with contact updates, on 2 and 4 ranks, on 3 at random and
-from 2 to 3 ranks across a restart, and pulled at 100 m/s on 3 ranks (cut anew as its automata
-move), and the TiC-NiCr beam to 0.05 us on 3 ranks at random; the
+from 2 to 3 ranks across a restart, and pulled at 100 m/s on 3 ranks without rebalancing (cut
+anew as its automata move), and the TiC-NiCr beam to 0.05 us on 3 ranks at random; the
 column of grains settling in its box (discrete elements, cut anew once they have moved half their
 margin) on 2 ranks, on 3 at random, from 2 to 3 ranks across a restart and on 2 rebalanced
 every 7 steps; a

@@ -9,9 +9,12 @@ axisymmetry with a wall, automata with conditions, loose grains) and checks that
 - every frame field, history column and column of a particle sample file is listed with its unit
   in docs/fields.csv, the one machine-readable list of them (names with <part>, <axis>, ... stand
   for a family);
-- a material's state field is NaN in the cells of the parts whose material has no such variable,
-  and finite in the others (it was written as 0, which reads as a value: a failure factor of 0,
-  "intact", in a material that has none). The runs with two materials must show such a field.
+- a material's state field is, in each part, either NaN in every cell (the part's material has
+  no such variable) or finite in every cell, and finite in some part; a part of a
+  `linear_elastic` material, which has no state, is NaN in every state field, and the runs with
+  such a part must have one (the field was written as 0, which reads as a value: a failure
+  factor of 0, "intact", in a material that has none). Needs meshio, NumPy and PyYAML, as
+  test_shard_plot.py does (scripts/debian-packages.txt).
 
 Usage: test_output_fields.py SHARD_EXECUTABLE SOURCE_DIR WORK_DIR
 """
@@ -24,8 +27,9 @@ import shutil
 import subprocess
 import sys
 
-NOT_STATE = {"stress", "strain", "von_mises", "pressure", "temperature", "part", "crack_face"}
-TWO_MATERIALS = {"laminate", "debris"}  # a part whose material lacks the other's state fields
+NOT_STATE = {"stress", "strain", "von_mises", "pressure", "temperature", "part", "fragment", "distortion",
+             "target_size"}  # cell fields that are not a material's state
+WITH_ELASTIC_PART = {"laminate", "debris"}  # an impactor or projectile of linear_elastic
 RUNS = [  # scenario, --until, label
     ("tests/data/fracture/notched_plate_coarse.yaml", "50us", "cracks"),  # cracks from about 30 us
     ("tests/data/composite/laminate_crush.yaml", "0.3us", "laminate"),
@@ -87,26 +91,48 @@ def check_series(table, frames, prefix, label):
     return sum(len(v) for v in first.values())
 
 
-def check_absent_state(path, label):
-    """Each state cell field, part by part, all NaN or all finite; the number of (field, part)
-    pairs that are NaN, where the part's material has no such variable."""
+def elastic_parts(out):
+    """Indices (the frames' 'part' values) of the parts whose material is linear_elastic."""
+    import yaml
+
+    with open(os.path.join(out, "resolved.yaml")) as stream:
+        resolved = yaml.safe_load(stream)
+    models = {name: m.get("model") for name, m in (resolved.get("materials") or {}).items()}
+    return {i for i, part in enumerate((resolved.get("parts") or {}).values())
+            if models.get(part.get("material")) == "linear_elastic"}
+
+
+def check_absent_state(path, elastic, label):
+    """Each state cell field, part by part, NaN in every cell or finite in every cell, and finite
+    in some part; every state field NaN in the `elastic` parts. The number of (field, part) pairs
+    that are NaN."""
     import meshio
     import numpy
 
     mesh = meshio.read(path)
-    if "part" not in mesh.cell_data:
+    if "part" not in mesh.cell_data:  # the run's output.fields leave it out
+        if elastic:
+            fail(f"{label}: {os.path.basename(path)} has no cell field 'part' to tell its parts apart")
         return 0
-    part = numpy.concatenate([numpy.ravel(b) for b in mesh.cell_data["part"]])
+    part = numpy.concatenate([numpy.ravel(b) for b in mesh.cell_data["part"]]).astype(int)
     absent = 0
     for name, blocks in mesh.cell_data.items():
         if name in NOT_STATE or any(numpy.ndim(b) > 1 for b in blocks):
             continue
         values = numpy.concatenate([numpy.ravel(b) for b in blocks])
+        finite_somewhere = False
         for p in numpy.unique(part):
-            nan = numpy.isnan(values[part == p])
-            if nan.any() and not nan.all():
-                fail(f"{label}: {os.path.basename(path)}: '{name}' is NaN in some cells of part {int(p)} only")
+            mine = values[part == p]
+            nan, finite = numpy.isnan(mine), numpy.isfinite(mine)
+            if not (nan.all() or finite.all()):
+                fail(f"{label}: {os.path.basename(path)}: '{name}' in part {p} is neither NaN in every cell "
+                     f"nor finite in every cell")
+            if p in elastic and not nan.all():
+                fail(f"{label}: '{name}' is not NaN in part {p}, whose material (linear_elastic) has no state")
+            finite_somewhere |= bool(finite.all())
             absent += int(nan.all())
+        if not finite_somewhere:
+            fail(f"{label}: '{name}' is NaN in every part")
     return absent
 
 
@@ -138,8 +164,11 @@ def main():
         mesh = sorted(glob.glob(os.path.join(out, "frame_*.vtu")))
         if mesh:
             counted += check_series(table, mesh, "frame", label)
-            absent = check_absent_state(mesh[-1], label)
-            if label in TWO_MATERIALS and absent == 0:
+            elastic = elastic_parts(out)
+            if label in WITH_ELASTIC_PART and not elastic:
+                fail(f"{label}: no part of a linear_elastic material: the run no longer tests absent state fields")
+            absent = check_absent_state(mesh[-1], elastic, label)
+            if label in WITH_ELASTIC_PART and absent == 0:
                 fail(f"{label}: no state field is NaN in a part whose material lacks it")
             print(f"{label}: {absent} (state field, part) pairs NaN where the material has no such variable")
         for pvd in sorted(glob.glob(os.path.join(out, "particles_*.pvd"))):
