@@ -24,6 +24,7 @@ what the plotting tool reads from them:
   the projectile is a fragment of part 'projectile', and the largest fragment and the mass the
   tool reports for the plate are those of the plate's rows (1e-5, the printed digits); and on a
   fragments.csv with a striker heavier than the target's pieces, the target's largest is its own;
+  field equivalent_plastic_strain on the same run, NaN in the projectile's cells, draws;
 - info and field on a run of particles only (no frames.pvd): its particle frames are read and
   the picture goes into the run folder;
 - cone on frames written here: a drawn 30° cone from r = 2 mm gives its angle within 2 % and its
@@ -303,6 +304,12 @@ def main():
     check_close("debris mass in fragments.csv", sum(float(row["mass"]) for row in rows), history_mass, 1e-12)
     if len(rows) != count or not os.path.getsize(os.path.join(debris, "debris.png")) > 0:
         fail("fragments.csv does not list every debris particle, or no debris.png")
+    # A state field the projectile's material (linear_elastic) lacks is NaN in its cells: the
+    # field plot draws them grey.
+    picture = os.path.join(work, "perforation_plastic_strain.png")
+    result = run(plot + ["field", debris, "--field", "equivalent_plastic_strain", "-o", picture])
+    if result.returncode != 0 or not os.path.isfile(picture) or not os.path.getsize(picture) > 0:
+        fail("field equivalent_plastic_strain on the perforation run (NaN in the projectile) failed")
     # Fragments per part: the projectile is a fragment of its own part, not of the plate; the
     # tool's largest fragment of the plate and the plate's mass are those of the plate's rows.
     result = run(plot + ["fragments", debris])
