@@ -18,6 +18,7 @@
 #include <fstream>
 #include <functional>
 #include <iostream>
+#include <limits>
 #include <sstream>
 #include <unordered_map>
 
@@ -1480,14 +1481,14 @@ class RunDriver {
   }
 
   /// With remeshing: each element's distortion since it was made and the size the rule asks for
-  /// there (0 in parts not remeshed), from the first frame on.
+  /// there (NaN in parts not remeshed: no rule asks a size there), from the first frame on.
   void add_remeshing_fields(VtuGrid& frame) const {
     if (!remesher_) return;
     VtuField distortion{"distortion", 1, {}}, size{"target_size", 1, {}};
     for (std::size_t p = 0; p < sim_.model.parts.size(); ++p) {
       std::vector<double> d = remesher_->distortion(sim_.model, p), h = remesher_->target_size(sim_.model, p);
-      d.resize(sim_.model.parts[p].element_count(), 0.0);
-      h.resize(sim_.model.parts[p].element_count(), 0.0);
+      d.resize(sim_.model.parts[p].element_count(), std::numeric_limits<double>::quiet_NaN());
+      h.resize(sim_.model.parts[p].element_count(), std::numeric_limits<double>::quiet_NaN());
       distortion.values.insert(distortion.values.end(), d.begin(), d.end());
       size.values.insert(size.values.end(), h.begin(), h.end());
     }

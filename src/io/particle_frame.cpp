@@ -1,6 +1,7 @@
 #include "io/particle_frame.hpp"
 
 #include <cmath>
+#include <limits>
 
 #include "particle/mca_state.hpp"
 
@@ -106,11 +107,13 @@ VtuGrid make_particle_frame(const ParticlePart& part, double time) {
     g.cell_fields.push_back(std::move(f));
   };
   cell_scalar("bond_state", -1.0, [&](std::size_t p) { return static_cast<double>(mca.pairs.state[p]); });
-  cell_scalar("k_link", 0.0, [&](std::size_t p) { return mca.pairs.k_link[p]; });
+  // The pair quantities are NaN on the vertex cells (the automata), which have none.
+  const double none = std::numeric_limits<double>::quiet_NaN();
+  cell_scalar("k_link", none, [&](std::size_t p) { return mca.pairs.k_link[p]; });
   // What each pair applies (force per contact area): a broken pair no tension, and only the
   // friction of its contact part, however far η has integrated since it broke.
-  cell_scalar("bond_normal_stress", 0.0, [&](std::size_t p) { return pair_normal_traction(mca.pairs, p); });
-  cell_scalar("bond_shear_stress", 0.0, [&](std::size_t p) {
+  cell_scalar("bond_normal_stress", none, [&](std::size_t p) { return pair_normal_traction(mca.pairs, p); });
+  cell_scalar("bond_shear_stress", none, [&](std::size_t p) {
     double s = 0;
     for (int k = 0; k < T; ++k) s += std::pow(pair_shear_traction(mca.pairs, p, T, k), 2);
     return std::sqrt(s);

@@ -1,9 +1,10 @@
 #!/usr/bin/python3
 """CI test that every output says what it is (ctest label "cli").
 
-Runs short pieces of six scenarios that between them write every kind of output (discrete cracks
+Runs short pieces of eight scenarios that between them write every kind of output (discrete cracks
 with contact, a laminate with interfaces, debris particles and crash outputs, Johnson-Cook in
-axisymmetry with a wall, automata with conditions, loose grains) and checks that
+axisymmetry with a wall, automata with conditions, loose grains, a remeshed annulus, a remeshed
+beam struck by a projectile that is not remeshed) and checks that
 - every field of any frame of a series is already in its first frame (ParaView offers a field
   for the whole series only then: crack_face used to appear with the first crack);
 - every frame field, history column and column of a particle sample file is listed with its unit
@@ -14,7 +15,8 @@ axisymmetry with a wall, automata with conditions, loose grains) and checks that
   `linear_elastic` material, which has no state, is NaN in every state field, and the runs with
   such a part must have one (the field was written as 0, which reads as a value: a failure
   factor of 0, "intact", in a material that has none). Needs meshio, NumPy and PyYAML, as
-  test_shard_plot.py does (scripts/debian-packages.txt).
+  test_shard_plot.py does (scripts/debian-packages.txt);
+- distortion and target_size are NaN in a part that is not remeshed and finite in one that is.
 
 Usage: test_output_fields.py SHARD_EXECUTABLE SOURCE_DIR WORK_DIR
 """
@@ -38,6 +40,10 @@ RUNS = [  # scenario, --until, label
     ("examples/mca_virtual_tests/tension_2d.yaml", "0.05us", "automata"),
     ("examples/granular_column/settle.yaml", "0.2ms", "grains"),
     ("tests/data/remesh/annulus_shear.yaml", "20us", "remeshing"),  # a rotating rim, remeshed
+    # The SiC beam remeshed, its projectile not: distortion and target_size NaN in the projectile.
+    ("examples/sic_edge_on_impact/sic_edge_on_impact_adaptive.yaml", "0.3us", "remeshing_one_part",
+     ["--set", "remeshing.parts=[{part: beam, size_by: strain_rate, table: [[0, 5 mm], [1e4, 1 mm], [5e4, 0.5 mm]], "
+               "min_size: 0.5 mm, max_size: 5 mm}]"]),
 ]
 STRUCTURE = {"Points", "connectivity", "offsets", "types", "TimeValue"}
 
@@ -136,6 +142,21 @@ def check_absent_state(path, elastic, label):
     return absent
 
 
+def check_not_remeshed(path, label):
+    """distortion and target_size finite in every cell of the remeshed part (0, the beam) and NaN
+    in every cell of the part that is not remeshed (1, the projectile)."""
+    import meshio
+    import numpy
+
+    mesh = meshio.read(path)
+    part = numpy.concatenate([numpy.ravel(b) for b in mesh.cell_data["part"]]).astype(int)
+    for name in ("distortion", "target_size"):
+        values = numpy.concatenate([numpy.ravel(b) for b in mesh.cell_data[name]])
+        if not (numpy.isfinite(values[part == 0]).all() and numpy.isnan(values[part == 1]).all()):
+            fail(f"{label}: '{name}' is not finite in the remeshed beam and NaN in the projectile")
+    print(f"{label}: distortion and target_size NaN in the part not remeshed")
+
+
 def check_sample_columns(table, path, label):
     """The column line of a particle sample file (the first line that is not a comment)."""
     with open(path) as stream:
@@ -151,10 +172,10 @@ def main():
     table = catalogue(source)
     shutil.rmtree(work, ignore_errors=True)
     os.makedirs(work)
-    for scenario, until, label in RUNS:
+    for scenario, until, label, *extra in RUNS:
         out = os.path.join(work, label)
-        subprocess.run([shard, "run", os.path.join(source, scenario), "-o", out, "--quiet", "--until", until],
-                       check=True)
+        subprocess.run([shard, "run", os.path.join(source, scenario), "-o", out, "--quiet", "--until", until,
+                        *(extra[0] if extra else [])], check=True)
         with open(os.path.join(out, "history.csv")) as stream:
             columns = stream.readline().strip().split(",")
         for c in columns:
@@ -171,6 +192,8 @@ def main():
             if label in WITH_ELASTIC_PART and absent == 0:
                 fail(f"{label}: no state field is NaN in a part whose material lacks it")
             print(f"{label}: {absent} (state field, part) pairs NaN where the material has no such variable")
+            if label == "remeshing_one_part":
+                check_not_remeshed(mesh[-1], label)
         for pvd in sorted(glob.glob(os.path.join(out, "particles_*.pvd"))):
             part = os.path.basename(pvd)[len("particles_"):-len(".pvd")]
             frames = sorted(glob.glob(os.path.join(out, f"particles_{part}_*.vtu")))
