@@ -369,8 +369,9 @@ def is_planar(mesh, points):
 
 
 def colour_scale(values, args):
-    """(colormap, vmin, vmax): signed data gets a diverging map centred on zero; NaN (a state
-    field in a part whose material has no such variable) is drawn light grey."""
+    """(colormap, vmin, vmax): signed data gets a diverging map centred on zero; NaN (a quantity
+    that is not there, such as a state field in a part whose material has no such variable) is
+    drawn light grey."""
     finite = values[np.isfinite(values)]
     low = float(finite.min()) if finite.size else 0.0
     high = float(finite.max()) if finite.size else 1.0
