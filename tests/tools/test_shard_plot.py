@@ -24,7 +24,8 @@ what the plotting tool reads from them:
   the projectile is a fragment of part 'projectile', and the largest fragment and the mass the
   tool reports for the plate are those of the plate's rows (1e-5, the printed digits); and on a
   fragments.csv with a striker heavier than the target's pieces, the target's largest is its own;
-  field equivalent_plastic_strain on the same run, NaN in the projectile's cells, draws;
+  field equivalent_plastic_strain on the same run, NaN in the projectile's cells, runs and writes
+  its picture;
 - info and field on a run of particles only (no frames.pvd): its particle frames are read and
   the picture goes into the run folder;
 - cone on frames written here: a drawn 30° cone from r = 2 mm gives its angle within 2 % and its
