@@ -108,6 +108,13 @@ def elastic_parts(out):
             if models.get(part.get("material")) == "linear_elastic"}
 
 
+def cell_values(mesh, name):
+    """A cell field of a meshio mesh as one flat array over all its cell blocks."""
+    import numpy
+
+    return numpy.concatenate([numpy.ravel(block) for block in mesh.cell_data[name]])
+
+
 def check_absent_state(path, elastic, label):
     """Each state cell field, part by part, NaN in every cell or finite in every cell, and finite
     in some part; every state field NaN in the `elastic` parts. The number of (field, part) pairs
@@ -120,12 +127,12 @@ def check_absent_state(path, elastic, label):
         if elastic:
             fail(f"{label}: {os.path.basename(path)} has no cell field 'part' to tell its parts apart")
         return 0
-    part = numpy.concatenate([numpy.ravel(b) for b in mesh.cell_data["part"]]).astype(int)
+    part = cell_values(mesh, "part").astype(int)
     absent = 0
     for name, blocks in mesh.cell_data.items():
         if name in NOT_STATE or any(numpy.ndim(b) > 1 for b in blocks):
             continue
-        values = numpy.concatenate([numpy.ravel(b) for b in blocks])
+        values = cell_values(mesh, name)
         finite_somewhere = False
         for p in numpy.unique(part):
             mine = values[part == p]
@@ -149,9 +156,9 @@ def check_not_remeshed(path, label):
     import numpy
 
     mesh = meshio.read(path)
-    part = numpy.concatenate([numpy.ravel(b) for b in mesh.cell_data["part"]]).astype(int)
+    part = cell_values(mesh, "part").astype(int)
     for name in ("distortion", "target_size"):
-        values = numpy.concatenate([numpy.ravel(b) for b in mesh.cell_data[name]])
+        values = cell_values(mesh, name)
         if not (numpy.isfinite(values[part == 0]).all() and numpy.isnan(values[part == 1]).all()):
             fail(f"{label}: '{name}' is not finite in the remeshed beam and NaN in the projectile")
     print(f"{label}: distortion and target_size NaN in the part not remeshed")
