@@ -8,6 +8,7 @@
 #include "core/principal.hpp"
 #include "core/tensor_ops.hpp"
 #include "core/voigt.hpp"
+#include "material/flaw_obscuration.hpp"
 #include "material/linear_elastic.hpp"
 #include "material/weibull_field.hpp"
 
@@ -68,14 +69,14 @@ void DenoualForquinHild::record_largest(const double axis[3][3], double* state) 
   for (int k = 0; k < 3; ++k) state[crack_normal_x + k] = most >= 0 ? axis[most][k] : 0.0;
 }
 
-double DenoualForquinHild::activated_flaws(double stress) const {
-  return stress > 0.0 ? p_.flaw_density * std::pow(stress / p_.weibull_stress, p_.weibull_modulus) : 0.0;
+FlawPopulation DenoualForquinHild::flaws() const {
+  return {p_.weibull_modulus, p_.weibull_stress, p_.flaw_density, p_.crack_speed, p_.shape_factor};
 }
 
+double DenoualForquinHild::activated_flaws(double stress) const { return flaws().activated(stress); }
+
 double DenoualForquinHild::characteristic_time(double stress_rate) const {
-  const double m = p_.weibull_modulus, c = p_.crack_speed;
-  const double scale = std::pow(p_.weibull_stress / stress_rate, m) / (p_.flaw_density * p_.shape_factor * c * c * c);
-  return std::pow(scale, 1.0 / (m + 3.0));
+  return flaws().characteristic_time(stress_rate);
 }
 
 void DenoualForquinHild::seed_elements(double* state, std::size_t points_per_element, std::size_t elements,
@@ -92,27 +93,9 @@ void DenoualForquinHild::seed_elements(double* state, std::size_t points_per_ele
   }
 }
 
-namespace {
-
-/// Advances one direction's flaw moments A_j = ∫ (t − T)^j dλ_t(T) over a time τ in which the
-/// activated flaw density grew by Δλ at a uniform rate:
-///   A_j(t + τ) = Σ_k C(j,k) τ^(j−k) A_k(t) + Δλ τ^j/(j + 1),
-/// the binomial shift of the old flaws plus the integral over the step. Every term is positive,
-/// so nothing cancels however long the history.
-void shift_moments(double* a, double tau, double added) {
-  const double t2 = tau * tau, t3 = t2 * tau;
-  const double a0 = a[0], a1 = a[1], a2 = a[2], a3 = a[3];
-  a[0] = a0 + added;
-  a[1] = a1 + tau * a0 + 0.5 * added * tau;
-  a[2] = a2 + 2.0 * tau * a1 + t2 * a0 + added * t2 / 3.0;
-  a[3] = a3 + 3.0 * tau * a2 + 3.0 * t2 * a1 + t3 * a0 + 0.25 * added * t3;
-}
-
-}  // namespace
-
 void DenoualForquinHild::update(MaterialPointBatch& batch) const {
   const double lambda = p_.moduli.lame(), two_g = 2.0 * p_.moduli.shear;
-  const double obscuring = p_.shape_factor * p_.crack_speed * p_.crack_speed * p_.crack_speed;
+  const FlawPopulation population = flaws();
   for (std::size_t q = 0; q < batch.count; ++q) {
     if (batch.volume && !(batch.volume[q] > 0.0)) continue;  // an eroded element: nothing acts
     double* hs = batch.state + slot_count * q;
@@ -136,14 +119,9 @@ void DenoualForquinHild::update(MaterialPointBatch& batch) const {
     //    in tension (a closed crack does not run).
     for (int i = 0; i < 3; ++i) {
       double* d = hs + first_direction + i * direction_slots;
-      double added = 0.0;
-      if (value[i] > d[peak_stress]) {
-        added = activated_flaws(value[i]) - activated_flaws(d[peak_stress]);
-        d[peak_stress] = value[i];
-      }
-      shift_moments(d + moment_0, value[i] > 0.0 ? batch.dt : 0.0, added);
+      const double added = advance_flaws(population, value[i], batch.dt, d[peak_stress], d + moment_0);
       const double before = d[damage];
-      d[damage] = -std::expm1(-obscuring * d[moment_3]);
+      d[damage] = population.obscuration(d + moment_0);
       // Only a flaw outside every obscured zone starts a crack: dN = (1 − D) dλ_t (trapezoid).
       d[cracks] += added * (1.0 - 0.5 * (before + d[damage]));
     }
@@ -190,14 +168,14 @@ constexpr double kIntactAfterRemesh = 1e-3;
 // uniform mesh; docs/theory/fragmentation_damage.md, section 6). A damaged point keeps its copy
 // (a fit would mix its directions with its neighbours').
 void DenoualForquinHild::after_transfer(MaterialPointBatch& batch) const {
-  const double obscuring = p_.shape_factor * p_.crack_speed * p_.crack_speed * p_.crack_speed;
+  const FlawPopulation population = flaws();
   for (std::size_t q = 0; q < batch.count; ++q) {
     double* hs = batch.state + slot_count * q;
     double* sig = batch.stress + kTensorSize * q;
     double most = 0.0;
     for (int i = 0; i < 3; ++i) {
       double* d = hs + first_direction + i * direction_slots;
-      d[damage] = -std::expm1(-obscuring * d[moment_3]);
+      d[damage] = population.obscuration(d + moment_0);
       most = std::max(most, d[damage]);
     }
     if (most < kIntactAfterRemesh) effective_of_carried(sig, hs, hs + effective_stress);

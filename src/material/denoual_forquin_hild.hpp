@@ -14,6 +14,7 @@
 // enter the damage. Theory note: docs/theory/fragmentation_damage.md.
 #pragma once
 
+#include "material/flaw_obscuration.hpp"
 #include "material/material.hpp"
 
 namespace shard {
@@ -89,6 +90,8 @@ class DenoualForquinHild final : public Material {
   void after_transfer(MaterialPointBatch& batch) const override;
 
   const FragmentationParameters& parameters_in_use() const { return p_; }
+  /// The flaw population of the parameters (src/material/flaw_obscuration.hpp).
+  FlawPopulation flaws() const;
   /// λ_t(σ) = λ0 (σ/σ0)^m for σ > 0 (flaws per unit volume).
   double activated_flaws(double stress) const;
   /// The characteristic time t_c at a constant stress rate σ̇: the time at which
