@@ -47,17 +47,21 @@ std::vector<std::string> crack_band_warnings(const Scenario& scenario, const Sim
       if (h > own) ++larger;
     }
     if (larger == 0) continue;
-    char text[768];
+    char text[1024];
     std::snprintf(text, sizeof text,
                   "part '%s': %zu of %zu elements are wider than the crack-band limit of material '%s' "
                   "(%s), %.3g mm at its tensile strength (the largest element %.3g mm across): in them "
                   "the softening would snap back, so the model acts as a strength criterion (a point "
                   "fails when its stress reaches the tensile strength, with less than the fracture "
                   "energy dissipated). Elements of %.3g mm or less across make it a regularised crack "
-                  "band%s",
+                  "band%s%s",
                   part.name.c_str(), larger, part.element_count(), material.name().c_str(),
                   std::string(material.model()).c_str(), 1e3 * limit, 1e3 * largest, 1e3 * tightest,
-                  tightest < limit ? " (the strongest elements of its Weibull field need that)" : "");
+                  tightest < limit ? " (the strongest elements of its Weibull field need that)" : "",
+                  material.failure_depends_on_loading_rate()
+                      ? ". Under fast loading its cracks open above the tensile strength, where the limit "
+                        "is smaller still (it falls as the square of the strength)"
+                      : "");
     warnings.push_back(warning_at_material(scenario, part.material, text));
   }
   return warnings;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <numbers>
 #include <stdexcept>
@@ -125,26 +126,32 @@ struct CrackProblem {
 }  // namespace
 
 std::vector<std::string> RotatingCrack::state_names() const {
-  return {"max_crack_strain", "failure_factor", "nonlocal_failure_factor", "crack_normal_x",
-          "crack_normal_y",   "crack_normal_z", "crack_angle",             "energy_density",
-          "point_volume",     "band_width",     "point_strength"};
+  std::vector<std::string> names = {"max_crack_strain", "failure_factor", "nonlocal_failure_factor", "crack_normal_x",
+                                    "crack_normal_y",   "crack_normal_z", "crack_angle",             "energy_density",
+                                    "point_volume",     "band_width",     "point_strength"};
+  if (rate_dependent())
+    names.insert(names.end(), {"flaw_peak_stress", "flaw_moment_0", "flaw_moment_1", "flaw_moment_2", "flaw_moment_3",
+                               "obscuration"});
+  return names;
 }
 
 void RotatingCrack::initialise(double* state, std::size_t points) const {
-  std::fill_n(state, slot_count * points, 0.0);
-  for (std::size_t q = 0; q < points; ++q) state[slot_count * q + strength] = p_.tensile_strength;
+  const std::size_t n = stride();
+  std::fill_n(state, n * points, 0.0);
+  for (std::size_t q = 0; q < points; ++q) state[n * q + strength] = p_.tensile_strength;
 }
 
 void RotatingCrack::seed_elements(double* state, std::size_t points_per_element, std::size_t elements,
                                   const std::int64_t* element_ids, const double* element_volumes) const {
   const double m = p_.weibull_modulus;
   if (!(m > 0.0)) return;
+  const std::size_t n = stride();
   for (std::size_t e = 0; e < elements; ++e) {
     // One draw per element and seed: the element is the volume the weakest link is taken over.
     const double u = element_uniform(p_.seed, element_ids[e]);
     const double size = std::pow(p_.weibull_volume / std::abs(element_volumes[e]), 1.0 / m);
     const double f = p_.tensile_strength * size * std::pow(std::log(1.0 / u) / std::log(2.0), 1.0 / m);
-    for (std::size_t q = 0; q < points_per_element; ++q) state[slot_count * (points_per_element * e + q) + strength] = f;
+    for (std::size_t q = 0; q < points_per_element; ++q) state[n * (points_per_element * e + q) + strength] = f;
   }
 }
 
@@ -205,22 +212,26 @@ void RotatingCrack::update(MaterialPointBatch& batch) const {
     return (ss - nu_ratio * tr * tr) / (2.0 * two_g);
   };
 
+  const std::size_t n = stride();
   for (std::size_t q = 0; q < batch.count; ++q) {
     const double* de = batch.strain_increment + kTensorSize * q;
     double* s = batch.stress + kTensorSize * q;
-    double* hs = batch.state + slot_count * q;
-    const double ft = point_strength(hs);
+    double* hs = batch.state + n * q;
+    double ft = point_strength(hs);
     const double kappa = hs[max_crack_strain];
     // The band width is the element's size when its crack opens, kept from then on: the
     // softening curve of a crack does not change as the opening stretches the element.
     const double h = kappa > 0.0 ? hs[band_width] : batch.characteristic_length[q];
     const double volumetric = lambda * (de[xx] + de[yy] + de[zz]);
 
-    // Intact and staying below f_t: plain elasticity.
+    // Intact and staying below f_t (or, rate-dependent, not yet obscured): plain elasticity.
     if (kappa == 0.0 || !(h > 0.0)) {
       double trial[kTensorSize];
       for (int k = 0; k < kTensorSize; ++k) trial[k] = s[k] + two_g * de[k] + (k < 3 ? volumetric : 0.0);
-      if (!(h > 0.0) || major_principal(trial) <= ft) {
+      const double major = major_principal(trial);
+      bool opens = h > 0.0 && major > ft;
+      if (rate_dependent() && kappa == 0.0) opens = flaws_let_open(s, major, batch.dt, opens, hs, ft);
+      if (!opens) {
         std::copy_n(trial, kTensorSize, s);
         hs[energy_density] = elastic_energy(s);
         hs[point_volume] = batch.volume[q];
@@ -314,10 +325,26 @@ void RotatingCrack::update(MaterialPointBatch& batch) const {
   }
 }
 
+bool RotatingCrack::flaws_let_open(const double* stress, double major, double dt, bool above_strength, double* hs,
+                                   double& ft) const {
+  // The flaws the major tension activates grow their zones over the step (eqs. 2–4 of
+  // docs/theory/fragmentation_damage.md); a crack opens once they cover the point, Z ≥ 1, and
+  // the tension is above the point's static strength. It opens within the step, from the stress
+  // the point carried at its start: the crack's f_t is that stress, or the static f_t if higher.
+  advance_flaws(p_.flaws, major, dt, hs[flaw_peak_stress], hs + flaw_moment_0);
+  hs[obscuration] = p_.flaws.obscuration(hs + flaw_moment_0);
+  if (!above_strength || p_.flaws.obscuring() * hs[flaw_moment_3] < 1.0) return false;
+  ft = std::max(ft, std::min(major_principal(stress), major));
+  hs[strength] = ft;
+  return true;
+}
+
 std::vector<Material::Transfer> RotatingCrack::state_transfer() const {
-  std::vector<Transfer> rule(slot_count);
+  std::vector<Transfer> rule(stride());
   for (const int slot : {crack_normal_x, crack_normal_y, crack_normal_z, crack_angle, band_width, strength})
     rule[slot].rule = Transfer::nearest;
+  if (rate_dependent())
+    for (int slot = flaw_peak_stress; slot < flaw_slot_count; ++slot) rule[slot].rule = Transfer::nearest;
   for (const int slot : {max_crack_strain, failure_factor, nonlocal_failure_factor, energy_density, point_volume})
     rule[slot].min = 0.0;
   return rule;
@@ -332,9 +359,10 @@ std::vector<Material::Transfer> RotatingCrack::state_transfer() const {
 // crack on its secant.
 void RotatingCrack::after_transfer(MaterialPointBatch& batch) const {
   const double two_g = 2.0 * p_.moduli.shear, nu_ratio = p_.moduli.lame() / (3.0 * p_.moduli.bulk);
+  const std::size_t n = stride();
   for (std::size_t q = 0; q < batch.count; ++q) {
     double* s = batch.stress + kTensorSize * q;
-    double* hs = batch.state + slot_count * q;
+    double* hs = batch.state + n * q;
     const double h = batch.characteristic_length ? batch.characteristic_length[q] : hs[band_width];
     const double F = hs[failure_factor];
     double crack_energy = 0.0;
@@ -379,14 +407,29 @@ KeyList RotatingCrack::parameters() {
   keys.choice("softening", {"linear", "exponential"}, "shape of the tensile softening curve")
       .defaults_to("linear");
   keys.quantity("weibull_modulus", dim::none,
-                "m: gives each element its own tensile strength, drawn from Weibull's law with the "
-                "size effect (V_ref/V)^(1/m) (needs weibull_volume); absent: f_t everywhere")
+                "m: with weibull_volume, gives each element its own tensile strength, drawn from "
+                "Weibull's law with the size effect (V_ref/V)^(1/m); with flaw_density, the modulus of "
+                "the flaw population; absent: f_t everywhere")
       .above(0);
   keys.quantity("weibull_volume", dim::volume, "V_ref: the volume whose median strength is tensile_strength")
       .above(0);
   keys.quantity("seed", dim::none, "seed of the Weibull strength field (a whole number; same seed, same field)")
       .at_least(0)
       .defaults_to("1");
+  keys.quantity("flaw_density", dim::none / dim::volume,
+                "λ0: flaws per unit volume active at tensile_strength (e.g. '1e4 1/m^3'); given, a crack "
+                "opens only once the zones its flaws obscure cover the point, so the strength rises "
+                "with the loading rate (needs weibull_modulus); absent: a crack opens at f_t")
+      .above(0);
+  keys.quantity("crack_speed_ratio", dim::none,
+                "k: the speed at which a flaw's obscured zone grows over the bar wave speed C0 = "
+                "sqrt(E/rho), with flaw_density (absent: 0.38)")
+      .above(0)
+      .at_most(1);
+  keys.quantity("crack_speed", dim::velocity, "kC0 given directly (instead of crack_speed_ratio)").above(0);
+  keys.quantity("shape_factor", dim::none,
+                "S: an obscured zone is S (kC0 t)^3, with flaw_density (absent: 4π/3, a sphere)")
+      .above(0);
   keys.quantity("nonlocal_length", dim::length,
                 "ℓ: the failure factor is averaged over the points of the part within ℓ "
                 "(bell weight); 0: local")
@@ -404,16 +447,55 @@ RotatingCrackParameters RotatingCrack::from(const ParameterValues& v) {
                     ? SofteningCurve::exponential
                     : SofteningCurve::linear;
   p.nonlocal_length = v.number("nonlocal_length");
-  if (v.has("weibull_modulus") != v.has("weibull_volume"))
-    throw ParameterError(v.has("weibull_modulus") ? "weibull_volume" : "weibull_modulus",
+  if (v.has("weibull_volume") && !v.has("weibull_modulus"))
+    throw ParameterError("weibull_modulus",
                          "a Weibull strength field needs both weibull_modulus (m) and weibull_volume "
                          "(the volume whose median strength is tensile_strength)");
-  if (v.has("weibull_modulus")) {
+  if (v.has("weibull_modulus") && !v.has("weibull_volume") && !v.has("flaw_density"))
+    throw ParameterError("weibull_volume",
+                         "weibull_modulus needs weibull_volume (a Weibull strength field: the volume whose "
+                         "median strength is tensile_strength) or flaw_density (rate-dependent initiation)");
+  if (v.has("weibull_volume")) {
     p.weibull_modulus = v.number("weibull_modulus");
     p.weibull_volume = v.number("weibull_volume");
     p.seed = seed_from(v, "seed");
   }
+  if (v.has("flaw_density")) {
+    p.flaws = flaw_population_from(v, p.moduli, p.tensile_strength);
+  } else {
+    for (const char* key : {"crack_speed_ratio", "crack_speed", "shape_factor"})
+      if (v.has(key))
+        throw ParameterError(key, std::string(key) + " sets the growth of the flaws' obscured zones, which act "
+                                                     "only with flaw_density (rate-dependent initiation)");
+  }
   return p;
+}
+
+FlawPopulation RotatingCrack::flaw_population_from(const ParameterValues& v, const ElasticModuli& moduli,
+                                                    double tensile_strength) {
+  if (!v.has("weibull_modulus"))
+    throw ParameterError("flaw_density", "flaw_density needs weibull_modulus, m of the flaw population "
+                                            "lambda0 (sigma/f_t)^m (about 10 for alumina and SiC)");
+  if (v.has("crack_speed") && v.has("crack_speed_ratio"))
+    throw ParameterError("crack_speed", "give crack_speed or crack_speed_ratio, not both");
+  FlawPopulation f;
+  f.weibull_modulus = v.number("weibull_modulus");
+  f.weibull_stress = tensile_strength;
+  f.flaw_density = v.number("flaw_density");
+  f.shape_factor = v.has("shape_factor") ? v.number("shape_factor") : 4.0 * std::numbers::pi / 3.0;
+  const double young = 9.0 * moduli.bulk * moduli.shear / (3.0 * moduli.bulk + moduli.shear);
+  const double bar_speed = std::sqrt(young / v.number("density"));
+  f.crack_speed = v.has("crack_speed") ? v.number("crack_speed")
+                                       : (v.has("crack_speed_ratio") ? v.number("crack_speed_ratio") : 0.38) * bar_speed;
+  if (!(f.crack_speed < bar_speed)) {
+    char text[200];
+    std::snprintf(text, sizeof text,
+                  "crack_speed %.4g m/s is not below the bar wave speed sqrt(E/rho) = %.4g m/s (0.38 of it, "
+                  "%.4g m/s, is the usual value)",
+                  f.crack_speed, bar_speed, 0.38 * bar_speed);
+    throw ParameterError("crack_speed", text);
+  }
+  return f;
 }
 
 namespace {

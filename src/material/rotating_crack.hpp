@@ -10,12 +10,15 @@
 //     whatever the element size); a closed crack carries compression at full stiffness;
 //   - failure map: F = κ/ε_c (ε_c: the opening strain at which s reaches zero) and the crack
 //     normal, optionally averaged over a non-local length (src/material/nonlocal.hpp).
+// Optionally (flaw_density) a crack opens only once the zones that its Weibull flaws obscure
+// cover the point (Denoual & Hild 2000), which raises its strength with the loading rate.
 // Elements are never eroded (failure_state_index −1): discrete crack insertion reads the map.
 // Theory note: docs/theory/rotating_crack.md.
 #pragma once
 
 #include <cstdint>
 
+#include "material/flaw_obscuration.hpp"
 #include "material/nonlocal.hpp"
 #include "material/material.hpp"
 
@@ -34,6 +37,11 @@ struct RotatingCrackParameters {
   double weibull_modulus = 0;
   double weibull_volume = 0;
   std::uint64_t seed = 1;
+  /// Rate-dependent initiation (flaws.flaw_density > 0): a crack opens only once the flaws that
+  /// the major principal tension activates, λ_t(σ) = λ0 (σ/f_t)^m, have obscured the point
+  /// (Z ≥ 1; Denoual & Hild 2000), and at no less than the point's f_t; its softening then starts
+  /// from the stress the point carries. flaw_density 0: a crack opens at f_t.
+  FlawPopulation flaws;
 };
 
 class RotatingCrack final : public Material, public NonlocalAveraging {
@@ -50,9 +58,20 @@ class RotatingCrack final : public Material, public NonlocalAveraging {
     energy_density,           ///< Ψ: recoverable energy per unit volume, elastic + open cracks
     point_volume,             ///< V at the last update (for the energy change Ψ_n+1 V_n+1 − Ψ_n V_n)
     band_width,               ///< h of the crack band, fixed when the crack opens (m)
-    strength,                 ///< the point's f_t: the part's, or drawn from the Weibull field (Pa;
+    strength,                 ///< the point's f_t: the part's, or drawn from the Weibull field, or
+                              ///< (rate-dependent initiation) the stress its crack opened at (Pa;
                               ///< 0, a state zeroed without initialise: the part's)
     slot_count
+  };
+  /// The slots that follow, with rate-dependent initiation only (state_size() = flaw_slot_count).
+  enum FlawSlot : int {
+    flaw_peak_stress = slot_count,  ///< the largest major principal tension before the crack opened (Pa)
+    flaw_moment_0,                  ///< A_j = ∫ (t − T)^j dλ_t(T), j = 0..3 (1/m³ · s^j)
+    flaw_moment_1,
+    flaw_moment_2,
+    flaw_moment_3,
+    obscuration,                    ///< 1 − exp(−Z): the crack opens at 1 − 1/e (Z = 1), then it is kept
+    flaw_slot_count
   };
 
   RotatingCrack(std::string name, double density, RotatingCrackParameters p)
@@ -86,6 +105,11 @@ class RotatingCrack final : public Material, public NonlocalAveraging {
   }
 
   const RotatingCrackParameters& parameters_in_use() const { return p_; }
+  /// Whether a crack waits for its flaws to obscure the point (rate-dependent initiation).
+  bool rate_dependent() const { return p_.flaws.flaw_density > 0.0; }
+  bool failure_depends_on_loading_rate() const override { return rate_dependent(); }
+  /// The state slots per point: slot_count, or flaw_slot_count with rate-dependent initiation.
+  int stride() const { return rate_dependent() ? int{flaw_slot_count} : int{slot_count}; }
 
   /// ε_c: the crack opening strain at which the softening curve of a band of width h reaches
   /// zero (linear: 2 G_f/(f_t h)).
@@ -100,8 +124,15 @@ class RotatingCrack final : public Material, public NonlocalAveraging {
 
   static KeyList parameters();
   static RotatingCrackParameters from(const ParameterValues& values);
+  /// The flaw population of the rate-dependent initiation, σ0 = the part's f_t.
+  static FlawPopulation flaw_population_from(const ParameterValues& values, const ElasticModuli& moduli,
+                                             double tensile_strength);
 
  private:
+  /// Rate-dependent initiation, at an intact point: advances its flaws under the trial major
+  /// tension and says whether its crack opens in this step (then ft, and the point's strength,
+  /// become the stress it opens at). `above_strength`: the trial tension exceeds the static f_t.
+  bool flaws_let_open(const double* stress, double major, double dt, bool above_strength, double* hs, double& ft) const;
   double point_strength(const double* state) const {
     return state[strength] > 0.0 ? state[strength] : p_.tensile_strength;
   }

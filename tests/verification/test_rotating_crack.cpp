@@ -78,13 +78,14 @@ struct MaterialPoint {
   double band;
   double stress[kTensorSize] = {0, 0, 0, 0, 0, 0};
   double strain[kTensorSize] = {0, 0, 0, 0, 0, 0};
-  double state[RotatingCrack::slot_count] = {};
+  double state[RotatingCrack::flaw_slot_count] = {};  // room for the rate-dependent initiation's slots
   double temperature = 293.15, volume = 1.0;
   double fracture = 0;  ///< J/m³
+  double dt = 1e-9;     ///< the time of one increment (the flaws' zones grow over it)
 
   /// One increment; returns the fracture work density of the increment.
   double apply(const double* de) {
-    MaterialPointBatch b = testing::one_point(de, 1e-9, stress, state, &temperature, &volume, &band);
+    MaterialPointBatch b = testing::one_point(de, dt, stress, state, &temperature, &volume, &band);
     material.update(b);
     for (int k = 0; k < kTensorSize; ++k) strain[k] += de[k];
     fracture += b.fracture_work.value();
@@ -106,13 +107,13 @@ struct MaterialPoint {
     double de[kTensorSize];
     const double identity[kTensorSize] = {1, 1, 1, 0, 0, 0};
     for (int k = 0; k < kTensorSize; ++k) de[k] = stretch * nn[k] - nu * stretch * (identity[k] - nn[k]);
-    double s0[kTensorSize], h0[RotatingCrack::slot_count];
+    double s0[kTensorSize], h0[RotatingCrack::flaw_slot_count];
     std::copy_n(stress, kTensorSize, s0);
-    std::copy_n(state, RotatingCrack::slot_count, h0);
+    std::copy_n(state, RotatingCrack::flaw_slot_count, h0);
     const double f0 = fracture;
     for (int it = 0; it < 200; ++it) {
       std::copy_n(s0, kTensorSize, stress);
-      std::copy_n(h0, RotatingCrack::slot_count, state);
+      std::copy_n(h0, RotatingCrack::flaw_slot_count, state);
       fracture = f0;
       double saved_strain[kTensorSize];
       std::copy_n(strain, kTensorSize, saved_strain);
@@ -829,6 +830,127 @@ TEST(RotatingCrack, BrazilianDiscSplitsAlongTheLoadedDiameterAtTheTensileStrengt
   EXPECT_GT(map.near, 0.95 * map.cracked);
   EXPECT_LT(map.widest, 0.1 * D);
   EXPECT_GT(map.reach, 0.4 * D);  // the open crack runs along most of the diameter
+}
+
+// ---------------------------------------------------------------------------------------------
+// 8. Rate-dependent initiation: a crack waits for the zones its flaws obscure to cover the point.
+// ---------------------------------------------------------------------------------------------
+namespace {
+
+/// The SiC of the other tests with the flaw population of the rate-dependent SiC example:
+/// λ0 = 1.5e4 m⁻³ active at f_t, m = 10, kC0 = 0.38 √(E/ρ), S = 4π/3.
+RotatingCrackParameters silicon_carbide_with_flaws() {
+  RotatingCrackParameters p = silicon_carbide();
+  p.flaws.weibull_modulus = 10;
+  p.flaws.weibull_stress = kFt;
+  p.flaws.flaw_density = 1.5e4;
+  p.flaws.crack_speed = 0.38 * std::sqrt(youngs(p.moduli) / kRho);
+  p.flaws.shape_factor = 4.0 * std::numbers::pi / 3.0;
+  return p;
+}
+
+/// The stress at which the obscured fraction reaches 1 − 1/e under a constant stress rate σ̇:
+/// Z(t) = g (t/t_c)^(m+3), g = Γ(m+1)Γ(4)/Γ(m+4), so σ* = σ̇ t_c g^(−1/(m+3))
+/// (docs/theory/rotating_crack.md, eq. 12).
+double obscuring_stress(const FlawPopulation& f, double rate) {
+  const double m = f.weibull_modulus;
+  const double g = std::tgamma(m + 1) * std::tgamma(4.0) / std::tgamma(m + 4);
+  return rate * f.characteristic_time(rate) * std::pow(g, -1 / (m + 3));
+}
+
+struct Opening {
+  double stress = 0;            ///< the point's strength once its crack has opened
+  double largest_intact = 0;    ///< the largest σ_xx the point carried while intact
+  double obscuration = 0;       ///< 1 − exp(−Z) when it opened
+  double fracture_before = 0;   ///< fracture work while intact (J/m³)
+};
+
+/// Drives `p` in uniaxial stress along x at the stress rate σ̇ (elastic increments of σ̇ Δt/E
+/// (1, −ν, −ν), exact while intact) until its crack opens.
+Opening open_at(MaterialPoint& p, double rate) {
+  const ElasticModuli m = p.material.elastic();
+  const double E = youngs(m), nu = (3 * m.bulk - 2 * m.shear) / (2 * (3 * m.bulk + m.shear));
+  const double e = rate * p.dt / E;
+  const double de[kTensorSize] = {e, -nu * e, -nu * e, 0, 0, 0};
+  Opening o;
+  for (int i = 0; i < 100000 && !(p.state[RotatingCrack::max_crack_strain] > 0); ++i) {
+    o.largest_intact = std::max(o.largest_intact, p.stress[xx]);
+    o.fracture_before = p.fracture;
+    p.apply(de);
+  }
+  o.stress = p.state[RotatingCrack::strength];
+  o.obscuration = p.state[RotatingCrack::obscuration];
+  return o;
+}
+
+}  // namespace
+
+TEST(RotatingCrack, RateDependentInitiationOpensWhereTheFlawsObscureThePoint) {
+  const RotatingCrack material("sic", kRho, silicon_carbide_with_flaws());
+  const FlawPopulation& flaws = material.parameters_in_use().flaws;
+  std::vector<double> rates, opened;
+  for (double rate = 1e14; rate <= 1.01e17; rate *= 10) {
+    MaterialPoint p{material, 1e-6};
+    const double expected = obscuring_stress(flaws, rate);
+    p.dt = expected / rate / 2000;  // 2 000 steps to the opening
+    const Opening o = open_at(p, rate);
+    std::printf("[rotating_crack rate-dependent] stress rate %.0e Pa/s: crack opens at %.2f MPa (closed form "
+                "%.2f, %+.3f %%; f_t %.0f), intact up to %.2f MPa, obscured fraction %.5f (1 - 1/e = %.5f)\n",
+                rate, o.stress / 1e6, expected / 1e6, 100 * (o.stress / expected - 1), kFt / 1e6,
+                o.largest_intact / 1e6, o.obscuration, 1 - std::exp(-1.0));
+    EXPECT_NEAR(o.stress, expected, 0.005 * expected);
+    EXPECT_GT(o.largest_intact, 1.5 * kFt);  // elastic well past the static strength
+    EXPECT_EQ(o.fracture_before, 0.0);
+    EXPECT_NEAR(o.obscuration, 1 - std::exp(-1.0), 0.005);
+    rates.push_back(rate);
+    opened.push_back(o.stress);
+  }
+  // log σ* against log σ̇: slope 3/(m+3) = 3/13 (Denoual & Hild 2000).
+  double mx = 0, my = 0, sxy = 0, sxx = 0;
+  for (std::size_t i = 0; i < rates.size(); ++i) mx += std::log(rates[i]) / rates.size(), my += std::log(opened[i]) / rates.size();
+  for (std::size_t i = 0; i < rates.size(); ++i) {
+    sxy += (std::log(rates[i]) - mx) * (std::log(opened[i]) - my);
+    sxx += (std::log(rates[i]) - mx) * (std::log(rates[i]) - mx);
+  }
+  std::printf("[rotating_crack rate-dependent] slope of log strength over log stress rate %.5f (3/13 = %.5f)\n",
+              sxy / sxx, 3.0 / 13);
+  EXPECT_NEAR(sxy / sxx, 3.0 / 13, 0.01 * 3.0 / 13);
+
+  // Slowly, the flaws obscure the point long before the tension reaches f_t: the crack opens at
+  // f_t, the static strength.
+  MaterialPoint slow{material, 1e-6};
+  const double rate = 1e11;
+  ASSERT_LT(obscuring_stress(flaws, rate), 0.5 * kFt);
+  slow.dt = kFt / rate / 2000;
+  const Opening o = open_at(slow, rate);
+  std::printf("[rotating_crack rate-dependent] stress rate %.0e Pa/s: crack opens at %.3f MPa (f_t %.0f; "
+              "obscured at %.2f MPa), obscured fraction %.6f\n",
+              rate, o.stress / 1e6, kFt / 1e6, obscuring_stress(flaws, rate) / 1e6, o.obscuration);
+  EXPECT_EQ(o.stress, kFt);
+  EXPECT_LE(o.largest_intact, kFt);
+  EXPECT_GT(o.obscuration, 0.999);
+}
+
+TEST(RotatingCrack, RateDependentCrackDissipatesTheFractureEnergyFromItsDynamicStrength) {
+  const RotatingCrack material("sic", kRho, silicon_carbide_with_flaws());
+  const double rate = 1e16, h = 2e-6;
+  const double expected = obscuring_stress(material.parameters_in_use().flaws, rate);
+  ASSERT_LT(h, material.crack_band_limit_at(expected));  // no snap-back at the dynamic strength
+  MaterialPoint p{material, h};
+  p.dt = expected / rate / 2000;
+  const Opening o = open_at(p, rate);
+  const double end = material.critical_crack_strain(h, o.stress);
+  double peak = o.largest_intact;
+  while (p.state[RotatingCrack::failure_factor] < 1.2) {
+    p.uniaxial({1, 0, 0}, 1e-3 * end);
+    peak = std::max(peak, p.stress[xx]);
+  }
+  std::printf("[rotating_crack rate-dependent] opened at %.2f MPa (closed form %.2f); peak %.2f MPa; fracture "
+              "work %.6g J/m^3 against G_f/h %.6g (%+.3f %%)\n",
+              o.stress / 1e6, expected / 1e6, peak / 1e6, p.fracture, kGf / h, 100 * (p.fracture * h / kGf - 1));
+  EXPECT_NEAR(peak, expected, 0.005 * expected);
+  EXPECT_NEAR(p.fracture, kGf / h, 0.02 * kGf / h);
+  EXPECT_LT(std::abs(p.stress[xx]), 1e-3 * expected);
 }
 
 }  // namespace shard
