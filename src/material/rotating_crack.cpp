@@ -131,7 +131,7 @@ std::vector<std::string> RotatingCrack::state_names() const {
                                     "point_volume",     "band_width",     "point_strength"};
   if (rate_dependent())
     names.insert(names.end(), {"flaw_peak_stress", "flaw_moment_0", "flaw_moment_1", "flaw_moment_2", "flaw_moment_3",
-                               "obscuration"});
+                               "obscuration", "opening_stress"});
   return names;
 }
 
@@ -157,12 +157,16 @@ void RotatingCrack::seed_elements(double* state, std::size_t points_per_element,
 
 std::optional<Material::FailureMapSlots> RotatingCrack::failure_map_slots() const {
   // A failed element that a discrete crack now bounds starts again intact: no history, no map
-  // entry, no direction (an intact point has no say in the nodal crack axis).
-  return FailureMapSlots{failure_factor,
-                         crack_normal_x,
-                         energy_density,
-                         {max_crack_strain, nonlocal_failure_factor, crack_normal_x, crack_normal_y,
-                          crack_normal_z, crack_angle}};
+  // entry, no direction (an intact point has no say in the nodal crack axis), and with
+  // rate-dependent initiation no flaws yet: its static strength stays.
+  FailureMapSlots slots{failure_factor,
+                        crack_normal_x,
+                        energy_density,
+                        {max_crack_strain, nonlocal_failure_factor, crack_normal_x, crack_normal_y, crack_normal_z,
+                         crack_angle}};
+  if (rate_dependent())
+    for (int slot = flaw_peak_stress; slot < flaw_slot_count; ++slot) slots.reset.push_back(slot);
+  return slots;
 }
 
 double RotatingCrack::critical_crack_strain(double h, double ft) const {
@@ -217,7 +221,7 @@ void RotatingCrack::update(MaterialPointBatch& batch) const {
     const double* de = batch.strain_increment + kTensorSize * q;
     double* s = batch.stress + kTensorSize * q;
     double* hs = batch.state + n * q;
-    double ft = point_strength(hs);
+    double ft = curve_strength(hs);
     const double kappa = hs[max_crack_strain];
     // The band width is the element's size when its crack opens, kept from then on: the
     // softening curve of a crack does not change as the opening stretches the element.
@@ -335,7 +339,7 @@ bool RotatingCrack::flaws_let_open(const double* stress, double major, double dt
   hs[obscuration] = p_.flaws.obscuration(hs + flaw_moment_0);
   if (!above_strength || p_.flaws.obscuring() * hs[flaw_moment_3] < 1.0) return false;
   ft = std::max(ft, std::min(major_principal(stress), major));
-  hs[strength] = ft;
+  hs[opening_stress] = ft;
   return true;
 }
 
@@ -367,8 +371,8 @@ void RotatingCrack::after_transfer(MaterialPointBatch& batch) const {
     const double F = hs[failure_factor];
     double crack_energy = 0.0;
     if (F > 0.0 && h > 0.0) {
-      const double end = critical_crack_strain(h, point_strength(hs));
-      const Curve curve{p_.softening, point_strength(hs), end, end / std::log(1.0 / kExponentialEnd)};
+      const double end = critical_crack_strain(h, curve_strength(hs));
+      const Curve curve{p_.softening, curve_strength(hs), end, end / std::log(1.0 / kExponentialEnd)};
       hs[band_width] = h;
       hs[max_crack_strain] = F * end;
       double sv[3], sd[3][3];

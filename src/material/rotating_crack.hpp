@@ -58,8 +58,7 @@ class RotatingCrack final : public Material, public NonlocalAveraging {
     energy_density,           ///< Ψ: recoverable energy per unit volume, elastic + open cracks
     point_volume,             ///< V at the last update (for the energy change Ψ_n+1 V_n+1 − Ψ_n V_n)
     band_width,               ///< h of the crack band, fixed when the crack opens (m)
-    strength,                 ///< the point's f_t: the part's, or drawn from the Weibull field, or
-                              ///< (rate-dependent initiation) the stress its crack opened at (Pa;
+    strength,                 ///< the point's f_t: the part's, or drawn from the Weibull field (Pa;
                               ///< 0, a state zeroed without initialise: the part's)
     slot_count
   };
@@ -71,6 +70,8 @@ class RotatingCrack final : public Material, public NonlocalAveraging {
     flaw_moment_2,
     flaw_moment_3,
     obscuration,                    ///< 1 − exp(−Z): the crack opens at 1 − 1/e (Z = 1), then it is kept
+    opening_stress,                 ///< the stress the crack opened at, its softening curve's f_t (Pa;
+                                    ///< 0 while intact)
     flaw_slot_count
   };
 
@@ -130,11 +131,17 @@ class RotatingCrack final : public Material, public NonlocalAveraging {
 
  private:
   /// Rate-dependent initiation, at an intact point: advances its flaws under the trial major
-  /// tension and says whether its crack opens in this step (then ft, and the point's strength,
-  /// become the stress it opens at). `above_strength`: the trial tension exceeds the static f_t.
+  /// tension and says whether its crack opens in this step (then ft, and the point's
+  /// opening_stress, become the stress it opens at). `above_strength`: the trial tension exceeds
+  /// the static f_t.
   bool flaws_let_open(const double* stress, double major, double dt, bool above_strength, double* hs, double& ft) const;
   double point_strength(const double* state) const {
     return state[strength] > 0.0 ? state[strength] : p_.tensile_strength;
+  }
+  /// f_t of the point's softening curve: the stress its crack opened at (rate-dependent
+  /// initiation, once open), else its static strength.
+  double curve_strength(const double* state) const {
+    return rate_dependent() && state[opening_stress] > 0.0 ? state[opening_stress] : point_strength(state);
   }
 
   RotatingCrackParameters p_;

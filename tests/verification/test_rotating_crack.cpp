@@ -859,7 +859,7 @@ double obscuring_stress(const FlawPopulation& f, double rate) {
 }
 
 struct Opening {
-  double stress = 0;            ///< the point's strength once its crack has opened
+  double stress = 0;            ///< the stress its crack opened at
   double largest_intact = 0;    ///< the largest σ_xx the point carried while intact
   double obscuration = 0;       ///< 1 − exp(−Z) when it opened
   double fracture_before = 0;   ///< fracture work while intact (J/m³)
@@ -878,7 +878,7 @@ Opening open_at(MaterialPoint& p, double rate) {
     o.fracture_before = p.fracture;
     p.apply(de);
   }
-  o.stress = p.state[RotatingCrack::strength];
+  o.stress = p.state[RotatingCrack::opening_stress];
   o.obscuration = p.state[RotatingCrack::obscuration];
   return o;
 }
@@ -929,6 +929,13 @@ TEST(RotatingCrack, RateDependentInitiationOpensWhereTheFlawsObscureThePoint) {
   EXPECT_EQ(o.stress, kFt);
   EXPECT_LE(o.largest_intact, kFt);
   EXPECT_GT(o.obscuration, 0.999);
+
+  // A discrete crack that re-initialises the element clears its flaws and its opening stress,
+  // and keeps its static strength (a Weibull draw).
+  const auto reset = material.failure_map_slots()->reset;
+  for (const int slot : {int{RotatingCrack::flaw_moment_3}, int{RotatingCrack::obscuration}, int{RotatingCrack::opening_stress}})
+    EXPECT_NE(std::find(reset.begin(), reset.end(), slot), reset.end()) << slot;
+  EXPECT_EQ(std::find(reset.begin(), reset.end(), int{RotatingCrack::strength}), reset.end());
 }
 
 TEST(RotatingCrack, RateDependentCrackDissipatesTheFractureEnergyFromItsDynamicStrength) {
