@@ -41,6 +41,7 @@ RUNS = [  # scenario, --until, label
     ("examples/granular_column/settle.yaml", "0.2ms", "grains"),
     ("tests/data/remesh/annulus_shear.yaml", "20us", "remeshing"),  # a rotating rim, remeshed
     # The SiC beam remeshed, its projectile not: distortion and target_size NaN in the projectile.
+    ("examples/sic_edge_on_impact/sic_edge_on_impact_rate_dependent.yaml", "0.3us", "rate_dependent_cracks"),
     ("examples/sic_edge_on_impact/sic_edge_on_impact_adaptive.yaml", "0.3us", "remeshing_one_part",
      ["--set", "remeshing.parts=[{part: beam, size_by: strain_rate, table: [[0, 5 mm], [1e4, 1 mm], [5e4, 0.5 mm]], "
                "min_size: 0.5 mm, max_size: 5 mm}]"]),
