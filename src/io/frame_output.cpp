@@ -51,28 +51,32 @@ VtuGrid make_frame(const Model& model, const std::vector<std::unique_ptr<Materia
     // ParaView offers it for the whole series.
     const std::vector<char> on_face = model.crack_face_nodes();
     grid.point_fields.push_back({"crack_face", 1, std::vector<double>(on_face.begin(), on_face.end())});
-    // The time a crack reached each node (−1: none): along a crack path, edge length over the
-    // difference of its ends' times is the speed of the tip that crossed it.
-    std::vector<double> reached = model.nodes.crack_time;
-    if (reached.empty()) reached.assign(nn, -1.0);
-    grid.point_fields.push_back({"crack_time", 1, std::move(reached)});
-    // The speed of the tip that reached each node (0 where a crack started, −1: none).
-    std::vector<double> speed = model.nodes.crack_speed;
-    if (speed.empty()) speed.assign(nn, -1.0);
-    grid.point_fields.push_back({"crack_speed", 1, std::move(speed)});
+    // The time a crack reached each node: along a crack path, edge length over the difference of
+    // its ends' times is the speed of the tip that crossed it. And the speed of the tip that
+    // reached each node (0 where a crack started). The model keeps −1 for a node no crack has
+    // reached; the frames write NaN there, since there is no such time or speed.
+    const double none = std::numeric_limits<double>::quiet_NaN();
+    auto reached_or_none = [&](const std::vector<double>& values) {
+      std::vector<double> out(nn, none);
+      for (std::size_t i = 0; i < values.size() && i < nn; ++i)
+        if (values[i] >= 0.0) out[i] = values[i];
+      return out;
+    };
+    grid.point_fields.push_back({"crack_time", 1, reached_or_none(model.nodes.crack_time)});
+    grid.point_fields.push_back({"crack_speed", 1, reached_or_none(model.nodes.crack_speed)});
   }
 
   if (model.cohesive.element_count() > 0) {
-    // The largest damage of the interface points at each node (−1 off the interfaces): a
-    // threshold at 1 shows where the plies have come apart.
+    // The largest damage of the interface points at each node (NaN off the interfaces, where
+    // there is none): a threshold at 1 shows where the plies have come apart.
     std::vector<std::int32_t> index(static_cast<std::size_t>(model.next_node_id), -1);
     for (std::size_t i = 0; i < model.nodes.count(); ++i) index[static_cast<std::size_t>(model.nodes.id[i])] = static_cast<std::int32_t>(i);
-    std::vector<double> damage(model.nodes.count(), -1.0);
+    std::vector<double> damage(model.nodes.count(), std::numeric_limits<double>::quiet_NaN());
     const CohesiveElements& c = model.cohesive;
     for (std::size_t p = 0; p < c.point_count(); ++p)
       for (const std::int64_t id : {c.node_a[p], c.node_b[p]}) {
         const std::int32_t i = id >= 0 && id < model.next_node_id ? index[static_cast<std::size_t>(id)] : -1;
-        if (i >= 0) damage[i] = std::max(damage[i], c.damage[p]);
+        if (i >= 0) damage[i] = std::isnan(damage[i]) ? c.damage[p] : std::max(damage[i], c.damage[p]);
       }
     grid.point_fields.push_back({"interface_damage", 1, std::move(damage)});
   }

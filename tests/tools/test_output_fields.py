@@ -16,7 +16,9 @@ beam struck by a projectile that is not remeshed) and checks that
   such a part must have one (the field was written as 0, which reads as a value: a failure
   factor of 0, "intact", in a material that has none). Needs meshio, NumPy and PyYAML, as
   test_shard_plot.py does (scripts/debian-packages.txt);
-- distortion and target_size are NaN in a part that is not remeshed and finite in one that is.
+- distortion and target_size are NaN in a part that is not remeshed and finite in one that is;
+- crack_time and crack_speed are NaN at the nodes no crack has reached and never negative, and
+  interface_damage is NaN off the interfaces and within [0, 1] on them.
 
 Usage: test_output_fields.py SHARD_EXECUTABLE SOURCE_DIR WORK_DIR
 """
@@ -165,6 +167,33 @@ def check_not_remeshed(path, label):
     print(f"{label}: distortion and target_size NaN in the part not remeshed")
 
 
+# Point fields of a quantity that only some nodes have: NaN on the others (they were written as
+# −1, a value of the field's own unit), and within these bounds where they are there.
+WHERE_THERE = {"cracks": {"crack_time": (0.0, float("inf")), "crack_speed": (0.0, float("inf"))},
+               "laminate": {"interface_damage": (0.0, 1.0)}}
+
+
+def check_point_fields_where_there(path, label):
+    """Each field of WHERE_THERE[label]: NaN at some nodes, within its bounds at the others (some)."""
+    import meshio
+    import numpy
+
+    mesh = meshio.read(path)
+    for name, (low, high) in WHERE_THERE[label].items():
+        if name not in mesh.point_data:
+            fail(f"{label}: {os.path.basename(path)} has no point field '{name}'")
+        values = numpy.ravel(mesh.point_data[name])
+        there = values[~numpy.isnan(values)]
+        if there.size == 0 or there.size == values.size:
+            fail(f"{label}: '{name}' is there at {there.size} of {values.size} nodes: the run no longer "
+                 f"has nodes both with and without it")
+        if not ((there >= low) & (there <= high)).all():
+            fail(f"{label}: '{name}' has {int(numpy.count_nonzero((there < low) | (there > high)))} values "
+                 f"outside [{low}, {high}] (a sentinel such as -1 where NaN was meant?)")
+        print(f"{label}: '{name}' NaN at {values.size - there.size} of {values.size} nodes, "
+              f"within [{low:g}, {high:g}] at the others")
+
+
 def check_sample_columns(table, path, label):
     """The column line of a particle sample file (the first line that is not a comment)."""
     with open(path) as stream:
@@ -202,6 +231,8 @@ def main():
             print(f"{label}: {absent} (state field, part) pairs NaN where the material has no such variable")
             if label == "remeshing_one_part":
                 check_not_remeshed(mesh[-1], label)
+            if label in WHERE_THERE:
+                check_point_fields_where_there(mesh[-1], label)
         for pvd in sorted(glob.glob(os.path.join(out, "particles_*.pvd"))):
             part = os.path.basename(pvd)[len("particles_"):-len(".pvd")]
             frames = sorted(glob.glob(os.path.join(out, f"particles_{part}_*.vtu")))
