@@ -234,7 +234,10 @@ void RotatingCrack::update(MaterialPointBatch& batch) const {
       for (int k = 0; k < kTensorSize; ++k) trial[k] = s[k] + two_g * de[k] + (k < 3 ? volumetric : 0.0);
       const double major = major_principal(trial);
       bool opens = h > 0.0 && major > ft;
-      if (rate_dependent() && kappa == 0.0) opens = flaws_let_open(s, major, batch.dt, opens, hs, ft);
+      // Until its flaws have covered it (no opening stress yet); from then on its strength is
+      // the opening stress they set.
+      if (rate_dependent() && kappa == 0.0 && !(hs[opening_stress] > 0.0))
+        opens = flaws_let_open(s, major, batch.dt, opens, hs, ft);
       if (!opens) {
         std::copy_n(trial, kTensorSize, s);
         hs[energy_density] = elastic_energy(s);
@@ -335,12 +338,14 @@ bool RotatingCrack::flaws_let_open(const double* stress, double major, double dt
   // docs/theory/fragmentation_damage.md); a crack opens once they cover the point, Z ≥ 1, and
   // the tension is above the point's static strength. It opens within the step, from the stress
   // the point carried at its start: the crack's f_t is that stress, or the static f_t if higher.
+  // Covered while its tension falls, its opening stress is the lower, end-of-step one, and the
+  // crack stays shut until the tension next rises past it.
   advance_flaws(p_.flaws, major, dt, hs[flaw_peak_stress], hs + flaw_moment_0);
   hs[obscuration] = p_.flaws.obscuration(hs + flaw_moment_0);
   if (!above_strength || p_.flaws.obscuring() * hs[flaw_moment_3] < 1.0) return false;
   ft = std::max(ft, std::min(major_principal(stress), major));
   hs[opening_stress] = ft;
-  return true;
+  return major > ft;
 }
 
 std::vector<Material::Transfer> RotatingCrack::state_transfer() const {
@@ -390,6 +395,9 @@ void RotatingCrack::after_transfer(MaterialPointBatch& batch) const {
     } else {
       hs[max_crack_strain] = 0.0;
       hs[failure_factor] = 0.0;
+      // An intact point takes no opening stress from a cracked neighbour (its flaws, copied,
+      // set one again if they cover it).
+      if (rate_dependent()) hs[opening_stress] = 0.0;
     }
     const double tr = s[xx] + s[yy] + s[zz];
     const double ss = s[xx] * s[xx] + s[yy] * s[yy] + s[zz] * s[zz] + 2.0 * (s[xy] * s[xy] + s[yz] * s[yz] + s[zx] * s[zx]);
@@ -492,12 +500,13 @@ FlawPopulation RotatingCrack::flaw_population_from(const ParameterValues& v, con
   f.crack_speed = v.has("crack_speed") ? v.number("crack_speed")
                                        : (v.has("crack_speed_ratio") ? v.number("crack_speed_ratio") : 0.38) * bar_speed;
   if (!(f.crack_speed < bar_speed)) {
+    const char* key = v.has("crack_speed") ? "crack_speed" : "crack_speed_ratio";
     char text[200];
     std::snprintf(text, sizeof text,
                   "crack_speed %.4g m/s is not below the bar wave speed sqrt(E/rho) = %.4g m/s (0.38 of it, "
                   "%.4g m/s, is the usual value)",
                   f.crack_speed, bar_speed, 0.38 * bar_speed);
-    throw ParameterError("crack_speed", text);
+    throw ParameterError(key, text);
   }
   return f;
 }

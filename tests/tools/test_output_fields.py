@@ -1,10 +1,11 @@
 #!/usr/bin/python3
 """CI test that every output says what it is (ctest label "cli").
 
-Runs short pieces of eight scenarios that between them write every kind of output (discrete cracks
+Runs short pieces of nine scenarios that between them write every kind of output (discrete cracks
 with contact, a laminate with interfaces, debris particles and crash outputs, Johnson-Cook in
 axisymmetry with a wall, automata with conditions, loose grains, a remeshed annulus, a remeshed
-beam struck by a projectile that is not remeshed) and checks that
+beam struck by a projectile that is not remeshed, a rotating crack with rate-dependent
+initiation) and checks that
 - every field of any frame of a series is already in its first frame (ParaView offers a field
   for the whole series only then: crack_face used to appear with the first crack);
 - every frame field, history column and column of a particle sample file is listed with its unit
@@ -43,10 +44,11 @@ RUNS = [  # scenario, --until, label
     ("examples/granular_column/settle.yaml", "0.2ms", "grains"),
     ("tests/data/remesh/annulus_shear.yaml", "20us", "remeshing"),  # a rotating rim, remeshed
     # The SiC beam remeshed, its projectile not: distortion and target_size NaN in the projectile.
-    ("examples/sic_edge_on_impact/sic_edge_on_impact_rate_dependent.yaml", "0.3us", "rate_dependent_cracks"),
     ("examples/sic_edge_on_impact/sic_edge_on_impact_adaptive.yaml", "0.3us", "remeshing_one_part",
      ["--set", "remeshing.parts=[{part: beam, size_by: strain_rate, table: [[0, 5 mm], [1e4, 1 mm], [5e4, 0.5 mm]], "
                "min_size: 0.5 mm, max_size: 5 mm}]"]),
+    # The rotating crack's rate-dependent initiation: its flaw fields listed.
+    ("examples/sic_edge_on_impact/sic_edge_on_impact_rate_dependent.yaml", "0.3us", "rate_dependent_initiation"),
 ]
 STRUCTURE = {"Points", "connectivity", "offsets", "types", "TimeValue"}
 

@@ -850,19 +850,20 @@ RotatingCrackParameters silicon_carbide_with_flaws() {
 }
 
 /// The stress at which the obscured fraction reaches 1 − 1/e under a constant stress rate σ̇:
-/// Z(t) = g (t/t_c)^(m+3), g = Γ(m+1)Γ(4)/Γ(m+4), so σ* = σ̇ t_c g^(−1/(m+3))
-/// (docs/theory/rotating_crack.md, eq. 12).
+/// Z(t) = g (t/t_c)^(m+3), g = Γ(m+1)Γ(4)/Γ(m+4), t_c = [(f_t/σ̇)^m / (λ0 S (kC0)³)]^(1/(m+3)),
+/// so σ* = σ̇ t_c g^(−1/(m+3)) (docs/theory/rotating_crack.md, eq. 12). Written out here from the
+/// parameters, not through the code's own characteristic time.
 double obscuring_stress(const FlawPopulation& f, double rate) {
-  const double m = f.weibull_modulus;
+  const double m = f.weibull_modulus, c = f.crack_speed;
   const double g = std::tgamma(m + 1) * std::tgamma(4.0) / std::tgamma(m + 4);
-  return rate * f.characteristic_time(rate) * std::pow(g, -1 / (m + 3));
+  const double tc = std::pow(std::pow(kFt / rate, m) / (f.flaw_density * f.shape_factor * c * c * c), 1 / (m + 3));
+  return rate * tc * std::pow(g, -1 / (m + 3));
 }
 
 struct Opening {
   double stress = 0;            ///< the stress its crack opened at
   double largest_intact = 0;    ///< the largest σ_xx the point carried while intact
   double obscuration = 0;       ///< 1 − exp(−Z) when it opened
-  double fracture_before = 0;   ///< fracture work while intact (J/m³)
 };
 
 /// Drives `p` in uniaxial stress along x at the stress rate σ̇ (elastic increments of σ̇ Δt/E
@@ -875,7 +876,6 @@ Opening open_at(MaterialPoint& p, double rate) {
   Opening o;
   for (int i = 0; i < 100000 && !(p.state[RotatingCrack::max_crack_strain] > 0); ++i) {
     o.largest_intact = std::max(o.largest_intact, p.stress[xx]);
-    o.fracture_before = p.fracture;
     p.apply(de);
   }
   o.stress = p.state[RotatingCrack::opening_stress];
@@ -900,7 +900,6 @@ TEST(RotatingCrack, RateDependentInitiationOpensWhereTheFlawsObscureThePoint) {
                 o.largest_intact / 1e6, o.obscuration, 1 - std::exp(-1.0));
     EXPECT_NEAR(o.stress, expected, 0.005 * expected);
     EXPECT_GT(o.largest_intact, 1.5 * kFt);  // elastic well past the static strength
-    EXPECT_EQ(o.fracture_before, 0.0);
     EXPECT_NEAR(o.obscuration, 1 - std::exp(-1.0), 0.005);
     rates.push_back(rate);
     opened.push_back(o.stress);
@@ -936,6 +935,80 @@ TEST(RotatingCrack, RateDependentInitiationOpensWhereTheFlawsObscureThePoint) {
   for (const int slot : {int{RotatingCrack::flaw_moment_3}, int{RotatingCrack::obscuration}, int{RotatingCrack::opening_stress}})
     EXPECT_NE(std::find(reset.begin(), reset.end(), slot), reset.end()) << slot;
   EXPECT_EQ(std::find(reset.begin(), reset.end(), int{RotatingCrack::strength}), reset.end());
+}
+
+// Covered by its flaws while its tension falls (still above f_t), a point keeps the stress it
+// then had as its opening stress, its crack still shut and its flaws frozen; its crack opens when
+// the tension next rises past that stress.
+TEST(RotatingCrack, RateDependentPointCoveredWhileUnloadingOpensWhenReloadedPastItsOpeningStress) {
+  const RotatingCrack material("sic", kRho, silicon_carbide_with_flaws());
+  const ElasticModuli m = material.elastic();
+  const double E = youngs(m), nu = (3 * m.bulk - 2 * m.shear) / (2 * (3 * m.bulk + m.shear));
+  MaterialPoint p{material, 1e-6};
+  p.dt = 1e-10;
+  auto step = [&](double rate) {
+    const double e = rate * p.dt / E;
+    const double de[kTensorSize] = {e, -nu * e, -nu * e, 0, 0, 0};
+    p.apply(de);
+  };
+  const double fast = 1e15, peak = 900e6;  // the flaws cover the point at 1 081 MPa at this rate
+  while (p.stress[xx] < peak) step(fast);
+  const double z_at_peak = p.state[RotatingCrack::obscuration];
+  int falling = 0;
+  while (!(p.state[RotatingCrack::opening_stress] > 0) && falling < 100000) step(-1e14), ++falling;
+  const double set = p.state[RotatingCrack::opening_stress], covered = p.state[RotatingCrack::obscuration];
+  const double at_setting = p.stress[xx];
+  for (int i = 0; i < 100; ++i) step(-1e14);  // still falling: shut, flaws frozen
+  const double covered_later = p.state[RotatingCrack::obscuration];
+  const bool shut_later = p.state[RotatingCrack::max_crack_strain] == 0.0;
+  double largest = 0;
+  while (!(p.state[RotatingCrack::max_crack_strain] > 0) && largest < 2 * peak) {
+    largest = std::max(largest, p.stress[xx]);
+    step(fast);
+  }
+  std::printf("[rotating_crack rate-dependent] covered while unloading: obscured fraction %.4f at the peak "
+              "(%.0f MPa), %.5f after %d falling steps, when the opening stress was set to %.2f MPa (stress "
+              "%.2f MPa); reloaded, intact up to %.2f MPa, opened at %.2f MPa\n",
+              z_at_peak, peak / 1e6, covered, falling, set / 1e6, at_setting / 1e6, largest / 1e6,
+              p.state[RotatingCrack::opening_stress] / 1e6);
+  EXPECT_LT(z_at_peak, 0.5);
+  EXPECT_GE(covered, 1 - std::exp(-1.0));
+  EXPECT_GT(set, kFt);
+  EXPECT_LT(set, peak);
+  EXPECT_EQ(set, at_setting);
+  EXPECT_EQ(covered_later, covered);
+  EXPECT_TRUE(shut_later);
+  EXPECT_GT(p.state[RotatingCrack::max_crack_strain], 0.0);
+  EXPECT_NEAR(largest, set, 1e-3 * set);  // intact until the tension passes the opening stress
+  EXPECT_EQ(p.state[RotatingCrack::opening_stress], set);
+}
+
+// After a remesh: a cracked point keeps the opening stress copied with its state and softens
+// from it; an intact one (F = 0: the copy came from a cracked neighbour) takes none.
+TEST(RotatingCrack, RateDependentRemeshKeepsTheOpeningStressOfCrackedPointsOnly) {
+  const RotatingCrack material("sic", kRho, silicon_carbide_with_flaws());
+  const double open = 1.5e9, length = 2e-6;
+  std::vector<double> stress(2 * kTensorSize, 0.0), state(2 * RotatingCrack::flaw_slot_count, 0.0);
+  for (int q = 0; q < 2; ++q) state[q * RotatingCrack::flaw_slot_count + RotatingCrack::opening_stress] = open;
+  state[RotatingCrack::failure_factor] = 0.5;  // point 0 cracked, point 1 intact
+  stress[xx] = open;                            // above what the half-open crack carries
+  double temperature[2] = {293, 293}, volume[2] = {1e-12, 1e-12}, h[2] = {length, length};
+  MaterialPointBatch batch;
+  batch.count = 2;
+  batch.stress = stress.data();
+  batch.state = state.data();
+  batch.temperature = temperature;
+  batch.volume = volume;
+  batch.characteristic_length = h;
+  material.after_transfer(batch);
+  const double* intact = state.data() + RotatingCrack::flaw_slot_count;
+  std::printf("[rotating_crack rate-dependent] after a remesh: cracked point opening stress %.0f MPa, stress "
+              "%.2f MPa (half of it: %.2f); intact point opening stress %g\n",
+              state[RotatingCrack::opening_stress] / 1e6, stress[xx] / 1e6, 0.5 * open / 1e6,
+              intact[RotatingCrack::opening_stress]);
+  EXPECT_EQ(state[RotatingCrack::opening_stress], open);
+  EXPECT_NEAR(stress[xx], 0.5 * open, 1e-9 * open);  // linear softening from the opening stress: f (1 − F)
+  EXPECT_EQ(intact[RotatingCrack::opening_stress], 0.0);
 }
 
 TEST(RotatingCrack, RateDependentCrackDissipatesTheFractureEnergyFromItsDynamicStrength) {
