@@ -198,7 +198,7 @@ KeyList DenoualForquinHild::parameters() {
       .must_be_given();
   keys.quantity("crack_speed_ratio", dim::none, "k: crack speed over the bar wave speed C0 = sqrt(E/ρ)")
       .above(0)
-      .at_most(1)
+      .below(1)
       .defaults_to("0.38");
   keys.quantity("crack_speed", dim::velocity, "kC0 given directly (instead of crack_speed_ratio)").above(0);
   keys.quantity("shape_factor", dim::none, "S: an obscured zone is S (kC0 t)^3 (4π/3: a sphere)")

@@ -437,7 +437,7 @@ KeyList RotatingCrack::parameters() {
                 "k: the speed at which a flaw's obscured zone grows over the bar wave speed C0 = "
                 "sqrt(E/rho), with flaw_density (absent: 0.38)")
       .above(0)
-      .at_most(1);
+      .below(1);
   keys.quantity("crack_speed", dim::velocity, "kC0 given directly (instead of crack_speed_ratio)").above(0);
   keys.quantity("shape_factor", dim::none,
                 "S: an obscured zone is S (kC0 t)^3, with flaw_density (absent: 4π/3, a sphere)")
