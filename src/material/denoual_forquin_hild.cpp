@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <numbers>
 
 #include "core/principal.hpp"
@@ -220,17 +219,7 @@ FragmentationParameters DenoualForquinHild::from(const ParameterValues& v) {
   p.flaw_density = v.number("flaw_density");
   p.shape_factor = v.number("shape_factor");
   if (v.has("seed")) p.weakest_flaw_field = true, p.seed = seed_from(v, "seed");
-  const double bulk = p.moduli.bulk, shear = p.moduli.shear;
-  const double bar_speed = std::sqrt(9.0 * bulk * shear / (3.0 * bulk + shear) / v.number("density"));
-  p.crack_speed = v.has("crack_speed") ? v.number("crack_speed") : v.number("crack_speed_ratio") * bar_speed;
-  if (p.crack_speed >= bar_speed) {
-    char text[256];
-    std::snprintf(text, sizeof text,
-                  "crack_speed %.4g m/s is not below the bar wave speed sqrt(E/rho) = %.4g m/s: a crack cannot "
-                  "outrun the waves that load it (k = 0.38 of it, %.4g m/s, is the usual value)",
-                  p.crack_speed, bar_speed, 0.38 * bar_speed);
-    throw ParameterError("crack_speed", text);
-  }
+  p.crack_speed = obscured_zone_speed(v, p.moduli);
   return p;
 }
 

@@ -12,6 +12,9 @@
 
 namespace shard {
 
+struct ElasticModuli;
+struct ParameterValues;
+
 struct FlawPopulation {
   double weibull_modulus = 0;  ///< m
   double weibull_stress = 0;   ///< σ0 (Pa): the stress at which λ_t = λ0
@@ -34,6 +37,11 @@ struct FlawPopulation {
     return std::pow(scale, 1.0 / (weibull_modulus + 3.0));
   }
 };
+
+/// kC0 from a material's keys: `crack_speed`, or `crack_speed_ratio` k (0.38 when absent; below 1
+/// by its key) times the bar wave speed C0 = sqrt(E/ρ). A crack_speed not below C0 is refused: a
+/// crack cannot outrun the waves that load it.
+double obscured_zone_speed(const ParameterValues& values, const ElasticModuli& moduli);
 
 /// Advances the moments A_j = ∫ (t − T)^j dλ_t(T) over a time τ in which the activated flaw
 /// density grew by Δλ at a uniform rate:

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <limits>
 #include <numbers>
 #include <stdexcept>
@@ -495,19 +494,7 @@ FlawPopulation RotatingCrack::flaw_population_from(const ParameterValues& v, con
   f.weibull_stress = tensile_strength;
   f.flaw_density = v.number("flaw_density");
   f.shape_factor = v.has("shape_factor") ? v.number("shape_factor") : 4.0 * std::numbers::pi / 3.0;
-  const double young = 9.0 * moduli.bulk * moduli.shear / (3.0 * moduli.bulk + moduli.shear);
-  const double bar_speed = std::sqrt(young / v.number("density"));
-  f.crack_speed = v.has("crack_speed") ? v.number("crack_speed")
-                                       : (v.has("crack_speed_ratio") ? v.number("crack_speed_ratio") : 0.38) * bar_speed;
-  if (!(f.crack_speed < bar_speed)) {
-    const char* key = v.has("crack_speed") ? "crack_speed" : "crack_speed_ratio";
-    char text[200];
-    std::snprintf(text, sizeof text,
-                  "crack_speed %.4g m/s is not below the bar wave speed sqrt(E/rho) = %.4g m/s (0.38 of it, "
-                  "%.4g m/s, is the usual value)",
-                  f.crack_speed, bar_speed, 0.38 * bar_speed);
-    throw ParameterError(key, text);
-  }
+  f.crack_speed = obscured_zone_speed(v, moduli);
   return f;
 }
 
