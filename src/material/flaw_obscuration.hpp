@@ -8,6 +8,7 @@
 // history is stored. Theory note: docs/theory/fragmentation_damage.md, section 2.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 
 namespace shard {
@@ -30,6 +31,15 @@ struct FlawPopulation {
   double obscuring() const { return shape_factor * crack_speed * crack_speed * crack_speed; }
   /// The obscured fraction 1 − exp(−Z) of moments `a`.
   double obscuration(const double* a) const { return -std::expm1(-obscuring() * a[3]); }
+  /// Where within a step Z reached 1, as a fraction of the step, from Z at its start and end:
+  /// Z^(1/(m+3)) grows linearly in time under a constant stress rate from zero (Z ∝ t^(m+3),
+  /// eq. 12 of docs/theory/rotating_crack.md), so it is interpolated, not Z. In [0, 1].
+  double covering_fraction(double z_start, double z_end) const {
+    const double p = 1.0 / (weibull_modulus + 3.0);
+    const double a = std::pow(z_start, p), b = std::pow(z_end, p);
+    if (!(b > a)) return 1.0;
+    return std::clamp((1.0 - a) / (b - a), 0.0, 1.0);
+  }
   /// t_c at a constant stress rate σ̇: λ_t(σ̇ t_c) S (kC0 t_c)³ = 1,
   /// t_c = [(σ0/σ̇)^m / (λ0 S (kC0)³)]^(1/(m+3)).
   double characteristic_time(double stress_rate) const {

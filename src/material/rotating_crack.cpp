@@ -335,14 +335,17 @@ bool RotatingCrack::flaws_let_open(const double* stress, double major, double dt
                                    double& ft) const {
   // The flaws the major tension activates grow their zones over the step (eqs. 2–4 of
   // docs/theory/fragmentation_damage.md); a crack opens once they cover the point, Z ≥ 1, and
-  // the tension is above the point's static strength. It opens within the step, from the stress
-  // the point carried at its start: the crack's f_t is that stress, or the static f_t if higher.
-  // Covered while its tension falls, its opening stress is the lower, end-of-step one, and the
-  // crack stays shut until the tension next rises past it.
+  // the tension is above the point's static strength. Its f_t is the tension where within the
+  // step Z reached 1 (eq. 11 of docs/theory/rotating_crack.md), or the static f_t if higher. The
+  // crack opens at once while the tension rises; covered while it falls, it stays shut until the
+  // tension next rises past that stress.
+  const double z_start = p_.flaws.obscuring() * hs[flaw_moment_3];
   advance_flaws(p_.flaws, major, dt, hs[flaw_peak_stress], hs + flaw_moment_0);
   hs[obscuration] = p_.flaws.obscuration(hs + flaw_moment_0);
-  if (!above_strength || p_.flaws.obscuring() * hs[flaw_moment_3] < 1.0) return false;
-  ft = std::max(ft, std::min(major_principal(stress), major));
+  const double z_end = p_.flaws.obscuring() * hs[flaw_moment_3];
+  if (!above_strength || z_end < 1.0) return false;
+  const double start = major_principal(stress);
+  ft = std::max(ft, start + p_.flaws.covering_fraction(z_start, z_end) * (major - start));
   hs[opening_stress] = ft;
   return major > ft;
 }

@@ -895,10 +895,10 @@ TEST(RotatingCrack, RateDependentInitiationOpensWhereTheFlawsObscureThePoint) {
     p.dt = expected / rate / 2000;  // 2 000 steps to the opening
     const Opening o = open_at(p, rate);
     std::printf("[rotating_crack rate-dependent] stress rate %.0e Pa/s: crack opens at %.2f MPa (closed form "
-                "%.2f, %+.3f %%; f_t %.0f), intact up to %.2f MPa, obscured fraction %.5f (1 - 1/e = %.5f)\n",
+                "%.2f, %+.4f %%; f_t %.0f), intact up to %.2f MPa, obscured fraction %.5f (1 - 1/e = %.5f)\n",
                 rate, o.stress / 1e6, expected / 1e6, 100 * (o.stress / expected - 1), kFt / 1e6,
                 o.largest_intact / 1e6, o.obscuration, 1 - std::exp(-1.0));
-    EXPECT_NEAR(o.stress, expected, 0.005 * expected);
+    EXPECT_NEAR(o.stress, expected, 1e-4 * expected);  // a step is 5e-4 of it: found within the step
     EXPECT_GT(o.largest_intact, 1.5 * kFt);  // elastic well past the static strength
     EXPECT_NEAR(o.obscuration, 1 - std::exp(-1.0), 0.005);
     rates.push_back(rate);
@@ -914,6 +914,21 @@ TEST(RotatingCrack, RateDependentInitiationOpensWhereTheFlawsObscureThePoint) {
   std::printf("[rotating_crack rate-dependent] slope of log strength over log stress rate %.5f (3/13 = %.5f)\n",
               sxy / sxx, 3.0 / 13);
   EXPECT_NEAR(sxy / sxx, 3.0 / 13, 0.01 * 3.0 / 13);
+
+  // In coarse steps, as behind a wave front in a run (a few steps to the opening), the opening
+  // stress is found within its step, not at the step's start (which is a whole step low). What
+  // is left is the flaws' moments taking the density activated within a step as growing linearly
+  // (it grows as t^m): they cover the point a little early.
+  for (const int steps : {20, 5}) {
+    MaterialPoint coarse{material, 1e-6};
+    const double fast = 1e16, expected = obscuring_stress(flaws, fast);
+    coarse.dt = expected / fast / steps;
+    const Opening o = open_at(coarse, fast);
+    std::printf("[rotating_crack rate-dependent] %d steps to the opening at %.0e Pa/s: opens at %.2f MPa (closed "
+                "form %.2f, %+.3f %%; a step is %.1f %% of it)\n",
+                steps, fast, o.stress / 1e6, expected / 1e6, 100 * (o.stress / expected - 1), 100.0 / steps);
+    EXPECT_NEAR(o.stress, expected, 0.25 / steps * expected);  // a quarter of a step
+  }
 
   // Slowly, the flaws obscure the point long before the tension reaches f_t: the crack opens at
   // f_t, the static strength.
@@ -975,7 +990,9 @@ TEST(RotatingCrack, RateDependentPointCoveredWhileUnloadingOpensWhenReloadedPast
   EXPECT_GE(covered, 1 - std::exp(-1.0));
   EXPECT_GT(set, kFt);
   EXPECT_LT(set, peak);
-  EXPECT_EQ(set, at_setting);
+  // Set where within its step Z reached 1: between the stresses at the step's end and start.
+  EXPECT_GE(set, at_setting);
+  EXPECT_LE(set, at_setting + 1e14 * p.dt);
   EXPECT_EQ(covered_later, covered);
   EXPECT_TRUE(shut_later);
   EXPECT_GT(p.state[RotatingCrack::max_crack_strain], 0.0);
