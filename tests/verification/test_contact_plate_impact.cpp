@@ -156,7 +156,7 @@ PlateImpactResult plate_impact(const PlateImpact& c) {
     std::vector<double> sum(column.size(), 0.0), worst(column.size(), 0.0);
     for (const Part* part : {&target, &flyer})
       for (std::size_t e = 0; e < part->element_count(); ++e) {
-        const double F = part->state[RotatingCrack::slot_count * e + RotatingCrack::failure_factor];
+        const double F = part->state[part->state_size * part->type->points * e + RotatingCrack::failure_factor];
         const int k = flyer_columns + column_of(reference_x(run.model, *part, e) + (part == &flyer ? gap : 0), c.cell);
         if (part == &target) sum[k] += F;
         worst[k] = std::max(worst[k], F);

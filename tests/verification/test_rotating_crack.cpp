@@ -522,7 +522,7 @@ BarResult notched_bar(double cell) {
   const Part& part = run.model.parts[0];
   r.elements = part.element_count();
   for (std::size_t e = 0; e < part.element_count(); ++e) {
-    const double F = part.state[RotatingCrack::slot_count * e + RotatingCrack::failure_factor];
+    const double F = part.state[part.state_size * part.type->points * e + RotatingCrack::failure_factor];
     r.cracked += F > 0 ? 1 : 0;
     r.open += F >= 1 ? 1 : 0;
   }
@@ -641,8 +641,8 @@ SpallResult spall(double velocity, double nonlocal_length = 0) {
   const int columns = static_cast<int>(std::lround(target / cell));
   std::vector<double> sum(columns, 0.0), nonlocal(columns, 0.0);
   for (std::size_t e = 0; e < part.element_count(); ++e) {
-    const double F = part.state[RotatingCrack::slot_count * e + RotatingCrack::failure_factor];
-    const double Fbar = part.state[RotatingCrack::slot_count * e + RotatingCrack::nonlocal_failure_factor];
+    const double F = part.state[part.state_size * part.type->points * e + RotatingCrack::failure_factor];
+    const double Fbar = part.state[part.state_size * part.type->points * e + RotatingCrack::nonlocal_failure_factor];
     r.max_factor = std::max(r.max_factor, F);
     r.max_nonlocal = std::max(r.max_nonlocal, Fbar);
     const int col = std::clamp(static_cast<int>(testing::element_centroid(run.model, part, e, 0) / cell), 0, columns - 1);
@@ -786,7 +786,7 @@ TEST(RotatingCrack, BrazilianDiscSplitsAlongTheLoadedDiameterAtTheTensileStrengt
     map = {};
     map.time = time;
     for (std::size_t e = 0; e < part.element_count(); ++e) {
-      const double F = part.state[RotatingCrack::slot_count * e + RotatingCrack::failure_factor];
+      const double F = part.state[part.state_size * part.type->points * e + RotatingCrack::failure_factor];
       if (!(F > 0)) continue;
       const double x = testing::element_centroid(run.model, part, e, 0);
       const double y = testing::element_centroid(run.model, part, e, 1);
