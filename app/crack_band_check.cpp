@@ -67,6 +67,39 @@ std::vector<std::string> crack_band_warnings(const Scenario& scenario, const Sim
   return warnings;
 }
 
+std::vector<CrackBandReport> crack_band_reports(const Model& model, const std::vector<std::unique_ptr<Material>>& materials) {
+  std::vector<CrackBandReport> reports;
+  for (const Part& part : model.parts) {
+    const Material& material = *materials[static_cast<std::size_t>(part.material)];
+    if (!std::isfinite(material.crack_band_limit())) continue;
+    CrackBandReport r{part.name, material.name(), material.failure_depends_on_loading_rate()};
+    const std::size_t stride = static_cast<std::size_t>(part.state_size);
+    for (std::size_t q = 0; stride > 0 && q < part.point_count(); ++q) {
+      const Material::OpenedCrack crack = material.opened_crack(&part.state[stride * q]);
+      if (!crack.opened) continue;
+      ++r.opened;
+      r.largest_stress = std::max(r.largest_stress, crack.stress);
+      if (!(crack.band_width > crack.limit)) continue;
+      r.smallest_limit = r.wider++ ? std::min(r.smallest_limit, crack.limit) : crack.limit;
+    }
+    reports.push_back(r);
+  }
+  return reports;
+}
+
+std::string crack_band_note(const CrackBandReport& r) {
+  if (!r.rate_dependent || r.wider == 0) return {};
+  char text[768];
+  std::snprintf(text, sizeof text,
+                "part '%s': %zu of the %zu cracks of material '%s' opened in elements wider than the "
+                "crack-band limit at the stress they opened at (down to %.3g mm; cracks opened at up to "
+                "%.4g MPa): their softening snapped back, and there the model acted as a strength "
+                "criterion at that stress (docs/theory/rotating_crack.md, section 6b)",
+                r.part.c_str(), r.wider, r.opened, r.material.c_str(), 1e3 * r.smallest_limit,
+                1e-6 * r.largest_stress);
+  return text;
+}
+
 std::vector<std::string> loading_rate_warnings(const Scenario& scenario, const Simulation& sim) {
   std::vector<std::string> warnings;
   if (scenario.bulk_viscosity_length > 0 || !(scenario.bulk_viscosity_linear > 0)) return warnings;

@@ -4,6 +4,7 @@
 // as a strength criterion. docs/theory/rotating_crack.md, "Admissible element size".
 #pragma once
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -18,6 +19,25 @@ double crack_band_width(const Part& part, const NodeArrays& nodes, std::size_t e
 /// One warning per part whose elements are larger than its material's crack-band limit: how
 /// many, the largest, the limit and what it comes from, and the mesh size that would be needed.
 std::vector<std::string> crack_band_warnings(const Scenario& scenario, const Simulation& sim);
+
+/// How the cracks of one part's crack-band material opened, from its points' state: how many
+/// points have an open crack, and how many of them opened in a band wider than the crack-band
+/// limit at the stress they opened at (there the softening snapped back). With rate-dependent
+/// initiation that stress is above f_t and its limit smaller than the set-up check's.
+struct CrackBandReport {
+  std::string part, material;
+  bool rate_dependent = false;
+  std::size_t opened = 0, wider = 0;
+  double smallest_limit = 0.0;  ///< m: the smallest limit among the wider ones (0: none)
+  double largest_stress = 0.0;  ///< Pa: the largest stress a crack opened at
+};
+
+/// One report per part whose material has a crack band (Material::crack_band_limit finite).
+std::vector<CrackBandReport> crack_band_reports(const Model& model, const std::vector<std::unique_ptr<Material>>& materials);
+
+/// The run's note for a report of a rate-dependent material with cracks wider than their limit
+/// (the set-up check compares the elements with the limit at f_t only); empty otherwise.
+std::string crack_band_note(const CrackBandReport& report);
 
 /// One warning per material whose failure depends on the loading rate
 /// (Material::failure_depends_on_loading_rate) when the linear bulk viscosity is a coefficient

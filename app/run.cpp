@@ -2,6 +2,7 @@
 
 #include "core/exact_sum.hpp"
 
+#include "app/crack_band_check.hpp"
 #include "app/crash_report.hpp"
 
 #include <sys/resource.h>
@@ -396,6 +397,9 @@ class RunDriver {
       as_whole([&] {
         history_.flush();
         check_written(history_, history_path_);
+        if (!options_.quiet && writes())
+          for (const auto& r : crack_band_reports(sim_.model, sim_.materials))
+            if (const std::string n = crack_band_note(r); !n.empty()) std::cerr << "note: " << n << "\n";
         write_summary();
         write_fragment_report();
       });
@@ -1919,6 +1923,8 @@ class RunDriver {
     // Particles now (conversion adds them as the run goes), as the elements are counted now.
     particles_ = 0;
     for (const auto& pp : sim_.model.particle_parts) particles_ += pp.count();
+    // How the cracks opened, from the points' state as it stands (the whole model's).
+    const auto bands = crack_band_reports(sim_.model, sim_.materials);
     std::ostringstream j;
     j.precision(10);
     j << "{\n  \"status\": " << json_string(status_) << ",\n  \"message\": " << json_string(message_)
@@ -1929,8 +1935,8 @@ class RunDriver {
       << ",\n  \"element_steps_per_second\": " << (wall > 0 ? steps * elements / wall : 0.0)
       << ",\n  \"particle_steps_per_second\": "
       << (wall > 0 ? steps * static_cast<double>(particles_) / wall : 0.0)
-      << ",\n  \"eroded_elements\": " << s.eroded_elements << remesh_summary()
-      << ",\n  \"notes\": [" << notes_json() << "]"
+      << ",\n  \"eroded_elements\": " << s.eroded_elements << remesh_summary() << crack_band_summary(bands)
+      << ",\n  \"notes\": [" << notes_json(bands) << "]"
       << crash_summary()
       << ",\n  \"energy_balance_error\": " << s.energy.relative_error() << ",\n  \"energy\": {";
     const auto names = s.energy.column_names();
@@ -2023,10 +2029,31 @@ class RunDriver {
   double crash_mass_per_length_ = 0;
   double crash_stroke_ = 0;  ///< of the row being written, summed over the ranks
 
-  std::string notes_json() const {
+  /// The run's notes, and those on its crack bands as they stand at the end (crack_band_note).
+  std::string notes_json(const std::vector<CrackBandReport>& bands) const {
     std::string out = particle_step_note_.empty() ? "" : json_string(particle_step_note_);
     for (const auto& n : notes_) out += (out.empty() ? "" : ", ") + json_string(n);
+    for (const auto& r : bands)
+      if (const std::string n = crack_band_note(r); !n.empty()) out += (out.empty() ? "" : ", ") + json_string(n);
     return out;
+  }
+
+  /// Per part of a crack-band material: its open cracks and those wider than the limit at the
+  /// stress they opened at (docs/outputs.md, summary.json).
+  static std::string crack_band_summary(const std::vector<CrackBandReport>& bands) {
+    if (bands.empty()) return {};
+    std::ostringstream j;
+    j.precision(10);
+    j << ",\n  \"crack_bands\": {";
+    for (std::size_t i = 0; i < bands.size(); ++i) {
+      const CrackBandReport& r = bands[i];
+      j << (i ? ", " : "") << json_string(r.part) << ": {\"material\": " << json_string(r.material)
+        << ", \"cracks_opened\": " << r.opened << ", \"wider_than_limit\": " << r.wider
+        << ", \"smallest_limit\": " << r.smallest_limit << ", \"largest_opening_stress\": " << r.largest_stress
+        << "}";
+    }
+    j << "}";
+    return j.str();
   }
   std::string particle_step_note_;  ///< also in summary.json
   Clock::time_point start_ = Clock::now();

@@ -151,6 +151,20 @@ class Material {
     (void)point_state;
     return crack_band_limit();
   }
+  /// A point's crack as it opened, for the run's report of its crack bands (summary.json,
+  /// docs/outputs.md): the band width it opened in, the stress its softening curve starts from
+  /// and the crack-band limit at that stress. Not `opened` for an intact point or a model
+  /// without a crack band.
+  struct OpenedCrack {
+    bool opened = false;
+    double band_width = 0.0;  ///< m
+    double stress = 0.0;      ///< Pa
+    double limit = std::numeric_limits<double>::infinity();  ///< m
+  };
+  virtual OpenedCrack opened_crack(const double* point_state) const {
+    (void)point_state;
+    return {};
+  }
   /// True for a model whose failure depends on how fast the stress rises (a rate-dependent
   /// strength or a damage that takes time to grow): its results then depend on how the bulk
   /// viscosity spreads a wave front, which `shard check` points out.

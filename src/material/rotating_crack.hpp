@@ -101,6 +101,13 @@ class RotatingCrack final : public Material, public NonlocalAveraging {
     return crack_band_limit_at(point_strength(point_state));
   }
   double crack_band_limit_at(double ft) const;
+  /// An open crack's band and the limit at the stress it opened at (its f_t, or with
+  /// rate-dependent initiation its opening stress, where the limit is smaller).
+  OpenedCrack opened_crack(const double* point_state) const override {
+    if (!(point_state[max_crack_strain] > 0.0)) return {};
+    const double ft = curve_strength(point_state);
+    return {true, point_state[band_width], ft, crack_band_limit_at(ft)};
+  }
   NonlocalSpec nonlocal_spec() const override {
     return {p_.nonlocal_length, failure_factor, nonlocal_failure_factor};
   }

@@ -12,7 +12,9 @@
 
 #include <string>
 
+#include "app/crack_band_check.hpp"
 #include "app/run.hpp"
+#include "app/simulation.hpp"
 #include "material/rotating_crack.hpp"
 
 namespace shard {
@@ -78,6 +80,58 @@ TEST(CrackBandLimit, CheckWarnsAboutElementsWiderThanTheLimit) {
     return std::stoul(text.substr(text.find("'plate': ", text.find("warning:")) + 9));
   };
   EXPECT_GT(count(weibull), count(coarse)) << weibull;
+}
+
+// The run's report of its crack bands (summary.json "crack_bands"), on the coarse notched plate
+// made tough enough that the set-up check passes every element at f_t (limit 0.82 mm at 300 MPa),
+// with rate-dependent initiation. Three points are given states by hand: a crack opened at f_t,
+// one opened at 600 MPa (limit 2EG_f/f² = 0.2056 mm, narrower than the elements), and an intact
+// point with an opening stress set. The report counts two open cracks, one of them too wide,
+// with the limit at 600 MPa; the note names them; without flaws no note is made.
+TEST(CrackBandReport, CountsCracksWiderThanTheLimitAtTheStressTheyOpenedAt) {
+  const std::string plate = std::string(SHARD_TEST_DATA_DIR) + "/fracture/notched_plate_coarse.yaml";
+  const std::vector<ScenarioOverride> tough = {{"materials.ceramic.fracture_energy", "100 J/m^2"}};
+  std::vector<ScenarioOverride> flaws = tough;
+  flaws.push_back({"materials.ceramic.flaw_density", "1e4 1/m^3"});
+  flaws.push_back({"materials.ceramic.weibull_modulus", "10"});
+  for (const bool rate_dependent : {true, false}) {
+    Scenario scenario = read_scenario(plate, rate_dependent ? flaws : tough);
+    Simulation sim = build_simulation(scenario, load_scenario_mesh(scenario));
+    Part& part = sim.model.parts[0];
+    const std::size_t n = static_cast<std::size_t>(part.state_size);
+    const double E = 370e9, gf = 100, h = 0.4e-3;
+    auto set = [&](std::size_t q, double kappa, double opening) {
+      part.state[n * q + RotatingCrack::max_crack_strain] = kappa;
+      part.state[n * q + RotatingCrack::band_width] = h;
+      if (rate_dependent) part.state[n * q + RotatingCrack::opening_stress] = opening;
+    };
+    set(0, 1e-5, 300e6);
+    set(1, 1e-5, 600e6);
+    set(2, 0.0, 900e6);
+    const auto reports = crack_band_reports(sim.model, sim.materials);
+    ASSERT_EQ(reports.size(), 1u);
+    const CrackBandReport& r = reports[0];
+    const std::string note = crack_band_note(r);
+    std::printf("[crack band report] %s: %zu open, %zu wider than the limit, smallest limit %.4f mm, largest opening "
+                "stress %.0f MPa; note: %s\n",
+                rate_dependent ? "flaws" : "no flaws", r.opened, r.wider, 1e3 * r.smallest_limit,
+                r.largest_stress / 1e6, note.c_str());
+    EXPECT_EQ(r.part, "plate");
+    EXPECT_EQ(r.opened, 2u);
+    if (rate_dependent) {
+      EXPECT_EQ(r.wider, 1u);
+      EXPECT_NEAR(r.smallest_limit, 2 * E * gf / (600e6 * 600e6), 1e-9 * r.smallest_limit);
+      EXPECT_EQ(r.largest_stress, 600e6);
+      EXPECT_NE(note.find("part 'plate': 1 of the 2 cracks of material 'ceramic' opened in elements wider"),
+                std::string::npos)
+          << note;
+      EXPECT_NE(note.find("down to 0.206 mm"), std::string::npos) << note;
+    } else {
+      EXPECT_EQ(r.wider, 0u);  // both at f_t = 300 MPa, where the limit is 0.82 mm
+      EXPECT_EQ(r.largest_stress, 300e6);
+      EXPECT_TRUE(note.empty()) << note;
+    }
+  }
 }
 
 // A rate-dependent damage (the fragmentation damage of the SiC example) with the linear bulk

@@ -1047,6 +1047,13 @@ TEST(RotatingCrack, RateDependentCrackDissipatesTheFractureEnergyFromItsDynamicS
               o.stress / 1e6, expected / 1e6, peak / 1e6, p.fracture, kGf / h, 100 * (p.fracture * h / kGf - 1));
   EXPECT_NEAR(peak, expected, 0.005 * expected);
   EXPECT_NEAR(p.fracture, kGf / h, 0.02 * kGf / h);
+  // What the run's crack-band report reads: the band it opened in and the limit at f_open.
+  const Material::OpenedCrack crack = material.opened_crack(p.state);
+  EXPECT_TRUE(crack.opened);
+  EXPECT_EQ(crack.band_width, h);
+  EXPECT_EQ(crack.stress, o.stress);
+  EXPECT_NEAR(crack.limit, 2 * youngs(material.elastic()) * kGf / (o.stress * o.stress), 1e-9 * crack.limit);
+  EXPECT_FALSE(material.opened_crack(MaterialPoint{material, h}.state).opened);
   EXPECT_LT(std::abs(p.stress[xx]), 1e-3 * expected);
 }
 

@@ -102,7 +102,22 @@ TEST(RunCli, RateDependentCracksAreTheSameOnAnyThreadCountAndAcrossARestart) {
   const auto column = std::find(header.begin(), header.end(), "fracture") - header.begin();
   ASSERT_LT(static_cast<std::size_t>(column), last.size());
   EXPECT_GT(std::strtod(last[column].c_str(), nullptr), 0.0);
+  // summary.json reports the cracks and how many opened in elements wider than the crack-band
+  // limit at their opening stress: all but at most the 8 of the beam's 62 922 elements narrower
+  // than the limit at f_t (the set-up warning's count), since the opening stresses are ≥ f_t.
+  const std::string summary = testing::read_file(dir / "one" / "summary.json");
+  const double opened = number_after(summary, "\"beam\": {\"material\": \"sic\", \"cracks_opened\": ");
+  const double wider = number_after(summary, "\"wider_than_limit\": ");
+  EXPECT_GT(opened, 100) << summary;
+  EXPECT_LE(wider, opened) << summary;
+  EXPECT_GE(wider, opened - 8) << summary;
+  EXPECT_NE(summary.find("cracks of material 'sic' opened in elements wider than the crack-band limit"),
+            std::string::npos)
+      << summary;
   for (const char* run : {"two", "pieces"}) {
+    const std::string other = testing::read_file(dir / run / "summary.json");
+    EXPECT_EQ(number_after(other, "\"cracks_opened\": "), opened) << run;
+    EXPECT_EQ(number_after(other, "\"wider_than_limit\": "), wider) << run;
     EXPECT_EQ(history, testing::read_file(dir / run / "history.csv")) << run;
     EXPECT_EQ(frame, testing::read_file(dir / run / "frame_00003.vtu")) << run;
   }
