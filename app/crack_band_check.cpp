@@ -80,7 +80,8 @@ std::vector<CrackBandReport> crack_band_reports(const Model& model, const std::v
       ++r.opened;
       r.largest_stress = std::max(r.largest_stress, crack.stress);
       if (!(crack.band_width > crack.limit)) continue;
-      r.smallest_limit = r.wider++ ? std::min(r.smallest_limit, crack.limit) : crack.limit;
+      r.smallest_limit = r.wider == 0 ? crack.limit : std::min(r.smallest_limit, crack.limit);
+      ++r.wider;
     }
     reports.push_back(r);
   }
@@ -91,10 +92,10 @@ std::string crack_band_note(const CrackBandReport& r) {
   if (!r.rate_dependent || r.wider == 0) return {};
   char text[768];
   std::snprintf(text, sizeof text,
-                "part '%s': %zu of the %zu cracks of material '%s' opened in elements wider than the "
-                "crack-band limit at the stress they opened at (down to %.3g mm; cracks opened at up to "
-                "%.4g MPa): their softening snapped back, and there the model acted as a strength "
-                "criterion at that stress (docs/theory/rotating_crack.md, section 6b)",
+                "part '%s': %zu of the %zu points of material '%s' with an open crack opened it in a "
+                "band wider than the crack-band limit at the stress it opened at (down to %.3g mm; "
+                "cracks opened at up to %.4g MPa): their softening snapped back, and there the model "
+                "acted as a strength criterion at that stress (docs/theory/rotating_crack.md, section 6b)",
                 r.part.c_str(), r.wider, r.opened, r.material.c_str(), 1e3 * r.smallest_limit,
                 1e-6 * r.largest_stress);
   return text;

@@ -21,8 +21,8 @@ double crack_band_width(const Part& part, const NodeArrays& nodes, std::size_t e
 std::vector<std::string> crack_band_warnings(const Scenario& scenario, const Simulation& sim);
 
 /// How the cracks of one part's crack-band material opened, from its points' state: how many
-/// points have an open crack, and how many of them opened in a band wider than the crack-band
-/// limit at the stress they opened at (there the softening snapped back). With rate-dependent
+/// integration points have an open crack, and how many of them opened in a band wider than the
+/// crack-band limit at the stress they opened at (there the softening snapped back). With rate-dependent
 /// initiation that stress is above f_t and its limit smaller than the set-up check's.
 struct CrackBandReport {
   std::string part, material;

@@ -397,10 +397,7 @@ class RunDriver {
       as_whole([&] {
         history_.flush();
         check_written(history_, history_path_);
-        if (!options_.quiet && writes())
-          for (const auto& r : crack_band_reports(sim_.model, sim_.materials))
-            if (const std::string n = crack_band_note(r); !n.empty()) std::cerr << "note: " << n << "\n";
-        write_summary();
+        write_summary(/*say_crack_bands=*/true);
         write_fragment_report();
       });
     } catch (const RunError& e) {
@@ -1915,7 +1912,9 @@ class RunDriver {
     return hi > lo ? mass / (hi - lo) : 0.0;
   }
 
-  void write_summary() {
+  /// summary.json; `say_crack_bands`: the notes on the crack bands go to the terminal too (at the
+  /// run's end: they are worked out from the points' state as it stands).
+  void write_summary(bool say_crack_bands = false) {
     const double wall = std::chrono::duration<double>(Clock::now() - start_).count();
     const auto& s = solver_.state();
     const double steps = static_cast<double>(s.step - first_step_);
@@ -1925,6 +1924,9 @@ class RunDriver {
     for (const auto& pp : sim_.model.particle_parts) particles_ += pp.count();
     // How the cracks opened, from the points' state as it stands (the whole model's).
     const auto bands = crack_band_reports(sim_.model, sim_.materials);
+    if (say_crack_bands && !options_.quiet && writes())
+      for (const auto& r : bands)
+        if (const std::string n = crack_band_note(r); !n.empty()) std::cerr << "note: " << n << "\n";
     std::ostringstream j;
     j.precision(10);
     j << "{\n  \"status\": " << json_string(status_) << ",\n  \"message\": " << json_string(message_)

@@ -29,12 +29,15 @@ struct FlawPopulation {
   }
   /// S (kC0)³: Z = this × A_3.
   double obscuring() const { return shape_factor * crack_speed * crack_speed * crack_speed; }
+  /// Z of moments `a`: a point is covered once it reaches 1.
+  double covering(const double* a) const { return obscuring() * a[3]; }
   /// The obscured fraction 1 − exp(−Z) of moments `a`.
-  double obscuration(const double* a) const { return -std::expm1(-obscuring() * a[3]); }
+  double obscuration(const double* a) const { return -std::expm1(-covering(a)); }
   /// Where within a step Z reached 1, as a fraction of the step, from Z at its start and end:
   /// Z^(1/(m+3)) grows linearly in time under a constant stress rate from zero (Z ∝ t^(m+3),
   /// eq. 12 of docs/theory/rotating_crack.md), so it is interpolated, not Z. In [0, 1].
   double covering_fraction(double z_start, double z_end) const {
+    if (!(z_start < 1.0)) return 0.0;  // covered before the step (below the static strength then)
     const double p = 1.0 / (weibull_modulus + 3.0);
     const double a = std::pow(z_start, p), b = std::pow(z_end, p);
     if (!(b > a)) return 1.0;

@@ -339,10 +339,10 @@ bool RotatingCrack::flaws_let_open(const double* stress, double major, double dt
   // step Z reached 1 (eq. 11 of docs/theory/rotating_crack.md), or the static f_t if higher. The
   // crack opens at once while the tension rises; covered while it falls, it stays shut until the
   // tension next rises past that stress.
-  const double z_start = p_.flaws.obscuring() * hs[flaw_moment_3];
+  const double z_start = p_.flaws.covering(hs + flaw_moment_0);
   advance_flaws(p_.flaws, major, dt, hs[flaw_peak_stress], hs + flaw_moment_0);
   hs[obscuration] = p_.flaws.obscuration(hs + flaw_moment_0);
-  const double z_end = p_.flaws.obscuring() * hs[flaw_moment_3];
+  const double z_end = p_.flaws.covering(hs + flaw_moment_0);
   if (!above_strength || z_end < 1.0) return false;
   const double start = major_principal(stress);
   ft = std::max(ft, start + p_.flaws.covering_fraction(z_start, z_end) * (major - start));

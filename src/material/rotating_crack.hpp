@@ -40,7 +40,7 @@ struct RotatingCrackParameters {
   /// Rate-dependent initiation (flaws.flaw_density > 0): a crack opens only once the flaws that
   /// the major principal tension activates, λ_t(σ) = λ0 (σ/f_t)^m, have obscured the point
   /// (Z ≥ 1; Denoual & Hild 2000), and at no less than the point's f_t; its softening then starts
-  /// from the stress the point carries. flaw_density 0: a crack opens at f_t.
+  /// from the tension where within its step Z reached 1. flaw_density 0: a crack opens at f_t.
   FlawPopulation flaws;
 };
 

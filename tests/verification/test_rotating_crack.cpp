@@ -952,9 +952,9 @@ TEST(RotatingCrack, RateDependentInitiationOpensWhereTheFlawsObscureThePoint) {
   EXPECT_EQ(std::find(reset.begin(), reset.end(), int{RotatingCrack::strength}), reset.end());
 }
 
-// Covered by its flaws while its tension falls (still above f_t), a point keeps the stress it
-// then had as its opening stress, its crack still shut and its flaws frozen; its crack opens when
-// the tension next rises past that stress.
+// Covered by its flaws while its tension falls (still above f_t), a point keeps the tension
+// where within that step Z reached 1 as its opening stress, its crack still shut and its flaws
+// frozen; its crack opens when the tension next rises past that stress.
 TEST(RotatingCrack, RateDependentPointCoveredWhileUnloadingOpensWhenReloadedPastItsOpeningStress) {
   const RotatingCrack material("sic", kRho, silicon_carbide_with_flaws());
   const ElasticModuli m = material.elastic();
@@ -991,8 +991,8 @@ TEST(RotatingCrack, RateDependentPointCoveredWhileUnloadingOpensWhenReloadedPast
   EXPECT_GT(set, kFt);
   EXPECT_LT(set, peak);
   // Set where within its step Z reached 1: between the stresses at the step's end and start.
-  EXPECT_GE(set, at_setting);
-  EXPECT_LE(set, at_setting + 1e14 * p.dt);
+  EXPECT_GT(set, at_setting);  // not the step's end (a step is 0.01 MPa here)
+  EXPECT_LT(set, at_setting + 1e14 * p.dt);
   EXPECT_EQ(covered_later, covered);
   EXPECT_TRUE(shut_later);
   EXPECT_GT(p.state[RotatingCrack::max_crack_strain], 0.0);
