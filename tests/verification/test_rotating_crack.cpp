@@ -888,7 +888,7 @@ Opening open_at(MaterialPoint& p, double rate) {
 // Where within a step Z reached 1, interpolated in Z^(1/(m+3)): exact for Z ∝ t^(m+3) (eq. 12
 // of docs/theory/rotating_crack.md); the step's start for a point covered before it, and the
 // step's end when Z did not grow.
-TEST(RotatingCrack, CoveringFractionIsExactForZGrowingAsTToTheMPlus3) {
+TEST(RotatingCrack, RateDependentCoveringFractionIsExactForZGrowingAsTToTheMPlus3) {
   const FlawPopulation flaws = silicon_carbide_with_flaws().flaws;
   const double n = flaws.weibull_modulus + 3;
   // Z(t) = (t/t_c)^(m+3) from t = 0, reaching 1 at t_c; a step from t0 = 2 to 3 (in any unit).
@@ -899,9 +899,10 @@ TEST(RotatingCrack, CoveringFractionIsExactForZGrowingAsTToTheMPlus3) {
     // Interpolated in Z itself it would be far earlier: (1 − Z_n)/(Z_n+1 − Z_n).
     if (crossing == 0.5) EXPECT_LT((1 - z_start) / (z_end - z_start), 0.25);
   }
-  EXPECT_EQ(flaws.covering_fraction(0.0, std::pow(2.0, n)), 0.5);  // the first step
+  EXPECT_DOUBLE_EQ(flaws.covering_fraction(0.0, std::pow(2.0, n)), 0.5);  // the first step
   EXPECT_EQ(flaws.covering_fraction(1.5, 2.0), 0.0);  // covered before the step (below f_t then)
   EXPECT_EQ(flaws.covering_fraction(1.5, 1.5), 0.0);  // ... and with no growth in it
+  EXPECT_EQ(flaws.covering_fraction(0.5, 0.5), 1.0);  // not covered before, no growth: the step's end
 }
 
 TEST(RotatingCrack, RateDependentInitiationOpensWhereTheFlawsObscureThePoint) {
