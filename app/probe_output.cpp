@@ -17,8 +17,9 @@ std::filesystem::path probe_path(const std::filesystem::path& dir, const std::st
 
 }  // namespace
 
-ProbeOutput::ProbeOutput(const std::vector<Simulation::Probe>& probes, std::filesystem::path dir, int dim)
-    : probes_(probes), dir_(std::move(dir)), dim_(dim) {}
+ProbeOutput::ProbeOutput(const std::vector<Simulation::Probe>& probes, const Loads& loads, std::filesystem::path dir,
+                         int dim)
+    : probes_(probes), loads_(loads), dir_(std::move(dir)), dim_(dim) {}
 
 void ProbeOutput::open(bool restart, const std::vector<double>& bytes) {
   files_.clear();
@@ -41,7 +42,25 @@ void ProbeOutput::open(bool restart, const std::vector<double>& bytes) {
   }
 }
 
-std::vector<double> ProbeOutput::values(const Model& model, const Simulation::Probe& probe) const {
+double ProbeOutput::prescribed_acceleration(const Model& model, std::size_t n, std::size_t k, int index,
+                                            double t) const {
+  const Prescription& p = loads_.prescriptions[static_cast<std::size_t>(index)];
+  const TimeTable& table = loads_.tables[static_cast<std::size_t>(p.table)];
+  if (p.rotation < 0) return table.rate(t);
+  // A rigid rotation about the axis a through c at ω(t): a = ω̇ a × r + ω² a × (a × r), r = x − c.
+  const Rotation& rot = loads_.rotations[static_cast<std::size_t>(p.rotation)];
+  const std::size_t D = static_cast<std::size_t>(dim_);
+  double r[3] = {0, 0, 0};
+  for (std::size_t d = 0; d < D; ++d) r[d] = model.nodes.x[D * n + d] - rot.centre[d];
+  const auto& a = rot.axis;
+  const double axr[3] = {a[1] * r[2] - a[2] * r[1], a[2] * r[0] - a[0] * r[2], a[0] * r[1] - a[1] * r[0]};
+  const double ax_axr[3] = {a[1] * axr[2] - a[2] * axr[1], a[2] * axr[0] - a[0] * axr[2],
+                            a[0] * axr[1] - a[1] * axr[0]};
+  const double w = table.at(t);
+  return table.rate(t) * axr[k] + w * w * ax_axr[k];
+}
+
+std::vector<double> ProbeOutput::values(const Model& model, const Simulation::Probe& probe, double t) const {
   const std::size_t D = static_cast<std::size_t>(dim_);
   std::unordered_map<std::int64_t, std::size_t> index;  // ids are indices until nodes move
   for (std::size_t i = 0; i < model.nodes.count(); ++i) index.emplace(model.nodes.id[i], i);
@@ -58,7 +77,9 @@ std::vector<double> ProbeOutput::values(const Model& model, const Simulation::Pr
     for (std::size_t k = 0; k < D; ++k) {
       v[k] += model.nodes.x[D * n + k];
       v[D + k] += model.nodes.v[D * n + k];
-      v[2 * D + k] += m > 0 ? model.nodes.force[D * n + k] / m : 0.0;
+      const int held = model.nodes.prescribed.empty() ? -1 : model.nodes.prescribed[D * n + k];
+      if (held >= 0) v[2 * D + k] += prescribed_acceleration(model, n, k, held, t);
+      else v[2 * D + k] += m > 0 ? model.nodes.force[D * n + k] / m : 0.0;
     }
   }
   // The stress: the mean over the elements around the probe's nodes of their mean over points.
@@ -100,7 +121,7 @@ void ProbeOutput::sample(const Model& model, double t, const std::vector<double>
     char buffer[40];
     std::snprintf(buffer, sizeof buffer, "%.17g", t);
     files_[p] << buffer;
-    for (double x : values(model, probes_[p])) {
+    for (double x : values(model, probes_[p], t)) {
       std::snprintf(buffer, sizeof buffer, ",%.17g", x);
       files_[p] << buffer;
     }

@@ -339,7 +339,7 @@ class RunDriver {
       : options_(options), p_(prepare(file, options.overrides)), sc_(p_.scenario), sim_(p_.sim), solver_ptr_(make_solver(sim_)),
         solver_(*solver_ptr_), contact_(solver_.contact()), cracks_(sim_.crack_growth()), automata_contacts_(sim_.find_event<MCAContactUpdate>()), remesher_(sim_.remeshing()),
         fingerprint_(fingerprint_of(sc_)), dir_(options.output_dir), history_path_(dir_ / "history.csv"),
-        dim_(sim_.model.dim()), pvd_(dir_ / "frames.pvd"), probes_(sim_.probes, dir_, dim_),
+        dim_(sim_.model.dim()), pvd_(dir_ / "frames.pvd"), probes_(sim_.probes, sim_.loads, dir_, dim_),
         progress_(options.quiet || !writes(options), sc_.output.log_interval, sc_.end_time) {
 #ifdef _OPENMP
     if (options_.threads == 0 && std::getenv("OMP_NUM_THREADS") == nullptr)

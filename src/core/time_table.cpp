@@ -1,6 +1,7 @@
 #include "core/time_table.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 namespace shard {
 
@@ -13,6 +14,17 @@ double TimeTable::at(double t) const {
   const std::size_t i = static_cast<std::size_t>(it - times.begin());
   const double s = (t - times[i - 1]) / (times[i] - times[i - 1]);
   return values[i - 1] + s * (values[i] - values[i - 1]);
+}
+
+double TimeTable::rate(double t) const {
+  if (function) {
+    const double h = 1e-6 * std::max(std::abs(t), 1e-6);
+    return (function(t + h) - function(t - h)) / (2.0 * h);
+  }
+  if (values.size() < 2 || t < times.front() || t >= times.back()) return 0.0;
+  const auto it = std::upper_bound(times.begin(), times.end(), t);
+  const std::size_t i = static_cast<std::size_t>(it - times.begin());
+  return (values[i] - values[i - 1]) / (times[i] - times[i - 1]);
 }
 
 }  // namespace shard

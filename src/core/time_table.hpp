@@ -17,6 +17,9 @@ struct TimeTable {
   static TimeTable constant(double value) { return {{0.0}, {value}, {}}; }
   static TimeTable of(std::function<double(double)> f) { return {{}, {}, std::move(f)}; }
   double at(double t) const;
+  /// d(value)/dt at t: the slope of the segment that holds t (the one that starts there at a
+  /// point), 0 beyond the ends; a function's by a central difference.
+  double rate(double t) const;
 };
 
 }  // namespace shard

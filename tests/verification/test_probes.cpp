@@ -3,8 +3,12 @@
 // where it reflects from a free surface, so the free end moves at 2v = 20 m/s once the front has
 // arrived (L/c = 17.1 us) and until the reflection of the reflection returns.
 // A probe's velocity is the frame's nodal velocity, bit for bit; a restart gives the same file.
+// A constrained component's acceleration is its constraint's: 0 on a roller, the ramp's slope
+// where the velocity is prescribed (force/mass there would be the unbalanced force the
+// constraint takes as its reaction).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -69,6 +73,47 @@ TEST(Probes, FreeEndMovesAtTwiceTheDrivenSpeedAndMatchesTheFrames) {
       at_20 = probe.at(i, "v_x");
     }
   EXPECT_EQ(at_20, std::strtod(buffer, nullptr)) << "probe row at 20 us against frame 20";
+  fs::remove_all(dir);
+}
+
+TEST(Probes, AConstrainedComponentAcceleratesAsItsConstraint) {
+  const auto dir = testing::fresh_dir("probes_constrained");
+  std::string text = testing::read_file(std::string(SHARD_SOURCE_DIR) + "/examples/bar_impact/bar_2d.yaml");
+  text = std::regex_replace(text, std::regex("file: bar_2d.geo"),
+                            "file: " + std::string(SHARD_SOURCE_DIR) + "/examples/bar_impact/bar_2d.geo");
+  // The driven end ramps up to 10 m/s over 10 us: a_x = 1e6 m/s^2, then 0.
+  text = std::regex_replace(text, std::regex("velocity: \\{x: 10 m/s\\}"), "velocity: {x: [[0, 0], [10 us, 10 m/s]]}");
+  text = std::regex_replace(text, std::regex("end_time: 25 us"), "end_time: 15 us");
+  const fs::path scenario = dir / "ramped.yaml";
+  std::ofstream(scenario) << text << "probes:\n  - {name: driven, group: left, interval: 0.1 us}\n"
+                                     "  - {name: roller, point: [50 mm, 10 mm], interval: 0.1 us}\n";
+  const auto r = testing::run_shard("run " + scenario.string() + " --quiet -o " + (dir / "out").string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  const auto driven = testing::read_history(dir / "out" / "probe_driven.csv");
+  const auto roller = testing::read_history(dir / "out" / "probe_roller.csv");
+  ASSERT_GT(driven.rows.size(), 140u);
+  int ramp = 0, held = 0;
+  for (std::size_t i = 0; i < driven.rows.size(); ++i) {
+    const double t = driven.at(i, "time");
+    if (t > 0.05e-6 && t < 9.95e-6) {
+      EXPECT_NEAR(driven.at(i, "a_x"), 1e6, 1e-6) << "t = " << t;
+      ++ramp;
+    }
+    if (t > 10.05e-6) {
+      EXPECT_EQ(driven.at(i, "a_x"), 0.0) << "t = " << t;
+      ++held;
+    }
+  }
+  EXPECT_GT(ramp, 90);
+  EXPECT_GT(held, 40);
+  // The roller's y is held: 0 in every row, while the wave moves its x (the roller is at the
+  // bar's middle, 50 mm from the driven end: the front passes it at about 8.5 us).
+  double largest_ax = 0;
+  for (std::size_t i = 0; i < roller.rows.size(); ++i) {
+    EXPECT_EQ(roller.at(i, "a_y"), 0.0) << "t = " << roller.at(i, "time");
+    largest_ax = std::max(largest_ax, std::abs(roller.at(i, "a_x")));
+  }
+  EXPECT_GT(largest_ax, 1e5);
   fs::remove_all(dir);
 }
 
