@@ -107,8 +107,9 @@ class Progress {
 
   /// `counts` gives what the run holds now ("fragments 12  particles 480"), asked only when a
   /// line is written.
+  /// The line is for time t, reached after `step` increments, the last of `dt`.
   template <class Counts>
-  void update(const SolverState& s, double t, bool force, Counts&& counts) {
+  void update(const SolverState& s, std::int64_t step, double dt, double t, bool force, Counts&& counts) {
     if (quiet_) return;
     const auto now = Clock::now();
     const double since = std::chrono::duration<double>(now - last_).count();
@@ -128,7 +129,7 @@ class Progress {
     std::snprintf(line, sizeof line,
                   "t = %s / %s (%3.0f%%)  step %lld  dt %s  wall %.1f s  ETA %.1f s  energy error %+.3f%%%s%s",
                   format_time(t).c_str(), format_time(end_time_).c_str(), 100 * fraction,
-                  static_cast<long long>(s.step), format_time(s.dt_half).c_str(), wall, eta,
+                  static_cast<long long>(step), format_time(dt).c_str(), wall, eta,
                   100 * s.energy.relative_error(), held.empty() ? "" : "  ", held.c_str());
     if (tty_) std::fprintf(stderr, "\r%s\033[K", line);
     else std::fprintf(stderr, "%s\n", line);
@@ -368,7 +369,7 @@ class RunDriver {
 
   RunSummary run() {
     start_ = Clock::now();
-    first_step_ = solver_.state().step;
+    first_step_ = steps_done_ = solver_.state().step;
     try {
       // The first forces give the step the whole run is judged by, before any output exists.
       compute_forces();
@@ -404,7 +405,7 @@ class RunDriver {
       fail(e);
     }
     RunSummary summary;
-    summary.steps = solver_.state().step;
+    summary.steps = steps_done_;
     summary.end_time = solver_.state().time - solver_.state().dt_half;
     summary.wall_seconds = std::chrono::duration<double>(Clock::now() - start_).count();
     summary.energy_balance_error = solver_.state().energy.relative_error();
@@ -1382,6 +1383,7 @@ class RunDriver {
       if (frame) cursor_.next_frame = static_cast<std::int64_t>(std::floor(t / out.frame_interval * (1 + 1e-9))) + 1;
       const std::int64_t step = s.step;
       const double dt_used = s.dt_half;
+      steps_done_ = step;
       // Before advance(): its events (crack growth) may rebuild the contact system, which
       // clears the forces it applied in this step.
       const double dt_n = solver_.velocity_step();
@@ -1404,7 +1406,7 @@ class RunDriver {
         if (out.history_interval > 0)
           cursor_.next_history = static_cast<std::int64_t>(std::floor(t / out.history_interval * (1 + 1e-9))) + 1;
       }
-      progress_.update(s, t, final, [&] { return held_counts(); });
+      progress_.update(s, step, dt_used, t, final, [&] { return held_counts(); });
       if (final) break;
       if (sc_.max_steps > 0 && s.step >= sc_.max_steps)
         throw RunError("reached analysis.max_steps = " + std::to_string(sc_.max_steps) + " at t = " +
@@ -1917,7 +1919,7 @@ class RunDriver {
   void write_summary(bool say_crack_bands = false) {
     const double wall = std::chrono::duration<double>(Clock::now() - start_).count();
     const auto& s = solver_.state();
-    const double steps = static_cast<double>(s.step - first_step_);
+    const double steps = static_cast<double>(steps_done_ - first_step_);
     const double elements = static_cast<double>(sim_.model.element_count());
     // Particles now (conversion adds them as the run goes), as the elements are counted now.
     particles_ = 0;
@@ -1930,7 +1932,7 @@ class RunDriver {
     std::ostringstream j;
     j.precision(10);
     j << "{\n  \"status\": " << json_string(status_) << ",\n  \"message\": " << json_string(message_)
-      << ",\n  \"scenario\": " << json_string(sc_.file.string()) << ",\n  \"steps\": " << s.step
+      << ",\n  \"scenario\": " << json_string(sc_.file.string()) << ",\n  \"steps\": " << steps_done_
       << ",\n  \"end_time\": " << s.time - s.dt_half << ",\n  \"wall_seconds\": " << wall
       << ",\n  \"threads\": " << threads_ << ",\n  \"ranks\": " << (ranks_ ? ranks_->size() : 1) << ",\n  \"cuts\": " << cuts_ << ",\n  \"splits_in_place\": " << splits_in_place_count_ << ",\n  \"rebalances\": " << rebalances_ << ",\n  \"elements\": " << sim_.model.element_count()
       << ",\n  \"nodes\": " << sim_.model.nodes.count() << ",\n  \"particles\": " << particles_
@@ -2060,6 +2062,10 @@ class RunDriver {
   std::string particle_step_note_;  ///< also in summary.json
   Clock::time_point start_ = Clock::now();
   std::int64_t first_step_ = 0;
+  /// Increments taken to the last state the loop reached (its row's step): the advance that
+  /// closes the bookkeeping at the end, or that a --until stop leaves in the checkpoint, is not
+  /// one of them.
+  std::int64_t steps_done_ = 0;
   std::vector<double> last_row_energy_;  ///< the ledger at the last history row (check_energy_balance)
   double last_row_time_ = 0, last_row_residual_ = 0;
   std::size_t particles_ = 0;
