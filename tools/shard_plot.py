@@ -970,17 +970,20 @@ def plot_cone(args):
         for t, failed, radius, fit in rows:
             cone = f"{fit[0]:5.1f} deg from r = {fit[1]:6.3f} mm" if fit else "-"
             print(f"{t * 1e6:7.3f} us  contact radius {radius:6.3f} mm  failed cells {len(failed):6d}  cone {cone}")
-    after = "" if start is None else f" ({figures['measured_at_us'] - start * 1e6:.2f} µs after impact)"
+    def after_impact(us):  # every time is the run's; this says how long after the impact it is
+        return "" if start is None else f" ({us - start * 1e6:.2f} µs after impact)"
+    after = after_impact(figures['measured_at_us'])
     print(f"{folder}, part {name}: cone over the first {args.depth:g} mm at {figures['measured_at_us']:.2f} µs{after}: "
           f"{figures['angle_deg']:.1f}° to the surface from r = {figures['start_mm']:.2f} mm; "
           f"{figures['angle_range_deg'][0]:.1f}–{figures['angle_range_deg'][1]:.1f}° (median "
-          f"{figures['angle_median_deg']:.1f}°) since it reached that depth at {figures['cone_formed_us']:.2f} µs")
+          f"{figures['angle_median_deg']:.1f}°) since it reached that depth at {figures['cone_formed_us']:.2f} µs"
+          f"{after_impact(figures['cone_formed_us'])}")
     if "ring_us" in figures:
-        print(f"  ring at the cone's start first failed at {figures['ring_us']:.2f} µs, contact radius then "
-              f"{figures['contact_radius_mm']:.3f} mm: {figures['ring_over_contact']:.2f} contact radii")
+        print(f"  ring at the cone's start first failed at {figures['ring_us']:.2f} µs{after_impact(figures['ring_us'])}, "
+              f"contact radius then {figures['contact_radius_mm']:.3f} mm: {figures['ring_over_contact']:.2f} contact radii")
     if "deep_inside_us" in figures:
         print(f"  first failure inside the cone deeper than {args.depth:g} mm (in the upper half of the part) at "
-              f"{figures['deep_inside_us']:.2f} µs")
+              f"{figures['deep_inside_us']:.2f} µs{after_impact(figures['deep_inside_us'])}")
     if args.json:
         with open(args.json, "w") as stream:
             json.dump(figures, stream, indent=1)

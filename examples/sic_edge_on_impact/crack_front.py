@@ -135,7 +135,7 @@ def main():
         print(f"t = {r[0]:6.2f} us: failed front {r[1]:7.2f} mm, crack front {r[2]:7.2f} mm, "
               f"{r[3]} failed cells, {r[4]} crack-face nodes" +
               (f", {r[5]} cracks across x = {args.crossing:g} mm" if args.crossing else ""))
-    plot = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tools", "shard_plot.py")
+    plot = shard_plot() if args.pictures else None
     times = data[:, 0]
     for after in args.pictures:
         k = int(np.argmin(np.abs(times - (after + args.impact))))
@@ -145,6 +145,18 @@ def main():
                         "--frame", str(k), "--vmin", "0", "--vmax", "1", "--cmap", "inferno",
                         "--title", f"{after:g} µs after impact", "-o", out, "--width", "11"],
                        check=True)
+
+
+def shard_plot():
+    """tools/shard_plot.py of the repository this script is in, or of the one SHARD_SOURCE names (a
+    copy of the example folder elsewhere)."""
+    here = os.path.dirname(os.path.abspath(__file__))
+    for root in (os.path.join(here, "..", ".."), os.environ.get("SHARD_SOURCE", "")):
+        candidate = os.path.join(root, "tools", "shard_plot.py")
+        if root and os.path.isfile(candidate):
+            return candidate
+    sys.exit("crack_front.py: --pictures draws with tools/shard_plot.py, which is not two folders above this "
+             "script: set SHARD_SOURCE to the shard repository (e.g. SHARD_SOURCE=~/shard)")
 
 
 if __name__ == "__main__":
