@@ -149,6 +149,10 @@ class Progress {
 /// Above this many steps a run without analysis.max_steps is said to be long (a warning).
 constexpr double kStepsLong = 1e7;
 
+/// Below this many steps, on a mesh whose unit is not written (metres), a run is said to be too
+/// short to mean anything (a warning): most likely a mesh drawn in millimetres.
+constexpr double kStepsShort = 10;
+
 /// A run estimated at more steps than this must say so with analysis.max_steps: at a few
 /// microseconds a step for the smallest model, it would run for days.
 constexpr double kStepsWithoutLimit = 1e9;
@@ -156,24 +160,36 @@ constexpr double kStepsWithoutLimit = 1e9;
 /// Refuses, before any output, a run whose step count cannot be what was meant: a stable step
 /// that is not a positive finite time (a material constant out of scale), or a step count that
 /// overflows or exceeds kStepsWithoutLimit without analysis.max_steps; a run of more than
-/// kStepsLong steps is a warning (returned).
+/// kStepsLong steps, or from the start of fewer than kStepsShort, is a warning (returned).
 std::optional<std::string> check_step_count(const Scenario& sc, double dt, double start_time) {
-  const std::string file = shown_path(sc.file);
+  // At end_time's line, or naming the --set that gave it.
+  auto at_end_time = [&](const std::string& why) {
+    return InputError(sc.end_time_note.empty() ? shown_path(sc.file) : "", sc.end_time_line, "analysis.end_time",
+                      why + sc.end_time_note);
+  };
   if (!(dt > 0) || !std::isfinite(dt)) {
     std::ostringstream reason;
     reason << "the stable time step at the start is " << dt
            << " s, not a positive finite time: a density, modulus or contact stiffness is out of "
               "scale (check their units; plain numbers are SI)";
-    throw InputError(file, sc.end_time_line, "analysis.end_time", reason.str());
+    throw at_end_time(reason.str());
   }
   const double steps = (sc.end_time - start_time) / dt;
+  if (start_time == 0 && steps < kStepsShort && !sc.mesh_unit_given) {
+    char text[320];
+    std::snprintf(text, sizeof text,
+                  "about %.3g steps at the first stable step of %s: too few for a wave to cross more than a "
+                  "few elements, and mesh.unit names no unit, so the mesh's coordinates are metres (a mesh "
+                  "drawn in mm needs mesh.unit: 1 mm)", std::ceil(steps), format_time(dt).c_str());
+    return at_end_time(text).what();
+  }
   if (sc.max_steps > 0 || steps <= kStepsLong) return std::nullopt;
   if (std::isfinite(steps) && steps <= kStepsWithoutLimit) {
     char text[256];
     std::snprintf(text, sizeof text,
                   "about %.3g steps at the first stable step of %s: a long run (set analysis.max_steps to "
                   "say the count is meant)", steps, format_time(dt).c_str());
-    return InputError(file, sc.end_time_line, "analysis.end_time", text).what();
+    return at_end_time(text).what();
   }
   std::ostringstream reason;
   reason.precision(3);
@@ -184,7 +200,7 @@ std::optional<std::string> check_step_count(const Scenario& sc, double dt, doubl
   reason << " (more than " << kStepsWithoutLimit
          << "): check end_time, max_time_step and the materials' constants, or set "
             "analysis.max_steps to the number of steps you mean to run";
-  throw InputError(file, sc.end_time_line, "analysis.end_time", reason.str());
+  throw at_end_time(reason.str());
 }
 
 /// Refuses an output folder that cannot be one (a file, or a path under a file) before anything

@@ -476,9 +476,30 @@ void apply_initial_velocities(const Scenario& sc, const MeshData& mesh, Model& m
   }
 }
 
+// The longest edge of the elements around node n at the start (0 for a node of no element).
+double longest_edge_at(const Model& model, std::size_t n) {
+  const int dim = model.dim();
+  double longest = 0;
+  for (const auto& part : model.parts) {
+    const std::size_t npe = static_cast<std::size_t>(part.type->nodes);
+    for (std::size_t e = 0; e < part.element_count(); ++e) {
+      const std::int32_t* c = &part.connectivity[npe * e];
+      if (std::find(c, c + npe, static_cast<std::int32_t>(n)) == c + npe) continue;
+      for (std::size_t a = 0; a < npe; ++a)
+        for (std::size_t b = a + 1; b < npe; ++b) {
+          double d2 = 0;
+          for (int k = 0; k < dim; ++k) d2 += std::pow(model.nodes.x0[dim * c[a] + k] - model.nodes.x0[dim * c[b] + k], 2);
+          longest = std::max(longest, std::sqrt(d2));
+        }
+    }
+  }
+  return longest;
+}
+
 // Probes: the node nearest each point at the start, or a group's nodes, by their stable ids (a
-// crack that splits a probe's node keeps the id on one of the copies).
-void build_probes(const Scenario& sc, const MeshData& mesh, Simulation& sim, GroupNodeSets& sets) {
+// crack that splits a probe's node keeps the id on one of the copies). A point farther from its
+// node than the elements around the node are long is likely outside the body: a warning.
+void build_probes(Scenario& sc, const MeshData& mesh, Simulation& sim, GroupNodeSets& sets) {
   const Model& model = sim.model;
   const int dim = sc.dim();
   for (std::size_t i = 0; i < sc.probes.size(); ++i) {
@@ -496,6 +517,15 @@ void build_probes(const Scenario& sc, const MeshData& mesh, Simulation& sim, Gro
         if (d2 < best) best = d2, nearest = n;
       }
       p.nodes.push_back(model.nodes.id[nearest]);
+      const double off = std::sqrt(best), edge = longest_edge_at(model, nearest);
+      if (off > edge) {
+        std::ostringstream what;
+        what.precision(3);
+        what << "the nearest node is " << 1e3 * off << " mm from the point, farther than the elements around it are long ("
+             << 1e3 * edge << " mm): the point is likely outside the body (the probe follows that node)";
+        sc.warnings.push_back(InputError(shown_path(sc.file), in.line, "probes[" + std::to_string(i + 1) + "].point",
+                                         what.str()).what());
+      }
     } else {
       const std::string key = "probes[" + std::to_string(i + 1) + "].group";
       for (auto n : sets.of(find_group(sc, mesh, in.group, in.line, key, -1), in.line, key).nodes)

@@ -3,6 +3,7 @@
 #include <yaml-cpp/depthguard.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <fstream>
 #include <iterator>
@@ -559,6 +560,9 @@ class ScenarioReader {
   sc.time_step_safety = analysis.number("time_step_safety");
   sc.max_time_step = analysis.number("max_time_step");
   sc.thickness = analysis.number("thickness");
+  if (sc.formulation == Formulation::axisymmetric && analysis.has("thickness"))
+    analysis.warn(0, "thickness", "not used by an axisymmetric run: its masses, energies and forces are those of "
+                                  "the whole body of revolution (360°)");
   sc.bulk_viscosity_linear = analysis.number("bulk_viscosity_linear");
   sc.bulk_viscosity_quadratic = analysis.number("bulk_viscosity_quadratic");
   sc.bulk_viscosity_length = analysis.number("bulk_viscosity_length");
@@ -608,6 +612,10 @@ class ScenarioReader {
     mesh.fail("file", "mesh file '" + sc.mesh_file.string() + "' " + why +
                           " (a relative path is taken from the scenario file's folder)");
   sc.mesh_unit = mesh.number("unit");
+  // Written with its unit ("1 mm"); a plain number is metres, like no unit at all.
+  sc.mesh_unit_given = mesh.has("unit") && mesh.value("unit").IsScalar() &&
+                       std::any_of(mesh.value("unit").Scalar().begin(), mesh.value("unit").Scalar().end(),
+                                   [](unsigned char c) { return std::isalpha(c) != 0; });
   sc.mesh_size = mesh.optional_number("size").value_or(0.0);
   sc.mesh_size_line = mesh.line("size");
   sc.mesh_max_elements = mesh.integer("max_elements");
@@ -681,7 +689,12 @@ class ScenarioReader {
       // A model names the key at fault; when it names 'model' or a key that is not given (a
       // missing or conflicting combination), the material as a whole is at fault.
       if (e.key() != "model" && s.has(e.key())) s.fail(e.key(), e.what());
-      throw InputError(file, mat.line, path, e.what());
+      // A reason about a given key that needs a missing one ("weibull_modulus needs
+      // weibull_volume ...") points at the given key's line.
+      const std::string reason = e.what();
+      for (const auto& spec : keys.keys())
+        if (spec.name != "model" && s.has(spec.name) && reason.rfind(spec.name + " ", 0) == 0) s.fail(spec.name, reason);
+      throw InputError(file, mat.line, path, reason);
     }
     sc.materials.push_back(std::move(mat));
   }
@@ -774,6 +787,13 @@ class ScenarioReader {
     }
     if (!s.has("velocity") && !s.has("angular_velocity") && !s.has("velocity_gradient"))
       s.fail("velocity", "an initial condition needs velocity, angular_velocity or velocity_gradient");
+    for (std::size_t j = 0; j < sc.initial_velocities.size(); ++j) {
+      const InitialVelocityInput& earlier = sc.initial_velocities[j];
+      if ((!ic.part.empty() && earlier.part == ic.part) || (!ic.group.empty() && earlier.group == ic.group))
+        s.warn(0, ic.part.empty() ? "group" : "part",
+               "initial_conditions[" + std::to_string(j + 1) + "] sets the velocity of '" +
+                   (ic.part.empty() ? ic.group : ic.part) + "' too: this later one replaces it");
+    }
     if (s.has("velocity")) copy_into(s.vector("velocity", dim), ic.velocity);
     if (s.has("center")) copy_into(s.vector("center", dim), ic.center);
     if (s.has("angular_velocity")) ic.angular_velocity = angular_velocity(s);
@@ -1186,6 +1206,8 @@ class ScenarioReader {
   const KeyList o_keys = output_keys();
   Section out(top.value("output"), file, "output", o_keys, sc.resolved["output"], top.line("output"));
   sc.output.frame_interval = out.number("frame_interval", sc.end_time / 20);
+  if (out.has("frame_interval") && sc.output.frame_interval > sc.end_time)
+    out.warn(0, "frame_interval", "longer than analysis.end_time: frames at the start and the end only");
   sc.output.history_interval = out.number("history_interval", sc.end_time / 1000);
   sc.output.checkpoint_interval = out.number("checkpoint_interval", sc.end_time / 10);
   sc.output.log_interval = out.number("log_interval");
@@ -1279,9 +1301,17 @@ ScenarioOverride parse_override(const std::string& text) {
 
 namespace {
 
+/// A section an override made because the file has none of that name: its key, and the nearest
+/// name the file has beside it ("" if none is near).
+struct MadeSection {
+  std::string key, nearest;
+};
+
 /// Puts one override into the scenario's YAML tree: maps on the way are made when missing (the
-/// reader then checks every key as if it were in the file); list entries must exist.
-void apply_override(YAML::Node& root, const ScenarioOverride& o) {
+/// reader then checks every key as if it were in the file; the first one made is returned);
+/// list entries must exist.
+MadeSection apply_override(YAML::Node& root, const ScenarioOverride& o) {
+  MadeSection made;
   auto fail = [&](const std::string& why) { throw InputError("", 0, "--set " + o.key, why); };
   YAML::Node at = root;
   std::size_t start = 0;
@@ -1292,7 +1322,9 @@ void apply_override(YAML::Node& root, const ScenarioOverride& o) {
     for (auto open = segment.find('['); open != std::string::npos; open = segment.find('[')) {
       const auto close = segment.find(']', open);
       const std::string number = close == std::string::npos ? "" : segment.substr(open + 1, close - open - 1);
-      if (number.empty() || number.find_first_not_of("0123456789") != std::string::npos || std::stoul(number) == 0)
+      if (number.find_first_not_of('0') == std::string::npos && !number.empty())
+        fail("list entries count from 1: " + segment.substr(0, open) + "[1] is the first");
+      if (number.empty() || number.find_first_not_of("0123456789") != std::string::npos)
         fail("'" + segment + "' is not a name with list entries such as walls[2] (counted from 1)");
       entries.push_back(std::stoul(number));
       segment.erase(open, close - open + 1);
@@ -1316,10 +1348,15 @@ void apply_override(YAML::Node& root, const ScenarioOverride& o) {
       }
       if (entries.empty()) at[segment] = value;
       else next = value;
-      return;
+      return made;
     }
     if (!next.IsDefined() || next.IsNull()) {
       if (!entries.empty()) fail("'" + segment + "' has no such entry");
+      if (made.key.empty() && at.IsMap() && at.size() > 0) {
+        std::vector<std::string> names;
+        for (const auto& kv : at) names.push_back(kv.first.as<std::string>());
+        made = {o.key.substr(0, dot), closest_match(segment, names)};
+      }
       at[segment] = YAML::Node(YAML::NodeType::Map);
       next.reset(at[segment]);
     }
@@ -1328,13 +1365,30 @@ void apply_override(YAML::Node& root, const ScenarioOverride& o) {
   }
 }
 
-/// The override an error of the reader is about, if any (its key, or a key below it).
-const ScenarioOverride* override_of(const InputError& e, const std::vector<ScenarioOverride>& overrides) {
+/// The override a key of the reader is about, if any (its key, or a key below it).
+const ScenarioOverride* override_of(const std::string& key, const std::vector<ScenarioOverride>& overrides) {
   for (auto it = overrides.rbegin(); it != overrides.rend(); ++it) {
-    std::string plain = it->key;  // "boundary_conditions[2].velocity" is named so by the reader too
-    if (e.key() == plain || e.key().rfind(plain + ".", 0) == 0 || plain.rfind(e.key() + ".", 0) == 0) return &*it;
+    const std::string& plain = it->key;  // "boundary_conditions[2].velocity" is named so by the reader too
+    if (key == plain || key.rfind(plain + ".", 0) == 0 || plain.rfind(key + ".", 0) == 0) return &*it;
   }
   return nullptr;
+}
+
+/// An error in a section that an override made (a misspelt name on the command line makes a new,
+/// incomplete section): says so, with the name the file has nearest to it.
+void name_made_section(const InputError& e, const std::vector<ScenarioOverride>& overrides,
+                       const std::vector<MadeSection>& made) {
+  for (std::size_t i = made.size(); i-- > 0;) {
+    const MadeSection& m = made[i];
+    if (m.key.empty() || (e.key() != m.key && e.key().rfind(m.key + ".", 0) != 0)) continue;
+    const auto dot = m.key.rfind('.');
+    const std::string name = m.key.substr(dot == std::string::npos ? 0 : dot + 1);
+    const std::string parent = dot == std::string::npos ? "the top level" : "'" + m.key.substr(0, dot) + "'";
+    throw InputError("", 0, "--set " + overrides[i].key,
+                     "the file has no '" + name + "' in " + parent +
+                         (m.nearest.empty() ? "" : " (did you mean '" + m.nearest + "'?)") +
+                         ", so the --set made a new one, which is incomplete: " + e.reason());
+  }
 }
 
 }  // namespace
@@ -1356,19 +1410,39 @@ Scenario read_scenario(const std::filesystem::path& path, const std::vector<Scen
   }
   if (!root.IsMap()) throw InputError(file, 1, "", "a scenario is a YAML map of sections (analysis:, mesh:, ...)");
 
-  for (const auto& o : overrides) apply_override(root, o);
+  std::vector<MadeSection> made;
+  for (const auto& o : overrides) made.push_back(apply_override(root, o));
 
   Scenario sc;
   sc.file = std::filesystem::absolute(path);
   sc.resolved = YAML::Node(YAML::NodeType::Map);
   const scenario_detail::ScenarioWarnings collect(sc.warnings);
+  // A value from the command line has no line in the file: errors and warnings name the override.
+  auto named = [&](const std::string& key) -> std::string {
+    const ScenarioOverride* o = override_of(key, overrides);
+    return o ? " (the value given by --set " + o->key + "=" + o->value + ")" : "";
+  };
+  struct NoteWhileReading {
+    scenario_detail::ScenarioWarnings::OverrideNote before;
+    explicit NoteWhileReading(scenario_detail::ScenarioWarnings::OverrideNote now)
+        : before(std::exchange(scenario_detail::ScenarioWarnings::override_note(), std::move(now))) {}
+    ~NoteWhileReading() { scenario_detail::ScenarioWarnings::override_note() = std::move(before); }
+  };
   try {
+    const NoteWhileReading note(named);
     ScenarioReader(root, path, sc).read();
   } catch (const InputError& e) {
-    // A value from the command line has no line in the file: name the override instead.
-    if (const ScenarioOverride* o = override_of(e, overrides))
-      throw InputError("", 0, e.key(), e.reason() + " (the value given by --set " + o->key + "=" + o->value + ")");
+    name_made_section(e, overrides, made);
+    // What was read before the error may explain it (a value without a unit, read as SI).
+    std::string earlier;
+    for (const std::string& w : sc.warnings) earlier += "\n  after the warning: " + w;
+    if (const std::string n = named(e.key()); !n.empty()) throw InputError("", 0, e.key(), e.reason() + n + earlier);
+    if (!earlier.empty()) throw InputError(e.file(), e.line(), e.key(), e.reason() + earlier);
     throw;
+  }
+  if (const std::string n = named("analysis.end_time"); !n.empty()) {
+    sc.end_time_line = 0;
+    sc.end_time_note = n;
   }
   return sc;
 }

@@ -284,6 +284,8 @@ struct Scenario {
   Formulation formulation = Formulation::plane_strain;
   double end_time = 0;
   int end_time_line = 0;  ///< where end_time is given (a refused step count points there)
+  /// When end_time came from the command line: " (the value given by --set ...)" (and no line).
+  std::string end_time_note;
   double time_step_safety = 0.9;
   double max_time_step = 0;
   double thickness = 1;
@@ -299,6 +301,7 @@ struct Scenario {
   std::filesystem::path mesh_file;  ///< absolute
   double mesh_size = 0;             ///< m; 0: as the file says
   double mesh_unit = 1;             ///< m per coordinate unit of the file
+  bool mesh_unit_given = false;     ///< whether mesh.unit is written with a unit (else metres)
   int mesh_line = 0;
   int mesh_size_line = 0;
   std::int64_t mesh_max_elements = 10000000;  ///< refused above this estimate (mesh.max_elements)

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <functional>
 #include <map>
 #include <optional>
 #include <string>
@@ -34,6 +35,13 @@ class ScenarioWarnings {
   ScenarioWarnings& operator=(const ScenarioWarnings&) = delete;
   static void add(std::string warning) {
     if (current()) current()->push_back(std::move(warning));
+  }
+  /// Which keys took their value from the command line (--set): for such a key, the text that
+  /// names the override; a warning about it names that instead of a line of the file.
+  using OverrideNote = std::function<std::string(const std::string& key)>;
+  static OverrideNote& override_note() {
+    thread_local OverrideNote note;
+    return note;
   }
 
  private:
@@ -213,7 +221,11 @@ class Section {
   /// Says something that parses but is likely a mistake, to ScenarioWarnings::current (shard
   /// check and run print them; they do not stop the run).
   void warn(int at_line, const std::string& key, const std::string& what) const {
-    ScenarioWarnings::add(InputError(file_, at_line > 0 ? at_line : line(key), key_path(key), what).what());
+    const auto& from_command_line = ScenarioWarnings::override_note();
+    if (const std::string note = from_command_line ? from_command_line(key_path(key)) : ""; !note.empty())
+      ScenarioWarnings::add(InputError("", 0, key_path(key), what + note).what());
+    else
+      ScenarioWarnings::add(InputError(file_, at_line > 0 ? at_line : line(key), key_path(key), what).what());
   }
 
   std::int64_t integer(const std::string& key) {

@@ -136,6 +136,54 @@ TEST(RunFailures, SetOverridesGiveTheRunOfTheEditedFile) {
   fs::remove_all(dir);
 }
 
+TEST(RunFailures, SetMistakesAndLikelyMistakesAreNamed) {
+  const auto dir = testing::fresh_dir("likely_mistakes");
+  const std::string base = write_bar_scenario(dir, "{frame_interval: 5 us}");
+  // A misspelt material on the command line makes a new, incomplete one: say so, and the name meant.
+  const auto typo = testing::run_shard("check " + base + " --set materials.stel.youngs_modulus=150GPa");
+  EXPECT_EQ(typo.status, 2) << typo.output;
+  EXPECT_TRUE(contains(typo.output, "key '--set materials.stel.youngs_modulus'")) << typo.output;
+  EXPECT_TRUE(contains(typo.output, "the file has no 'stel' in 'materials' (did you mean 'steel'?)")) << typo.output;
+  // A warning about a value from the command line names the --set, not a line of the file.
+  const auto soft = testing::run_shard("check " + base + " --set materials.steel.youngs_modulus=150");
+  EXPECT_EQ(soft.status, 0) << soft.output;
+  EXPECT_TRUE(contains(soft.output, "warning: key 'materials.steel.youngs_modulus': 150 has no unit")) << soft.output;
+  EXPECT_TRUE(contains(soft.output, "(the value given by --set materials.steel.youngs_modulus=150)")) << soft.output;
+  // A mesh without mesh.unit is in metres: the 100 mm bar drawn in millimetres becomes 100 m long,
+  // and the run is a step or two.
+  std::string metres = testing::read_file(base);
+  metres.replace(metres.find("unit: 1 mm, size: 1 mm"), 22, "size: 2");
+  std::ofstream(dir / "metres.yaml") << metres;
+  const auto big = testing::run_shard("check " + (dir / "metres.yaml").string());
+  EXPECT_EQ(big.status, 0) << big.output;
+  EXPECT_TRUE(contains(big.output, "too few for a wave to cross more than a few elements, and mesh.unit names "
+                                   "no unit")) << big.output;
+  EXPECT_FALSE(contains(testing::run_shard("check " + base).output, "too few")) << "the bar in mm has 1 mm elements";
+  const auto zero = testing::run_shard("check " + base + " --set boundary_conditions[0].velocity.x=1");
+  EXPECT_EQ(zero.status, 2) << zero.output;
+  EXPECT_TRUE(contains(zero.output, "list entries count from 1: boundary_conditions[1] is the first")) << zero.output;
+  // A thickness an axisymmetric run does not use.
+  const auto ring = testing::run_shard("check " + base + " --set analysis.formulation=axisymmetric "
+                                       "--set analysis.thickness=10mm");
+  EXPECT_EQ(ring.status, 0) << ring.output;
+  EXPECT_TRUE(contains(ring.output, "not used by an axisymmetric run")) << ring.output;
+  // In the file: two initial velocities for one part, frames rarer than the run, a probe 400 mm
+  // off the bar (100 mm by 10 mm, elements of 1 mm).
+  std::string text = testing::read_file(base);
+  text.replace(text.find("frame_interval: 5 us"), 20, "frame_interval: 30 us");
+  text += "initial_conditions:\n  - {part: bar, velocity: [1 m/s, 0]}\n  - {part: bar, velocity: [2 m/s, 0]}\n"
+          "probes:\n  - {name: far, point: [500 mm, 5 mm]}\n";
+  std::ofstream(dir / "likely.yaml") << text;
+  const auto likely = testing::run_shard("check " + (dir / "likely.yaml").string());
+  EXPECT_EQ(likely.status, 0) << likely.output;
+  EXPECT_TRUE(contains(likely.output, "initial_conditions[1] sets the velocity of 'bar' too: this later one replaces it"))
+      << likely.output;
+  EXPECT_TRUE(contains(likely.output, "longer than analysis.end_time: frames at the start and the end only"))
+      << likely.output;
+  EXPECT_TRUE(contains(likely.output, "the nearest node is 400 mm from the point")) << likely.output;
+  fs::remove_all(dir);
+}
+
 TEST(RunFailures, OversizedScenarioFileIsRefusedBeforeParsing) {
   // Millions of list items took seconds and gigabytes to reject: the size is checked first.
   const auto dir = testing::fresh_dir("oversized");
