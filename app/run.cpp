@@ -149,8 +149,8 @@ class Progress {
 /// Above this many steps a run without analysis.max_steps is said to be long (a warning).
 constexpr double kStepsLong = 1e7;
 
-/// Below this many steps, on a mesh whose unit is not written (metres), a run is said to be too
-/// short to mean anything (a warning): most likely a mesh drawn in millimetres.
+/// Below this many steps, on a mesh read in metres, a run is said to be too short to mean
+/// anything (a warning): most likely a mesh drawn in millimetres.
 constexpr double kStepsShort = 10;
 
 /// A run estimated at more steps than this must say so with analysis.max_steps: at a few
@@ -175,12 +175,12 @@ std::optional<std::string> check_step_count(const Scenario& sc, double dt, doubl
     throw at_end_time(reason.str());
   }
   const double steps = (sc.end_time - start_time) / dt;
-  if (start_time == 0 && steps < kStepsShort && !sc.mesh_unit_given) {
+  if (start_time == 0 && steps < kStepsShort && sc.mesh_unit == 1.0 && !sc.mesh_file.empty()) {
     char text[320];
     std::snprintf(text, sizeof text,
                   "about %.3g steps at the first stable step of %s: too few for a wave to cross more than a "
-                  "few elements, and mesh.unit names no unit, so the mesh's coordinates are metres (a mesh "
-                  "drawn in mm needs mesh.unit: 1 mm)", std::ceil(steps), format_time(dt).c_str());
+                  "few elements, on a mesh whose coordinates are read in metres (mesh.unit is 1 m or not "
+                  "given: a mesh drawn in mm needs mesh.unit: 1 mm)", std::ceil(steps), format_time(dt).c_str());
     return at_end_time(text).what();
   }
   if (sc.max_steps > 0 || steps <= kStepsLong) return std::nullopt;
@@ -1422,11 +1422,12 @@ class RunDriver {
         if (out.history_interval > 0)
           cursor_.next_history = static_cast<std::int64_t>(std::floor(t / out.history_interval * (1 + 1e-9))) + 1;
       }
-      progress_.update(s, step, dt_used, t, final, [&] { return held_counts(); });
+      progress_.update(s, step, step > 0 ? dt_used : s.dt_half, t, final, [&] { return held_counts(); });
       if (final) break;
       if (sc_.max_steps > 0 && s.step >= sc_.max_steps)
-        throw RunError("reached analysis.max_steps = " + std::to_string(sc_.max_steps) + " at t = " +
-                       format_time(s.time) + " before end_time = " + format_time(end));
+        throw RunError("reached analysis.max_steps = " + std::to_string(sc_.max_steps) + " before end_time = " +
+                       format_time(end) + "; the last state written is at t = " + format_time(t) + ", step " +
+                       std::to_string(step));
       cut_anew_if_moved();
       cut_anew_if_automata_moved();
       rebalance_if_uneven();

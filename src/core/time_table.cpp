@@ -19,6 +19,7 @@ double TimeTable::at(double t) const {
 double TimeTable::rate(double t) const {
   if (function) {
     const double h = 1e-6 * std::max(std::abs(t), 1e-6);
+    if (t < h) return (function(t + h) - function(t)) / h;  // a function of t ≥ 0 only
     return (function(t + h) - function(t - h)) / (2.0 * h);
   }
   if (values.size() < 2 || t < times.front() || t >= times.back()) return 0.0;

@@ -3,7 +3,6 @@
 #include <yaml-cpp/depthguard.h>
 
 #include <algorithm>
-#include <cctype>
 #include <cmath>
 #include <fstream>
 #include <iterator>
@@ -560,9 +559,12 @@ class ScenarioReader {
   sc.time_step_safety = analysis.number("time_step_safety");
   sc.max_time_step = analysis.number("max_time_step");
   sc.thickness = analysis.number("thickness");
-  if (sc.formulation == Formulation::axisymmetric && analysis.has("thickness"))
-    analysis.warn(0, "thickness", "not used by an axisymmetric run: its masses, energies and forces are those of "
-                                  "the whole body of revolution (360°)");
+  if (sc.formulation == Formulation::axisymmetric) {
+    if (analysis.has("thickness"))
+      analysis.warn(0, "thickness", "not used by an axisymmetric run: its masses, energies and forces are those "
+                                    "of the whole body of revolution (360°)");
+    sc.resolved["analysis"].remove("thickness");  // not in use: resolved.yaml runs as given
+  }
   sc.bulk_viscosity_linear = analysis.number("bulk_viscosity_linear");
   sc.bulk_viscosity_quadratic = analysis.number("bulk_viscosity_quadratic");
   sc.bulk_viscosity_length = analysis.number("bulk_viscosity_length");
@@ -612,10 +614,7 @@ class ScenarioReader {
     mesh.fail("file", "mesh file '" + sc.mesh_file.string() + "' " + why +
                           " (a relative path is taken from the scenario file's folder)");
   sc.mesh_unit = mesh.number("unit");
-  // Written with its unit ("1 mm"); a plain number is metres, like no unit at all.
-  sc.mesh_unit_given = mesh.has("unit") && mesh.value("unit").IsScalar() &&
-                       std::any_of(mesh.value("unit").Scalar().begin(), mesh.value("unit").Scalar().end(),
-                                   [](unsigned char c) { return std::isalpha(c) != 0; });
+
   sc.mesh_size = mesh.optional_number("size").value_or(0.0);
   sc.mesh_size_line = mesh.line("size");
   sc.mesh_max_elements = mesh.integer("max_elements");
@@ -1206,8 +1205,11 @@ class ScenarioReader {
   const KeyList o_keys = output_keys();
   Section out(top.value("output"), file, "output", o_keys, sc.resolved["output"], top.line("output"));
   sc.output.frame_interval = out.number("frame_interval", sc.end_time / 20);
-  if (out.has("frame_interval") && sc.output.frame_interval > sc.end_time)
-    out.warn(0, "frame_interval", "longer than analysis.end_time: frames at the start and the end only");
+  if (out.has("frame_interval") && sc.output.frame_interval > sc.end_time) {
+    const auto& note = scenario_detail::ScenarioWarnings::override_note();
+    const std::string end = note ? note("analysis.end_time") : "";
+    out.warn(0, "frame_interval", "longer than analysis.end_time" + end + ": frames at the start and the end only");
+  }
   sc.output.history_interval = out.number("history_interval", sc.end_time / 1000);
   sc.output.checkpoint_interval = out.number("checkpoint_interval", sc.end_time / 10);
   sc.output.log_interval = out.number("log_interval");
@@ -1432,11 +1434,12 @@ Scenario read_scenario(const std::filesystem::path& path, const std::vector<Scen
     const NoteWhileReading note(named);
     ScenarioReader(root, path, sc).read();
   } catch (const InputError& e) {
-    name_made_section(e, overrides, made);
-    // What was read before the error may explain it (a value without a unit, read as SI).
+    // A value read before the error without a unit (so as SI) may explain it.
     std::string earlier;
-    for (const std::string& w : sc.warnings) earlier += "\n  after the warning: " + w;
+    for (const std::string& w : sc.warnings)
+      if (w.find(" has no unit and is read as ") != std::string::npos) earlier += "\n  after the warning: " + w;
     if (const std::string n = named(e.key()); !n.empty()) throw InputError("", 0, e.key(), e.reason() + n + earlier);
+    name_made_section(e, overrides, made);
     if (!earlier.empty()) throw InputError(e.file(), e.line(), e.key(), e.reason() + earlier);
     throw;
   }

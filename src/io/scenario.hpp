@@ -301,7 +301,6 @@ struct Scenario {
   std::filesystem::path mesh_file;  ///< absolute
   double mesh_size = 0;             ///< m; 0: as the file says
   double mesh_unit = 1;             ///< m per coordinate unit of the file
-  bool mesh_unit_given = false;     ///< whether mesh.unit is written with a unit (else metres)
   int mesh_line = 0;
   int mesh_size_line = 0;
   std::int64_t mesh_max_elements = 10000000;  ///< refused above this estimate (mesh.max_elements)

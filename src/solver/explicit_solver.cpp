@@ -45,7 +45,7 @@ void lump_masses(Model& model, const std::vector<std::unique_ptr<Material>>& mat
 std::vector<EnergyTerm> solver_energy_terms() {
   using G = EnergyGroup;
   namespace r = energy_rank;
-  return {{"kinetic", "½ m v² at the last full step (v = mean of the half steps), rotation included", r::kinetic,
+  return {{"kinetic", "½ m v² at the last full step (v: the half steps' velocities interpolated to it), rotation included", r::kinetic,
            {{G::kinetic, +1}}, ""},
           {"initial", "kinetic energy at t = 0 (the models start stress-free)", r::initial, {{G::initial, +1}}, "-"},
           {"external_work", "work of loads, prescribed motion, moving walls and gravity", r::external_work,

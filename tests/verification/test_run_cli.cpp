@@ -270,6 +270,10 @@ TEST(RunCli, FailedRunStopsWithWhereAndWhyAndKeepsOutputs) {
   EXPECT_NE(r.output.find("t = "), std::string::npos) << r.output;
   const std::string summary = testing::read_file(dir / "out" / "summary.json");
   EXPECT_NE(summary.find("\"status\": \"failed\""), std::string::npos) << summary;
+  // The 60th increment is the one refused: the last state written is step 59, as summary.json says.
+  EXPECT_NE(r.output.find("the last state written is at t = "), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find(", step 59"), std::string::npos) << r.output;
+  EXPECT_EQ(number_after(summary, "\"steps\": "), 59.0) << summary;
   EXPECT_TRUE(std::filesystem::exists(dir / "out" / "frame_00001.vtu"));
   EXPECT_GT(testing::read_history(dir / "out" / "history.csv").rows.size(), 10u);
   std::filesystem::remove_all(dir);

@@ -156,8 +156,8 @@ TEST(RunFailures, SetMistakesAndLikelyMistakesAreNamed) {
   std::ofstream(dir / "metres.yaml") << metres;
   const auto big = testing::run_shard("check " + (dir / "metres.yaml").string());
   EXPECT_EQ(big.status, 0) << big.output;
-  EXPECT_TRUE(contains(big.output, "too few for a wave to cross more than a few elements, and mesh.unit names "
-                                   "no unit")) << big.output;
+  EXPECT_TRUE(contains(big.output, "too few for a wave to cross more than a few elements, on a mesh whose "
+                                   "coordinates are read in metres")) << big.output;
   EXPECT_FALSE(contains(testing::run_shard("check " + base).output, "too few")) << "the bar in mm has 1 mm elements";
   const auto zero = testing::run_shard("check " + base + " --set boundary_conditions[0].velocity.x=1");
   EXPECT_EQ(zero.status, 2) << zero.output;
@@ -167,6 +167,22 @@ TEST(RunFailures, SetMistakesAndLikelyMistakesAreNamed) {
                                        "--set analysis.thickness=10mm");
   EXPECT_EQ(ring.status, 0) << ring.output;
   EXPECT_TRUE(contains(ring.output, "not used by an axisymmetric run")) << ring.output;
+  // Not said when no thickness is given, nor of the resolved.yaml such a run writes.
+  const auto plain_ring = testing::run_shard("run " + base + " --quiet --set analysis.formulation=axisymmetric "
+                                             "--set analysis.end_time=0.2us -o " + (dir / "ring").string());
+  EXPECT_EQ(plain_ring.status, 0) << plain_ring.output;
+  EXPECT_FALSE(contains(plain_ring.output, "thickness")) << plain_ring.output;
+  const auto resolved = testing::run_shard("check " + (dir / "ring" / "resolved.yaml").string());
+  EXPECT_EQ(resolved.status, 0) << resolved.output;
+  EXPECT_FALSE(contains(resolved.output, "not used by an axisymmetric run")) << resolved.output;
+  // A --set that makes a section the file lacks, with a wrong value: the value is at fault.
+  std::string bare = testing::read_file(base);
+  bare.erase(bare.find("output: "));
+  std::ofstream(dir / "bare.yaml") << bare;
+  const auto value = testing::run_shard("check " + (dir / "bare.yaml").string() + " --set output.frame_interval=abc");
+  EXPECT_EQ(value.status, 2) << value.output;
+  EXPECT_TRUE(contains(value.output, "(the value given by --set output.frame_interval=abc)")) << value.output;
+  EXPECT_FALSE(contains(value.output, "made a new one")) << value.output;
   // In the file: two initial velocities for one part, frames rarer than the run, a probe 400 mm
   // off the bar (100 mm by 10 mm, elements of 1 mm).
   std::string text = testing::read_file(base);
