@@ -638,10 +638,16 @@ def plot_crash(args):
     figure.tight_layout()
     figure.savefig(out, dpi=args.dpi)
     if figures:
+        if figures["peak_force"] is None:  # a record shorter than the filter's response
+            peak = f"peak ({filtered[6:].upper()}) none, CFE none, trigger ratio none"
+        else:
+            peak = (f"peak ({filtered[6:].upper()}) {figures['peak_force'] / 1e3:.3g} kN, "
+                    f"CFE {figures['crush_force_efficiency']:.3g}, trigger ratio {figures['trigger_ratio']:.3g}")
         print(f"{path}: stroke {figures['stroke'] * 1e3:.3f} mm, absorbed {figures['absorbed_energy']:.4g} J, "
-              f"peak ({filtered[6:].upper()}) {figures['peak_force'] / 1e3:.3g} kN, mean {figures['mean_force'] / 1e3:.3g} kN, "
-              f"CFE {figures['crush_force_efficiency']:.3g}, trigger ratio {figures['trigger_ratio']:.3g}, "
+              f"mean {figures['mean_force'] / 1e3:.3g} kN, {peak}, "
               f"SEA {figures['specific_energy_absorption'] / 1e3:.4g} kJ/kg")
+        if "note" in figures:
+            print(f"note: {figures['note']}")
         if "peak_window_note" in figures:
             print(f"no largest window mean: {figures['peak_window_note']}")
         if "peak_window_force" in figures:
