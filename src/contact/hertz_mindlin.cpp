@@ -91,11 +91,11 @@ const bool registered = register_pair_law(PairLaw{
     "Hertz normal force, Mindlin no-slip tangential spring with a Coulomb limit, damping from a "
     "restitution coefficient (Tsuji et al. 1992)",
     "docs/theory/contact_laws.md",
-    {{"young", "Pa", "Young's modulus E of the particles", std::numeric_limits<double>::quiet_NaN()},
-     {"poisson", "", "Poisson's ratio ν of the particles", 0.25},
-     {"restitution", "", "coefficient of restitution e of a head-on impact (1: no damping)", 1.0},
-     {"friction", "", "Coulomb coefficient μ: |F_t| ≤ μ F_n", 0.0},
-     {"limit_damping", "", "1: the dashpot never pulls the bodies together (F_n ≥ 0); 0: it may", 0.0}},
+    {{"young", "Pa", "Young's modulus E of the particles", std::numeric_limits<double>::quiet_NaN(), 0, true},
+     {"poisson", "", "Poisson's ratio ν of the particles", 0.25, -1, true, 0.5, true},
+     {"restitution", "", "coefficient of restitution e of a head-on impact (1: no damping)", 1.0, 0, true, 1},
+     {"friction", "", "Coulomb coefficient μ: |F_t| ≤ μ F_n", 0.0, 0},
+     {"limit_damping", "", "1: the dashpot never pulls the bodies together (F_n ≥ 0); 0: it may", 0.0, 0, false, 1}},
     3,
     hertz_mindlin,
     hertz_stiffness});

@@ -61,17 +61,18 @@ const bool registered = register_pair_law(PairLaw{
     "linear_spring",
     "linear spring–dashpot normal force, tangential spring with a Coulomb limit (Cundall & Strack 1979)",
     "docs/theory/contact_laws.md",
-    {{"modulus", "Pa", "k0: the normal stiffness is k_n = k0 R*", std::numeric_limits<double>::quiet_NaN()},
-     {"tangential_ratio", "", "k_t / k_n (2/7 is the common choice for spheres)", 2.0 / 7.0},
-     {"friction", "", "Coulomb coefficient μ: |F_t| ≤ μ F_n", 0.0},
-     {"damping_ratio", "", "ζ: normal dashpot c_n = 2 ζ √(k_n m*), a fraction of critical", 0.0},
-     {"limit_damping", "", "1: the dashpot never pulls the bodies together (F_n ≥ 0); 0: it may", 0.0},
-     {"restitution", "", "e of a head-on impact, sets ζ instead of damping_ratio (−1: not given)", -1.0}},
+    {{"modulus", "Pa", "k0: the normal stiffness is k_n = k0 R*", std::numeric_limits<double>::quiet_NaN(), 0, true},
+     {"tangential_ratio", "", "k_t / k_n (2/7 is the common choice for spheres)", 2.0 / 7.0, 0},
+     {"friction", "", "Coulomb coefficient μ: |F_t| ≤ μ F_n", 0.0, 0},
+     {"damping_ratio", "", "ζ: normal dashpot c_n = 2 ζ √(k_n m*), a fraction of critical", 0.0, 0},
+     {"limit_damping", "", "1: the dashpot never pulls the bodies together (F_n ≥ 0); 0: it may", 0.0, 0, false, 1},
+     {"restitution", "", "e of a head-on impact, sets ζ instead of damping_ratio (−1: not given)", -1.0, 0, true, 1}},
     3,
     linear_spring,
     [](std::span<const double> p, const ContactKinematics& c) {
       return std::max(1.0, p[tangential_ratio]) * normal_stiffness(p, c);
-    }});
+    },
+    {{"damping_ratio", "restitution"}}});
 
 }  // namespace
 

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <map>
+#include <sstream>
 #include <stdexcept>
 
 namespace shard {
@@ -42,6 +43,20 @@ std::vector<std::string> pair_law_names() {
   return names;
 }
 
+std::string out_of_range(const PairLawParameter& p, double value) {
+  const bool low = p.minimum_excluded ? !(value > p.minimum) : !(value >= p.minimum);
+  const bool high = p.maximum_excluded ? !(value < p.maximum) : !(value <= p.maximum);
+  if (!low && !high) return "";
+  std::ostringstream out;
+  out << p.name << " must be ";
+  if (std::isinf(p.maximum)) out << (p.minimum_excluded ? "above " : "at least ") << p.minimum;
+  else
+    out << "in " << (p.minimum_excluded ? "(" : "[") << p.minimum << ", " << p.maximum
+        << (p.maximum_excluded ? ")" : "]");
+  out << ", got " << value;
+  return out.str();
+}
+
 std::vector<double> pair_law_parameters(const PairLaw& law,
                                         const std::vector<std::pair<std::string, double>>& given) {
   std::vector<double> values;
@@ -51,8 +66,19 @@ std::vector<double> pair_law_parameters(const PairLaw& law,
     while (k < law.parameters.size() && law.parameters[k].name != name) ++k;
     if (k == law.parameters.size())
       throw std::invalid_argument("contact law '" + law.name + "' has no parameter '" + name + "'");
+    if (const std::string why = out_of_range(law.parameters[k], value); !why.empty())
+      throw std::invalid_argument("contact law '" + law.name + "': " + why);
     values[k] = value;
   }
+  auto is_given = [&](const std::string& name) {
+    for (const auto& g : given)
+      if (g.first == name) return true;
+    return false;
+  };
+  for (const auto& [a, b] : law.either_or)
+    if (is_given(a) && is_given(b))
+      throw std::invalid_argument("contact law '" + law.name + "': give " + a + " or " + b +
+                                  ", not both (each sets the same thing)");
   for (std::size_t k = 0; k < values.size(); ++k)
     if (std::isnan(values[k]))
       throw std::invalid_argument("contact law '" + law.name + "' needs '" + law.parameters[k].name + "' (" +

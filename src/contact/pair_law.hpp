@@ -7,6 +7,7 @@
 #pragma once
 
 #include <functional>
+#include <limits>
 #include <span>
 #include <string>
 #include <vector>
@@ -38,13 +39,21 @@ struct ContactResponse {
   double dissipated = 0;                  ///< energy the law dissipated in this step (J), ≥ 0
 };
 
-/// One named parameter of a law, in SI units, with its default (NaN: must be given).
+/// One named parameter of a law, in SI units, with its default (NaN: must be given) and the
+/// range a value given for it must lie in.
 struct PairLawParameter {
   std::string name;
   std::string unit;
   std::string description;
   double default_value;
+  double minimum = -std::numeric_limits<double>::infinity();
+  bool minimum_excluded = false;
+  double maximum = std::numeric_limits<double>::infinity();
+  bool maximum_excluded = false;
 };
+
+/// Why `value` cannot be given for `p` ("" when it can): e.g. "restitution must be in (0, 1], got 1.5".
+std::string out_of_range(const PairLawParameter& p, double value);
 
 struct PairLaw {
   std::string name;                            ///< the scenario's key, e.g. "linear_spring"
@@ -58,6 +67,8 @@ struct PairLaw {
   /// The largest stiffness dF/dδ of the law at this contact (N/m), for the stable step
   /// ω² = k/m*: the caller's Δt ≤ 2/ω.
   std::function<double(std::span<const double> params, const ContactKinematics&)> stiffness;
+  /// Pairs of parameters of which at most one may be given (each sets the same thing).
+  std::vector<std::pair<std::string, std::string>> either_or{};
 };
 
 /// The tangential spring ξ of a sticking contact (3 values of history) carried into the current
@@ -71,7 +82,8 @@ const PairLaw* find_pair_law(const std::string& name);
 std::vector<std::string> pair_law_names();
 
 /// The law's parameters in declared order from (name, value) pairs; defaults fill the rest.
-/// Throws std::invalid_argument naming an unknown or a missing parameter.
+/// Throws std::invalid_argument naming an unknown or a missing parameter, a value out of its
+/// range, or two given that set the same thing.
 std::vector<double> pair_law_parameters(const PairLaw& law,
                                         const std::vector<std::pair<std::string, double>>& given);
 

@@ -1012,7 +1012,12 @@ class ScenarioReader {
         c.fail(spec.name, "'" + spec.name + "' is not a parameter of the law " + in.law + " (its parameters: " + names + ")");
       }
       in.parameters.emplace_back(spec.name, c.number(spec.name));
+      for (const auto& p : law.parameters)
+        if (p.name == spec.name)
+          if (const std::string why = out_of_range(p, in.parameters.back().second); !why.empty()) c.fail(spec.name, why);
     }
+    for (const auto& [a, b] : law.either_or)
+      if (c.has(a) && c.has(b)) c.fail(b, "give " + a + " or " + b + ", not both (each sets the same thing)");
     try {
       (void)pair_law_parameters(law, in.parameters);
     } catch (const std::invalid_argument& e) {
