@@ -413,6 +413,17 @@ std::vector<int> plies_of_elements(const Scenario& sc, const Model& model, std::
     }
     ply[e] = k;
   }
+  // The other way round: plies beyond the part's far face would hold no element, and a layup
+  // code cut short (a symmetric one loses its symmetry) is as wrong as one too short.
+  const double total = count * o.ply_thickness, span = highest - start;
+  if (total > span + 0.5 * o.ply_thickness) {
+    std::ostringstream out;
+    out << "the " << count << " plies of " << o.ply_thickness * 1e3 << " mm (" << total * 1e3
+        << " mm) are thicker than part '" << part.name << "' (" << span * 1e3 << " mm from where ply 1 begins): plies "
+        << static_cast<int>(std::floor(span / o.ply_thickness + 0.5)) + 1 << " to " << count
+        << " would hold no element; check the layup, ply_thickness and the mesh";
+    throw InputError(shown_path(sc.file), o.line, "parts." + part.name + ".laminate", out.str());
+  }
   return ply;
 }
 
@@ -474,6 +485,37 @@ void apply_initial_velocities(const Scenario& sc, const MeshData& mesh, Model& m
       if (part.name == ic.part)
         for (auto n : part.connectivity) start(ic, n);
   }
+}
+
+// Bonded automata of two materials that no `bonds` entry names never break, as with `criterion:
+// none`, which says it is meant: a warning per such pair of materials, with how many bonds it covers.
+std::vector<std::string> unbreakable_bond_warnings(const Scenario& sc, const Simulation& sim) {
+  std::vector<std::string> out;
+  for (const auto& part : sim.model.particle_parts) {
+    const MCAState* ms = find_mca_state(part);
+    if (!ms) continue;
+    const std::size_t nm = ms->materials.size();
+    std::vector<std::size_t> count(nm * nm, 0);
+    for (std::size_t p = 0; p < ms->pairs.count(); ++p) {
+      if (ms->pairs.law[p] >= 0 || ms->pairs.state_of(p) == PairState::unlinked) continue;
+      const auto a = static_cast<std::size_t>(part.material[ms->pairs.i[p]]);
+      const auto b = static_cast<std::size_t>(part.material[ms->pairs.j[p]]);
+      ++count[std::min(a, b) * nm + std::max(a, b)];
+    }
+    for (std::size_t a = 0; a < nm; ++a)
+      for (std::size_t b = a; b < nm; ++b) {
+        const std::size_t n = count[a * nm + b];
+        if (n == 0) continue;
+        const std::string &ma = ms->materials[a].name, &mb = ms->materials[b].name;
+        out.push_back(InputError(shown_path(sc.file), 0, "particles." + part.name,
+                                 std::to_string(n) + " of its " + std::to_string(ms->pairs.count()) +
+                                     " bonded pairs join '" + ma + "' and '" + mb +
+                                     "', which no bonds entry names: they never break (give them a bond law in "
+                                     "bonds, or {materials: [" + ma + ", " + mb + "], criterion: none} to say so)")
+                          .what());
+      }
+  }
+  return out;
 }
 
 // The longest edge of the elements around node n at the start (0 for a node of no element).
@@ -1011,6 +1053,7 @@ Simulation build_simulation(Scenario& sc, const MeshData& mesh) {
   build_remeshing(sc, sim);
   for (auto& w : crack_band_warnings(sc, sim)) sc.warnings.push_back(std::move(w));
   for (auto& w : loading_rate_warnings(sc, sim)) sc.warnings.push_back(std::move(w));
+  for (auto& w : unbreakable_bond_warnings(sc, sim)) sc.warnings.push_back(std::move(w));
   return sim;
 }
 

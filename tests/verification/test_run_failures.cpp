@@ -200,6 +200,25 @@ TEST(RunFailures, SetMistakesAndLikelyMistakesAreNamed) {
   fs::remove_all(dir);
 }
 
+TEST(RunFailures, BondedAutomataNoBondLawNamesAreSaidNeverToBreak) {
+  // The elastic compression example says its bonds never break (criterion: none); without that
+  // entry they still never break, and check says so, with how many bonds and of which materials.
+  const auto dir = testing::fresh_dir("unbreakable");
+  const std::string example = std::string(SHARD_SOURCE_DIR) + "/examples/mca_virtual_tests/compression_2d.yaml";
+  std::string text = testing::read_file(example);
+  const auto at = text.find("bonds:\n");
+  ASSERT_NE(at, std::string::npos);
+  text.erase(at, text.find("particles:") - at);
+  std::ofstream(dir / "no_bonds.yaml") << text;
+  const auto silent = testing::run_shard("check " + (dir / "no_bonds.yaml").string());
+  EXPECT_EQ(silent.status, 0) << silent.output;
+  EXPECT_TRUE(contains(silent.output, "3073 of its 3073 bonded pairs join 'ceramic' and 'ceramic', which no bonds "
+                                      "entry names: they never break")) << silent.output;
+  const auto said = testing::run_shard("check " + example);
+  EXPECT_FALSE(contains(said.output, "never break")) << said.output;
+  fs::remove_all(dir);
+}
+
 TEST(RunFailures, OversizedScenarioFileIsRefusedBeforeParsing) {
   // Millions of list items took seconds and gigabytes to reject: the size is checked first.
   const auto dir = testing::fresh_dir("oversized");
