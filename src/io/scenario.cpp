@@ -1351,7 +1351,10 @@ MadeSection apply_override(YAML::Node& root, const ScenarioOverride& o) {
       try {
         value = YAML::Load(o.value);
       } catch (const YAML::Exception& e) {
-        fail("the value '" + o.value + "' is not valid YAML: " + e.msg);
+        const bool bracketed = !o.value.empty() && o.value.front() == '[';
+        fail("the value '" + o.value + "' is not valid YAML: " + e.msg +
+             (bracketed ? "; text in brackets, such as a layup, needs quotes: --set '" + o.key + "=\"" + o.value + "\"'"
+                        : ""));
       }
       if (entries.empty()) at[segment] = value;
       else next = value;
@@ -1427,7 +1430,14 @@ Scenario read_scenario(const std::filesystem::path& path, const std::vector<Scen
   // A value from the command line has no line in the file: errors and warnings name the override.
   auto named = [&](const std::string& key) -> std::string {
     const ScenarioOverride* o = override_of(key, overrides);
-    return o ? " (the value given by --set " + o->key + "=" + o->value + ")" : "";
+    return o ? " (the value given by --set " + o->key + "=" + o->value + ")" : std::string();
+  };
+  // The shell leaves [...] as it is, and YAML reads it as a list: text such as a layup code needs
+  // quotes of its own inside the shell's.
+  auto quoting = [&](const InputError& e) -> std::string {
+    const ScenarioOverride* o = override_of(e.key(), overrides);
+    if (!o || o->value.empty() || o->value.front() != '[' || e.reason().rfind("expected text", 0) != 0) return "";
+    return "; a value in brackets is read as a list: quote it, --set '" + o->key + "=\"" + o->value + "\"'";
   };
   struct NoteWhileReading {
     scenario_detail::ScenarioWarnings::OverrideNote before;
@@ -1443,7 +1453,8 @@ Scenario read_scenario(const std::filesystem::path& path, const std::vector<Scen
     std::string earlier;
     for (const std::string& w : sc.warnings)
       if (w.find(" has no unit and is read as ") != std::string::npos) earlier += "\n  after the warning: " + w;
-    if (const std::string n = named(e.key()); !n.empty()) throw InputError("", 0, e.key(), e.reason() + n + earlier);
+    if (const std::string n = named(e.key()); !n.empty())
+      throw InputError("", 0, e.key(), e.reason() + n + quoting(e) + earlier);
     name_made_section(e, overrides, made);
     if (!earlier.empty()) throw InputError(e.file(), e.line(), e.key(), e.reason() + earlier);
     throw;

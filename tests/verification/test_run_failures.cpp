@@ -159,6 +159,13 @@ TEST(RunFailures, SetMistakesAndLikelyMistakesAreNamed) {
   EXPECT_TRUE(contains(big.output, "too few for a wave to cross more than a few elements, on a mesh whose "
                                    "coordinates are read in metres")) << big.output;
   EXPECT_FALSE(contains(testing::run_shard("check " + base).output, "too few")) << "the bar in mm has 1 mm elements";
+  // A layup code on the command line without quotes of its own is read as a list: say how to quote it.
+  const std::string laminate = std::string(SHARD_SOURCE_DIR) + "/tests/bad_input/laminate_thicker_than_the_part.yaml";
+  const auto layup = testing::run_shard("check " + laminate + " --set 'parts.plate.laminate.layup=[0/90]s'");
+  EXPECT_EQ(layup.status, 2) << layup.output;
+  EXPECT_TRUE(contains(layup.output, "a value in brackets is read as a list: quote it, --set "
+                                     "'parts.plate.laminate.layup=\"[0/90]s\"'")) << layup.output;
+  EXPECT_EQ(testing::run_shard("check " + laminate + " --set 'parts.plate.laminate.layup=\"[0/90]s\"'").status, 0);
   const auto zero = testing::run_shard("check " + base + " --set boundary_conditions[0].velocity.x=1");
   EXPECT_EQ(zero.status, 2) << zero.output;
   EXPECT_TRUE(contains(zero.output, "list entries count from 1: boundary_conditions[1] is the first")) << zero.output;
