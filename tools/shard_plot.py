@@ -1269,7 +1269,16 @@ def virtual_test(args):
     peak = int(np.argmax(load))
     peak_load = float(load[peak])
     if not peak_load > 0:
-        raise PlotError(f"the load on '{args.load}' stays zero: nothing to evaluate")
+        others = []
+        for other in "xyz".replace(axis_name, ""):
+            try:
+                largest = float(np.max(np.abs(group_column(columns, "reaction", args.load, other, path))))
+            except PlotError:
+                continue
+            if largest > 0:
+                others.append(f"along {other} it reaches {largest:.3g} N: --axis {other}")
+        raise PlotError(f"the load on '{args.load}' along {axis_name} (--axis) stays zero: nothing to evaluate"
+                        + (f" ({'; '.join(others)})" if others else ""))
     ultimate_disp, ultimate_index = failure_point(displacement, load, peak,
                                                   args.failure * peak_load)
     # The first fall below half the peak: where the main crack has run (the load may hang on
@@ -1311,7 +1320,9 @@ def virtual_test(args):
         results["area_m2"] = area
         results["strength_Pa"] = peak_load / area
         lines.append(f"  strength (peak load / area)    {peak_load / area / 1e6:10.4g} MPa"
-                     f"   (peak load {peak_load:.4g} N)")
+                     f"   (peak load {peak_load:.4g} N)"
+                     + ("" if ultimate_index is not None else
+                        "  (nothing failed by the end of the run: the largest load, a lower bound)"))
     else:
         lines.append(f"  peak load                      {peak_load:10.4g} N")
 

@@ -167,9 +167,12 @@ def main():
     if run([shard, "run", os.path.join(examples, "compression_2d.yaml"), "-o", compression,
             "--threads", "1", "--quiet"]).returncode != 0:
         fail("the compression run failed")
-    if run(plot + ["virtual-test", compression, "--load", "top", "--support", "bottom",
-                   "--lateral", "left", "right", "--area", "60um*1um"]).returncode != 0:
+    result = run(plot + ["virtual-test", compression, "--load", "top", "--support", "bottom",
+                         "--lateral", "left", "right", "--area", "60um*1um"])
+    if result.returncode != 0:
         fail("virtual-test on the compression run failed")
+    if "nothing failed by the end of the run" not in result.stdout:
+        fail("the elastic compression's strength is not said to be a lower bound (nothing failed)")
     with open(os.path.join(compression, "virtual_test.json")) as stream:
         figures = json.load(stream)
     young, poisson = 300e9, 0.25
@@ -192,6 +195,11 @@ def main():
     check_close("peak load against history", figures["peak_load_N"], largest, 1e-9)
     if not figures["failed"]:
         fail("the tension sample did not fail by the tool's reading")
+    # Read along the wrong axis: the tool says which it read and where the load is.
+    result = run(plot + ["virtual-test", tension, "--load", "right", "--support", "left", "--area", "20um*1um"])
+    if result.returncode == 0 or "along y (--axis) stays zero" not in result.stderr + result.stdout \
+            or "--axis x" not in result.stderr + result.stdout:
+        fail("a load read along the wrong axis does not name the axis with the load")
 
     bonds_json = os.path.join(work, "bonds.json")
     if run(plot + ["particles", tension, "--json", bonds_json,
