@@ -1,5 +1,6 @@
 #include "contact/pair_law.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <sstream>
@@ -57,6 +58,16 @@ std::string out_of_range(const PairLawParameter& p, double value) {
   return out.str();
 }
 
+std::string both_given(const PairLaw& law, const std::function<bool(const std::string&)>& is_given,
+                       std::string* second) {
+  for (const auto& [a, b] : law.either_or)
+    if (is_given(a) && is_given(b)) {
+      if (second) *second = b;
+      return "give " + a + " or " + b + ", not both (each sets the same thing)";
+    }
+  return "";
+}
+
 std::vector<double> pair_law_parameters(const PairLaw& law,
                                         const std::vector<std::pair<std::string, double>>& given) {
   std::vector<double> values;
@@ -70,15 +81,10 @@ std::vector<double> pair_law_parameters(const PairLaw& law,
       throw std::invalid_argument("contact law '" + law.name + "': " + why);
     values[k] = value;
   }
-  auto is_given = [&](const std::string& name) {
-    for (const auto& g : given)
-      if (g.first == name) return true;
-    return false;
-  };
-  for (const auto& [a, b] : law.either_or)
-    if (is_given(a) && is_given(b))
-      throw std::invalid_argument("contact law '" + law.name + "': give " + a + " or " + b +
-                                  ", not both (each sets the same thing)");
+  const std::string conflict = both_given(law, [&](const std::string& name) {
+    return std::any_of(given.begin(), given.end(), [&](const auto& g) { return g.first == name; });
+  });
+  if (!conflict.empty()) throw std::invalid_argument("contact law '" + law.name + "': " + conflict);
   for (std::size_t k = 0; k < values.size(); ++k)
     if (std::isnan(values[k]))
       throw std::invalid_argument("contact law '" + law.name + "' needs '" + law.parameters[k].name + "' (" +

@@ -54,6 +54,11 @@ struct PairLawParameter {
 
 /// Why `value` cannot be given for `p` ("" when it can): e.g. "restitution must be in (0, 1], got 1.5".
 std::string out_of_range(const PairLawParameter& p, double value);
+struct PairLaw;
+/// Why the parameters given (`is_given` says which) cannot stand together ("" when they can): two
+/// of one of the law's either-or pairs; `second` gets the second of them.
+std::string both_given(const PairLaw& law, const std::function<bool(const std::string&)>& is_given,
+                       std::string* second = nullptr);
 
 struct PairLaw {
   std::string name;                            ///< the scenario's key, e.g. "linear_spring"

@@ -614,7 +614,6 @@ class ScenarioReader {
     mesh.fail("file", "mesh file '" + sc.mesh_file.string() + "' " + why +
                           " (a relative path is taken from the scenario file's folder)");
   sc.mesh_unit = mesh.number("unit");
-
   sc.mesh_size = mesh.optional_number("size").value_or(0.0);
   sc.mesh_size_line = mesh.line("size");
   sc.mesh_max_elements = mesh.integer("max_elements");
@@ -1016,8 +1015,9 @@ class ScenarioReader {
         if (p.name == spec.name)
           if (const std::string why = out_of_range(p, in.parameters.back().second); !why.empty()) c.fail(spec.name, why);
     }
-    for (const auto& [a, b] : law.either_or)
-      if (c.has(a) && c.has(b)) c.fail(b, "give " + a + " or " + b + ", not both (each sets the same thing)");
+    std::string second;
+    const std::string conflict = both_given(law, [&](const std::string& name) { return c.has(name); }, &second);
+    if (!conflict.empty()) c.fail(second, conflict);
     try {
       (void)pair_law_parameters(law, in.parameters);
     } catch (const std::invalid_argument& e) {

@@ -587,6 +587,7 @@ void ExplicitSolver::advance() {
   // next step, so that the reported energies all end at t_n, where the element stress work ends.
   c.back = 0.5 * last;
   c.ahead = 0.5 * c.dt_next;
+  if (c.back + c.ahead > 0) c.kinetic_weight = c.back / (c.back + c.ahead);
   AdvanceSums sums;
   apply_prescribed_velocities(c, sums.external_back, sums.external_ahead);
   const int dim = model_.dim();

@@ -130,7 +130,7 @@ inline double kick(double* V, const double* F, int width, double m, const Advanc
   // linear in time, so a constant force's kinetic energy is exact on any sequence of steps (the
   // plain mean is off by (F/m)(Δt_n+1/2 − Δt_n−1/2)/4 wherever the step changes). The damping
   // force the update applies at t_n is α m times the plain mean (the mid-point rule above).
-  const double w = c.back + c.ahead > 0 ? c.back / (c.back + c.ahead) : 0.5;
+  const double w = c.kinetic_weight;
   double v2 = 0, vb = 0, va = 0, gb = 0, ga = 0;
   for (int k = 0; k < width; ++k) {
     const double v_old = V[k];

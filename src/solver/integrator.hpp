@@ -49,6 +49,9 @@ MovingPoints moving_points(ParticlePart& part);
 /// [t_n, t_n+1/2]).
 struct AdvanceCoefficients {
   double dt_n = 0, dt_next = 0, d1 = 1, d2 = 1, alpha = 0, back = 0, ahead = 0;
+  /// back / (back + ahead): the share of v_n+1/2 in the velocity at t_n, interpolated in time
+  /// between the half steps for the kinetic energy (0.5 for equal steps).
+  double kinetic_weight = 0.5;
   std::array<double, 3> gravity{0, 0, 0};
 };
 
