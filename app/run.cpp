@@ -1413,6 +1413,7 @@ class RunDriver {
       book_reactions(dt_n);
       if (row) {
         particle_row_ = particle_row_sums();  // after the step's debris, summed over the ranks
+        if (cracks_) gather_interface_openings();
         if (writes()) {
           const auto start = Clock::now();
           write_history_row(t, step, dt_used);
@@ -1803,6 +1804,22 @@ class RunDriver {
     std::fill(cursor_.force_impulse.begin(), cursor_.force_impulse.end(), 0.0);
     cursor_.row_span = 0;
     history_ << '\n';
+  }
+
+  /// A decomposed run's whole model learns which interface elements have opened since the last
+  /// gather (a collective): an intact one holds its two sides in one fragment (find_fragments),
+  /// and they open in the subdomains' force calls, not at splits.
+  void gather_interface_openings() {
+    if (!sub_ || whole_.cohesive.element_count() == 0) return;
+    const CohesiveElements& mine = sim_.model.cohesive;
+    std::vector<double> open;
+    for (std::size_t e = 0; e < mine.element_count() && e < sub_->global_cohesive.size(); ++e)
+      if (sub_->cohesive_owned[e]) open.insert(open.end(), {static_cast<double>(sub_->global_cohesive[e]), double(mine.open[e])});
+    for (const auto& heard : ranks_->all_gather(open))
+      for (std::size_t i = 0; i + 1 < heard.size(); i += 2) {
+        const auto e = static_cast<std::size_t>(heard[i]);
+        if (e < whole_.cohesive.element_count()) whole_.cohesive.open[e] = static_cast<std::uint8_t>(heard[i + 1]);
+      }
   }
 
   /// The fragments now: their count, then per part the count of those holding its elements and

@@ -1,5 +1,6 @@
 #include "fracture/fragments.hpp"
 
+#include <algorithm>
 #include <fstream>
 #include <limits>
 #include <stdexcept>
@@ -11,6 +12,31 @@ namespace shard {
 namespace {
 
 bool live(const Part& part, std::size_t e) { return part.eroded.empty() || part.eroded[e] == 0; }
+
+/// Joins the two sides of every cohesive interface element that still holds: not open (some
+/// point not yet failed, so it still carries traction) and bounding two live elements. Its node
+/// pairs are stable ids; a pair whose node has left the model joins nothing.
+void join_across_intact_interfaces(const Model& model, DisjointSets& sets) {
+  const CohesiveElements& c = model.cohesive;
+  if (c.element_count() == 0) return;
+  std::vector<char> live_id(static_cast<std::size_t>(std::max<std::int64_t>(model.next_element_id, 0)), 0);
+  for (const Part& part : model.parts)
+    for (std::size_t e = 0; e < part.element_count(); ++e)
+      if (live(part, e) && part.id[e] >= 0 && part.id[e] < model.next_element_id) live_id[part.id[e]] = 1;
+  auto is_live = [&](std::int64_t id) { return id >= 0 && id < model.next_element_id && live_id[id]; };
+  std::vector<std::int32_t> index(static_cast<std::size_t>(std::max<std::int64_t>(model.next_node_id, 0)), -1);
+  for (std::size_t i = 0; i < model.nodes.id.size(); ++i)
+    if (model.nodes.id[i] >= 0 && model.nodes.id[i] < model.next_node_id) index[model.nodes.id[i]] = static_cast<std::int32_t>(i);
+  auto node = [&](std::int64_t id) { return id >= 0 && id < model.next_node_id ? index[id] : -1; };
+  const std::size_t k = static_cast<std::size_t>(c.nodes_per_face);
+  for (std::size_t e = 0; e < c.element_count(); ++e) {
+    if (c.open[e] || !is_live(c.owner_a[e]) || !is_live(c.owner_b[e])) continue;
+    for (std::size_t q = 0; q < k; ++q) {
+      const std::int32_t a = node(c.node_a[k * e + q]), b = node(c.node_b[k * e + q]);
+      if (a >= 0 && b >= 0) sets.join(a, b);
+    }
+  }
+}
 
 }  // namespace
 
@@ -26,6 +52,7 @@ Fragments find_fragments(const Model& model) {
       for (int a = 1; a < npe; ++a) sets.join(cn[0], cn[a]);
     }
   }
+  join_across_intact_interfaces(model, sets);
 
   Fragments out;
   std::vector<std::int32_t> id_of_root(nn, -1);

@@ -1,5 +1,5 @@
 // Fragments: the pieces a body has broken into, as connected components of its live elements
-// through shared nodes (union–find). Theory: docs/theory/crack_insertion.md, "Fragments".
+// through shared nodes and intact cohesive interface elements (union–find). Theory: docs/theory/crack_insertion.md, "Fragments".
 #pragma once
 
 #include <array>
@@ -14,10 +14,10 @@ namespace shard {
 
 struct Fragment {
   std::int32_t id = 0;
-  /// The part its elements belong to. A fragment lies in one part unless parts share nodes (two
-  /// parts meshed as one conforming mesh, not separated by a contact or an interface): then the
-  /// names of the parts it spans, joined by '+' in the scenario's order. A debris particle: the
-  /// part of the element it came from.
+  /// The part its elements belong to. A fragment lies in one part unless parts are joined: two
+  /// parts meshed as one conforming mesh share nodes, and two parts tied by a cohesive interface
+  /// are held by it while it is intact. Then the names of the parts it spans, joined by '+' in
+  /// the scenario's order. A debris particle: the part of the element it came from.
   std::string part;
   std::int64_t elements = 0;            ///< live elements
   double mass = 0;                      ///< Σ nodal lumped mass, each node once
@@ -37,7 +37,8 @@ struct Fragments {
 };
 
 /// The connected components of the live (not eroded) elements of all parts, joined through the
-/// nodes they share. Fragment ids are 0, 1, ... in order of each fragment's lowest element
+/// nodes they share and across every cohesive interface element that is not open and bounds two
+/// live elements. Fragment ids are 0, 1, ... in order of each fragment's lowest element
 /// (parts in order, elements in storage order), so they are the same in every run.
 Fragments find_fragments(const Model& model);
 

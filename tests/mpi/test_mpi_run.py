@@ -239,6 +239,18 @@ for ranks, how in ((2, []), (4, []), (3, ["--partition", "random:7"])):
             failures.append(f"the notched plate on {ranks} ranks: fewer than 40 splits in place")
         if how and summary["cuts"] < 5:
             failures.append(f"the notched plate on {ranks} ranks {how}: fewer than 5 splits cut anew")
+# A cohesive interface beside a part that cracks: two blocks tied by an interface that opens at
+# about 5 us, and a tile that may crack. The history's fragment counts join the blocks while the
+# interface holds: the subdomains' openings are gathered for every row (without the gather, the
+# 2-rank history differed from its row at 5 us on).
+tied = os.path.join(source, "tests/data/fracture/tied_blocks.yaml")
+serial_then_ranks("tied", tied, (2, 3), "the tied blocks", ["--set", "analysis.end_time=8us"], ["--rebalance", "0"])
+with open("tied_serial/history.csv") as f:
+    rows = [row.split(",") for row in f.read().splitlines()]
+    counts = [int(row[rows[0].index("fragments")]) for row in rows[1:]]
+    if counts[0] != 2 or counts[-1] != 3:
+        failures.append(f"the tied blocks: {counts[0]} then {counts[-1]} fragments, not 2 then 3: the case no longer "
+                        "tests an interface that opens")
 # Splits in place across rebalances (every 7 steps) and across a restart on another number of
 # ranks, checkpointed while the crack runs.
 rebalanced("notched_rebalanced", notched, "notched_serial", "notched plate cracking", 7, 10,

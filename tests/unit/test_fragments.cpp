@@ -2,6 +2,7 @@
 // (src/fracture/fragments.hpp, docs/theory/crack_insertion.md "Fragments").
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -11,6 +12,7 @@
 #include <unistd.h>
 
 #include "fracture/fragments.hpp"
+#include "fracture/interface_split.hpp"
 #include "support/contact_models.hpp"
 #include "support/model_runner.hpp"
 
@@ -146,6 +148,57 @@ TEST(Fragments, ErodedElementsDoNotConnect) {
     if (id >= 0) lowest[id] = std::min(lowest[id], e);
   }
   EXPECT_LT(lowest[0], lowest[1]);
+}
+
+TEST(Fragments, AnIntactCohesiveInterfaceHoldsItsSidesTogether) {
+  // A 2 × 2 hex8 block split at mid-height into two plies tied by cohesive interface elements
+  // (which double the nodes there): one piece while any interface element holds, two once all
+  // are open, or once the elements on one side are gone (an interface that bounds an eroded
+  // element ties nothing). Each ply is half the mass.
+  Model model = box_model("hex8", {2, 1, 2}, {0.2, 0.1, 0.2});
+  model.assign_ids();
+  InterfaceLayout layout;
+  std::vector<int> group;
+  for (std::size_t e = 0; e < model.parts[0].element_count(); ++e)
+    group.push_back(testing::element_centroid(model, model.parts[0], e, 2) > 0.1 ? 1 : 0);
+  layout.group.push_back(group);
+  layout.law_of[{0, 1}] = 0;
+  const InterfaceSplit split = insert_cohesive_interfaces(model, layout);
+  ASSERT_EQ(split.elements, 2u);
+  auto run = prepared(std::move(model));
+  Model& m = run.model;
+  const double M = kRho * 0.2 * 0.1 * 0.2;
+
+  auto f = find_fragments(m);
+  ASSERT_EQ(f.list.size(), 1u);
+  EXPECT_EQ(f.list[0].elements, 4);
+  EXPECT_NEAR(f.list[0].mass, M, 1e-12 * M);
+
+  m.cohesive.open[0] = 1;  // one of two open: the other still holds
+  EXPECT_EQ(find_fragments(m).list.size(), 1u);
+  m.cohesive.open[1] = 1;
+  f = find_fragments(m);
+  ASSERT_EQ(f.list.size(), 2u);
+  for (const auto& piece : f.list) {
+    EXPECT_EQ(piece.elements, 2);
+    EXPECT_NEAR(piece.mass, M / 2, 1e-12 * M);
+  }
+
+  m.cohesive.open.assign(2, 0);
+  Part& part = m.parts[0];
+  for (std::size_t e = 0; e < part.element_count(); ++e)  // the run may have reordered the elements
+    group[e] = testing::element_centroid(m, part, e, 2) > 0.1 ? 1 : 0;
+  const auto first_lower = static_cast<std::size_t>(std::find(group.begin(), group.end(), 0) - group.begin());
+  for (std::size_t e = 0; e < part.element_count(); ++e) part.eroded[e] = e == first_lower ? 1 : 0;
+  f = find_fragments(m);
+  ASSERT_EQ(f.list.size(), 1u);  // the other lower element is held by its own interface element
+  EXPECT_EQ(f.list[0].elements, 3);
+  for (std::size_t e = 0; e < part.element_count(); ++e) part.eroded[e] = group[e] == 0;
+  f = find_fragments(m);
+
+  ASSERT_EQ(f.list.size(), 1u);
+  EXPECT_EQ(f.list[0].elements, 2);
+  EXPECT_NEAR(f.list[0].mass, M / 2, 1e-12 * M);  // the lower ply's nodes are in no fragment
 }
 
 TEST(Fragments, HexahedraInThreeDimensions) {

@@ -1,0 +1,36 @@
+// Two blocks 10 x 4 mm, one on the other, meshed as one conforming mesh (elements of 0.5 mm):
+// the parts of tied_blocks.yaml, tied along y = 4 mm by a cohesive interface; beside them, a
+// tile 4 x 4 mm of its own that may crack.
+h = 0.5;
+Point(1) = {0, 0, 0, h};
+Point(2) = {10, 0, 0, h};
+Point(3) = {10, 4, 0, h};
+Point(4) = {0, 4, 0, h};
+Point(5) = {10, 8, 0, h};
+Point(6) = {0, 8, 0, h};
+Line(1) = {1, 2};
+Line(2) = {2, 3};
+Line(3) = {3, 4};
+Line(4) = {4, 1};
+Line(5) = {3, 5};
+Line(6) = {5, 6};
+Line(7) = {6, 4};
+Curve Loop(1) = {1, 2, 3, 4};
+Plane Surface(1) = {1};
+Curve Loop(2) = {-3, 5, 6, 7};
+Plane Surface(2) = {2};
+Point(7) = {12, 0, 0, h};
+Point(8) = {16, 0, 0, h};
+Point(9) = {16, 4, 0, h};
+Point(10) = {12, 4, 0, h};
+Line(8) = {7, 8};
+Line(9) = {8, 9};
+Line(10) = {9, 10};
+Line(11) = {10, 7};
+Curve Loop(3) = {8, 9, 10, 11};
+Plane Surface(3) = {3};
+Physical Surface("lower") = {1};
+Physical Surface("upper") = {2};
+Physical Surface("tile") = {3};
+Physical Curve("bottom") = {1};
+Physical Curve("top") = {6};
