@@ -137,6 +137,34 @@ KeyList crash_keys() {
   return k;
 }
 
+/// Crash settings that read, but whose figures would mean nothing: the stroke part starting
+/// across or away from the wall's normal (its stroke, the mean displacement along −normal, stays
+/// near zero or negative, and SEA and efficiency with it), or the stroke read on the crushed part
+/// itself (its mean displacement is about half the crush of a specimen shortening on the wall).
+void warn_crash_geometry(const Section& s, const Scenario& sc, const CrashInput& in) {
+  if (in.stroke_part == in.crushed_part)
+    s.warn(0, "stroke_part",
+           "the same part as crushed_part ('" + in.crushed_part + "'): the stroke is its mean displacement towards the "
+           "wall, about half the crush of a specimen that shortens on it; give the part that drives it (the carriage)");
+  const auto wall = std::find_if(sc.walls.begin(), sc.walls.end(), [&](const WallInput& w) { return w.name == in.wall; });
+  if (std::any_of(wall->velocity.begin(), wall->velocity.end(), [](const auto& v) { return v.has_value(); })) return;
+  for (const InitialVelocityInput& ic : sc.initial_velocities) {
+    if (ic.part != in.stroke_part) continue;
+    double speed = 0, towards = 0;
+    for (int k = 0; k < 3; ++k) speed += ic.velocity[k] * ic.velocity[k], towards -= ic.velocity[k] * wall->normal[k];
+    speed = std::sqrt(speed);
+    // Within about 84° of −normal: a carriage driven at an angle still crushes.
+    if (speed == 0 || towards >= 0.1 * speed) continue;
+    s.warn(0, "wall",
+           "part '" + in.stroke_part + "' (stroke_part) starts " +
+               (towards <= -0.1 * speed ? std::string("away from") : std::string("across the normal of")) + " wall '" +
+               in.wall + "' (" + format_si(towards, dim::velocity) + " of " + format_si(speed, dim::velocity) +
+               " towards it, initial_conditions line " + std::to_string(ic.line) +
+               "): the stroke, its mean displacement along the wall's −normal, stays near zero or negative, and the "
+               "SEA and crush-force efficiency with it; check the wall's normal (it points to the side where the bodies are)");
+  }
+}
+
 void read_crash(Section& top, Scenario& sc) {
   if (!top.has("crash")) return;
   static const KeyList keys = crash_keys();
@@ -158,6 +186,7 @@ void read_crash(Section& top, Scenario& sc) {
       s.fail(key, "no part named '" + name + "'");
     (std::string(key) == "stroke_part" ? in.stroke_part : in.crushed_part) = name;
   }
+  warn_crash_geometry(s, sc, in);
   in.cfc = s.number("cfc");
   if (in.cfc != 60 && in.cfc != 180 && in.cfc != 600 && in.cfc != 1000)
     s.fail("cfc", "SAE J211 defines the channel classes 60, 180, 600 and 1000");

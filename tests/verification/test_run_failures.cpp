@@ -207,6 +207,25 @@ TEST(RunFailures, SetMistakesAndLikelyMistakesAreNamed) {
   fs::remove_all(dir);
 }
 
+TEST(RunFailures, CrashSettingsWhoseFiguresMeanNothingAreWarned) {
+  // The four-ply laminate's carriage starts at 5.4 m/s towards its base (normal +y). A wall
+  // normal along x puts the drive across it, −y away from it; the stroke read on the crushed
+  // plate itself is half its crush. The scenario as it is: no word.
+  const std::string laminate = std::string(SHARD_SOURCE_DIR) + "/tests/data/composite/laminate_crush.yaml";
+  const auto plain = testing::run_shard("check " + laminate);
+  EXPECT_EQ(plain.status, 0) << plain.output;
+  EXPECT_FALSE(contains(plain.output, "stroke")) << plain.output;
+  const auto across = testing::run_shard("check " + laminate + " --set 'walls[1].normal=[1, 0, 0]'");
+  EXPECT_EQ(across.status, 0) << across.output;
+  EXPECT_TRUE(contains(across.output, "part 'carriage' (stroke_part) starts across the normal of wall 'base' (0 m/s of "
+                                      "5.4 m/s towards it")) << across.output;
+  const auto away = testing::run_shard("check " + laminate + " --set 'walls[1].normal=[0, -1, 0]'");
+  EXPECT_TRUE(contains(away.output, "starts away from wall 'base' (-5.4 m/s of 5.4 m/s towards it")) << away.output;
+  const auto itself = testing::run_shard("check " + laminate + " --set crash.stroke_part=plate");
+  EXPECT_EQ(itself.status, 0) << itself.output;
+  EXPECT_TRUE(contains(itself.output, "the same part as crushed_part ('plate')")) << itself.output;
+}
+
 TEST(RunFailures, BondedAutomataNoBondLawNamesAreSaidNeverToBreak) {
   // The elastic compression example says its bonds never break (criterion: none); without that
   // entry they still never break, and check says so, with how many bonds and of which materials.
