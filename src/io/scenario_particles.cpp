@@ -271,6 +271,12 @@ void read_bond_criterion(Section& s, YAML::Node& out, BondLaw& law) {
       if (!s.has(key)) s.fail(key, std::string("criterion '") + criterion + "' needs '" + key + "'");
     law.sigma_t = s.number("tensile_strength");
     law.sigma_c = s.number("compressive_strength");
+    // σ_c < σ_t gives the criterion a negative pressure coefficient (eq. (17) of the MCA paper,
+    // Drucker–Prager form): pressure would weaken the bond, which no brittle solid does.
+    if (law.sigma_c < law.sigma_t)
+      s.fail("compressive_strength", "below tensile_strength (" + s.value("tensile_strength").Scalar() +
+                                         "): pressure would weaken the bond; brittle solids have a compressive "
+                                         "strength several times their tensile one (swapped?)");
   } else if (law.criterion == BondCriterion::von_mises) {
     if (!s.has("von_mises_strength")) s.fail("von_mises_strength", "criterion 'von_mises' needs 'von_mises_strength'");
     law.sigma_vm = s.number("von_mises_strength");
@@ -408,6 +414,11 @@ void read_microstructure(Section& s, const std::string& path, const AutomatonMat
     materials.require(is, "material", p.inclusion_material, "automaton material");
     spec.volume_fraction = is.number("volume_fraction");
     spec.diameter = is.number("diameter");
+    if (spec.diameter < p.packing.size)
+      is.warn(0, "diameter",
+              "smaller than the automata (automaton_size " + s.value("automaton_size").Scalar() +
+                  "): an inclusion is made of the automata whose centres fall inside it, so each is one automaton "
+                  "or none; inclusions of several automata across need a diameter of a few automaton sizes");
     spec.seed = static_cast<std::uint64_t>(is.integer("seed"));
     p.inclusions = spec;
   }

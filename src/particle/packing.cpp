@@ -202,7 +202,7 @@ double dist2(const ParticlePart& ps, std::size_t i, const double* c) {
 
 }  // namespace
 
-int add_inclusions(ParticlePart& ps, const InclusionSpec& spec) {
+int add_inclusions(ParticlePart& ps, const InclusionSpec& spec, double* fraction) {
   if (spec.volume_fraction <= 0 || spec.volume_fraction >= 1)
     throw InputError("inclusions: volume fraction must be in (0, 1)");
   std::mt19937_64 rng(spec.seed);
@@ -239,6 +239,7 @@ int add_inclusions(ParticlePart& ps, const InclusionSpec& spec) {
       }
     }
   }
+  if (fraction) *fraction = n > 0 ? static_cast<double>(marked) / static_cast<double>(n) : 0.0;
   return static_cast<int>(centres.size());
 }
 

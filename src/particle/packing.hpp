@@ -59,8 +59,9 @@ struct InclusionSpec {
   int max_tries = 100000;
 };
 /// Places non-overlapping inclusions at random until the fraction of inclusion automata reaches
-/// the target; returns the number of inclusions.
-int add_inclusions(ParticlePart& ps, const InclusionSpec& spec);
+/// the target, or max_tries draws have been made; returns the number of inclusions, and in
+/// `fraction` (when given) the fraction of the automata that are of the inclusion material then.
+int add_inclusions(ParticlePart& ps, const InclusionSpec& spec, double* fraction = nullptr);
 
 struct PoreSpec {
   double porosity = 0.1;        ///< fraction of automata removed

@@ -245,6 +245,27 @@ TEST(RunFailures, BondedAutomataNoBondLawNamesAreSaidNeverToBreak) {
   fs::remove_all(dir);
 }
 
+TEST(RunFailures, InclusionsTheSampleCannotHoldAreWarned) {
+  // The TiC–NiCr beam: 1.5 um automata, inclusions of 3 um at half the automata. Inclusions of
+  // 1 um are single automata; 80 % of the automata cannot be covered by random discs that do not
+  // overlap (about 55 % at most), and the draws stop short: both said, with what was reached.
+  const std::string beam = std::string(SHARD_SOURCE_DIR) + "/examples/mca_tic_nicr_bending/tic_nicr_st1100.yaml";
+  const auto plain = testing::run_shard("check " + beam);
+  EXPECT_EQ(plain.status, 0) << plain.output;
+  EXPECT_FALSE(contains(plain.output, "inclusions")) << plain.output;
+  const auto small = testing::run_shard("check " + beam + " --set particles.sample.inclusions.diameter=1um");
+  EXPECT_EQ(small.status, 0) << small.output;
+  EXPECT_TRUE(contains(small.output, "smaller than the automata (automaton_size 1.5 um)")) << small.output;
+  const auto dense = testing::run_shard("check " + beam + " --set particles.sample.inclusions.volume_fraction=0.8");
+  EXPECT_EQ(dense.status, 0) << dense.output;
+  const auto at = dense.output.find("the inclusions mark ");
+  ASSERT_NE(at, std::string::npos) << dense.output;
+  const double reached = std::stod(dense.output.substr(at + 20));
+  EXPECT_GT(reached, 40.0);
+  EXPECT_LT(reached, 60.0);
+  EXPECT_TRUE(contains(dense.output, "% of the automata, not 80.0 %")) << dense.output;
+}
+
 TEST(RunFailures, OversizedScenarioFileIsRefusedBeforeParsing) {
   // Millions of list items took seconds and gigabytes to reject: the size is checked first.
   const auto dir = testing::fresh_dir("oversized");
