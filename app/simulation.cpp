@@ -394,8 +394,45 @@ struct GroupNodeSets {
   }
 };
 
+/// Plies that the mesh does not resolve (empty when it does): elements that straddle a ply
+/// boundary by more than 1 % of a ply on each side, which take the ply of their centroid (the
+/// plies are then as thick as the element rows, not as the layup says, and `plies_of` interfaces
+/// lie on the rows' faces), and plies that hold no element (thinner than the rows).
+template <class Along>
+std::string plies_off_the_mesh(const Part& part, const std::vector<int>& ply, Along along, double start,
+                               double thickness, int count) {
+  const std::size_t npe = static_cast<std::size_t>(part.type->nodes);
+  std::size_t straddling = 0;
+  double example = 0;
+  std::vector<char> held(static_cast<std::size_t>(count), 0);
+  for (std::size_t e = 0; e < ply.size(); ++e) {
+    held[static_cast<std::size_t>(ply[e])] = 1;
+    double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+    for (std::size_t a = 0; a < npe; ++a) {
+      const double s = (along(part.connectivity[npe * e + a]) - start) / thickness;
+      lo = std::min(lo, s), hi = std::max(hi, s);
+    }
+    const double boundary = std::floor(hi - 0.01);
+    if (boundary > lo + 0.01 && boundary >= 1) {
+      if (straddling++ == 0) example = boundary;
+    }
+  }
+  const auto empty = static_cast<std::size_t>(std::count(held.begin(), held.end(), 0));
+  if (straddling == 0 && empty == 0) return "";
+  std::ostringstream out;
+  out << "the mesh does not follow the plies of " << thickness * 1e3 << " mm:";
+  if (straddling > 0)
+    out << " " << straddling << " of its " << ply.size() << " elements cross a ply boundary (the first the boundary "
+        << example * thickness * 1e3 << " mm from where ply 1 begins) and take the ply of their centroid;";
+  if (empty > 0) out << " " << empty << " of the " << count << " plies hold no element;";
+  out << " the plies are then those of the element rows, not of the layup: mesh rows of one ply (or a whole "
+         "number of rows per ply) along the normal";
+  return out.str();
+}
+
 /// The ply of each element of a laminate part: its centroid's place along the stacking normal.
-std::vector<int> plies_of_elements(const Scenario& sc, const Model& model, std::size_t p) {
+std::vector<int> plies_of_elements(const Scenario& sc, const Model& model, std::size_t p,
+                                   std::vector<std::string>& warnings) {
   const Part& part = model.parts[p];
   const PlyOrientationInput& o = *sc.parts[p].orientation;
   const std::size_t ne = part.element_count(), npe = static_cast<std::size_t>(part.type->nodes);
@@ -440,11 +477,13 @@ std::vector<int> plies_of_elements(const Scenario& sc, const Model& model, std::
         << " would hold no element; check the layup, ply_thickness and the mesh";
     throw InputError(shown_path(sc.file), o.line, "parts." + part.name + ".laminate", out.str());
   }
+  if (const std::string why = plies_off_the_mesh(part, ply, along, start, o.ply_thickness, count); !why.empty())
+    warnings.push_back(InputError(shown_path(sc.file), o.line, "parts." + part.name + ".laminate", why).what());
   return ply;
 }
 
 /// Material axes of a part from its orientation or laminate.
-void orient_part(const Scenario& sc, Simulation& sim, std::size_t p) {
+void orient_part(Scenario& sc, Simulation& sim, std::size_t p) {
   Part& part = sim.model.parts[p];
   const Material& material = *sim.materials[part.material];
   const PlyOrientationInput& o = *sc.parts[p].orientation;
@@ -453,7 +492,7 @@ void orient_part(const Scenario& sc, Simulation& sim, std::size_t p) {
                      "material '" + material.name() + "' (" + std::string(material.model()) +
                          ") is isotropic and has no material axes; orientation and laminate are for "
                          "orthotropic_elastic and composite_damage");
-  const std::vector<int> ply = plies_of_elements(sc, sim.model, p);
+  const std::vector<int> ply = plies_of_elements(sc, sim.model, p, sc.warnings);
   std::vector<std::array<double, 6>> axes;
   for (double angle : o.angles) axes.push_back(ply_axes(o.reference, o.normal, angle));
   set_material_axes(part, material, [&](std::size_t e) { return axes[static_cast<std::size_t>(ply[e])]; });

@@ -266,6 +266,20 @@ TEST(RunFailures, InclusionsTheSampleCannotHoldAreWarned) {
   EXPECT_TRUE(contains(dense.output, "% of the automata, not 80.0 %")) << dense.output;
 }
 
+TEST(RunFailures, PliesTheMeshDoesNotFollowAreWarned) {
+  // The four-ply laminate is meshed one 0.27 mm row per ply. Six plies of 0.18 mm in it: each row
+  // crosses a ply boundary, and the rows' centroids fall in plies 1, 3, 4 and 6, so 2 and 5 hold
+  // no element. Four plies of 0.27 mm: no word.
+  const std::string laminate = std::string(SHARD_SOURCE_DIR) + "/tests/data/composite/laminate_crush.yaml";
+  EXPECT_FALSE(contains(testing::run_shard("check " + laminate).output, "does not follow"));
+  const auto thin = testing::run_shard("check " + laminate + " --set parts.plate.laminate.ply_thickness=0.18mm "
+                                       "--set 'parts.plate.laminate.layup=\"[0/90/0]s\"'");
+  EXPECT_EQ(thin.status, 0) << thin.output;
+  EXPECT_TRUE(contains(thin.output, "the mesh does not follow the plies of 0.18 mm: 42 of its 42 elements cross a ply "
+                                    "boundary")) << thin.output;
+  EXPECT_TRUE(contains(thin.output, "2 of the 6 plies hold no element")) << thin.output;
+}
+
 TEST(RunFailures, OversizedScenarioFileIsRefusedBeforeParsing) {
   // Millions of list items took seconds and gigabytes to reject: the size is checked first.
   const auto dir = testing::fresh_dir("oversized");
