@@ -1494,8 +1494,9 @@ def node_parts(mesh):
 
 def plot_debris(args):
     """The mesh and the debris particles of a run at a frame: 2D (and axisymmetric) as the
-    section, the first part coloured by its failure factor where the frame has it; 3D as a side
-    view (x, z) of the nodes in a slice |y| < --slice and every particle. Prints the debris count
+    section, the first part coloured by its failure factor where the frame has it; 3D as a view
+    (--view, by default the side view x–z) of the nodes in a slice about --slice-at along the third
+    axis, and every particle. Prints the debris count
     and mass and each part's mean velocity (a projectile's residual velocity)."""
     folder = args.input
     if not os.path.isdir(folder):
@@ -1518,13 +1519,18 @@ def plot_debris(args):
         print(f"{name}: mean velocity " + ", ".join(f"{c:.2f}" for c in velocity[part == p].mean(axis=0)) + " m/s")
     figure, axes = plt.subplots(figsize=(args.width, args.width * 0.62))
     x = mesh.points * 1e3
-    columns = [0, 2] if three_d else [0, 1]
+    columns = ["xyz".index(c) for c in args.view] if three_d else [0, 1]
     if three_d:
-        near = np.abs(x[:, 1]) < args.slice
+        across = ({0, 1, 2} - set(columns)).pop()
+        near = np.abs(x[:, across] - args.slice_at) < args.slice
         for p in sorted(set(part) - {-1}):
             chosen = near & (part == p)
-            axes.scatter(x[chosen, 0], x[chosen, 2], s=1, color=plt.cm.tab10(p % 10),
+            axes.scatter(x[chosen, columns[0]], x[chosen, columns[1]], s=1, color=plt.cm.tab10(p % 10),
                          label=(part_names[p] if p < len(part_names) else f"part {p}") + " (slice)")
+        if not near.any():
+            print(f"no node within {args.slice} mm of {'xyz'[across]} = {args.slice_at} mm: the mesh spans "
+                  f"{x[:, across].min():.3g} to {x[:, across].max():.3g} mm along {'xyz'[across]} "
+                  "(--slice-at, --slice)")
         axes.legend(loc="upper right", markerscale=6)
     else:
         for block, parts, failure in zip(mesh.cells, mesh.cell_data["part"],
@@ -1558,7 +1564,7 @@ def plot_debris(args):
         axes.set_xlim(args.window[0], args.window[1])
         axes.set_ylim(args.window[2], args.window[3])
     axes.set_aspect("equal")
-    labels = ("r", "z") if axisymmetric else ("x", "z") if three_d else ("x", "y")
+    labels = ("r", "z") if axisymmetric else tuple(args.view) if three_d else ("x", "y")
     axes.set_xlabel(f"{labels[0]} (mm)")
     axes.set_ylabel(f"{labels[1]} (mm)")
     kind = "rings" if axisymmetric else "particles"
@@ -1967,8 +1973,9 @@ Lengths and areas are expressions of numbers with units: 60um*1um, '24 um', 6e-1
         "debris", help="the mesh and the debris particles of failed elements at a frame",
         description="""Draw a run's mesh and its debris particles (made from failed elements) at a
 frame: in 2D and axisymmetry the section, the first part coloured by its failure factor where the
-frame has it, the others grey (crack faces show as gaps); in 3D a side view (x, z) of the nodes
-in a slice |y| < --slice and every particle. Particles are discs of their size coloured by speed.
+frame has it, the others grey (crack faces show as gaps); in 3D a view (--view, by default the
+side view x–z) of the nodes in a slice of half-thickness --slice about --slice-at along the third
+axis, and every particle. Particles are discs of their size coloured by speed.
 Prints each part's mean velocity (a projectile's residual velocity) and the debris count and
 mass.""")
     debris.add_argument("input", metavar="RUN", help="run folder")
@@ -1976,6 +1983,10 @@ mass.""")
     debris.add_argument("--window", nargs=4, type=float, metavar=("XMIN", "XMAX", "YMIN", "YMAX"),
                         help="the view (mm)")
     debris.add_argument("--slice", type=float, default=0.3, help="3D: half-thickness of the slice (mm)")
+    debris.add_argument("--view", choices=["xz", "xy", "yz", "zx", "yx", "zy"], default="xz",
+                        help="3D: the plane seen, horizontal axis first (default: %(default)s, a side view)")
+    debris.add_argument("--slice-at", type=float, default=0.0,
+                        help="3D: where the slice lies along the third axis (mm, default: %(default)s)")
     debris.add_argument("-o", "--output", help="image file (default: RUN/debris.png)")
     debris.add_argument("--title", help="title")
     debris.add_argument("--width", type=float, default=10.0, help="inches (default: %(default)s)")

@@ -33,6 +33,8 @@ what the plotting tool reads from them:
   the cone exactly; with --cracks, from crack-face nodes along it, angle and start within 2 %;
   with --field damage (cells damaged to 0.7), the angle within 2 % at --level 0.5 and at 0.8 no
   cone (status 2, 'no frame has failed cells'); --field of a tensor stops with status 2;
+- debris --view xy on the four-ply laminate crush (3D, a slice 0.27 mm deep in z) finds nodes in
+  its slice, and a slice placed off the mesh says so;
 - a misspelt group name stops with exit status 2 (bad input, as argparse) and names the groups there are.
 
 Usage: test_shard_plot.py SHARD_EXECUTABLE SOURCE_DIR WORK_DIR
@@ -379,6 +381,14 @@ def main():
     energy = sum(0.5 * (float(a["force"]) + float(b["force"])) * (float(b["stroke"]) - float(a["stroke"]))
                  for a, b in zip(rows, rows[1:]))
     check_close("absorbed energy against the integral of crash.csv", figures["absorbed_energy"], energy, 1e-6)
+    # A 3D run seen in the plane of its choosing: the laminate's slice (0 to 0.27 mm along z) face on,
+    # and a slice placed off the mesh said to hold no node.
+    result = run(plot + ["debris", crush, "--view", "xy", "-o", os.path.join(work, "crush_xy.png")])
+    if result.returncode != 0 or "no node within" in result.stdout:
+        fail("debris --view xy on the laminate crush run failed or found no node in the slice")
+    result = run(plot + ["debris", crush, "--view", "xy", "--slice-at", "100", "-o", os.path.join(work, "crush_off.png")])
+    if "no node within 0.3 mm of z = 100.0 mm: the mesh spans 0 to 0.27 mm along z" not in result.stdout:
+        fail("debris with a slice off the mesh did not say so")
 
     check_cone(plot, work)
 
