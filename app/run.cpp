@@ -1190,7 +1190,9 @@ class RunDriver {
   std::string held_counts() const {
     std::string out;
     if (cracks_) {
-      // A decomposed run's whole model is as the last split left it: cracks change nowhere else.
+      // A decomposed run's whole model is as the last split left it (cracks change nowhere
+      // else), its interface elements' openings as the last history row gathered them: the
+      // progress line's fragment count may lag that row by one history interval.
       const Model& model = sub_ ? whole_ : sim_.model;
       const auto faces = model.crack_face_nodes();
       out += "crack-face nodes " + std::to_string(std::count(faces.begin(), faces.end(), 1)) + "  fragments " +
@@ -1825,8 +1827,9 @@ class RunDriver {
   /// The fragments now: their count, then per part the count of those holding its elements and
   /// the mass of the heaviest (a fragment that spans parts counts in each).
   void write_fragment_counts() {
-    // A decomposed run's whole model is as the last split left it: fragments and their masses
-    // change at splits alone.
+    // A decomposed run's whole model is as the last split left it, and the interface elements'
+    // openings as gather_interface_openings just made them: fragments and their masses change at
+    // splits and where an interface element opens, nowhere else.
     const Fragments f = find_fragments(sub_ ? whole_ : sim_.model);
     history_ << ',' << f.list.size();
     std::vector<std::int64_t> count(f.element_fragment.size(), 0);

@@ -413,7 +413,7 @@ std::string plies_off_the_mesh(const Part& part, const std::vector<int>& ply, Al
       lo = std::min(lo, s), hi = std::max(hi, s);
     }
     const double boundary = std::floor(hi - 0.01);
-    if (boundary > lo + 0.01 && boundary >= 1) {
+    if (boundary > lo + 0.01 && boundary >= 0) {  // ply 1's start too, when `start` is above the lowest node
       if (straddling++ == 0) example = boundary;
     }
   }

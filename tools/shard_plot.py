@@ -677,18 +677,24 @@ def plot_fragments(args):
     # debris particles (comminuted or eroded elements) are fragments of one particle each
     particle = np.asarray(columns.get("particles", np.zeros_like(mass)), dtype=float) > 0
     kinetic = np.asarray(columns.get("kinetic_energy", np.zeros_like(mass)), dtype=float)
-    part = columns["part"]
-    parts = list(dict.fromkeys(part))  # in the order of the fragment ids: the scenario's parts
+    part = np.asarray(columns["part"])
+    # A fragment that spans parts (a conforming mesh of two parts, or parts tied by an intact
+    # cohesive interface) is named 'a+b' and counts in each of them, as the history's columns do.
+    spans = [str(p).split("+") for p in part]
+    parts = list(dict.fromkeys(name for names in spans for name in names))  # the scenario's order
     statistics = {}
     for name in parts:
-        chosen = part == name
+        chosen = np.array([name in names for names in spans])
         if not mass[chosen].sum() > 0:
             continue
         st = statistics[name] = fragment_statistics(mass[chosen], particle[chosen])
+        joined = sorted({p for p, names in zip(part, spans) if name in names and len(names) > 1})
         print(f"{path}: part {name or '?'}: {st['count']} fragments, mass {st['total']:.6g} kg; largest "
               f"{st['largest']:.6g} kg ({st['largest'] / st['total']:.1%} of the part); median by mass "
               f"{st['median']:.4g} kg; kinetic energy {kinetic[chosen].sum():.4g} J; debris: {st['debris']} "
-              f"particles, {st['debris_mass']:.4g} kg ({st['debris_mass'] / st['total']:.1%})")
+              f"particles, {st['debris_mass']:.4g} kg ({st['debris_mass'] / st['total']:.1%})"
+              + (f"; joined to other parts in {', '.join(joined)} (its mass and count include theirs)"
+                 if joined else ""))
     history = None
     if os.path.isdir(args.folder) and os.path.isfile(os.path.join(args.folder, "history.csv")):
         history = read_history(os.path.join(args.folder, "history.csv"))

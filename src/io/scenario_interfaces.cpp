@@ -145,24 +145,26 @@ void warn_crash_geometry(const Section& s, const Scenario& sc, const CrashInput&
   if (in.stroke_part == in.crushed_part)
     s.warn(0, "stroke_part",
            "the same part as crushed_part ('" + in.crushed_part + "'): the stroke is its mean displacement towards the "
-           "wall, about half the crush of a specimen that shortens on it; give the part that drives it (the carriage)");
+           "wall, about half the crush of a specimen that shortens on it, and SEA and the mean force are read "
+           "over that; with a carriage, give the carriage");
   const auto wall = std::find_if(sc.walls.begin(), sc.walls.end(), [&](const WallInput& w) { return w.name == in.wall; });
   if (std::any_of(wall->velocity.begin(), wall->velocity.end(), [](const auto& v) { return v.has_value(); })) return;
-  for (const InitialVelocityInput& ic : sc.initial_velocities) {
-    if (ic.part != in.stroke_part) continue;
-    double speed = 0, towards = 0;
-    for (int k = 0; k < 3; ++k) speed += ic.velocity[k] * ic.velocity[k], towards -= ic.velocity[k] * wall->normal[k];
-    speed = std::sqrt(speed);
-    // Within about 84° of −normal: a carriage driven at an angle still crushes.
-    if (speed == 0 || towards >= 0.1 * speed) continue;
-    s.warn(0, "wall",
-           "part '" + in.stroke_part + "' (stroke_part) starts " +
-               (towards <= -0.1 * speed ? std::string("away from") : std::string("across the normal of")) + " wall '" +
-               in.wall + "' (" + format_si(towards, dim::velocity) + " of " + format_si(speed, dim::velocity) +
-               " towards it, initial_conditions line " + std::to_string(ic.line) +
-               "): the stroke, its mean displacement along the wall's −normal, stays near zero or negative, and the "
-               "SEA and crush-force efficiency with it; check the wall's normal (it points to the side where the bodies are)");
-  }
+  // A later entry for the part replaces an earlier one: only the last acts.
+  const auto last = std::find_if(sc.initial_velocities.rbegin(), sc.initial_velocities.rend(),
+                                 [&](const InitialVelocityInput& ic) { return ic.part == in.stroke_part; });
+  if (last == sc.initial_velocities.rend()) return;
+  double speed = 0, towards = 0;
+  for (int k = 0; k < 3; ++k) speed += last->velocity[k] * last->velocity[k], towards -= last->velocity[k] * wall->normal[k];
+  speed = std::sqrt(speed);
+  // Within about 84° of −normal: a carriage driven at an angle still crushes.
+  if (speed == 0 || towards >= 0.1 * speed) return;
+  s.warn(0, "wall",
+         "part '" + in.stroke_part + "' (stroke_part) starts " +
+             (towards <= -0.1 * speed ? std::string("away from") : std::string("across the normal of")) + " wall '" +
+             in.wall + "' (" + format_si(towards, dim::velocity) + " of " + format_si(speed, dim::velocity) +
+             " towards it, initial_conditions line " + std::to_string(last->line) +
+             "): the stroke, its mean displacement along the wall's −normal, stays near zero or negative, and the "
+             "SEA and crush-force efficiency with it; check the wall's normal (it points to the side where the bodies are)");
 }
 
 void read_crash(Section& top, Scenario& sc) {

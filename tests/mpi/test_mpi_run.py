@@ -14,7 +14,9 @@ mushrooms on 3 ranks at random and from 2 to 3 ranks across a restart; the cylin
 the plate (contact between parts, the model cut anew as it moves) on 2 and 3 ranks and from 2 to
 3 ranks across a restart, and rebalanced every 13 steps; the notched plate whose discrete crack
 cuts it in two on 2 and 4 ranks and on 3 ranks cut at random (each subdomain following the splits
-in place, the model cut anew after a split that moves a node to another owner), on 2 rebalanced every 7 steps and from 2 to 3 ranks across a restart while the crack runs; the rod perforating the plate with
+in place, the model cut anew after a split that moves a node to another owner), on 2 rebalanced every 7 steps and from 2 to 3 ranks across a restart while the crack runs; two
+blocks tied by a cohesive interface that opens, beside a tile that may crack (the history's
+fragment counts, gathered openings), on 2 and 3 ranks; the rod perforating the plate with
 erosion on 2 ranks, on 3 cut at random, and from 2 to 3 ranks across a restart, and the same with
 its failed elements turned into debris particles in contact with each other and the mesh; the four-ply
 laminate's cohesive interfaces, without erosion, on 2 ranks and on 3 and 4 cut at random, and

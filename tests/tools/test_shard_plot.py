@@ -24,6 +24,7 @@ what the plotting tool reads from them:
   the projectile is a fragment of part 'projectile', and the largest fragment and the mass the
   tool reports for the plate are those of the plate's rows (1e-5, the printed digits); and on a
   fragments.csv with a striker heavier than the target's pieces, the target's largest is its own;
+  and a piece spanning two parts ('tile+backing') counts in each and is said to be joined;
   field equivalent_plastic_strain on the same run, NaN in the projectile's cells, runs and writes
   its picture;
 - info and field on a run of particles only (no frames.pvd): its particle frames are read and
@@ -355,6 +356,21 @@ def main():
                 0.002, 1e-5)
     if int(words[0]) != 2:
         fail("the target's fragment count is not 2 (its two pieces, without the striker and the debris particle)")
+    # Plies tied to a backing by an intact interface: the piece of both counts in each part, and
+    # the tile's largest is that piece (3 g), not the 1 g one left to the tile alone.
+    with open(table, "w") as stream:
+        stream.write("id,part,elements,mass,centroid_x,centroid_y,velocity_x,velocity_y,kinetic_energy,particles\n"
+                     "0,tile+backing,40,0.003,0,0,0,0,0,0\n1,tile,80,0.001,0,0,0,0,0,0\n")
+    result = run(plot + ["fragments", table, "-o", os.path.join(work, "joined_fragments.png")])
+    line = [l for l in result.stdout.splitlines() if ": part tile:" in l]
+    if result.returncode != 0 or len(line) != 1 or "joined to other parts in tile+backing" not in line[0]:
+        fail("fragments on a table with a piece of two parts failed, or does not say the tile's is joined")
+    else:
+        words = line[0].split(": part tile:")[1].split()
+        check_close("the tile's largest fragment, joined to its backing", float(words[words.index("largest") + 1]),
+                    0.003, 1e-5)
+        if int(words[0]) != 2 or ": part backing: 1 fragments" not in result.stdout:
+            fail("a piece of two parts is not counted in each")
 
     # Crash outputs: the four-ply laminate crush; the tool's absorbed energy against ∫ F ds of
     # crash.csv, and the mean force and largest window mean it prints against the summary.
