@@ -145,7 +145,19 @@ int shard_main(int argc, char** argv, shard::Communicator* ranks) {
   const auto say = [speaks](const char* text, std::FILE* to) {
     if (speaks) std::fputs(text, to);
   };
-  std::vector<std::string> args(argv + 1, argv + argc);
+  std::vector<std::string> args;
+  for (int i = 1; i < argc; ++i) {
+    // --option=value is --option value (the form many tools take); --set=key=value splits at the
+    // first '=' only.
+    const std::string a = argv[i];
+    const auto eq = a.find('=');
+    if (i > 1 && a.rfind("--", 0) == 0 && eq != std::string::npos && eq > 2) {
+      args.push_back(a.substr(0, eq));
+      args.push_back(a.substr(eq + 1));
+    } else {
+      args.push_back(a);
+    }
+  }
   if (args.empty()) {
     say(kHelp, stderr);
     return kBadInput;

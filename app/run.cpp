@@ -96,6 +96,39 @@ std::string fingerprint_of(const Scenario& sc) {
   return std::to_string(std::hash<std::string>{}(text));
 }
 
+/// The first key at which two resolved scenarios differ ("" if none), with both values, for a
+/// restart refused because its scenario is not the checkpoint's: a --set given to one piece and
+/// not the other, or changed between them, is named instead of "a different scenario".
+std::string first_difference(const YAML::Node& was, const YAML::Node& now, const std::string& at = "") {
+  auto text = [](const YAML::Node& n) { return n.IsDefined() && !n.IsNull() ? to_yaml_text(n) : std::string("(none)"); };
+  auto flat = [](std::string t) {
+    while (!t.empty() && t.back() == '\n') t.pop_back();
+    return t.find('\n') == std::string::npos && t.size() < 80 ? t : std::string("(a section)");
+  };
+  const bool both = was.IsDefined() && now.IsDefined();  // a key one of them lacks is not defined there
+  if (both && was.IsMap() && now.IsMap()) {
+    std::vector<std::string> keys;
+    for (const auto& kv : was) keys.push_back(kv.first.as<std::string>());
+    for (const auto& kv : now)
+      if (!was[kv.first.as<std::string>()]) keys.push_back(kv.first.as<std::string>());
+    for (const auto& k : keys) {
+      if (k == "output" && at.empty()) continue;  // output intervals may change between pieces
+      const std::string d = first_difference(was[k], now[k], at.empty() ? k : at + "." + k);
+      if (!d.empty()) return d;
+    }
+    return "";
+  }
+  if (both && was.IsSequence() && now.IsSequence() && was.size() == now.size()) {
+    for (std::size_t i = 0; i < was.size(); ++i) {
+      const std::string d = first_difference(was[i], now[i], at + "[" + std::to_string(i + 1) + "]");
+      if (!d.empty()) return d;
+    }
+    return "";
+  }
+  if (text(was) == text(now)) return "";
+  return at + ": " + flat(text(was)) + " in the checkpoint's run, " + flat(text(now)) + " now";
+}
+
 /// Progress: a live status line on a terminal, plain periodic lines otherwise. The ETA follows
 /// the recent rate of simulated time per wall second (a run slows many times once cracks and
 /// debris appear, so the rate since the start promises too early an end).
@@ -265,8 +298,16 @@ struct Prepared {
 
 Prepared prepare(const std::filesystem::path& file, const std::vector<ScenarioOverride>& overrides) {
   Prepared p{read_scenario(file, overrides), {}};
-  const MeshData mesh = load_scenario_mesh(p.scenario);
-  p.sim = build_simulation(p.scenario, mesh);
+  try {
+    const MeshData mesh = load_scenario_mesh(p.scenario);
+    p.sim = build_simulation(p.scenario, mesh);
+  } catch (const InputError& e) {
+    // Checks against the mesh come after the reading: a value from --set has no line in the
+    // file there either (the line was that of the key the file gives, or of its section).
+    if (const std::string note = override_note(e.key(), overrides); !note.empty() && e.line() > 0)
+      throw InputError("", 0, e.key(), e.reason() + note);
+    throw;
+  }
   return p;
 }
 
@@ -364,7 +405,15 @@ class RunDriver {
     threads_ = omp_get_max_threads();
 #endif
     if (sc_.crash) crash_mass_per_length_ = crushed_mass_per_length();  // on the mesh as set up
-    if (options_.restart) read_checkpoint(*options_.restart, sim_.model, solver_.state(), cursor_, fingerprint_);
+    if (options_.restart) {
+      read_checkpoint_saying_what_differs();
+      rebase_output_indices();
+      // A stop the restart is already past would run one step and say it stopped there.
+      if (options_.until && *options_.until <= solver_.state().time)
+        throw InputError("", 0, "--until",
+                         format_time(*options_.until) + " is not after the checkpoint's time, " +
+                             format_time(solver_.state().time, 7) + ": give a later time, or none");
+    }
     if (ranks_) {
       timed_ranks_ = std::make_unique<TimedCommunicator>(*ranks_);
       ranks_ = timed_ranks_.get();
@@ -394,6 +443,12 @@ class RunDriver {
       fail(e);
     }
     std::vector<std::string> warnings = sc_.warnings;
+    if (options_.until && *options_.until >= sc_.end_time)
+      warnings.push_back(InputError("", 0, "--until",
+                                    format_time(*options_.until) + " is not before analysis.end_time (" +
+                                        format_time(sc_.end_time) + "): the run ends there as without it (a "
+                                        "time without a unit is in seconds)")
+                             .what());
     if (auto long_run = check_step_count(sc_, solver_.state().dt_next, solver_.state().time))
       warnings.push_back(*long_run);
     // Said, not noted: summary.json is the same for one process and any number of ranks.
@@ -1204,6 +1259,53 @@ class RunDriver {
     return out;
   }
 
+  /// read_checkpoint; a checkpoint of another scenario names the first key that differs from the
+  /// resolved.yaml beside it (the one its run wrote), where that file is there to read.
+  void read_checkpoint_saying_what_differs() {
+    try {
+      read_checkpoint(*options_.restart, sim_.model, solver_.state(), cursor_, fingerprint_);
+    } catch (const InputError& e) {
+      const auto beside = options_.restart->parent_path() / "resolved.yaml";
+      if (e.reason().find("different scenario") == std::string::npos || !std::filesystem::exists(beside)) throw;
+      std::string what;
+      try {
+        what = first_difference(YAML::LoadFile(beside.string()), sc_.resolved);
+      } catch (const YAML::Exception&) {
+        throw e;
+      }
+      if (what.empty()) throw;
+      throw InputError(e.file(), e.line(), e.key(),
+                       e.reason() + "; against " + beside.string() + ", first at " + what +
+                           " (a --set given to one piece must be given to the other)");
+    }
+  }
+
+  /// A restart may lengthen an output interval (docs/outputs.md): the index of the next output
+  /// kept from the earlier piece, read with the longer interval, would put it far beyond the
+  /// checkpoint, with nothing written in between. Such an index is set from the checkpoint's
+  /// time instead; an unchanged interval keeps its index (its next output is within one
+  /// interval), and a shorter one is due at once.
+  void rebase_output_indices() {
+    const double t = solver_.state().time;
+    auto rebase = [t](std::int64_t& next, double interval) {
+      if (interval > 0 && static_cast<double>(next) * interval > t + 1.5 * interval)
+        next = static_cast<std::int64_t>(std::floor(t / interval * (1 + 1e-9))) + 1;
+    };
+    const auto& out = sc_.output;
+    rebase(cursor_.next_frame, out.frame_interval);
+    rebase(cursor_.next_history, out.history_interval);
+    rebase(cursor_.next_checkpoint, out.checkpoint_interval);
+  }
+
+  /// The number of the next frame file: the frames listed so far (the mesh's, or with no mesh
+  /// the particle parts'), not the time index, which skips where a step is longer than the
+  /// frame interval and restarts its count when a restart changes the interval.
+  std::size_t next_frame_number() const {
+    std::size_t n = pvd_.size();
+    for (const auto& c : particle_pvd_) n = std::max(n, c.size());
+    return n;
+  }
+
   static bool due(double t, std::int64_t index, double interval) {
     return interval <= 0 || t >= static_cast<double>(index) * interval * (1 - 1e-9);
   }
@@ -1286,6 +1388,12 @@ class RunDriver {
   }
 
   void open_outputs() {
+    // A restart into a folder that is not its run's is refused before anything is written there.
+    if (options_.restart &&
+        (!std::filesystem::exists(history_path_) || std::filesystem::file_size(history_path_) < cursor_.history_bytes))
+      throw InputError(options_.restart->string(), 0, "--restart",
+                       "restart into the output folder of the run that wrote the checkpoint (" +
+                           history_path_.string() + " is missing or shorter than at the checkpoint)");
     make_output_folder(dir_);
     if (!options_.restart)
       if (const std::size_t removed = remove_earlier_outputs(dir_)) {
@@ -1301,16 +1409,14 @@ class RunDriver {
       write_particle_sample(dir_ / ("particles_" + part + "_sample.csv"), sample,
                             "part '" + part + "' of " + shown_path(sc_.file) + ", as built");
     if (options_.restart) {
-      if (!std::filesystem::exists(history_path_) || std::filesystem::file_size(history_path_) < cursor_.history_bytes)
-        throw InputError(options_.restart->string(), 0, "--restart",
-                         "restart into the output folder of the run that wrote the checkpoint (" +
-                             history_path_.string() + " is missing or shorter than at the checkpoint)");
       std::filesystem::resize_file(history_path_, cursor_.history_bytes);
+      // The frames written before the checkpoint (those after it are written again).
+      const double checkpoint_time = solver_.state().time;
       if (std::filesystem::exists(dir_ / "frames.pvd")) pvd_ = PvdCollection::read(dir_ / "frames.pvd");
-      pvd_.keep_first(static_cast<std::size_t>(cursor_.next_frame));
+      pvd_.keep_before(checkpoint_time);
       for (auto& c : particle_pvd_) {
         if (std::filesystem::exists(c.path())) c = PvdCollection::read(c.path());
-        c.keep_first(static_cast<std::size_t>(cursor_.next_frame));
+        c.keep_before(checkpoint_time);
       }
       history_.open(history_path_, std::ios::app);
       probes_.open(true, cursor_.probe_bytes);
@@ -1475,7 +1581,8 @@ class RunDriver {
 
   void write_frames(double t) {
     char name[32];
-    std::snprintf(name, sizeof name, "frame_%05lld.vtu", static_cast<long long>(cursor_.next_frame));
+    const auto number = static_cast<long long>(next_frame_number());
+    std::snprintf(name, sizeof name, "frame_%05lld.vtu", number);
     history_.flush();  // a history the disk refused is noticed with the frame, not at the end
     check_written(history_, history_path_);
     VtuGrid frame = make_frame(sim_.model, sim_.materials, sc_.output.fields, t, cracks_ != nullptr);
@@ -1493,8 +1600,7 @@ class RunDriver {
     for (std::size_t p = 0; p < sim_.model.particle_parts.size(); ++p) {
       const auto& pp = sim_.model.particle_parts[p];
       char pname[160];
-      std::snprintf(pname, sizeof pname, "particles_%s_%05lld.vtu", pp.name.c_str(),
-                    static_cast<long long>(cursor_.next_frame));
+      std::snprintf(pname, sizeof pname, "particles_%s_%05lld.vtu", pp.name.c_str(), number);
       VtuGrid particles = make_particle_frame(pp, t);
       if (p < particle_fragment.size() && !find_mca_state(pp))
         particles.point_fields.push_back({"fragment", 1, std::move(particle_fragment[p])});

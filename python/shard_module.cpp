@@ -4,6 +4,7 @@
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
 
 #include <cstdlib>
 #include <filesystem>
@@ -27,20 +28,34 @@ std::string read_text(const std::filesystem::path& p) {
   return s.str();
 }
 
-/// history.csv as {column: numpy array}, every value read back to the same double.
-py::dict read_history(const std::filesystem::path& path) {
+[[noreturn]] void raise_file_not_found(const std::string& what) {
+  PyErr_SetString(PyExc_FileNotFoundError, what.c_str());
+  throw py::error_already_set();
+}
+
+/// history.csv as {column: numpy array}, every value read back to the same double. `path` is the
+/// file or the run folder that holds it; a file that is not a history (its header does not start
+/// with time,step,dt) or a value that is not a number is a ValueError naming the file and line.
+py::dict read_history(std::filesystem::path path) {
+  if (std::filesystem::is_directory(path)) path /= "history.csv";
   std::ifstream in(path);
+  if (!std::filesystem::is_regular_file(path) || !in)
+    raise_file_not_found(path.string() + ": no such history file (give a run folder or its history.csv)");
   std::string line;
   std::getline(in, line);
+  if (line.rfind("time,step,dt", 0) != 0)
+    throw py::value_error(path.string() + ": not a shard history (its first line does not start with time,step,dt)");
   std::vector<std::string> names;
   std::stringstream header(line);
   for (std::string c; std::getline(header, c, ',');) names.push_back(c);
   std::vector<std::vector<double>> columns(names.size());
-  while (std::getline(in, line)) {
+  for (std::size_t row = 2; std::getline(in, line); ++row) {
     const char* p = line.c_str();
-    for (auto& column : columns) {
+    for (std::size_t c = 0; c < columns.size(); ++c) {
       char* end = nullptr;
-      column.push_back(std::strtod(p, &end));
+      columns[c].push_back(std::strtod(p, &end));
+      if (end == p || (*end != ',' && *end != '\0'))
+        throw py::value_error(path.string() + ":" + std::to_string(row) + ": column '" + names[c] + "' is not a number");
       p = *end == ',' ? end + 1 : end;
     }
   }
@@ -53,7 +68,7 @@ py::dict read_history(const std::filesystem::path& path) {
 /// A scenario file with the overrides put over it, as `shard run FILE --set KEY=VALUE ...` has.
 class Scenario {
  public:
-  explicit Scenario(std::string file) : file_(std::move(file)) {
+  explicit Scenario(const std::filesystem::path& file) : file_(file.string()) {
     (void)shard::read_scenario(file_);  // a bad file is an error here, not at run()
   }
 
@@ -76,7 +91,8 @@ class Scenario {
 
   /// Runs into `output` with `threads` (0: OpenMP's default); returns {"history", "summary",
   /// "output"}.
-  py::dict run(const std::string& output, int threads, bool quiet) const {
+  py::dict run(const std::filesystem::path& output, int threads, bool quiet) const {
+    if (threads < 0) throw py::value_error("threads: a whole number >= 0 (0: OpenMP's default), not " + std::to_string(threads));
     shard::RunOptions options;
     options.output_dir = output;
     options.threads = threads;
@@ -87,7 +103,7 @@ class Scenario {
       (void)shard::run_scenario(file_, options);
     }
     py::dict result;
-    result["output"] = output;
+    result["output"] = output.string();
     result["history"] = read_history(options.output_dir / "history.csv");
     result["summary"] = py::module_::import("json").attr("loads")(read_text(options.output_dir / "summary.json"));
     return result;
@@ -121,7 +137,7 @@ PYBIND11_MODULE(shard, m) {
     }
   });
   py::class_<Scenario>(m, "Scenario", "a scenario file and the overrides put over it")
-      .def(py::init<std::string>(), py::arg("file"))
+      .def(py::init<const std::filesystem::path&>(), py::arg("file"))
       .def("set", &Scenario::set, py::arg("key"), py::arg("value"), py::return_value_policy::reference_internal,
            "put a value over a key (dotted, list entries from 1), e.g. set('materials.alumina.tensile_strength', "
            "'450 MPa'); checked at once (InputError)")
@@ -129,6 +145,6 @@ PYBIND11_MODULE(shard, m) {
       .def("run", &Scenario::run, py::arg("output"), py::arg("threads") = 0, py::arg("quiet") = true,
            "run into the folder `output`; returns {'history': {column: numpy array}, 'summary': dict, 'output': str}")
       .def_property_readonly("overrides", &Scenario::overrides);
-  m.def("read_history", [](const std::string& path) { return read_history(path); }, py::arg("path"),
-        "a history.csv as {column: numpy array}");
+  m.def("read_history", [](const std::filesystem::path& path) { return read_history(path); }, py::arg("path"),
+        "a run's history.csv (the file, or the run folder) as {column: numpy array}");
 }

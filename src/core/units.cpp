@@ -210,11 +210,15 @@ const std::vector<std::string>& suggestion_candidates() {
   return all;
 }
 
-[[noreturn]] void throw_unknown_unit(std::string_view symbol) {
+[[noreturn]] void throw_unknown_unit(std::string_view symbol, const Dimension* expected) {
   std::string message = "unknown unit '" + std::string(symbol) + "'";
   // A case slip ("mpa", "KG") is the likeliest mistake, so it beats a closer edit distance.
+  // Where the quantity's kind is known, only units of that kind are offered ("ksi" for a
+  // pressure suggested "ks", a time).
   std::optional<std::string> best;
-  const auto& candidates = suggestion_candidates();
+  std::vector<std::string> candidates;
+  for (const auto& c : suggestion_candidates())
+    if (!expected || lookup(c)->dimension == *expected) candidates.push_back(c);
   for (const auto& candidate : candidates) {
     if (equal_ignoring_case(symbol, candidate)) {
       best = candidate;
@@ -233,6 +237,11 @@ const std::vector<std::string>& suggestion_candidates() {
   }
   if (best) {
     message += " (did you mean '" + *best + "'?)";
+  } else if (expected && !candidates.empty()) {
+    message += " (units of this kind: ";
+    for (std::size_t i = 0; i < std::min<std::size_t>(candidates.size(), 8); ++i)
+      message += (i ? ", " : "") + candidates[i];
+    message += ")";
   } else {
     message += " (known: ";
     for (std::size_t i = 0; i < kSymbols.size(); ++i)
@@ -269,7 +278,8 @@ constexpr std::string_view kMiddleDot = "\u00b7";
 // as J/(kg·K) to a person, and a silently wrong specific heat is worse than an error.
 class UnitParser {
  public:
-  UnitParser(std::string_view units, std::string_view whole) : s_(units), whole_(whole) {}
+  UnitParser(std::string_view units, std::string_view whole, const Dimension* expected = nullptr)
+      : s_(units), whole_(whole), expected_(expected) {}
 
   Term parse() {
     Term t = product();
@@ -353,7 +363,8 @@ class UnitParser {
     }
     const std::string_view symbol = s_.substr(start, pos_ - start);
     const auto term = lookup(symbol);
-    if (!term) throw_unknown_unit(symbol);
+    // A lone symbol is the whole unit: the quantity's kind picks what "did you mean" offers.
+    if (!term) throw_unknown_unit(symbol, symbol == trim(s_) ? expected_ : nullptr);
     return power(*term, exponent(true));
   }
 
@@ -399,6 +410,7 @@ class UnitParser {
 
   std::string_view s_;
   std::string_view whole_;
+  const Dimension* expected_ = nullptr;  ///< the kind of quantity wanted, when known
   std::size_t pos_ = 0;
 };
 
@@ -407,7 +419,7 @@ struct Parsed {
   bool has_unit = false;
 };
 
-Parsed parse(std::string_view text) {
+Parsed parse(std::string_view text, const Dimension* expected = nullptr) {
   const std::string_view t = trim(text);
   if (t.empty())
     throw std::invalid_argument("empty value: expected a number with an optional unit, such as "
@@ -434,7 +446,7 @@ Parsed parse(std::string_view text) {
   out.quantity.value = number;
   if (units.empty()) return out;
 
-  const Term term = UnitParser(units, t).parse();
+  const Term term = UnitParser(units, t, expected).parse();
   out.has_unit = true;
   out.quantity.value = number * term.scale.num / term.scale.den;
   out.quantity.dimension = term.dimension;
@@ -467,7 +479,7 @@ std::string Dimension::si_unit() const {
 Quantity parse_quantity(std::string_view text) { return parse(text).quantity; }
 
 double parse_quantity_as(std::string_view text, const Dimension& expected) {
-  const Parsed p = parse(text);
+  const Parsed p = parse(text, &expected);
   if (!p.has_unit || p.quantity.dimension == expected) return p.quantity.value;
   std::string want;
   if (expected == dim::none) {

@@ -495,7 +495,8 @@ void refuse_oversized_mesh(const fs::path& file, const GmshOptions& options, int
          << " x " << y1 - y0;
   if (mesh_dim == 3) reason << " x " << z1 - z0;
   reason << "), more than mesh.max_elements = " << static_cast<long long>(options.max_elements)
-         << ": check the size and its unit, or raise mesh.max_elements";
+         << ": check the size and its unit, and mesh.unit (the size is divided by it: 0.5 mm with a unit of 1 m is "
+            "0.0005 in the file's units), or raise mesh.max_elements";
   throw InputError(file.string(), 0, "mesh.size", reason.str());
 }
 

@@ -381,7 +381,7 @@ KeyList initial_condition_keys() {
 KeyList boundary_condition_keys() {
   KeyList k;
   k.add("group", ValueKind::text, "a Gmsh physical group (any dimension)").must_be_given();
-  k.add("fix", ValueKind::list, "components held at zero velocity, e.g. [x, y]");
+  k.add("fix", ValueKind::list, "components held at zero velocity, e.g. [x, y] (one condition per component)");
   k.choice("symmetry", {"x", "y", "z"},
            "symmetry plane normal to this axis (its normal velocity is zero)");
   k.add("velocity", ValueKind::section,
@@ -879,10 +879,17 @@ class ScenarioReader {
       entry_out["fix"] = out;
       any = true;
     }
+    // One component held two ways in one entry: the later (a velocity) silently won.
+    std::array<const char*, 3> held_by{};
+    for (std::size_t k = 0; k < 3; ++k)
+      if (bc.velocity[k]) held_by[k] = "fix";
     if (auto sym = s.choice("symmetry")) {
       const int k = component_index(*sym);
       if (k >= static_cast<int>(dim)) s.fail("symmetry", "a 2D model has no z axis");
+      if (held_by[k])
+        s.fail("symmetry", "holds " + components[k] + ", which fix holds already: give each component one condition");
       bc.velocity[k] = TimeTable::constant(0.0);
+      held_by[k] = "symmetry";
       any = true;
     }
     if (s.has("velocity")) {
@@ -890,6 +897,9 @@ class ScenarioReader {
       for (std::size_t k = 0; k < 3; ++k)
         if (v.has(components.size() > k ? components[k] : "z")) {
           if (k >= dim) v.fail("z", "a 2D model has no z component");
+          if (held_by[k])
+            v.fail(components[k], std::string("prescribes ") + components[k] + ", which " + held_by[k] +
+                                      " holds at zero already: give each component one condition");
           bc.velocity[k] = v.table(components[k]);
         }
       any = true;
@@ -1303,7 +1313,12 @@ ScenarioOverride parse_override(const std::string& text) {
   const auto eq = text.find('=');
   if (eq == std::string::npos || eq == 0)
     throw InputError("", 0, "--set", "expected KEY=VALUE (e.g. materials.steel.youngs_modulus=210GPa), got '" + text + "'");
-  return {text.substr(0, eq), text.substr(eq + 1)};
+  // "key = value" (spaces around the '=', as a shell quote keeps them) means key=value.
+  std::string key = text.substr(0, eq), value = text.substr(eq + 1);
+  key.erase(key.find_last_not_of(" \t") + 1);
+  key.erase(0, key.find_first_not_of(" \t"));
+  value.erase(0, value.find_first_not_of(" \t"));
+  return {key, value};
 }
 
 namespace {
@@ -1320,6 +1335,8 @@ struct MadeSection {
 MadeSection apply_override(YAML::Node& root, const ScenarioOverride& o) {
   MadeSection made;
   auto fail = [&](const std::string& why) { throw InputError("", 0, "--set " + o.key, why); };
+  if (o.value.find_first_not_of(" \t") == std::string::npos)
+    fail("an empty value: give one, or ~ to remove the key the file gives");
   YAML::Node at = root;
   std::size_t start = 0;
   while (start <= o.key.size()) {
@@ -1337,10 +1354,15 @@ MadeSection apply_override(YAML::Node& root, const ScenarioOverride& o) {
       segment.erase(open, close - open + 1);
     }
     if (segment.empty()) fail("an empty name in the key");
+    if (at.IsSequence() && segment.find_first_not_of("0123456789") == std::string::npos)
+      fail("list entries are written with brackets: " + o.key.substr(0, start - 1) + "[" + segment + "] (counted from 1)");
     if (!at.IsMap() && !at.IsNull()) fail("'" + segment + "' is under a value that is not a section of keys");
     const bool last = dot == o.key.size();
     YAML::Node next = at[segment];
     for (std::size_t n : entries) {
+      if (!next.IsDefined() || next.IsNull())
+        fail("the file has no '" + segment + "', so it has no entry " + std::to_string(n) +
+             ": give the whole list, e.g. --set '" + o.key.substr(0, o.key.find('[', start)) + "=[{...}]'");
       if (!next.IsSequence() || next.size() < n)
         fail("'" + segment + "' has no entry " + std::to_string(n) +
              (next.IsSequence() ? " (it has " + std::to_string(next.size()) + ")" : " (it is not a list)"));
@@ -1379,7 +1401,10 @@ MadeSection apply_override(YAML::Node& root, const ScenarioOverride& o) {
 const ScenarioOverride* override_of(const std::string& key, const std::vector<ScenarioOverride>& overrides) {
   for (auto it = overrides.rbegin(); it != overrides.rend(); ++it) {
     const std::string& plain = it->key;  // "boundary_conditions[2].velocity" is named so by the reader too
-    if (key == plain || key.rfind(plain + ".", 0) == 0 || plain.rfind(key + ".", 0) == 0) return &*it;
+    // A key under the override ("probes[1].group" under a whole list "probes") or above it.
+    if (key == plain || key.rfind(plain + ".", 0) == 0 || key.rfind(plain + "[", 0) == 0 ||
+        plain.rfind(key + ".", 0) == 0)
+      return &*it;
   }
   return nullptr;
 }
@@ -1402,6 +1427,12 @@ void name_made_section(const InputError& e, const std::vector<ScenarioOverride>&
 }
 
 }  // namespace
+
+std::string override_note(const std::string& key, const std::vector<ScenarioOverride>& overrides) {
+  const ScenarioOverride* o = override_of(key, overrides);
+  return o ? " (the value given by --set " + o->key + "=" + o->value + ")" : std::string();
+}
+
 
 Scenario read_scenario(const std::filesystem::path& path, const std::vector<ScenarioOverride>& overrides) {
   const std::string file = path.string();
@@ -1428,10 +1459,7 @@ Scenario read_scenario(const std::filesystem::path& path, const std::vector<Scen
   sc.resolved = YAML::Node(YAML::NodeType::Map);
   const scenario_detail::ScenarioWarnings collect(sc.warnings);
   // A value from the command line has no line in the file: errors and warnings name the override.
-  auto named = [&](const std::string& key) -> std::string {
-    const ScenarioOverride* o = override_of(key, overrides);
-    return o ? " (the value given by --set " + o->key + "=" + o->value + ")" : std::string();
-  };
+  auto named = [&](const std::string& key) { return override_note(key, overrides); };
   // The shell leaves [...] as it is, and YAML reads it as a list: text such as a layup code needs
   // quotes of its own inside the shell's.
   auto quoting = [&](const InputError& e) -> std::string {

@@ -347,6 +347,11 @@ struct ScenarioOverride {
 /// Parses "key=value" (the command line's form). Throws InputError when there is no '=' or no key.
 ScenarioOverride parse_override(const std::string& text);
 
+/// " (the value given by --set KEY=VALUE)" when `key` (a reader's key, such as
+/// "parts.bar.group") is, or lies under or above, one of `overrides`; "" otherwise. An error
+/// about such a value has no line in the file: it names the override instead.
+std::string override_note(const std::string& key, const std::vector<ScenarioOverride>& overrides);
+
 /// Reads and validates a scenario file (not the mesh), with `overrides` put over it in order.
 /// Throws InputError; an error in an overridden value names "--set KEY".
 Scenario read_scenario(const std::filesystem::path& file, const std::vector<ScenarioOverride>& overrides = {});

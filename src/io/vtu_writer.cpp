@@ -1,3 +1,4 @@
+#include <algorithm>
 #include "io/vtu_writer.hpp"
 
 #include "io/output_file.hpp"
@@ -424,6 +425,12 @@ void PvdCollection::add(double time, const std::string& relative_file) {
 
 void PvdCollection::keep_first(std::size_t n) {
   if (n < entries_.size()) entries_.resize(n);
+}
+
+void PvdCollection::keep_before(double t) {
+  // Times are written to read back exactly (format_time), and they grow with the entries.
+  const auto first_late = std::find_if(entries_.begin(), entries_.end(), [t](const auto& e) { return e.first >= t; });
+  entries_.erase(first_late, entries_.end());
 }
 
 void PvdCollection::write() const {

@@ -73,6 +73,9 @@ class PvdCollection {
   void add(double time, const std::string& relative_file);
   /// For restart: drops entries after the first n (does not write).
   void keep_first(std::size_t n);
+  /// For restart: drops the entries at time `t` and after (does not write): those a run wrote
+  /// after its checkpoint at `t`, which the restart writes again.
+  void keep_before(double t);
   std::size_t size() const { return entries_.size(); }
   /// Atomic rewrite (via "<pvd>.tmp"); throws std::runtime_error naming the path on failure.
   void write() const;

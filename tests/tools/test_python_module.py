@@ -9,6 +9,9 @@
   modulus (c = sqrt(E(1-nu)/(rho(1+nu)(1-2nu))) in plane strain): the kinetic energy at 4 us is
   different from the run without it.
 - A bad override is an InputError (a ValueError) naming the key, at set(), before any run.
+- read_history takes a run folder as well as its history.csv, and a pathlib.Path; a missing file
+  is a FileNotFoundError and a file that is no history a ValueError (it returned an empty dict);
+  threads=-1 is a ValueError.
 
 Usage: test_python_module.py SHARD_EXECUTABLE MODULE_DIR SOURCE_DIR WORK_DIR
 """
@@ -76,6 +79,24 @@ def main():
         if not isinstance(e, ValueError):
             fail("InputError is not a ValueError")
         print(f"bad override: {e}")
+
+    # read_history takes a run folder too, and says what is wrong with a path that holds no
+    # history instead of returning an empty dict; paths may be pathlib.Path; threads < 0 is refused.
+    import pathlib
+    if set(shard.read_history(pathlib.Path(cli_out))) != set(cli):
+        fail("read_history of the run folder is not that of its history.csv")
+    for path, kind in ((os.path.join(work, "nosuch", "history.csv"), FileNotFoundError),
+                       (os.path.join(cli_out, "resolved.yaml"), ValueError)):
+        try:
+            shard.read_history(path)
+            fail(f"read_history({path}) returned without an error")
+        except kind as e:
+            print(f"read_history: {e}")
+    try:
+        shard.Scenario(pathlib.Path(scenario_file)).run(os.path.join(work, "negative"), threads=-1)
+        fail("threads=-1 was accepted")
+    except ValueError as e:
+        print(f"threads: {e}")
     print("PASS")
 
 

@@ -179,6 +179,23 @@ TEST(ParseQuantity, MalformedInputsThrow) {
   EXPECT_NE(failure("477 J/kg K").find("J/(kg K)"), std::string::npos) << failure("477 J/kg K");
 }
 
+TEST(ParseQuantity, UnknownUnitSuggestsOneOfTheKindWanted) {
+  // Without the kind, "ksi" is nearest "ks" (a time); wanted as a pressure, a pressure unit.
+  auto as_pressure = [](const std::string& text) {
+    try {
+      (void)parse_quantity_as(text, dim::pressure);
+    } catch (const std::invalid_argument& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_NE(failure("23 ksi").find("did you mean 'ks'"), std::string::npos) << failure("23 ksi");
+  EXPECT_NE(as_pressure("23 ksi").find("did you mean 'kPa'"), std::string::npos) << as_pressure("23 ksi");
+  EXPECT_NE(as_pressure("3 sec").find("units of this kind: Pa, bar, kPa, MPa, GPa"), std::string::npos)
+      << as_pressure("3 sec");
+  EXPECT_NE(as_pressure("370 Mpa").find("did you mean 'MPa'"), std::string::npos);
+}
+
 TEST(ParseQuantity, UnknownUnitSuggestsAKnownOne) {
   EXPECT_NE(failure("370 Mpa").find("unknown unit 'Mpa'"), std::string::npos);
   EXPECT_NE(failure("370 Mpa").find("did you mean 'MPa'"), std::string::npos) << failure("370 Mpa");

@@ -164,6 +164,65 @@ TEST(RunCli, RestartWithAnotherScenarioIsRefused) {
                                     (dir / "a" / "checkpoint.bin").string());
   EXPECT_EQ(r.status, 2) << r.output;
   EXPECT_NE(r.output.find("different scenario"), std::string::npos) << r.output;
+  // An override given to one piece and not the other is named, with both values.
+  const std::string checkpoint = (dir / "a" / "checkpoint.bin").string();
+  const auto stiffer = testing::run_shard("run " + kExample2d + " --quiet -o " + (dir / "a").string() + " --restart " +
+                                          checkpoint + " --set materials.steel.bulk_modulus=170GPa");
+  EXPECT_EQ(stiffer.status, 2) << stiffer.output;
+  EXPECT_NE(stiffer.output.find("first at materials.steel.bulk_modulus: 159000000000 in the checkpoint's run, "
+                                "170000000000 now"), std::string::npos) << stiffer.output;
+  // A stop before the checkpoint's time is refused; so is a restart into another run's folder,
+  // which is left as it was (its resolved.yaml had been overwritten).
+  const auto early = testing::run_shard("run " + kExample2d + " --quiet -o " + (dir / "a").string() + " --restart " +
+                                        checkpoint + " --until=1us");
+  EXPECT_EQ(early.status, 2) << early.output;
+  EXPECT_NE(early.output.find("1 us is not after the checkpoint's time"), std::string::npos) << early.output;
+  ASSERT_EQ(testing::run_shard("run " + kExample2d + " --quiet --set analysis.end_time=0.5us -o " + (dir / "b").string())
+                .status, 0);
+  const std::string resolved = testing::read_file(dir / "b" / "resolved.yaml");
+  const auto elsewhere = testing::run_shard("run " + kExample2d + " --quiet -o " + (dir / "b").string() + " --restart " +
+                                            checkpoint);
+  EXPECT_EQ(elsewhere.status, 2) << elsewhere.output;
+  EXPECT_NE(elsewhere.output.find("restart into the output folder of the run that wrote the checkpoint"),
+            std::string::npos) << elsewhere.output;
+  EXPECT_EQ(testing::read_file(dir / "b" / "resolved.yaml"), resolved);
+  EXPECT_FALSE(std::filesystem::exists(dir / "c"));
+  EXPECT_EQ(testing::run_shard("run " + kExample2d + " --quiet -o " + (dir / "c").string() + " --restart " + checkpoint)
+                .status, 2);
+  EXPECT_FALSE(std::filesystem::exists(dir / "c")) << "a refused restart made its folder";
+  std::filesystem::remove_all(dir);
+}
+
+TEST(RunCli, RestartWithLongerOutputIntervalsGoesOnWriting) {
+  // Frames every 0.5 us to 4 us, then every 2 us: the next frame is the first after the
+  // checkpoint's time at the new interval (6 us), not at the old count times the new interval
+  // (9 x 2 = 18 us, past the end: nothing was written after the checkpoint). Likewise the
+  // history, from every 0.05 us to every 1 us. Frame files keep counting from those written.
+  const auto dir = testing::fresh_dir("restart_intervals");
+  const std::string out = (dir / "a").string();
+  ASSERT_EQ(testing::run_shard("run " + kExample2d + " --quiet --set analysis.end_time=10us --set "
+                               "output.frame_interval=0.5us --until 4us -o " + out).status, 0);
+  const auto second = testing::run_shard("run " + kExample2d + " --quiet --set analysis.end_time=10us --set "
+                                         "output.frame_interval=2us --set output.history_interval=1us -o " + out +
+                                         " --restart " + out + "/checkpoint.bin");
+  ASSERT_EQ(second.status, 0) << second.output;
+  const std::string pvd = testing::read_file(dir / "a" / "frames.pvd");
+  std::vector<double> times;
+  for (auto at = pvd.find("timestep=\""); at != std::string::npos; at = pvd.find("timestep=\"", at + 1))
+    times.push_back(std::strtod(pvd.c_str() + at + 10, nullptr));
+  ASSERT_GE(times.size(), 11u) << pvd;
+  EXPECT_NEAR(times[times.size() - 3], 6e-6, 0.1e-6) << pvd;
+  EXPECT_NEAR(times[times.size() - 2], 8e-6, 0.1e-6) << pvd;
+  EXPECT_NEAR(times.back(), 10e-6, 1e-12) << pvd;
+  EXPECT_NE(pvd.find("frame_00010.vtu"), std::string::npos) << pvd;
+  EXPECT_TRUE(std::filesystem::exists(dir / "a" / "frame_00010.vtu"));
+  std::istringstream rows(testing::read_file(dir / "a" / "history.csv"));
+  std::vector<double> after;
+  for (std::string line; std::getline(rows, line);) {
+    const double t = std::strtod(line.c_str(), nullptr);
+    if (t > 4.1e-6) after.push_back(t);
+  }
+  EXPECT_GE(after.size(), 6u) << "rows after the checkpoint";  // 5, 6, ..., 10 us
   std::filesystem::remove_all(dir);
 }
 
