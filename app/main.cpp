@@ -90,7 +90,8 @@ the same outputs, byte for byte (docs/outputs.md, "Ranks"):
                           SEED and its id: the worst cut, to check that results do not depend on
                           it); the outputs are the same bytes whichever
 
-A run of one process ignores these three options, and says so.
+A run of one process ignores these three options, and says so. An option's value may also be
+joined to it by '=' (--until=20us, --set=KEY=VALUE).
 
 Exit status: 0 success, 1 the run failed (outputs so far kept, summary.json says why),
 2 bad input (nothing written).
@@ -137,6 +138,27 @@ void note_decomposition_option(shard::RunOptions& options, const std::string& na
   if (std::find(given.begin(), given.end(), name) == given.end()) given.push_back(name);
 }
 
+/// The arguments after the program's name, an option's value joined by '=' split from it
+/// (--until=20us is --until 20us; --set=KEY=VALUE splits at the first '=' only). Only options
+/// that take a value are split: --quiet=1 stays one argument, an unknown option.
+std::vector<std::string> command_line_arguments(int argc, char** argv) {
+  static const std::vector<std::string> with_values = {"--output", "--threads", "--set", "--until", "--restart",
+                                                       "--partition", "--rebalance", "--rebalance-interval"};
+  std::vector<std::string> args;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    const auto eq = a.find('=');
+    if (i > 1 && a.rfind("--", 0) == 0 && eq != std::string::npos &&
+        std::find(with_values.begin(), with_values.end(), a.substr(0, eq)) != with_values.end()) {
+      args.push_back(a.substr(0, eq));
+      args.push_back(a.substr(eq + 1));
+    } else {
+      args.push_back(a);
+    }
+  }
+  return args;
+}
+
 /// The command line of one process, or of one rank of a decomposed run (`ranks`; rank 0 speaks
 /// for all of them).
 int shard_main(int argc, char** argv, shard::Communicator* ranks) {
@@ -145,19 +167,7 @@ int shard_main(int argc, char** argv, shard::Communicator* ranks) {
   const auto say = [speaks](const char* text, std::FILE* to) {
     if (speaks) std::fputs(text, to);
   };
-  std::vector<std::string> args;
-  for (int i = 1; i < argc; ++i) {
-    // --option=value is --option value (the form many tools take); --set=key=value splits at the
-    // first '=' only.
-    const std::string a = argv[i];
-    const auto eq = a.find('=');
-    if (i > 1 && a.rfind("--", 0) == 0 && eq != std::string::npos && eq > 2) {
-      args.push_back(a.substr(0, eq));
-      args.push_back(a.substr(eq + 1));
-    } else {
-      args.push_back(a);
-    }
-  }
+  const std::vector<std::string> args = command_line_arguments(argc, argv);
   if (args.empty()) {
     say(kHelp, stderr);
     return kBadInput;

@@ -101,9 +101,11 @@ std::string fingerprint_of(const Scenario& sc) {
 /// not the other, or changed between them, is named instead of "a different scenario".
 std::string first_difference(const YAML::Node& was, const YAML::Node& now, const std::string& at = "") {
   auto text = [](const YAML::Node& n) { return n.IsDefined() && !n.IsNull() ? to_yaml_text(n) : std::string("(none)"); };
-  auto flat = [](std::string t) {
+  auto flat = [&text](const YAML::Node& n) {
+    if (n.IsDefined() && (n.IsMap() || n.IsSequence())) return std::string("(a section)");
+    std::string t = text(n);
     while (!t.empty() && t.back() == '\n') t.pop_back();
-    return t.find('\n') == std::string::npos && t.size() < 80 ? t : std::string("(a section)");
+    return t.size() <= 100 ? t : t.substr(0, 48) + "…" + t.substr(t.size() - 48);
   };
   const bool both = was.IsDefined() && now.IsDefined();  // a key one of them lacks is not defined there
   if (both && was.IsMap() && now.IsMap()) {
@@ -118,15 +120,17 @@ std::string first_difference(const YAML::Node& was, const YAML::Node& now, const
     }
     return "";
   }
-  if (both && was.IsSequence() && now.IsSequence() && was.size() == now.size()) {
-    for (std::size_t i = 0; i < was.size(); ++i) {
+  if (both && was.IsSequence() && now.IsSequence()) {
+    for (std::size_t i = 0; i < std::min(was.size(), now.size()); ++i) {
       const std::string d = first_difference(was[i], now[i], at + "[" + std::to_string(i + 1) + "]");
       if (!d.empty()) return d;
     }
-    return "";
+    if (was.size() == now.size()) return "";
+    return at + ": " + std::to_string(was.size()) + " entries in the checkpoint's run, " + std::to_string(now.size()) +
+           " now";
   }
   if (text(was) == text(now)) return "";
-  return at + ": " + flat(text(was)) + " in the checkpoint's run, " + flat(text(now)) + " now";
+  return at + ": " + flat(was) + " in the checkpoint's run, " + flat(now) + " now";
 }
 
 /// Progress: a live status line on a terminal, plain periodic lines otherwise. The ETA follows
@@ -303,9 +307,12 @@ Prepared prepare(const std::filesystem::path& file, const std::vector<ScenarioOv
     p.sim = build_simulation(p.scenario, mesh);
   } catch (const InputError& e) {
     // Checks against the mesh come after the reading: a value from --set has no line in the
-    // file there either (the line was that of the key the file gives, or of its section).
-    if (const std::string note = override_note(e.key(), overrides); !note.empty() && e.line() > 0)
-      throw InputError("", 0, e.key(), e.reason() + note);
+    // file there either (the line was that of the key the file gives, or of its section). Only
+    // an error about the overridden key or what lies under it is the --set's: one about the
+    // section above it ("no part can crack" beside a --set cracking.x) is the file's.
+    for (auto o = overrides.rbegin(); o != overrides.rend(); ++o)
+      if (e.key() == o->key || e.key().rfind(o->key + ".", 0) == 0 || e.key().rfind(o->key + "[", 0) == 0)
+        throw InputError("", 0, e.key(), e.reason() + " (the value given by --set " + o->key + "=" + o->value + ")");
     throw;
   }
   return p;
@@ -1276,25 +1283,40 @@ class RunDriver {
       if (what.empty()) throw;
       throw InputError(e.file(), e.line(), e.key(),
                        e.reason() + "; against " + beside.string() + ", first at " + what +
-                           " (a --set given to one piece must be given to the other)");
+                           " (a --set given to one piece must be given to the other, and the file be the same)");
     }
   }
 
-  /// A restart may lengthen an output interval (docs/outputs.md): the index of the next output
-  /// kept from the earlier piece, read with the longer interval, would put it far beyond the
-  /// checkpoint, with nothing written in between. Such an index is set from the checkpoint's
-  /// time instead; an unchanged interval keeps its index (its next output is within one
-  /// interval), and a shorter one is due at once.
+  /// A restart may change an output interval (docs/outputs.md): the index of the next output
+  /// kept from the earlier piece, read with a longer interval, would put it far beyond the
+  /// checkpoint, with nothing written in between. The index is at most that of the first
+  /// multiple of the interval after the checkpoint's time. An unchanged interval keeps its index
+  /// (it was set from an earlier time by the same rule, which only grows with the time), and one
+  /// whose multiple has passed already is due at once.
   void rebase_output_indices() {
     const double t = solver_.state().time;
     auto rebase = [t](std::int64_t& next, double interval) {
-      if (interval > 0 && static_cast<double>(next) * interval > t + 1.5 * interval)
-        next = static_cast<std::int64_t>(std::floor(t / interval * (1 + 1e-9))) + 1;
+      if (interval > 0) next = std::min(next, static_cast<std::int64_t>(std::floor(t / interval * (1 + 1e-9))) + 1);
     };
     const auto& out = sc_.output;
     rebase(cursor_.next_frame, out.frame_interval);
     rebase(cursor_.next_history, out.history_interval);
     rebase(cursor_.next_checkpoint, out.checkpoint_interval);
+  }
+
+  /// A restart's frame files numbered `first` and on: those the earlier piece wrote after its
+  /// checkpoint, which this one writes again, but with another frame interval not under every
+  /// number (left, they would sit among the frames listed, unlisted).
+  void remove_frames_from(std::size_t first) {
+    std::error_code ec;
+    for (const auto& entry : std::filesystem::directory_iterator(dir_, ec)) {
+      const std::string name = entry.path().filename().string();
+      const auto digits = name.size() >= 9 ? name.substr(name.size() - 9, 5) : std::string();
+      const bool frame = name.ends_with(".vtu") && digits.size() == 5 &&
+                         digits.find_first_not_of("0123456789") == std::string::npos &&
+                         (name.rfind("frame_", 0) == 0 || name.rfind("particles_", 0) == 0);
+      if (frame && std::stoul(digits) >= first) std::filesystem::remove(entry.path(), ec);
+    }
   }
 
   /// The number of the next frame file: the frames listed so far (the mesh's, or with no mesh
@@ -1418,6 +1440,7 @@ class RunDriver {
         if (std::filesystem::exists(c.path())) c = PvdCollection::read(c.path());
         c.keep_before(checkpoint_time);
       }
+      remove_frames_from(next_frame_number());
       history_.open(history_path_, std::ios::app);
       probes_.open(true, cursor_.probe_bytes);
     } else {

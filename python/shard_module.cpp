@@ -37,9 +37,10 @@ std::string read_text(const std::filesystem::path& p) {
 /// file or the run folder that holds it; a file that is not a history (its header does not start
 /// with time,step,dt) or a value that is not a number is a ValueError naming the file and line.
 py::dict read_history(std::filesystem::path path) {
-  if (std::filesystem::is_directory(path)) path /= "history.csv";
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) path /= "history.csv";
   std::ifstream in(path);
-  if (!std::filesystem::is_regular_file(path) || !in)
+  if (!std::filesystem::is_regular_file(path, ec) || !in)
     raise_file_not_found(path.string() + ": no such history file (give a run folder or its history.csv)");
   std::string line;
   std::getline(in, line);
@@ -50,14 +51,19 @@ py::dict read_history(std::filesystem::path path) {
   for (std::string c; std::getline(header, c, ',');) names.push_back(c);
   std::vector<std::vector<double>> columns(names.size());
   for (std::size_t row = 2; std::getline(in, line); ++row) {
+    // A last line without its newline is a row a killed run was writing (shard ends every row
+    // with one): it is left out, and the rows before it stand.
+    if (in.eof()) break;
+    std::vector<double> values;
     const char* p = line.c_str();
     for (std::size_t c = 0; c < columns.size(); ++c) {
       char* end = nullptr;
-      columns[c].push_back(std::strtod(p, &end));
+      values.push_back(std::strtod(p, &end));
       if (end == p || (*end != ',' && *end != '\0'))
         throw py::value_error(path.string() + ":" + std::to_string(row) + ": column '" + names[c] + "' is not a number");
       p = *end == ',' ? end + 1 : end;
     }
+    for (std::size_t c = 0; c < columns.size(); ++c) columns[c].push_back(values[c]);
   }
   py::dict history;
   for (std::size_t c = 0; c < names.size(); ++c)

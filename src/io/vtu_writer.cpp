@@ -1,4 +1,3 @@
-#include <algorithm>
 #include "io/vtu_writer.hpp"
 
 #include "io/output_file.hpp"
@@ -7,6 +6,7 @@
 
 #include <zlib.h>
 
+#include <algorithm>
 #include <bit>
 #include <cerrno>
 #include <charconv>
@@ -421,10 +421,6 @@ void PvdCollection::add(double time, const std::string& relative_file) {
   }
   entries_.emplace_back(time, relative_file);
   write();
-}
-
-void PvdCollection::keep_first(std::size_t n) {
-  if (n < entries_.size()) entries_.resize(n);
 }
 
 void PvdCollection::keep_before(double t) {

@@ -71,8 +71,6 @@ class PvdCollection {
 
   /// Appends an entry, then rewrites the .pvd atomically.
   void add(double time, const std::string& relative_file);
-  /// For restart: drops entries after the first n (does not write).
-  void keep_first(std::size_t n);
   /// For restart: drops the entries at time `t` and after (does not write): those a run wrote
   /// after its checkpoint at `t`, which the restart writes again.
   void keep_before(double t);

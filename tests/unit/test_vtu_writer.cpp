@@ -406,16 +406,18 @@ TEST_F(VtuWriterTest, PvdAddWritesEachTimeAndReadsBackExactly) {
   }
 }
 
-TEST_F(VtuWriterTest, PvdKeepFirstForRestart) {
+TEST_F(VtuWriterTest, PvdKeepBeforeForRestart) {
+  // A restart from a checkpoint at time t keeps the entries written before t (times read back
+  // exactly): those at t and after are written again.
   const fs::path pvd = dir_ / "frames.pvd";
   PvdCollection collection(pvd);
   for (std::size_t i = 0; i < 4; ++i) collection.add(kTimes[i], "f" + std::to_string(i) + ".vtu");
 
   PvdCollection restarted = PvdCollection::read(pvd);
-  restarted.keep_first(2);
+  restarted.keep_before(kTimes[2]);  // the entry at exactly that time goes too
   EXPECT_EQ(restarted.size(), 2u);
-  EXPECT_EQ(PvdCollection::read(pvd).size(), 4u) << "keep_first must not write";
-  restarted.keep_first(10);  // more than there are: nothing changes
+  EXPECT_EQ(PvdCollection::read(pvd).size(), 4u) << "keep_before must not write";
+  restarted.keep_before(1.0);  // after every entry: nothing changes
   EXPECT_EQ(restarted.size(), 2u);
   restarted.add(0.5, "f2b.vtu");
 

@@ -196,7 +196,7 @@ TEST(RunCli, RestartWithAnotherScenarioIsRefused) {
 TEST(RunCli, RestartWithLongerOutputIntervalsGoesOnWriting) {
   // Frames every 0.5 us to 4 us, then every 2 us: the next frame is the first after the
   // checkpoint's time at the new interval (6 us), not at the old count times the new interval
-  // (9 x 2 = 18 us, past the end: nothing was written after the checkpoint). Likewise the
+  // (8 x 2 = 16 us, past the end: nothing was written after the checkpoint). Likewise the
   // history, from every 0.05 us to every 1 us. Frame files keep counting from those written.
   const auto dir = testing::fresh_dir("restart_intervals");
   const std::string out = (dir / "a").string();
