@@ -4,6 +4,7 @@
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
+#include <pybind11/eval.h>
 #include <pybind11/stl/filesystem.h>
 
 #include <cstdlib>
@@ -36,7 +37,7 @@ std::string read_text(const std::filesystem::path& p) {
 /// history.csv as {column: numpy array}, every value read back to the same double. `path` is the
 /// file or the run folder that holds it; a file that is not a history (its header does not start
 /// with time,step,dt) or a value that is not a number is a ValueError naming the file and line.
-py::dict read_history(std::filesystem::path path) {
+py::object read_history(std::filesystem::path path) {
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec)) path /= "history.csv";
   std::ifstream in(path);
@@ -68,7 +69,7 @@ py::dict read_history(std::filesystem::path path) {
   py::dict history;
   for (std::size_t c = 0; c < names.size(); ++c)
     history[py::str(names[c])] = py::array_t<double>(static_cast<py::ssize_t>(columns[c].size()), columns[c].data());
-  return history;
+  return py::module_::import("shard").attr("History")(history);
 }
 
 /// A scenario file with the overrides put over it, as `shard run FILE --set KEY=VALUE ...` has.
@@ -131,6 +132,20 @@ class Scenario {
 PYBIND11_MODULE(shard, m) {
   m.doc() = "shard: explicit dynamics of cracking, fragmenting and crushing solids (docs/python.md)";
   m.attr("__version__") = SHARD_VERSION;
+  // The history as a dict whose missing column says which columns there are (a study's typo of
+  // a column name was a bare KeyError).
+  py::dict scope;
+  scope["__builtins__"] = py::module_::import("builtins");
+  scope["__name__"] = "shard";
+  py::exec(R"(
+class History(dict):
+    """A run's history.csv as {column: numpy array}, the columns in the file's order."""
+
+    def __missing__(self, key):
+        raise KeyError(f"{key!r}: the history has no such column; it has: {', '.join(self)}")
+)",
+           scope);
+  m.attr("History") = scope["History"];
   static py::exception<shard::InputError> input_error(m, "InputError", PyExc_ValueError);
   static py::exception<shard::RunError> run_error(m, "RunError", PyExc_RuntimeError);
   py::register_exception_translator([](std::exception_ptr p) {

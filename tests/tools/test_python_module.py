@@ -11,7 +11,7 @@
 - A bad override is an InputError (a ValueError) naming the key, at set(), before any run.
 - read_history takes a run folder as well as its history.csv, and a pathlib.Path; a missing file
   is a FileNotFoundError and a file that is no history a ValueError (it returned an empty dict);
-  threads=-1 is a ValueError.
+  threads=-1 is a ValueError; a column the history lacks is a KeyError that lists those it has.
 
 Usage: test_python_module.py SHARD_EXECUTABLE MODULE_DIR SOURCE_DIR WORK_DIR
 """
@@ -92,6 +92,12 @@ def main():
             fail(f"read_history({path}) returned without an error")
         except kind as e:
             print(f"read_history: {e}")
+    try:
+        history["stress_xx"]
+        fail("a column the history lacks gave no KeyError")
+    except KeyError as e:
+        if "no such column; it has: time, step, dt, kinetic" not in str(e):
+            fail(f"a missing column does not list those there are: {e}")
     try:
         shard.Scenario(pathlib.Path(scenario_file)).run(os.path.join(work, "negative"), threads=-1)
         fail("threads=-1 was accepted")
