@@ -300,8 +300,31 @@ struct Prepared {
   Simulation sim;
 };
 
+/// The --set a reader's key is about: the override of that key or of a key above it (an error
+/// about a section above the --set is the file's); none when none is.
+const ScenarioOverride* set_of(const std::string& key, const std::vector<ScenarioOverride>& overrides) {
+  for (auto o = overrides.rbegin(); o != overrides.rend(); ++o)
+    if (key == o->key || key.rfind(o->key + ".", 0) == 0 || key.rfind(o->key + "[", 0) == 0) return &*o;
+  return nullptr;
+}
+
+/// A warning of the set-up ("file:line: key 'K': why") about a value from --set names the --set
+/// instead of a line of the file, as the reader's warnings do.
+void name_sets_in_warnings(std::vector<std::string>& warnings, std::size_t from,
+                           const std::vector<ScenarioOverride>& overrides) {
+  for (std::size_t i = from; i < warnings.size(); ++i) {
+    std::string& w = warnings[i];
+    const auto at = w.find("key '");
+    const auto end = at == std::string::npos ? at : w.find("': ", at + 5);
+    if (end == std::string::npos) continue;
+    if (const ScenarioOverride* o = set_of(w.substr(at + 5, end - at - 5), overrides))
+      w = w.substr(at) + " (the value given by --set " + o->key + "=" + o->value + ")";
+  }
+}
+
 Prepared prepare(const std::filesystem::path& file, const std::vector<ScenarioOverride>& overrides) {
   Prepared p{read_scenario(file, overrides), {}};
+  const std::size_t read_warnings = p.scenario.warnings.size();
   try {
     const MeshData mesh = load_scenario_mesh(p.scenario);
     p.sim = build_simulation(p.scenario, mesh);
@@ -310,11 +333,11 @@ Prepared prepare(const std::filesystem::path& file, const std::vector<ScenarioOv
     // file there either (the line was that of the key the file gives, or of its section). Only
     // an error about the overridden key or what lies under it is the --set's: one about the
     // section above it ("no part can crack" beside a --set cracking.x) is the file's.
-    for (auto o = overrides.rbegin(); o != overrides.rend(); ++o)
-      if (e.key() == o->key || e.key().rfind(o->key + ".", 0) == 0 || e.key().rfind(o->key + "[", 0) == 0)
-        throw InputError("", 0, e.key(), e.reason() + " (the value given by --set " + o->key + "=" + o->value + ")");
+    if (const ScenarioOverride* o = set_of(e.key(), overrides))
+      throw InputError("", 0, e.key(), e.reason() + " (the value given by --set " + o->key + "=" + o->value + ")");
     throw;
   }
+  name_sets_in_warnings(p.scenario.warnings, read_warnings, overrides);
   return p;
 }
 

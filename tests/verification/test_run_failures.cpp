@@ -264,6 +264,11 @@ TEST(RunFailures, InclusionsTheSampleCannotHoldAreWarned) {
   EXPECT_GT(reached, 40.0);
   EXPECT_LT(reached, 60.0);
   EXPECT_TRUE(contains(dense.output, "% of the automata, not 80.0 %")) << dense.output;
+  // Found at set-up, it names the --set that gave the value, not a line of the file.
+  EXPECT_TRUE(contains(dense.output, "warning: key 'particles.sample.inclusions.volume_fraction': the inclusions "
+                                     "mark")) << dense.output;
+  EXPECT_TRUE(contains(dense.output, "(the value given by --set particles.sample.inclusions.volume_fraction=0.8)"))
+      << dense.output;
 }
 
 TEST(RunFailures, PliesTheMeshDoesNotFollowAreWarned) {
