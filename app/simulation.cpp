@@ -839,6 +839,37 @@ RigidWall rigid_wall(const WallInput& wi, const Model& model) {
   return w;
 }
 
+/// A part that starts wholly behind a whole-plane wall (its normal pointing away from the part,
+/// most often a sign slip) would be thrown out through the wall's face at the first step, and the
+/// run would stop on an element turned inside out, blamed on the time step: said before the run.
+std::vector<std::string> parts_behind_walls(const Scenario& sc, const Model& model) {
+  std::vector<std::string> out;
+  const int dim = model.dim();
+  for (const WallInput& wi : sc.walls) {
+    if (std::isfinite(wi.extent.depth) || std::isfinite(wi.extent.length) || std::isfinite(wi.extent.width)) continue;
+    for (const Part& part : model.parts) {
+      if (!wi.parts.empty() && std::find(wi.parts.begin(), wi.parts.end(), part.name) == wi.parts.end()) continue;
+      // On the face or behind it, and some node behind (a body resting on the face is in front).
+      bool none_in_front = part.element_count() > 0, some_behind = false;
+      for (std::size_t i = 0; i < part.connectivity.size() && none_in_front; ++i) {
+        double gap = 0;
+        for (int k = 0; k < dim; ++k)
+          gap += (model.nodes.x0[dim * part.connectivity[i] + k] - wi.point[k]) * wi.normal[k];
+        none_in_front = gap <= 0;
+        some_behind = some_behind || gap < 0;
+      }
+      if (none_in_front && some_behind)
+        out.push_back(InputError(shown_path(sc.file), wi.line, "walls",
+                                 "part '" + part.name + "' starts wholly behind wall '" + wi.name +
+                                     "' (its normal points away from the part): the wall would push it out "
+                                     "through its face at the first step; the normal points to the side where "
+                                     "the bodies are")
+                          .what());
+    }
+  }
+  return out;
+}
+
 /// Once an interface fails its two sides touch as ordinary contact, with the interface's
 /// friction unless `contact:` gives one for their materials.
 void contact_across_interfaces(const Scenario& sc, const Model& model, ContactSettings& cs) {
@@ -962,12 +993,12 @@ void erosion_rules(const Scenario& sc, Simulation& sim, const std::string& file)
                          "model " + mi.model + " has no history variable '" + *in.variable + "' (its variables: " +
                              (listed.empty() ? std::string("none") : listed) + ")");
       rule.state_index = static_cast<int>(it - names.begin());
-      rule.threshold = in.value;
     } else if (material.failure_state_index() < 0) {
       throw InputError(file, in.line, path,
                        "model " + mi.model + " has no failure variable of its own: name one with 'variable' (" +
                            (listed.empty() ? std::string("it has no history variables") : "one of " + listed) + ")");
     }
+    rule.threshold = in.value;  // the model's own variable too (it had been held at 1 there)
     rule.point_fraction = in.fraction;
     rule.to_particles = in.to_particles;
     rule.on_inversion = in.inverted;
@@ -1109,6 +1140,7 @@ Simulation build_simulation(Scenario& sc, const MeshData& mesh) {
   for (auto& w : crack_band_warnings(sc, sim)) sc.warnings.push_back(std::move(w));
   for (auto& w : loading_rate_warnings(sc, sim)) sc.warnings.push_back(std::move(w));
   for (auto& w : unbreakable_bond_warnings(sc, sim)) sc.warnings.push_back(std::move(w));
+  for (auto& w : parts_behind_walls(sc, sim.model)) sc.warnings.push_back(std::move(w));
   return sim;
 }
 

@@ -221,7 +221,7 @@ struct MaterialLayout {
         failure_index(rule.state_index >= 0                           ? rule.state_index
                       : rule.state_index == ErosionRule::kNoVariable ? -1
                                                                       : m.failure_state_index()),
-        failure_threshold(rule.state_index >= 0 ? rule.threshold : 1.0),
+        failure_threshold(rule.threshold),
         energy_density_index(m.stored_energy_index()),
         moduli(m.elastic()) {}
 

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <iterator>
 #include <limits>
@@ -220,7 +221,9 @@ KeyList erosion_keys() {
         "the history variable a point fails on (a name from the model's state, or none: the "
         "element fails only by its shape or by comminution); default: the model's own failure "
         "variable (Johnson–Cook: damage)");
-  k.quantity("value", dim::none, "the value at which a point has failed").defaults_to("1");
+  k.quantity("value", dim::none, "the value at which a point has failed (of the variable named, or of the model's own)")
+      .above(0)
+      .defaults_to("1");
   k.quantity("fraction", dim::none, "the fraction of the element's integration points that must have failed")
       .above(0)
       .at_most(1)
@@ -682,7 +685,8 @@ class ScenarioReader {
       }
     }
     try {
-      (void)info->create(mat.name, mat.values);  // the model's own consistency checks
+      const auto made = info->create(mat.name, mat.values);  // the model's own consistency checks
+      if (mat.model == "johnson_cook") warn_unlikely_johnson_cook(s, mat.values, made->elastic());
     } catch (const ParameterError& e) {
       // A model names the key at fault; when it names 'model' or a key that is not given (a
       // missing or conflicting combination), the material as a whole is at fault.
@@ -983,6 +987,33 @@ class ScenarioReader {
     in.ply_thickness = o.number("ply_thickness");
     if (o.has("start")) in.start = o.number("start");
     return in;
+  }
+
+  /// Johnson–Cook constants that read but are unlikely to be meant: a yield stress that is a
+  /// sizeable part of Young's modulus (a unit slip: the run then collapses its step), a hardening
+  /// exponent above 1 (n given as per cent), and failure constants whose failure strain is not
+  /// positive at zero triaxiality (D1 + D2 ≤ 0: every point that yields fails at once; the model
+  /// floors it at 1e-12, docs/theory/johnson_cook.md).
+  static void warn_unlikely_johnson_cook(const Section& s, const ParameterValues& v, const ElasticModuli& m) {
+    auto number = [&](const char* key) { return v.numbers.count(key) ? v.numbers.at(key) : 0.0; };
+    const double E = 9 * m.bulk * m.shear / (3 * m.bulk + m.shear), A = number("yield_stress");
+    auto pressure = [](double x) {
+      char text[32];
+      std::snprintf(text, sizeof text, x >= 1e9 ? "%.3g GPa" : "%.3g MPa", x >= 1e9 ? x / 1e9 : x / 1e6);
+      return std::string(text);
+    };
+    if (A > 0.05 * E)
+      s.warn(0, "yield_stress",
+             "A (" + pressure(A) + ") is " + std::to_string(static_cast<int>(std::lround(100 * A / E))) +
+                 " % of Young's modulus (" + pressure(E) + "): metals yield at well under 1 %; a unit slipped in "
+                 "one of them?");
+    if (number("hardening_exponent") > 1)
+      s.warn(0, "hardening_exponent",
+             "n above 1: metals harden with n of 0.1 to 0.6 (given as per cent? 26 means n = 0.26)");
+    if (v.numbers.count("failure_d1") && !(number("failure_d1") + number("failure_d2") > 0))
+      s.warn(0, "failure_d1",
+             "D1 + D2 is not positive: the failure strain at zero triaxiality is not, and every point "
+             "that yields fails at once (the failure strain is held at 1e-12)");
   }
 
   ErosionInput erosion(const Section& material, const std::string& name) {
@@ -1355,7 +1386,9 @@ MadeSection apply_override(YAML::Node& root, const ScenarioOverride& o) {
     }
     if (segment.empty()) fail("an empty name in the key");
     if (at.IsSequence() && segment.find_first_not_of("0123456789") == std::string::npos)
-      fail("list entries are written with brackets: " + o.key.substr(0, start - 1) + "[" + segment + "] (counted from 1)");
+      fail("list entries are written with brackets, counted from 1: " + o.key.substr(0, start - 1) + "[" +
+           (segment.find_first_not_of('0') == std::string::npos ? std::string("1") : segment) + "]" +
+           (segment.find_first_not_of('0') == std::string::npos ? " is the first" : ""));
     if (!at.IsMap() && !at.IsNull()) fail("'" + segment + "' is under a value that is not a section of keys");
     const bool last = dot == o.key.size();
     YAML::Node next = at[segment];

@@ -77,7 +77,7 @@ struct NodeArrays {
 /// When an element of a part fails, and what becomes of it (docs/theory/element_conversion.md).
 struct ErosionRule {
   /// The history variable a point fails on (its index in the material's state) and the value at
-  /// which it has; −1: the material's own failure variable (Material::failure_state_index), at 1;
+  /// which it has; −1: the material's own failure variable (Material::failure_state_index);
   /// kNoVariable: no variable (the element fails only by its shape, below, or by comminution).
   static constexpr int kNoVariable = -2;
   int state_index = -1;

@@ -193,6 +193,27 @@ TEST(RunCli, RestartWithAnotherScenarioIsRefused) {
   std::filesystem::remove_all(dir);
 }
 
+TEST(RunCli, ErosionValueActsOnTheModelsOwnVariable) {
+  // The rod through the 4340 plate to 3 us, erosion at a Johnson-Cook damage of 0.5 instead of 1:
+  // with the variable named or left to the model's own (damage), the same elements erode, more
+  // than at 1. The value had been held at 1 unless the variable was named.
+  const auto dir = testing::fresh_dir("erosion_value");
+  const std::string plate = std::string(SHARD_SOURCE_DIR) + "/examples/plate_perforation/plate_perforation_delete.yaml";
+  auto eroded = [&](const std::string& name, const std::string& sets) {
+    const auto r = testing::run_shard("run " + plate + " --quiet --threads 1 --set analysis.end_time=3us " + sets +
+                                      " -o " + (dir / name).string());
+    EXPECT_EQ(r.status, 0) << r.output;
+    return number_after(testing::read_file(dir / name / "summary.json"), "\"eroded_elements\": ");
+  };
+  const std::string own = "--set materials.plate_steel.erosion.variable=~";
+  const double at_one = eroded("one", own);
+  const double own_half = eroded("own_half", own + " --set materials.plate_steel.erosion.value=0.5");
+  const double named_half = eroded("named_half", "--set materials.plate_steel.erosion.value=0.5");
+  EXPECT_EQ(own_half, named_half);
+  EXPECT_GT(own_half, at_one + 20) << "0.5: " << own_half << ", 1: " << at_one;  // 163 and 119
+  std::filesystem::remove_all(dir);
+}
+
 TEST(RunCli, RestartWithLongerOutputIntervalsGoesOnWriting) {
   // Frames every 0.5 us to 4 us, then every 2 us: the next frame is the first after the
   // checkpoint's time at the new interval (6 us), not at the old count times the new interval

@@ -285,6 +285,28 @@ TEST(RunFailures, PliesTheMeshDoesNotFollowAreWarned) {
   EXPECT_TRUE(contains(thin.output, "2 of the 6 plies hold no element")) << thin.output;
 }
 
+TEST(RunFailures, UnlikelyMetalInputsAreWarned) {
+  // The 4340 Taylor bar on its anvil: the anvil's normal reversed puts the bar wholly behind it
+  // (the run stopped at step 1 on an element turned inside out, blamed on the time step); E of
+  // 200 MPa (a unit slip) is below A = 792 MPa; n = 26 is n given as per cent; D1 + D2 = -0.5
+  // fails every point that yields. The example as it is: none of these.
+  const std::string bar = std::string(SHARD_SOURCE_DIR) + "/examples/taylor_bar/steel_4340_axisymmetric.yaml";
+  const auto plain = testing::run_shard("check " + bar);
+  EXPECT_EQ(plain.status, 0) << plain.output;
+  EXPECT_FALSE(contains(plain.output, "warning")) << plain.output;
+  const auto behind = testing::run_shard("check " + bar + " --set 'walls[1].normal=[0, -1]'");
+  EXPECT_TRUE(contains(behind.output, "part 'bar' starts wholly behind wall 'anvil'")) << behind.output;
+  const auto soft = testing::run_shard("check " + bar + " --set 'materials.steel.youngs_modulus=200 MPa'");
+  EXPECT_TRUE(contains(soft.output, "A (792 MPa) is 396 % of Young's modulus (200 MPa)")) << soft.output;
+  const auto percent = testing::run_shard("check " + bar + " --set materials.steel.hardening_exponent=26");
+  EXPECT_TRUE(contains(percent.output, "n above 1")) << percent.output;
+  const auto fails = testing::run_shard("check " + bar + " --set materials.steel.failure_d1=-0.5 "
+                                        "--set materials.steel.failure_d2=0");
+  EXPECT_TRUE(contains(fails.output, "D1 + D2 is not positive")) << fails.output;
+  const auto negative = testing::run_shard("check " + bar + " --set materials.steel.erosion.value=-1");
+  EXPECT_EQ(negative.status, 2) << negative.output;
+}
+
 TEST(RunFailures, OversizedScenarioFileIsRefusedBeforeParsing) {
   // Millions of list items took seconds and gigabytes to reject: the size is checked first.
   const auto dir = testing::fresh_dir("oversized");
