@@ -1099,7 +1099,8 @@ def plot_profile(args):
     axes.set_xlim(left=0)
     axes.set_ylim(bottom=0)
     axes.grid(alpha=0.3)
-    axes.legend(fontsize=7, loc="center left")
+    # Below the axes: a bar's profile is narrow at equal aspect, and a legend inside it spilled out.
+    axes.legend(fontsize=7, loc="upper left", bbox_to_anchor=(0.0, -0.09))
     axes.set_title(args.title or "final profile")
     save(figure, args.output, args.dpi)
 
