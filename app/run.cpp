@@ -318,7 +318,7 @@ void name_sets_in_warnings(std::vector<std::string>& warnings, std::size_t from,
     const auto end = at == std::string::npos ? at : w.find("': ", at + 5);
     if (end == std::string::npos) continue;
     if (const ScenarioOverride* o = set_of(w.substr(at + 5, end - at - 5), overrides))
-      w = w.substr(at) + " (the value given by --set " + o->key + "=" + o->value + ")";
+      w = w.substr(at) + given_by(*o);
   }
 }
 
@@ -334,7 +334,7 @@ Prepared prepare(const std::filesystem::path& file, const std::vector<ScenarioOv
     // an error about the overridden key or what lies under it is the --set's: one about the
     // section above it ("no part can crack" beside a --set cracking.x) is the file's.
     if (const ScenarioOverride* o = set_of(e.key(), overrides))
-      throw InputError("", 0, e.key(), e.reason() + " (the value given by --set " + o->key + "=" + o->value + ")");
+      throw InputError("", 0, e.key(), e.reason() + given_by(*o));
     throw;
   }
   name_sets_in_warnings(p.scenario.warnings, read_warnings, overrides);

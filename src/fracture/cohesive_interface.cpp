@@ -16,14 +16,6 @@ std::vector<EnergyTerm> CohesiveInterfaces::energy_terms() {
 
 namespace {
 
-/// Index of every stable id (−1: none), for ids below `next`.
-std::vector<std::int32_t> index_of_ids(const std::vector<std::int64_t>& ids, std::int64_t next) {
-  std::vector<std::int32_t> index(static_cast<std::size_t>(std::max<std::int64_t>(next, 0)), -1);
-  for (std::size_t i = 0; i < ids.size(); ++i)
-    if (ids[i] >= 0 && ids[i] < next) index[static_cast<std::size_t>(ids[i])] = static_cast<std::int32_t>(i);
-  return index;
-}
-
 /// An interface element's mid-surface: its corners (halfway between the two faces), the two
 /// edge vectors whose cross product N = u × v is its normal (2D: N = (s_y, −s_x) of the segment
 /// s = u), |N| and the unit normal from side A into side B (the faces are stored in the order

@@ -24,9 +24,7 @@ void join_across_intact_interfaces(const Model& model, DisjointSets& sets) {
     for (std::size_t e = 0; e < part.element_count(); ++e)
       if (live(part, e) && part.id[e] >= 0 && part.id[e] < model.next_element_id) live_id[part.id[e]] = 1;
   auto is_live = [&](std::int64_t id) { return id >= 0 && id < model.next_element_id && live_id[id]; };
-  std::vector<std::int32_t> index(static_cast<std::size_t>(std::max<std::int64_t>(model.next_node_id, 0)), -1);
-  for (std::size_t i = 0; i < model.nodes.id.size(); ++i)
-    if (model.nodes.id[i] >= 0 && model.nodes.id[i] < model.next_node_id) index[model.nodes.id[i]] = static_cast<std::int32_t>(i);
+  const std::vector<std::int32_t> index = index_of_ids(model.nodes.id, model.next_node_id);
   auto node = [&](std::int64_t id) { return id >= 0 && id < model.next_node_id ? index[id] : -1; };
   const std::size_t k = static_cast<std::size_t>(c.nodes_per_face);
   for (std::size_t e = 0; e < c.element_count(); ++e) {

@@ -69,8 +69,7 @@ VtuGrid make_frame(const Model& model, const std::vector<std::unique_ptr<Materia
   if (model.cohesive.element_count() > 0) {
     // The largest damage of the interface points at each node (NaN off the interfaces, where
     // there is none): a threshold at 1 shows where the plies have come apart.
-    std::vector<std::int32_t> index(static_cast<std::size_t>(model.next_node_id), -1);
-    for (std::size_t i = 0; i < model.nodes.count(); ++i) index[static_cast<std::size_t>(model.nodes.id[i])] = static_cast<std::int32_t>(i);
+    const std::vector<std::int32_t> index = index_of_ids(model.nodes.id, model.next_node_id);
     std::vector<double> damage(model.nodes.count(), std::numeric_limits<double>::quiet_NaN());
     const CohesiveElements& c = model.cohesive;
     for (std::size_t p = 0; p < c.point_count(); ++p)

@@ -1461,9 +1461,11 @@ void name_made_section(const InputError& e, const std::vector<ScenarioOverride>&
 
 }  // namespace
 
+std::string given_by(const ScenarioOverride& o) { return " (the value given by --set " + o.key + "=" + o.value + ")"; }
+
 std::string override_note(const std::string& key, const std::vector<ScenarioOverride>& overrides) {
   const ScenarioOverride* o = override_of(key, overrides);
-  return o ? " (the value given by --set " + o->key + "=" + o->value + ")" : std::string();
+  return o ? given_by(*o) : std::string();
 }
 
 

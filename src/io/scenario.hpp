@@ -347,7 +347,11 @@ struct ScenarioOverride {
 /// Parses "key=value" (the command line's form). Throws InputError when there is no '=' or no key.
 ScenarioOverride parse_override(const std::string& text);
 
-/// " (the value given by --set KEY=VALUE)" when `key` (a reader's key, such as
+/// " (the value given by --set KEY=VALUE)": what an error or a warning about the value of `o`
+/// says in place of a line of the file.
+std::string given_by(const ScenarioOverride& o);
+
+/// given_by the override when `key` (a reader's key, such as
 /// "parts.bar.group") is, or lies under or above, one of `overrides`; "" otherwise. An error
 /// about such a value has no line in the file: it names the override instead.
 std::string override_note(const std::string& key, const std::vector<ScenarioOverride>& overrides);

@@ -109,4 +109,11 @@ const FacetSet* Model::find_facet_set(const std::string& name) const {
   return nullptr;
 }
 
+std::vector<std::int32_t> index_of_ids(const std::vector<std::int64_t>& ids, std::int64_t next) {
+  std::vector<std::int32_t> index(static_cast<std::size_t>(std::max<std::int64_t>(next, 0)), -1);
+  for (std::size_t i = 0; i < ids.size(); ++i)
+    if (ids[i] >= 0 && ids[i] < next) index[static_cast<std::size_t>(ids[i])] = static_cast<std::int32_t>(i);
+  return index;
+}
+
 }  // namespace shard

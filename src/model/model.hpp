@@ -386,4 +386,8 @@ struct Model {
   }
 };
 
+/// The index of every stable id in `ids` (−1: none), for ids below `next`: where a node or an
+/// element named by its stable id (Model::next_node_id, next_element_id) lives now.
+std::vector<std::int32_t> index_of_ids(const std::vector<std::int64_t>& ids, std::int64_t next);
+
 }  // namespace shard
