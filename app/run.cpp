@@ -308,8 +308,20 @@ const ScenarioOverride* set_of(const std::string& key, const std::vector<Scenari
   return nullptr;
 }
 
+/// The --sets that lie under a section a message is about ("parts.plate.laminate" and a --set of
+/// its ply_thickness): the message keeps the section's line in the file, and says which values
+/// in it came from the command line, since they may be the cause.
+std::string sets_under(const std::string& key, const std::vector<ScenarioOverride>& overrides) {
+  std::string note;
+  for (const ScenarioOverride& o : overrides)
+    if (o.key.rfind(key + ".", 0) == 0 || o.key.rfind(key + "[", 0) == 0)
+      note += (note.empty() ? " (in it, --set " : ", --set ") + o.key + "=" + o.value;
+  return note.empty() ? note : note + ")";
+}
+
 /// A warning of the set-up ("file:line: key 'K': why") about a value from --set names the --set
-/// instead of a line of the file, as the reader's warnings do.
+/// instead of a line of the file, as the reader's warnings do; one about a section that a --set
+/// changed says so.
 void name_sets_in_warnings(std::vector<std::string>& warnings, std::size_t from,
                            const std::vector<ScenarioOverride>& overrides) {
   for (std::size_t i = from; i < warnings.size(); ++i) {
@@ -317,8 +329,11 @@ void name_sets_in_warnings(std::vector<std::string>& warnings, std::size_t from,
     const auto at = w.find("key '");
     const auto end = at == std::string::npos ? at : w.find("': ", at + 5);
     if (end == std::string::npos) continue;
-    if (const ScenarioOverride* o = set_of(w.substr(at + 5, end - at - 5), overrides))
+    const std::string key = w.substr(at + 5, end - at - 5);
+    if (const ScenarioOverride* o = set_of(key, overrides))
       w = w.substr(at) + given_by(*o);
+    else
+      w += sets_under(key, overrides);
   }
 }
 
@@ -335,6 +350,8 @@ Prepared prepare(const std::filesystem::path& file, const std::vector<ScenarioOv
     // section above it ("no part can crack" beside a --set cracking.x) is the file's.
     if (const ScenarioOverride* o = set_of(e.key(), overrides))
       throw InputError("", 0, e.key(), e.reason() + given_by(*o));
+    if (const std::string note = sets_under(e.key(), overrides); !note.empty())
+      throw InputError(e.file(), e.line(), e.key(), e.reason() + note);
     throw;
   }
   name_sets_in_warnings(p.scenario.warnings, read_warnings, overrides);

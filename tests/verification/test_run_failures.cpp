@@ -283,6 +283,10 @@ TEST(RunFailures, PliesTheMeshDoesNotFollowAreWarned) {
   EXPECT_TRUE(contains(thin.output, "the mesh does not follow the plies of 0.18 mm: 42 of its 42 elements cross a ply "
                                     "boundary")) << thin.output;
   EXPECT_TRUE(contains(thin.output, "2 of the 6 plies hold no element")) << thin.output;
+  // The warning is about the laminate section (its line in the file), whose values came from the
+  // command line: it says so.
+  EXPECT_TRUE(contains(thin.output, "(in it, --set parts.plate.laminate.ply_thickness=0.18mm, --set "
+                                    "parts.plate.laminate.layup=")) << thin.output;
 }
 
 TEST(RunFailures, UnlikelyMetalInputsAreWarned) {
