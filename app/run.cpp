@@ -1734,7 +1734,8 @@ class RunDriver {
 
   /// Per part (the parts, then the particle parts): kinetic energy, momentum and mass of its nodes
   /// or particles, at the velocities of the last half step. A node shared by two parts counts in
-  /// the first.
+  /// the first; one whose elements have all eroded still counts in the part it was meshed with
+  /// (its mass and momentum stay in the model, and the body's would otherwise jump).
   /// Exact sums, over the nodes this process owns: a decomposed run sums them over its ranks (a
   /// collective) and every rank has the whole model's, with the bits of one process.
   std::vector<double> part_sums() {
@@ -1744,6 +1745,9 @@ class RunDriver {
     for (std::size_t p = 0; p < sim_.model.parts.size(); ++p)
       for (auto n : sim_.model.parts[p].connectivity)
         if (owner[n] < 0) owner[n] = static_cast<int>(p);
+    if (nodes.part.size() == nodes.count())
+      for (std::size_t i = 0; i < owner.size(); ++i)
+        if (owner[i] < 0) owner[i] = nodes.part[i];
     const std::size_t stride = 2 + D;  // kinetic, mass, momentum
     std::vector<ExactSum> sums(stride * (sim_.model.parts.size() + sim_.model.particle_parts.size()));
     auto add = [&](std::size_t part, double m, const double* v) {

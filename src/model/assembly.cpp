@@ -22,8 +22,13 @@ std::vector<std::int32_t> assemble_nodes_and_parts(Model& model, const MeshData&
     if (used[i])
       for (int k = 0; k < dim; ++k) model.nodes.x0[dim * renumber[i] + k] = mesh.coordinates[3 * i + k];
   model.nodes.x = model.nodes.x0;
+  model.nodes.part.assign(static_cast<std::size_t>(count), -1);
   for (Part& part : parts) {
-    for (auto& n : part.connectivity) n = renumber[n];
+    const auto p = static_cast<std::int32_t>(model.parts.size());
+    for (auto& n : part.connectivity) {
+      n = renumber[n];
+      if (model.nodes.part[n] < 0) model.nodes.part[n] = p;
+    }
     model.parts.push_back(std::move(part));
   }
   return renumber;

@@ -41,6 +41,7 @@ void NodeArrays::resize(std::size_t n) {
   force.assign(n * dim, 0.0);
   mass.assign(n, 0.0);
   prescribed.assign(n * dim, -1);
+  part.clear();
 }
 
 bool Model::has_cracks() const {

@@ -53,6 +53,10 @@ struct NodeArrays {
   /// crack_time. A node two cracks reach keeps the first one's speed, so a crack joining
   /// another is not read as a tip crossing the edge between them.
   std::vector<double> crack_speed;
+  /// The part each node was meshed with (the first in part order where parts share it), −1 for
+  /// none; empty where a model was built without parts. A node whose elements have all eroded
+  /// keeps it: its mass and momentum still belong to that body in the per-part sums.
+  std::vector<std::int32_t> part;
 
   std::size_t count() const { return mass.size(); }
   /// n nodes at rest at the origin, free, with ids and origins 0 … n−1.
@@ -71,6 +75,7 @@ struct NodeArrays {
     f(field("prescribed", Location::node, d, Follow::copy, -1), prescribed);
     f(field("crack_time", Location::node, 0, Follow::copy, -1), crack_time);
     f(field("crack_speed", Location::node, 0, Follow::copy, -1), crack_speed);
+    f(field("part", Location::node, 0, Follow::copy, -1), part);
   }
 };
 

@@ -16,7 +16,8 @@ the plate (contact between parts, the model cut anew as it moves) on 2 and 3 ran
 cuts it in two on 2 and 4 ranks and on 3 ranks cut at random (each subdomain following the splits
 in place, the model cut anew after a split that moves a node to another owner), on 2 rebalanced every 7 steps and from 2 to 3 ranks across a restart while the crack runs; two
 blocks tied by a cohesive interface that opens, beside a tile that may crack (the history's
-fragment counts, gathered openings), on 2 and 3 ranks; the rod perforating the plate with
+fragment counts, gathered openings), on 2 and 3 ranks; a rod on a ceramic tile whose erosion
+leaves nodes without elements (still in their parts' sums) on 2 and 3 ranks; the rod perforating the plate with
 erosion on 2 ranks, on 3 cut at random, and from 2 to 3 ranks across a restart, and the same with
 its failed elements turned into debris particles in contact with each other and the mesh; the four-ply
 laminate's cohesive interfaces, without erosion, on 2 ranks and on 3 and 4 cut at random, and
@@ -253,6 +254,12 @@ with open("tied_serial/history.csv") as f:
     if counts[0] != 2 or counts[-1] != 3:
         failures.append(f"the tied blocks: {counts[0]} then {counts[-1]} fragments, not 2 then 3: the case no longer "
                         "tests an interface that opens")
+# Nodes that erosion leaves without elements: the rod on the ceramic tile (both eroding, the rod's
+# corners first) counts them in the part they were meshed with, on every rank as in one process.
+rod_on_tile = os.path.join(source, "tests/data/erosion/rod_on_tile.yaml")
+serial_then_ranks("rod_on_tile", rod_on_tile, (2, 3), "the rod on the tile, eroded nodes",
+                  ["--set", "analysis.end_time=2us", "--set", "parts.rod.volumetric=standard",
+                   "--set", "materials.steel.erosion.value=0.3"])
 # Splits in place across rebalances (every 7 steps) and across a restart on another number of
 # ranks, checkpointed while the crack runs.
 rebalanced("notched_rebalanced", notched, "notched_serial", "notched plate cracking", 7, 10,
