@@ -51,7 +51,8 @@ Usage:
 run writes into OUTDIR (default: out/<scenario name>): frames.pvd + frame_*.vtu (ParaView),
 history.csv (energies per time), summary.json, resolved.yaml (the scenario with every default
 filled in, SI units) and checkpoint.bin. --until 20us stops at that time with a checkpoint;
---restart OUTDIR/checkpoint.bin continues it in the same OUTDIR.
+--restart OUTDIR/checkpoint.bin continues it in the same OUTDIR (the checkpoint's folder
+unless -o names it).
 
 Exit status: 0 success, 1 the run failed (the outputs so far are kept, summary.json says why),
 2 bad input (nothing is written).
@@ -74,7 +75,8 @@ checkpoint.bin (docs/outputs.md).
                           --set boundary_conditions[1].velocity.x="-5 m/s" (entries from 1);
                           repeatable; a restart needs the same --set as the run it continues
   --until TIME            stop at TIME (e.g. 20us) with a checkpoint, to continue with --restart
-  --restart CHECKPOINT    continue OUTDIR/checkpoint.bin in the same OUTDIR
+  --restart CHECKPOINT    continue OUTDIR/checkpoint.bin in the same OUTDIR (the checkpoint's
+                          folder unless -o names it)
 
 Under mpirun (a build with MPI), the run is cut into one subdomain per rank and rank 0 writes
 the same outputs, byte for byte (docs/outputs.md, "Ranks"):
@@ -280,9 +282,11 @@ int shard_main(int argc, char** argv, shard::Communicator* ranks) {
         else return usage("more than one scenario given ('" + *scenario + "', '" + a + "')");
       }
       if (!scenario) return usage("run needs a scenario file");
-      options.output_dir = output ? *output
-                                  : std::filesystem::path("out") /
-                                        std::filesystem::path(*scenario).stem();
+      // A restart goes on in the folder that holds its checkpoint unless told otherwise.
+      options.output_dir = output              ? std::filesystem::path(*output)
+                           : options.restart ? std::filesystem::path(*options.restart).parent_path()
+                                             : std::filesystem::path("out") / std::filesystem::path(*scenario).stem();
+      if (options.output_dir.empty()) options.output_dir = ".";
       options.ranks = ranks;
       const auto summary = shard::run_scenario(*scenario, options);
       if (!options.quiet && speaks)

@@ -1257,6 +1257,15 @@ class ScenarioReader {
     out.warn(0, "frame_interval", "longer than analysis.end_time" + end + ": frames at the start and the end only");
   }
   sc.output.history_interval = out.number("history_interval", sc.end_time / 1000);
+  if (out.has("history_interval") && sc.output.history_interval > sc.end_time) {
+    // Two rows: the energy watchdog looks at the balance only at the end, and every force column
+    // is a mean over the whole run.
+    const auto& note = scenario_detail::ScenarioWarnings::override_note();
+    const std::string end = note ? note("analysis.end_time") : "";
+    out.warn(0, "history_interval", "longer than analysis.end_time" + end +
+                                        ": history rows at the start and the end only (the energy balance is then "
+                                        "checked only at the end, and each force column is a mean over the whole run)");
+  }
   sc.output.checkpoint_interval = out.number("checkpoint_interval", sc.end_time / 10);
   sc.output.log_interval = out.number("log_interval");
   sc.output.compress = out.choice("compression").value_or("zlib") == "zlib";

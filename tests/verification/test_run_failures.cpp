@@ -204,6 +204,10 @@ TEST(RunFailures, SetMistakesAndLikelyMistakesAreNamed) {
   EXPECT_TRUE(contains(likely.output, "longer than analysis.end_time: frames at the start and the end only"))
       << likely.output;
   EXPECT_TRUE(contains(likely.output, "the nearest node is 400 mm from the point")) << likely.output;
+  // History rows rarer than the run: two rows, the balance looked at only at the end.
+  const auto rows = testing::run_shard("check " + base + " --set output.history_interval=1ms");
+  EXPECT_TRUE(contains(rows.output, "'output.history_interval': longer than analysis.end_time: history rows at the "
+                                    "start and the end only")) << rows.output;
   fs::remove_all(dir);
 }
 
