@@ -91,6 +91,12 @@ TEST(RunCli, RestartReproducesTheUninterruptedRun) {
             testing::read_file(dir / "pieces" / "frames.pvd"));
   EXPECT_EQ(testing::read_file(dir / "full" / "frame_00025.vtu"),
             testing::read_file(dir / "pieces" / "frame_00025.vtu"));
+  // Without -o the restart goes on in the checkpoint's folder (it had gone to out/<scenario>).
+  ASSERT_EQ(testing::run_shard("run " + kExample2d + " --quiet --until 11.3us -o " + (dir / "again").string()).status, 0);
+  const auto here = testing::run_shard("run " + kExample2d + " --quiet --restart " +
+                                       (dir / "again" / "checkpoint.bin").string());
+  ASSERT_EQ(here.status, 0) << here.output;
+  EXPECT_EQ(testing::read_file(dir / "full" / "history.csv"), testing::read_file(dir / "again" / "history.csv"));
   std::filesystem::remove_all(dir);
 }
 
