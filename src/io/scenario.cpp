@@ -1557,7 +1557,11 @@ std::vector<SchemaSection> scenario_schema() {
                                "(linear_spring: modulus, tangential_ratio, friction, damping_ratio or restitution, "
                                "limit_damping; hertz_mindlin: young, poisson, restitution, friction, limit_damping)",
            particle_contact_keys()},
-          {"materials.<name>.erosion", "when an element fails and what becomes of it (any material model)",
+          {"materials.<name>.erosion", "when an element fails and what becomes of it (any material model). Without "
+                                        "this section a model with a failure variable of its own (johnson_cook with "
+                                        "failure_d1, composite_damage with an erosion_criterion) still deletes an "
+                                        "element once one of its points reaches 1; variable: none (with inverted or a "
+                                        "distortion) keeps elements from eroding on it",
            erosion_keys()},
           {"parts.<name>.orientation", "material axes of the whole part", orientation_keys(false)},
           {"parts.<name>.laminate", "material axes ply by ply through the part", orientation_keys(true)},

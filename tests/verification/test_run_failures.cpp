@@ -293,6 +293,21 @@ TEST(RunFailures, PliesTheMeshDoesNotFollowAreWarned) {
                                     "parts.plate.laminate.layup=")) << thin.output;
 }
 
+TEST(RunFailures, BodiesThatCannotMeetAreWarned) {
+  // The rod moving onto the tile, two meshes that share no node: without contact: it runs
+  // through the tile with its kinetic energy unchanged, which a new user's run did silently.
+  const std::string rod = std::string(SHARD_SOURCE_DIR) + "/tests/data/erosion/rod_on_tile.yaml";
+  const auto plain = testing::run_shard("check " + rod);
+  EXPECT_FALSE(contains(plain.output, "pass through each other")) << plain.output;
+  const auto none = testing::run_shard("check " + rod + " --set 'contact=~'");
+  EXPECT_EQ(none.status, 0) << none.output;
+  EXPECT_TRUE(contains(none.output, "part 'rod' starts moving and shares no node with 'tile', and the scenario has "
+                                    "no contact: section")) << none.output;
+  // At rest, nothing will meet that is not already meeting: no word.
+  const auto still = testing::run_shard("check " + rod + " --set 'contact=~' --set 'initial_conditions=~'");
+  EXPECT_FALSE(contains(still.output, "pass through each other")) << still.output;
+}
+
 TEST(RunFailures, UnlikelyMetalInputsAreWarned) {
   // The 4340 Taylor bar on its anvil: the anvil's normal reversed puts the bar wholly behind it
   // (the run stopped at step 1 on an element turned inside out, blamed on the time step); E of
