@@ -688,12 +688,20 @@ class ScenarioReader {
       const auto made = info->create(mat.name, mat.values);  // the model's own consistency checks
       if (mat.model == "johnson_cook") warn_unlikely_johnson_cook(s, mat.values, made->elastic());
     } catch (const ParameterError& e) {
+      // A consistency check names one key but often others as the likely cause ("or check
+      // hugoniot_elastic_limit, ..."): a --set of one of those is said, since the key named may
+      // be the file's untouched value.
+      std::string reason = e.what();
+      if (const auto& note = scenario_detail::ScenarioWarnings::override_note())
+        for (const auto& spec : keys.keys())
+          if (spec.name != e.key() && reason.find(spec.name) != std::string::npos)
+            if (const std::string n = note(path + "." + spec.name); n.size() > 3)  // " (the value given by ...)"
+              reason += " (" + spec.name + ": " + n.substr(2, n.size() - 3) + ")";
       // A model names the key at fault; when it names 'model' or a key that is not given (a
       // missing or conflicting combination), the material as a whole is at fault.
-      if (e.key() != "model" && s.has(e.key())) s.fail(e.key(), e.what());
+      if (e.key() != "model" && s.has(e.key())) s.fail(e.key(), reason);
       // A reason about a given key that needs a missing one ("weibull_modulus needs
       // weibull_volume ...") points at the given key's line.
-      const std::string reason = e.what();
       for (const auto& spec : keys.keys())
         if (spec.name != "model" && s.has(spec.name) && reason.rfind(spec.name + " ", 0) == 0) s.fail(spec.name, reason);
       throw InputError(file, mat.line, path, reason);

@@ -308,6 +308,17 @@ TEST(RunFailures, BodiesThatCannotMeetAreWarned) {
   EXPECT_FALSE(contains(still.output, "pass through each other")) << still.output;
 }
 
+TEST(RunFailures, AConsistencyErrorNamesTheSetOfTheKeyItSuspects) {
+  // A JH-2 HEL given by --set that the equation of state does not reach at P_HEL: the error is on
+  // the file's pressure_at_hel line, and says that the HEL it suspects came from the command line.
+  const std::string rod = std::string(SHARD_SOURCE_DIR) + "/tests/data/erosion/rod_on_tile.yaml";
+  const auto r = testing::run_shard("check " + rod + " --set 'materials.ceramic.hugoniot_elastic_limit=3.0 GPa'");
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_TRUE(contains(r.output, "key 'materials.ceramic.pressure_at_hel': pressure_at_hel is 1.46 GPa")) << r.output;
+  EXPECT_TRUE(contains(r.output, "(hugoniot_elastic_limit: the value given by --set "
+                                 "materials.ceramic.hugoniot_elastic_limit=3.0 GPa)")) << r.output;
+}
+
 TEST(RunFailures, UnlikelyMetalInputsAreWarned) {
   // The 4340 Taylor bar on its anvil: the anvil's normal reversed puts the bar wholly behind it
   // (the run stopped at step 1 on an element turned inside out, blamed on the time step); E of
