@@ -591,14 +591,19 @@ double extent_of(const std::vector<double>& coordinates) {
 }
 
 void flatten_to_plane(const fs::path& file, MeshData& mesh, const std::vector<std::size_t>& used_nodes,
-                      double extent) {
+                      double extent, bool has_volumes) {
   for (std::size_t i = 0; i < used_nodes.size(); ++i) {
     double& z = mesh.coordinates[3 * i + 2];
     if (std::abs(z) > kPlaneTolerance * extent) {
       std::ostringstream out;
       out << std::setprecision(10) << "a 2D mesh must lie in the z = 0 plane, but node "
-          << used_nodes[i] << " has z = " << z
-          << "; draw the geometry in the x-y plane (or Rotate it there in the .geo)";
+          << used_nodes[i] << " has z = " << z;
+      if (has_volumes)
+        out << ": the file has physical volumes, a 3D body, and the analysis is 2D (its surfaces were "
+               "taken as the mesh); set analysis.formulation: three_d, or draw the 2D section in the "
+               "x-y plane";
+      else
+        out << "; draw the geometry in the x-y plane (or Rotate it there in the .geo)";
       fail(file, out.str());
     }
     z = 0;  // round-off from CAD kernels would otherwise leak into 2D kinematics
@@ -712,7 +717,11 @@ MeshData load_gmsh_mesh(const fs::path& file, const GmshOptions& options) {
   mesh.source = file.string();
   mesh.coordinates = node_coordinates(file, used_nodes);
   const double extent = extent_of(mesh.coordinates);
-  if (mesh_dim == 2) flatten_to_plane(file, mesh, used_nodes, extent);
+  if (mesh_dim == 2) {
+    gmsh::vectorpair volumes;
+    gmsh::model::getPhysicalGroups(volumes, 3);
+    flatten_to_plane(file, mesh, used_nodes, extent, !volumes.empty());
+  }
 
   CellChecker checker(file, mesh_dim, extent);
   mesh.groups.reserve(raw_groups.size());
