@@ -306,6 +306,17 @@ TEST(RunFailures, BodiesThatCannotMeetAreWarned) {
   // At rest, nothing will meet that is not already meeting: no word.
   const auto still = testing::run_shard("check " + rod + " --set 'contact=~' --set 'initial_conditions=~'");
   EXPECT_FALSE(contains(still.output, "pass through each other")) << still.output;
+  EXPECT_FALSE(contains(plain.output, "inside each other")) << plain.output;
+  // The rod placed 0.2 mm into the tile: the penalty would push the bodies apart with energy
+  // from nothing (a new user's run gained 27 J and completed without a word).
+  const auto dir = testing::fresh_dir("bodies_inside");
+  std::string geo = testing::read_file(std::string(SHARD_SOURCE_DIR) + "/tests/data/erosion/rod_on_tile.geo");
+  geo.replace(geo.find("gap = 0.05"), 10, "gap = -0.2");
+  std::ofstream(dir / "rod_on_tile.geo") << geo;
+  std::ofstream(dir / "rod_on_tile.yaml") << testing::read_file(rod);
+  const auto inside = testing::run_shard("check " + (dir / "rod_on_tile.yaml").string());
+  EXPECT_TRUE(contains(inside.output, "bodies in contact start inside each other, up to 0.2 mm deep")) << inside.output;
+  fs::remove_all(dir);
 }
 
 TEST(RunFailures, AConsistencyErrorNamesTheSetOfTheKeyItSuspects) {
