@@ -131,6 +131,7 @@ constexpr std::array kSymbols = {
     Symbol{"min", {60, 1}, dim::time, false},
     Symbol{"h", {3600, 1}, dim::time, false},
     Symbol{"t", {1e3, 1}, dim::mass, false},
+    Symbol{"cc", {1, 1e6}, dim::volume, false},  // cubic centimetre: densities in g/cc
 };
 
 struct Prefix {
@@ -148,11 +149,11 @@ constexpr std::array kPrefixes = {
 
 // Offered first by "did you mean", ahead of the other prefixed forms, so that ties go to what
 // people actually type: "mpa" suggests "MPa", not the rare "mPa".
-constexpr std::array<std::string_view, 38> kSuggestions = {
+constexpr std::array<std::string_view, 39> kSuggestions = {
     "m",   "g",   "s",   "K",   "Pa",  "N",   "J",   "W",   "Hz",  "bar",
     "rad", "deg", "min", "h",   "t",   "kg",  "mg",  "mm",  "cm",  "km",
     "um",  "nm",  "ms",  "us",  "ns",  "kPa", "MPa", "GPa", "kN",  "MN",
-    "kJ",  "MJ",  "kW",  "MW",  "kHz", "MHz", "GHz", "mbar",
+    "kJ",  "MJ",  "kW",  "MW",  "kHz", "MHz", "GHz", "mbar", "cc",
 };
 
 std::optional<Term> lookup(std::string_view text) {

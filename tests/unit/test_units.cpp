@@ -141,7 +141,7 @@ TEST(ParseQuantity, SymbolsAndPrefixes) {
 
 TEST(ParseQuantity, UnitExpressionForms) {
   for (const char* text : {"7830 kg/m^3", "7830 kg/m3", "7830 kg*m^-3", "7830 kg m^-3",
-                           "7830 kg m-3", "7830 kg / m^3", "7830 kg\u00b7m^-3", "7.83 g/cm^3",
+                           "7830 kg m-3", "7830 kg / m^3", "7830 kg\u00b7m^-3", "7.83 g/cm^3", "7.83 g/cc",
                            "7830kg/m^3", "  7830 kg/m^3  "})
     expect_si(text, 7830, dim::density);
   expect_si("9.81 m/s^2", 9.81, dim::acceleration);
