@@ -313,9 +313,12 @@ const ScenarioOverride* set_of(const std::string& key, const std::vector<Scenari
 /// in it came from the command line, since they may be the cause.
 std::string sets_under(const std::string& key, const std::vector<ScenarioOverride>& overrides) {
   std::string note;
-  for (const ScenarioOverride& o : overrides)
-    if (o.key.rfind(key + ".", 0) == 0 || o.key.rfind(key + "[", 0) == 0)
-      note += (note.empty() ? " (in it, --set " : ", --set ") + o.key + "=" + o.value;
+  for (auto o = overrides.begin(); o != overrides.end(); ++o) {
+    const bool under = o->key.rfind(key + ".", 0) == 0 || o->key.rfind(key + "[", 0) == 0;
+    // The last --set of a key is the one that acted.
+    const bool later = std::any_of(o + 1, overrides.end(), [&](const ScenarioOverride& l) { return l.key == o->key; });
+    if (under && !later) note += (note.empty() ? " (in it, --set " : ", --set ") + o->key + "=" + o->value;
+  }
   return note.empty() ? note : note + ")";
 }
 
@@ -382,9 +385,10 @@ std::optional<std::string> initial_penetration(const Scenario& sc, const Model& 
   const double depth = contact->max_penetration();
   if (!(depth > 1e-4 * std::sqrt(size2))) return std::nullopt;
   std::ostringstream why;
-  why << std::setprecision(3) << "bodies in contact start inside each other, up to " << depth * 1e3
+  why << std::setprecision(3) << "bodies in contact start inside each other (or behind a wall), up to "
+      << depth * 1e3
       << " mm deep: the contact pushes them apart at the first step with energy from nothing; place them "
-         "apart (or touching) in the mesh, and check mesh.unit";
+         "apart (or touching) in the mesh, and check mesh.unit and the walls' points and normals";
   return InputError(shown_path(sc.file), 0, "contact", why.str()).what();
 }
 
@@ -529,7 +533,9 @@ class RunDriver {
                              .what());
     if (auto long_run = check_step_count(sc_, solver_.state().dt_next, solver_.state().time))
       warnings.push_back(*long_run);
-    if (auto inside = initial_penetration(sc_, sim_.model, solver_.contact(), solver_.state().time))
+    // The model's size as one process sees it (a subdomain's is smaller), so that every rank
+    // says what one process says.
+    if (auto inside = initial_penetration(sc_, ranks_ ? whole_ : sim_.model, solver_.contact(), solver_.state().time))
       warnings.push_back(*inside);
     // Said, not noted: summary.json is the same for one process and any number of ranks.
     if (auto ignored = ignored_decomposition_options(); ignored && writes())
@@ -1775,12 +1781,14 @@ class RunDriver {
     const std::size_t D = static_cast<std::size_t>(dim_);
     const auto& nodes = sim_.model.nodes;
     std::vector<int> owner(nodes.count(), -1);
-    for (std::size_t p = 0; p < sim_.model.parts.size(); ++p)
-      for (auto n : sim_.model.parts[p].connectivity)
-        if (owner[n] < 0) owner[n] = static_cast<int>(p);
+    // The part each node was meshed with, kept through erosion, splits and remeshes: a node does
+    // not move between parts as elements around it leave.
     if (nodes.part.size() == nodes.count())
-      for (std::size_t i = 0; i < owner.size(); ++i)
-        if (owner[i] < 0) owner[i] = nodes.part[i];
+      std::copy(nodes.part.begin(), nodes.part.end(), owner.begin());
+    else
+      for (std::size_t p = 0; p < sim_.model.parts.size(); ++p)
+        for (auto n : sim_.model.parts[p].connectivity)
+          if (owner[n] < 0) owner[n] = static_cast<int>(p);
     const std::size_t stride = 2 + D;  // kinetic, mass, momentum
     std::vector<ExactSum> sums(stride * (sim_.model.parts.size() + sim_.model.particle_parts.size()));
     auto add = [&](std::size_t part, double m, const double* v) {

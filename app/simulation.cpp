@@ -915,6 +915,51 @@ std::vector<std::string> bodies_without_contact(const Scenario& sc, const Model&
   return out;
 }
 
+/// A body that moves away from everything it could meet (a velocity given with the wrong sign):
+/// with contact on, a moving part none of whose partners lies ahead along its velocity relative
+/// to them, and no wall it runs towards. Judged on the parts' mean initial velocities and
+/// centroids; a run whose bodies only separate was mostly not what was meant.
+std::vector<std::string> bodies_moving_apart(const Scenario& sc, const Model& model) {
+  if (!sc.contact || model.parts.size() + sc.walls.size() < 2) return {};
+  const int dim = model.dim();
+  const std::size_t np = model.parts.size();
+  std::vector<std::array<double, 3>> centre(np), velocity(np);
+  for (std::size_t p = 0; p < np; ++p) {
+    const auto& nodes = model.parts[p].connectivity;
+    for (auto n : nodes)
+      for (int k = 0; k < dim; ++k) {
+        centre[p][k] += model.nodes.x0[dim * n + k] / static_cast<double>(nodes.size());
+        velocity[p][k] += model.nodes.v[dim * n + k] / static_cast<double>(nodes.size());
+      }
+  }
+  auto dot = [&](const std::array<double, 3>& a, const std::array<double, 3>& b) {
+    double d = 0;
+    for (int k = 0; k < dim; ++k) d += a[k] * b[k];
+    return d;
+  };
+  for (std::size_t p = 0; p < np; ++p) {
+    if (dot(velocity[p], velocity[p]) == 0) continue;
+    bool approaches = false;
+    for (std::size_t q = 0; q < np && !approaches; ++q) {
+      if (q == p) continue;
+      std::array<double, 3> towards{}, relative{};
+      for (int k = 0; k < dim; ++k) {
+        towards[k] = centre[q][k] - centre[p][k];
+        relative[k] = velocity[p][k] - velocity[q][k];
+      }
+      approaches = dot(towards, relative) > 0;
+    }
+    for (const WallInput& w : sc.walls) approaches = approaches || dot(velocity[p], w.normal) < 0;
+    if (approaches || np + sc.walls.size() < 2) continue;
+    return {InputError(shown_path(sc.file), 0, "initial_conditions",
+                       "part '" + model.parts[p].name +
+                           "' moves away from every other body and wall it could meet: nothing will touch it "
+                           "(check the sign of its velocity)")
+                .what()};
+  }
+  return {};
+}
+
 /// Once an interface fails its two sides touch as ordinary contact, with the interface's
 /// friction unless `contact:` gives one for their materials.
 void contact_across_interfaces(const Scenario& sc, const Model& model, ContactSettings& cs) {
@@ -1187,6 +1232,7 @@ Simulation build_simulation(Scenario& sc, const MeshData& mesh) {
   for (auto& w : unbreakable_bond_warnings(sc, sim)) sc.warnings.push_back(std::move(w));
   for (auto& w : parts_behind_walls(sc, sim.model)) sc.warnings.push_back(std::move(w));
   for (auto& w : bodies_without_contact(sc, sim.model)) sc.warnings.push_back(std::move(w));
+  for (auto& w : bodies_moving_apart(sc, sim.model)) sc.warnings.push_back(std::move(w));
   return sim;
 }
 

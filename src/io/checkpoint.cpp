@@ -22,8 +22,9 @@ namespace {
 // 11 the count of local remeshes and the back-off of failed ones; 12 where the list of particle
 // contacts was built (a restart takes the list up instead of building it), and the run's notes
 // on its step; 13 the speed of the crack tip that reached each node; 14 the fragmentation damage's
-// weakest-flaw stress (one more history variable per point).
-constexpr char kMagic[8] = {'S', 'H', 'A', 'R', 'D', 'C', 'K', '>'};
+// weakest-flaw stress (one more history variable per point); 15 the part each node was meshed
+// with (nodes whose elements have eroded still count in it).
+constexpr char kMagic[8] = {'S', 'H', 'A', 'R', 'D', 'C', 'K', '?'};
 
 /// Scalars of SolverState and OutputCursor in one fixed order, for both directions.
 template <class F>

@@ -600,7 +600,7 @@ void flatten_to_plane(const fs::path& file, MeshData& mesh, const std::vector<st
           << used_nodes[i] << " has z = " << z;
       if (has_volumes)
         out << ": the file has physical volumes, a 3D body, and the analysis is 2D (its surfaces were "
-               "taken as the mesh); set analysis.formulation: three_d, or draw the 2D section in the "
+               "taken as the mesh); set analysis.formulation: 3d, or draw the 2D section in the "
                "x-y plane";
       else
         out << "; draw the geometry in the x-y plane (or Rotate it there in the .geo)";

@@ -3,6 +3,7 @@
 #include <yaml-cpp/depthguard.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -36,6 +37,17 @@ using scenario_detail::velocity_component_keys;
 // The schema: every key, declared once.
 // ---------------------------------------------------------------------------------------------
 namespace {
+
+/// Whether `text` names `key` as a whole word ("m" is not in "mu", "density" not in
+/// "flaw_density").
+bool names_key(const std::string& text, const std::string& key) {
+  auto word = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; };
+  for (auto at = text.find(key); at != std::string::npos; at = text.find(key, at + 1)) {
+    const auto end = at + key.size();
+    if ((at == 0 || !word(text[at - 1])) && (end == text.size() || !word(text[end]))) return true;
+  }
+  return false;
+}
 
 const std::vector<std::string> kFieldNames = {"displacement", "velocity", "stress",      "strain",
                                               "von_mises",    "pressure", "temperature", "state",
@@ -694,7 +706,7 @@ class ScenarioReader {
       std::string reason = e.what();
       if (const auto& note = scenario_detail::ScenarioWarnings::override_note())
         for (const auto& spec : keys.keys())
-          if (spec.name != e.key() && reason.find(spec.name) != std::string::npos)
+          if (spec.name != e.key() && names_key(e.what(), spec.name))
             if (const std::string n = note(path + "." + spec.name); n.size() > 3)  // " (the value given by ...)"
               reason += " (" + spec.name + ": " + n.substr(2, n.size() - 3) + ")";
       // A model names the key at fault; when it names 'model' or a key that is not given (a
