@@ -361,10 +361,6 @@ Prepared prepare(const std::filesystem::path& file, const std::vector<ScenarioOv
   return p;
 }
 
-}  // namespace
-
-namespace {
-
 /// Bodies that start inside each other: the penalty pushes them apart at the first step with
 /// energy from nothing (a new user's rod placed 0.2 mm into its tile gained 27 J of kinetic
 /// energy and the run completed). Judged at the start only: a restart meets bodies the run has

@@ -920,7 +920,8 @@ std::vector<std::string> bodies_without_contact(const Scenario& sc, const Model&
 /// to them, and no wall it runs towards. Judged on the parts' mean initial velocities and
 /// centroids; a run whose bodies only separate was mostly not what was meant.
 std::vector<std::string> bodies_moving_apart(const Scenario& sc, const Model& model) {
-  if (!sc.contact || model.parts.size() + sc.walls.size() < 2) return {};
+  // Particles (a granular bed, automata) are targets too, not judged here.
+  if (!sc.contact || model.parts.size() + sc.walls.size() < 2 || !model.particle_parts.empty()) return {};
   const int dim = model.dim();
   const std::size_t np = model.parts.size();
   std::vector<std::array<double, 3>> centre(np), velocity(np);
@@ -950,7 +951,7 @@ std::vector<std::string> bodies_moving_apart(const Scenario& sc, const Model& mo
       approaches = dot(towards, relative) > 0;
     }
     for (const WallInput& w : sc.walls) approaches = approaches || dot(velocity[p], w.normal) < 0;
-    if (approaches || np + sc.walls.size() < 2) continue;
+    if (approaches) continue;
     return {InputError(shown_path(sc.file), 0, "initial_conditions",
                        "part '" + model.parts[p].name +
                            "' moves away from every other body and wall it could meet: nothing will touch it "
