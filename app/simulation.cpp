@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "app/crack_band_check.hpp"
+#include "core/disjoint_sets.hpp"
 #include "core/error.hpp"
 #include "model/assembly.hpp"
 #include "particle/mca_contact_update.hpp"
@@ -877,22 +878,15 @@ std::vector<std::string> parts_behind_walls(const Scenario& sc, const Model& mod
 std::vector<std::string> bodies_without_contact(const Scenario& sc, const Model& model) {
   if (sc.contact || model.parts.size() < 2) return {};
   const std::size_t np = model.parts.size();
-  std::vector<std::size_t> body(np);
-  for (std::size_t p = 0; p < np; ++p) body[p] = p;
-  auto root = [&](std::size_t p) {
-    while (body[p] != p) p = body[p] = body[body[p]];
-    return p;
-  };
-  auto join = [&](std::size_t a, std::size_t b) { body[root(a)] = root(b); };
-  std::vector<int> first(model.nodes.count(), -1);
+  DisjointSets body(np);  // parts joined by a shared node or an interface
+  std::vector<std::int32_t> first(model.nodes.count(), -1);
   for (std::size_t p = 0; p < np; ++p)
     for (auto n : model.parts[p].connectivity) {
-      if (first[n] < 0) first[n] = static_cast<int>(p);
-      else join(static_cast<std::size_t>(first[n]), p);
+      if (first[n] < 0) first[n] = static_cast<std::int32_t>(p);
+      else body.join(first[n], static_cast<std::int32_t>(p));
     }
   for (const InterfaceInput& in : sc.interfaces)
-    if (in.between.size() == 2) join(static_cast<std::size_t>(part_index(model, in.between[0])),
-                                     static_cast<std::size_t>(part_index(model, in.between[1])));
+    if (in.between.size() == 2) body.join(part_index(model, in.between[0]), part_index(model, in.between[1]));
   const int dim = model.dim();
   std::vector<char> moving(np, 0);
   for (std::size_t p = 0; p < np; ++p)
@@ -903,7 +897,7 @@ std::vector<std::string> bodies_without_contact(const Scenario& sc, const Model&
     if (!moving[p]) continue;
     std::string others;
     for (std::size_t q = 0; q < np; ++q)
-      if (root(q) != root(p)) others += (others.empty() ? "'" : ", '") + model.parts[q].name + "'";
+      if (body.find(static_cast<std::int32_t>(q)) != body.find(static_cast<std::int32_t>(p))) others += (others.empty() ? "'" : ", '") + model.parts[q].name + "'";
     if (others.empty()) continue;
     out.push_back(InputError(shown_path(sc.file), 0, "contact",
                              "part '" + model.parts[p].name + "' starts moving and shares no node with " + others +
