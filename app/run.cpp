@@ -295,6 +295,30 @@ std::size_t remove_earlier_outputs(const std::filesystem::path& dir) {
   return removed;
 }
 
+/// Refuses, before a fresh run, an output folder that holds files named as a run's outputs which
+/// no run of shard wrote (its resolved.yaml, the first file every run writes, would say so): the
+/// run would remove or overwrite a user's own crash.csv or fragments.csv.
+void check_no_foreign_outputs(const std::filesystem::path& dir) {
+  std::error_code ec;
+  if (!std::filesystem::is_directory(dir, ec)) return;
+  std::ifstream resolved(dir / "resolved.yaml");
+  std::string first;
+  if (resolved && std::getline(resolved, first) && first.find(", resolved by shard ") != std::string::npos) return;
+  std::vector<std::string> names;
+  for (const auto& entry : std::filesystem::directory_iterator(dir, ec))
+    if (entry.is_regular_file(ec) && is_run_output(entry.path().filename().string()))
+      names.push_back(entry.path().filename().string());
+  if (names.empty()) return;
+  std::sort(names.begin(), names.end());
+  std::string listed;
+  for (std::size_t i = 0; i < std::min<std::size_t>(names.size(), 4); ++i) listed += (i ? ", " : "") + names[i];
+  if (names.size() > 4) listed += " and " + std::to_string(names.size() - 4) + " more";
+  throw InputError("", 0, "-o",
+                   "the output folder '" + dir.string() + "' holds " + listed +
+                       ", named as a run's outputs, but no run of shard wrote there (it has no resolved.yaml of "
+                       "one), and a run would remove or overwrite them: give another folder with -o, or move them");
+}
+
 struct Prepared {
   Scenario scenario;
   Simulation sim;
@@ -2366,6 +2390,7 @@ RunSummary run_scenario(const std::filesystem::path& file, const RunOptions& opt
 #endif
   // Everything is validated before the output folder is touched.
   check_output_folder(options.output_dir);
+  if (!options.restart) check_no_foreign_outputs(options.output_dir);
   RunDriver driver(file, options);
   return driver.run();
 }

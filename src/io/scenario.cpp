@@ -1389,6 +1389,29 @@ struct MadeSection {
   std::string key, nearest;
 };
 
+/// `KEY=~` removes the key from its section, so that a named entry (a material, a part) goes as
+/// if the file had never given it; a null left in its place would be read as an empty entry.
+/// Nothing to remove is an error: a misspelt key would otherwise do nothing, silently.
+template <class Fail>
+MadeSection remove_key(YAML::Node& section, const std::string& name, const MadeSection& made, const Fail& fail) {
+  if (!made.key.empty()) {
+    const auto dot = made.key.rfind('.');
+    fail("the file has no '" + made.key.substr(dot == std::string::npos ? 0 : dot + 1) + "'" +
+         (made.nearest.empty() ? "" : " (did you mean '" + made.nearest + "'?)") + ", so there is nothing to remove");
+  }
+  const YAML::Node& given = section;  // a const look-up: a mutable one may add the key
+  if (!given.IsMap() || !given[name].IsDefined()) {
+    std::vector<std::string> names;
+    if (section.IsMap())
+      for (const auto& kv : section) names.push_back(kv.first.as<std::string>());
+    const std::string nearest = closest_match(name, names);
+    fail("the file gives no '" + name + "' here, so there is nothing to remove" +
+         (nearest.empty() ? "" : " (did you mean '" + nearest + "'?)"));
+  }
+  section.remove(name);
+  return made;
+}
+
 /// Puts one override into the scenario's YAML tree: maps on the way are made when missing (the
 /// reader then checks every key as if it were in the file; the first one made is returned);
 /// list entries must exist.
@@ -1440,6 +1463,7 @@ MadeSection apply_override(YAML::Node& root, const ScenarioOverride& o) {
              (bracketed ? "; text in brackets, such as a layup, needs quotes: --set '" + o.key + "=\"" + o.value + "\"'"
                         : ""));
       }
+      if (value.IsNull() && entries.empty()) return remove_key(at, segment, made, fail);
       if (entries.empty()) at[segment] = value;
       else next = value;
       return made;

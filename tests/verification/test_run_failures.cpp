@@ -136,6 +136,58 @@ TEST(RunFailures, SetOverridesGiveTheRunOfTheEditedFile) {
   fs::remove_all(dir);
 }
 
+TEST(RunFailures, AFolderOfAnotherOriginIsNotCleared) {
+  // A fresh run clears what an earlier run left in its folder; files of the same names that no
+  // run of shard wrote (a user's own crash.csv) are the user's, and the run is refused instead.
+  const auto dir = testing::fresh_dir("foreign_outputs");
+  const std::string bar = write_bar_scenario(dir, "{frame_interval: 5 us}");
+  fs::create_directories(dir / "mine");
+  std::ofstream(dir / "mine" / "crash.csv") << "my own measurements\n";
+  std::ofstream(dir / "mine" / "notes.txt") << "kept\n";
+  const auto refused = testing::run_shard("run " + bar + " --quiet --set analysis.end_time=1us -o " + (dir / "mine").string());
+  EXPECT_EQ(refused.status, 2) << refused.output;
+  EXPECT_TRUE(contains(refused.output, "holds crash.csv, named as a run's outputs, but no run of shard wrote there"))
+      << refused.output;
+  EXPECT_EQ(testing::read_file(dir / "mine" / "crash.csv"), "my own measurements\n");
+  // A folder a run wrote is cleared as before, the user's other files kept.
+  const std::string out = (dir / "run").string();
+  ASSERT_EQ(testing::run_shard("run " + bar + " --quiet --set analysis.end_time=2us -o " + out).status, 0);
+  std::ofstream(dir / "run" / "notes.txt") << "kept\n";
+  const auto again = testing::run_shard("run " + bar + " --set analysis.end_time=1us -o " + out);
+  EXPECT_EQ(again.status, 0) << again.output;
+  EXPECT_TRUE(contains(again.output, "files of an earlier run in")) << again.output;
+  EXPECT_EQ(testing::read_file(dir / "run" / "notes.txt"), "kept\n");
+  fs::remove_all(dir);
+}
+
+TEST(RunFailures, SetTildeRemovesAKeyAndANamedEntry) {
+  // KEY=~ takes the key out of its section: a material or part goes whole, as if the file never
+  // gave it (a null left in its place was read as an incomplete entry: "expected a map").
+  const auto dir = testing::fresh_dir("set_tilde");
+  std::string text = testing::read_file(write_bar_scenario(dir, "{frame_interval: 5 us}"));
+  text.replace(text.find("materials: {"), 12, "materials: {spare: {model: linear_elastic, density: 1000, "
+                                                  "youngs_modulus: 1 GPa, poissons_ratio: 0.2}, ");
+  std::ofstream(dir / "spare.yaml") << text;
+  const std::string spare = (dir / "spare.yaml").string();
+  const auto gone = testing::run_shard("run " + spare + " --quiet --set 'materials.spare=~' --set analysis.end_time=1us -o " +
+                                       (dir / "gone").string());
+  ASSERT_EQ(gone.status, 0) << gone.output;
+  EXPECT_FALSE(contains(testing::read_file(dir / "gone" / "resolved.yaml"), "spare:")) << "the material was removed";
+  // An override and its undoing leave the file's scenario.
+  const auto undone = testing::run_shard("check " + spare + " --set 'parts.extra={material: steel}' --set 'parts.extra=~'");
+  EXPECT_EQ(undone.status, 0) << undone.output;
+  // Nothing to remove is a slip: said, with the name meant.
+  const auto typo = testing::run_shard("check " + spare + " --set 'materials.steel.youngs_modulu=~'");
+  EXPECT_EQ(typo.status, 2) << typo.output;
+  EXPECT_TRUE(contains(typo.output, "the file gives no 'youngs_modulu' here, so there is nothing to remove (did you "
+                                    "mean 'youngs_modulus'?)")) << typo.output;
+  const auto section = testing::run_shard("check " + spare + " --set 'materials.stel.density=~'");
+  EXPECT_EQ(section.status, 2) << section.output;
+  EXPECT_TRUE(contains(section.output, "the file has no 'stel' (did you mean 'steel'?), so there is nothing to remove"))
+      << section.output;
+  fs::remove_all(dir);
+}
+
 TEST(RunFailures, SetMistakesAndLikelyMistakesAreNamed) {
   const auto dir = testing::fresh_dir("likely_mistakes");
   const std::string base = write_bar_scenario(dir, "{frame_interval: 5 us}");
