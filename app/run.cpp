@@ -605,7 +605,7 @@ class RunDriver {
   /// A run that went wrong: what it wrote so far stays, summary.json says why.
   [[noreturn]] void fail(const RunError& e) {
     progress_.finish();
-    status_ = "failed";
+    status_ = interrupted_ ? "interrupted" : "failed";
     message_ = e.what();
     // A decomposed run fails on every rank at once (the checks that throw see the same sums
     // everywhere); the writer keeps its outputs as a single process would, without a gather.
@@ -1659,6 +1659,11 @@ class RunDriver {
         throw RunError("reached analysis.max_steps = " + std::to_string(sc_.max_steps) + " before end_time = " +
                        format_time(end) + "; the last state written is at t = " + format_time(t) + ", step " +
                        std::to_string(step));
+      if (!ranks_ && options_.interrupted && options_.interrupted()) {
+        interrupted_ = true;
+        throw RunError("interrupted at t = " + format_time(t) + ", step " + std::to_string(step) +
+                       "; the outputs up to there are kept");
+      }
       cut_anew_if_moved();
       cut_anew_if_automata_moved();
       rebalance_if_uneven();
@@ -2377,6 +2382,7 @@ class RunDriver {
   std::int64_t cuts_ = 0;   ///< times the model was cut anew as contact nodes moved (summary.json)
   /// Cracks split on every rank without a gather (split_in_place): no particles, interface
   /// elements, erosion, comminution or remeshing, which change the whole model in other ways.
+  bool interrupted_ = false;  ///< stopped by options_.interrupted (summary.json: "interrupted")
   bool splits_in_place_ = false;
   std::int64_t splits_in_place_count_ = 0;  ///< (summary.json)
   std::vector<std::int32_t> node_owner_;     ///< per node of whole_, its owner (node_owners) since the last cut or split

@@ -3,6 +3,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -37,6 +38,9 @@ struct RunOptions {
   /// The options given that act only on a decomposed run (--partition, --rebalance, ...): a run
   /// of one process warns that it ignores them.
   std::vector<std::string> decomposition_options;
+  /// Asked once a step in a run of one process: true stops the run there as interrupted (its
+  /// outputs kept, summary.json says so). The Python module passes Ctrl-C through it.
+  std::function<bool()> interrupted;
 };
 
 struct RunSummary {

@@ -10,6 +10,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -72,29 +73,43 @@ py::object read_history(std::filesystem::path path) {
   return py::module_::import("shard").attr("History")(history);
 }
 
+/// A value from Python as the text of a --set: None is YAML's null (removes the key), a NumPy
+/// array or scalar and a tuple are their lists and numbers, a float keeps every digit.
+std::string override_text(py::object value) {
+  if (value.is_none()) return "~";
+  if (py::hasattr(value, "tolist") && !py::isinstance<py::str>(value)) value = value.attr("tolist")();
+  if (py::isinstance<py::tuple>(value)) value = py::list(value);
+  if (py::isinstance<py::bool_>(value)) return value.cast<bool>() ? "true" : "false";
+  if (py::isinstance<py::float_>(value)) return py::str(py::repr(value));
+  return py::str(value);
+}
+
 /// A scenario file with the overrides put over it, as `shard run FILE --set KEY=VALUE ...` has.
+/// The file is read when the object is made; check() and run() refuse it if it changed since, so
+/// that a study runs the scenario it checked.
 class Scenario {
  public:
-  explicit Scenario(const std::filesystem::path& file) : file_(file.string()) {
+  explicit Scenario(const std::filesystem::path& file) : file_(std::filesystem::absolute(file)) {
     (void)shard::read_scenario(file_);  // a bad file is an error here, not at run()
+    text_ = read_text(file_);
   }
 
-  /// Puts `value` over `key` (text such as "450 MPa", or a number in SI units); checked at once.
-  Scenario& set(const std::string& key, const py::object& value) {
-    std::string text = py::str(value);
-    if (py::isinstance<py::bool_>(value)) text = value.cast<bool>() ? "true" : "false";
-    else if (py::isinstance<py::float_>(value)) text = py::str(py::repr(value));
-    overrides_.push_back({key, text});
-    try {
-      (void)shard::read_scenario(file_, overrides_);
-    } catch (...) {
-      overrides_.pop_back();
-      throw;
-    }
-    return *this;
+  /// Puts `value` over `key` (text such as "450 MPa", a number in SI units, None to remove the
+  /// key); checked at once.
+  Scenario& set(const std::string& key, const py::object& value) { return set_all({{key, override_text(value)}}); }
+
+  /// Puts several values at once, checked together: a swap of elastic constants (shear_modulus:
+  /// None, youngs_modulus: "200 GPa") is never checked half done.
+  Scenario& set_many(const py::dict& values) {
+    std::vector<shard::ScenarioOverride> given;
+    for (const auto& [key, value] : values) given.push_back({py::str(key), override_text(py::reinterpret_borrow<py::object>(value))});
+    return set_all(given);
   }
 
-  std::string check() const { return shard::check_scenario(file_, overrides_); }
+  std::string check() const {
+    still_as_read();
+    return shard::check_scenario(file_, overrides_);
+  }
 
   /// Runs into `output` with `threads` (0: OpenMP's default); returns {"history", "summary",
   /// "output"}.
@@ -105,9 +120,23 @@ class Scenario {
     options.threads = threads;
     options.quiet = quiet;
     options.overrides = overrides_;
-    {
+    still_as_read();
+    // Ctrl-C: the interpreter's signal handlers run when asked, between steps; what they raise
+    // (KeyboardInterrupt) is raised once the run has stopped and kept its outputs.
+    std::optional<py::error_already_set> raised;
+    options.interrupted = [&raised] {
+      py::gil_scoped_acquire held;
+      if (PyErr_CheckSignals() == 0) return false;
+      raised.emplace();
+      return true;
+    };
+    try {
       py::gil_scoped_release unlocked;
       (void)shard::run_scenario(file_, options);
+    } catch (const shard::RunError&) {
+      if (!raised) throw;
+      raised->restore();
+      throw py::error_already_set();
     }
     py::dict result;
     result["output"] = output.string();
@@ -123,7 +152,27 @@ class Scenario {
   }
 
  private:
-  std::string file_;
+  Scenario& set_all(const std::vector<shard::ScenarioOverride>& given) {
+    std::vector<shard::ScenarioOverride> all = overrides_;
+    all.insert(all.end(), given.begin(), given.end());
+    still_as_read();
+    (void)shard::read_scenario(file_, all);
+    overrides_ = std::move(all);
+    return *this;
+  }
+
+  void still_as_read() const {
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(file_, ec))
+      throw shard::InputError(file_.string(), 0, "", "the scenario file is gone since Scenario() read it");
+    if (read_text(file_) != text_)
+      throw shard::InputError(file_.string(), 0, "",
+                              "the file changed since Scenario() read it: make a new Scenario to run what it says "
+                              "now, or set() the values to change");
+  }
+
+  std::filesystem::path file_;
+  std::string text_;  ///< the file as read, to tell a later edit
   std::vector<shard::ScenarioOverride> overrides_;
 };
 
@@ -162,6 +211,9 @@ class History(dict):
       .def("set", &Scenario::set, py::arg("key"), py::arg("value"), py::return_value_policy::reference_internal,
            "put a value over a key (dotted, list entries from 1), e.g. set('materials.alumina.tensile_strength', "
            "'450 MPa'); checked at once (InputError)")
+      .def("set", &Scenario::set_many, py::arg("values"), py::return_value_policy::reference_internal,
+           "put several values at once, checked together: set({'materials.steel.shear_modulus': None, "
+           "'materials.steel.youngs_modulus': '200 GPa'})")
       .def("check", &Scenario::check, "what `shard check` prints")
       .def("run", &Scenario::run, py::arg("output"), py::arg("threads") = 0, py::arg("quiet") = true,
            "run into the folder `output`; returns {'history': {column: numpy array}, 'summary': dict, 'output': str}")

@@ -12,6 +12,10 @@
 - read_history takes a run folder as well as its history.csv, and a pathlib.Path; a missing file
   is a FileNotFoundError and a file that is no history a ValueError (it returned an empty dict);
   threads=-1 is a ValueError; a column the history lacks is a KeyError that lists those it has.
+- A NumPy array and a tuple are set as lists, None removes a key, set({...}) checks several values
+  together; the file is read once (a run from another working folder finds it, an edit after
+  Scenario() is refused); Ctrl-C stops a run as "interrupted" with its outputs and raises
+  KeyboardInterrupt.
 
 Usage: test_python_module.py SHARD_EXECUTABLE MODULE_DIR SOURCE_DIR WORK_DIR
 """
@@ -103,7 +107,55 @@ def main():
         fail("threads=-1 was accepted")
     except ValueError as e:
         print(f"threads: {e}")
+    scenario_checks(shard, np, scenario_file, work)
     print("PASS")
+
+
+def scenario_checks(shard, np, scenario_file, work):
+    """What a study script does beside the plain set-and-run: values from NumPy and None, several
+    values checked together, another working folder, an edited file, Ctrl-C during a run."""
+    import signal
+    import threading
+    s = shard.Scenario(os.path.relpath(scenario_file))
+    s.set("boundary_conditions[1].velocity.x", np.float64(12.0)).set("boundary_conditions[2].fix", ("y",))
+    s.set("boundary_conditions[3].fix", np.array(["y"]))
+    if s.overrides != [("boundary_conditions[1].velocity.x", "12.0"), ("boundary_conditions[2].fix", "['y']"),
+                       ("boundary_conditions[3].fix", "['y']")]:
+        fail(f"a NumPy value or a tuple is not its number or list: {s.overrides}")
+    # A swap of elastic constants, checked together (each alone leaves one or three constants).
+    s.set({"materials.steel.bulk_modulus": None, "materials.steel.youngs_modulus": "200 GPa"})
+    try:
+        s.set("materials.steel.bulk_modulus", None)
+        fail("removing a key the scenario no longer gives was accepted")
+    except shard.InputError as e:
+        if "nothing to remove" not in str(e):
+            fail(f"removing a missing key: {e}")
+    here = os.getcwd()
+    os.chdir(work)  # the file was named relative to the folder left
+    try:
+        s.set("analysis.end_time", "2 ms")
+        # Ctrl-C half-way: KeyboardInterrupt once the run has stopped, its outputs kept.
+        threading.Timer(0.5, lambda: os.kill(os.getpid(), signal.SIGINT)).start()
+        try:
+            s.run(os.path.join(work, "interrupted"), threads=1, quiet=True)
+            fail("Ctrl-C did not stop the run (or the run took under 0.5 s: make it longer)")
+        except KeyboardInterrupt:
+            pass
+        with open(os.path.join(work, "interrupted", "summary.json")) as f:
+            summary = json.load(f)
+        if summary["status"] != "interrupted" or not 0 < summary["steps"]:
+            fail(f"summary.json of the interrupted run: {summary['status']}, {summary['steps']} steps")
+        print(f"Ctrl-C: stopped at step {summary['steps']} ({summary['message']})")
+        with open(scenario_file, "a") as f:
+            f.write("# edited after Scenario() read it\n")
+        try:
+            s.check()
+            fail("a file edited after Scenario() read it was run as it is now")
+        except shard.InputError as e:
+            if "changed since Scenario() read it" not in str(e):
+                fail(f"the edited file: {e}")
+    finally:
+        os.chdir(here)
 
 
 if __name__ == "__main__":
