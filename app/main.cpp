@@ -213,7 +213,8 @@ int shard_main(int argc, char** argv, shard::Communicator* ranks) {
         if (args[i] == "--set" && i + 1 < args.size()) overrides.push_back(shard::parse_override(args[++i]));
         else if (!args[i].empty() && args[i][0] == '-') return usage("unknown option '" + args[i] + "' for check");
         else if (!scenario) scenario = args[i];
-        else return usage("check takes one scenario file");
+        else return usage("check takes one scenario file ('" + *scenario + "', and '" + args[i] +
+                          "': a value with a space, such as --set end_time=5 us, needs quotes)");
       }
       if (!scenario) return usage("check takes one scenario file");
       say(shard::check_scenario(*scenario, overrides).c_str(), stdout);
@@ -279,7 +280,8 @@ int shard_main(int argc, char** argv, shard::Communicator* ranks) {
           options.rebalance_interval = *n;
         } else if (!a.empty() && a[0] == '-') return usage("unknown option '" + a + "'");
         else if (!scenario) scenario = a;
-        else return usage("more than one scenario given ('" + *scenario + "', '" + a + "')");
+        else return usage("more than one scenario given ('" + *scenario + "', '" + a +
+                          "'; a value with a space, such as --set end_time=5 us, needs quotes)");
       }
       if (!scenario) return usage("run needs a scenario file");
       // A restart goes on in the folder that holds its checkpoint unless told otherwise.

@@ -46,6 +46,7 @@ py::object read_history(std::filesystem::path path) {
     raise_file_not_found(path.string() + ": no such history file (give a run folder or its history.csv)");
   std::string line;
   std::getline(in, line);
+  if (!line.empty() && line.back() == '\r') line.pop_back();
   if (line.rfind("time,step,dt", 0) != 0)
     throw py::value_error(path.string() + ": not a shard history (its first line does not start with time,step,dt)");
   std::vector<std::string> names;
@@ -56,15 +57,25 @@ py::object read_history(std::filesystem::path path) {
     // A last line without its newline is a row a killed run was writing (shard ends every row
     // with one): it is left out, and the rows before it stand.
     if (in.eof()) break;
+    if (!line.empty() && line.back() == '\r') line.pop_back();  // a file saved with Windows line ends
+    const std::string where = path.string() + ":" + std::to_string(row) + ": ";
     std::vector<double> values;
     const char* p = line.c_str();
     for (std::size_t c = 0; c < columns.size(); ++c) {
+      if (c > 0 && p[-1] != ',')
+        throw py::value_error(where + "the row has " + std::to_string(c) + " values, the header " +
+                              std::to_string(columns.size()) + " columns");
       char* end = nullptr;
       values.push_back(std::strtod(p, &end));
+      if (end == p && (*p == ',' || *p == '\0'))
+        throw py::value_error(where + "column '" + names[c] + "' has no value");
       if (end == p || (*end != ',' && *end != '\0'))
-        throw py::value_error(path.string() + ":" + std::to_string(row) + ": column '" + names[c] + "' is not a number");
+        throw py::value_error(where + "column '" + names[c] + "' is not a number");
       p = *end == ',' ? end + 1 : end;
     }
+    if (p[-1] == ',' || *p != '\0')
+      throw py::value_error(where + "the row has more values than the header's " + std::to_string(columns.size()) +
+                            " columns");
     for (std::size_t c = 0; c < columns.size(); ++c) columns[c].push_back(values[c]);
   }
   py::dict history;

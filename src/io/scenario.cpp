@@ -1346,7 +1346,10 @@ namespace {
 std::string scenario_text(const std::filesystem::path& path) {
   const std::string file = path.string();
   std::error_code ec;
-  if (!std::filesystem::exists(path, ec)) throw InputError(file, 0, "", "scenario file not found");
+  if (!std::filesystem::exists(path, ec))
+    throw InputError(file, 0, "", path.is_absolute() ? "scenario file not found"
+                                                     : "scenario file not found (looked for " +
+                                                           std::filesystem::absolute(path, ec).string() + ")");
   if (std::filesystem::is_directory(path, ec))
     throw InputError(file, 0, "", "is a folder, not a scenario file (give the .yaml file in it)");
   const auto bytes = std::filesystem::file_size(path, ec);

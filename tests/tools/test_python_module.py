@@ -96,6 +96,23 @@ def main():
             fail(f"read_history({path}) returned without an error")
         except kind as e:
             print(f"read_history: {e}")
+    # A row short of the header, a row with a value too many, an empty value; Windows line ends read.
+    for rows, said in (("0,1,2\n", "the row has 3 values, the header 4 columns"),
+                       ("0,1,2,3,4\n", "more values than the header's 4 columns"),
+                       ("0,1,,3\n", "column 'dt' has no value")):
+        bad = os.path.join(work, "bad_history.csv")
+        with open(bad, "w") as f:
+            f.write("time,step,dt,a\n0,1,2,3\n" + rows)
+        try:
+            shard.read_history(bad)
+            fail(f"read_history took the row {rows!r}")
+        except ValueError as e:
+            if said not in str(e):
+                fail(f"read_history of the row {rows!r}: {e}")
+    with open(os.path.join(work, "crlf.csv"), "wb") as f:
+        f.write(b"time,step,dt,a\r\n0,1,2,3\r\n1,2,3,4\r\n")
+    if list(shard.read_history(os.path.join(work, "crlf.csv"))["a"]) != [3.0, 4.0]:
+        fail("a history with Windows line ends was not read")
     try:
         history["stress_xx"]
         fail("a column the history lacks gave no KeyError")

@@ -50,6 +50,12 @@ TEST(RunFailures, CommandLineMistakesAreBadInputAndWriteNothing) {
        "lies under '" + (dir / "a_file").string() + "', which is a file"},
       {"run " + dir.string() + " -o " + out.string(), "is a folder, not a scenario file"},
       {"check " + dir.string(), "is a folder, not a scenario file"},
+      // A value with a space, unquoted: the shell hands its unit over as a second scenario.
+      {"check " + scenario + " --set analysis.end_time=5 us", "and 'us': a value with a space, such as --set "
+                                                              "end_time=5 us, needs quotes"},
+      {"run " + scenario + " -o " + out.string() + " --set analysis.end_time=5 us", "'us'; a value with a space"},
+      {"check nosuch_folder/x.yaml", "scenario file not found (looked for " +
+                                         (fs::current_path() / "nosuch_folder" / "x.yaml").string() + ")"},
   };
   for (const auto& c : cases) {
     SCOPED_TRACE("shard " + c.arguments);
