@@ -1572,7 +1572,8 @@ Scenario read_scenario(const std::filesystem::path& path, const std::vector<Scen
     std::string earlier;
     for (const std::string& w : sc.warnings)
       if (w.find(" has no unit and is read as ") != std::string::npos) earlier += "\n  after the warning: " + w;
-    if (const std::string n = named(e.key()); !n.empty())
+    // (A message that already names the --set, as a material's consistency check does, once.)
+    if (const std::string n = named(e.key()); !n.empty() && e.reason().find(n.substr(2, n.size() - 3)) == std::string::npos)
       throw InputError("", 0, e.key(), e.reason() + n + quoting(e) + earlier);
     name_made_section(e, overrides, made);
     if (!earlier.empty()) throw InputError(e.file(), e.line(), e.key(), e.reason() + earlier);

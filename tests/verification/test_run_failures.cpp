@@ -391,6 +391,14 @@ TEST(RunFailures, AConsistencyErrorNamesTheSetOfTheKeyItSuspects) {
   EXPECT_TRUE(contains(r.output, "key 'materials.ceramic.pressure_at_hel': pressure_at_hel is 1.46 GPa")) << r.output;
   EXPECT_TRUE(contains(r.output, "(hugoniot_elastic_limit: the value given by --set "
                                  "materials.ceramic.hugoniot_elastic_limit=3.0 GPa)")) << r.output;
+  // Named once, not again by the note every error about a --set's section gets.
+  const std::string bar = std::string(SHARD_SOURCE_DIR) + "/examples/bar_impact/bar_2d.yaml";
+  const auto once = testing::run_shard("check " + bar + " --set 'materials.steel.shear_modulus=~'");
+  EXPECT_EQ(once.status, 2) << once.output;
+  const std::string named = "the value given by --set materials.steel.shear_modulus=~";
+  const auto first = once.output.find(named);
+  EXPECT_NE(first, std::string::npos) << once.output;
+  EXPECT_EQ(once.output.find(named, first + 1), std::string::npos) << once.output;
 }
 
 TEST(RunFailures, UnlikelyMetalInputsAreWarned) {
