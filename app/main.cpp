@@ -134,6 +134,14 @@ int usage_error(const std::string& message, bool speaks = true) {
   return kBadInput;
 }
 
+/// A stray word right after a --set's value is most often the rest of an unquoted value with a
+/// space (--set end_time=5 us): said so; nothing otherwise.
+std::string after_set_value(const std::vector<std::string>& args, std::size_t i) {
+  if (i < 2 || args[i - 2] != "--set") return "";
+  return "; a value with a space, such as --set " + args[i - 1] + " " + args[i] + ", needs quotes: --set '" +
+         args[i - 1] + " " + args[i] + "'";
+}
+
 /// An option that acts only on a run over ranks, noted once however often given.
 void note_decomposition_option(shard::RunOptions& options, const std::string& name) {
   auto& given = options.decomposition_options;
@@ -213,8 +221,8 @@ int shard_main(int argc, char** argv, shard::Communicator* ranks) {
         if (args[i] == "--set" && i + 1 < args.size()) overrides.push_back(shard::parse_override(args[++i]));
         else if (!args[i].empty() && args[i][0] == '-') return usage("unknown option '" + args[i] + "' for check");
         else if (!scenario) scenario = args[i];
-        else return usage("check takes one scenario file ('" + *scenario + "', and '" + args[i] +
-                          "': a value with a space, such as --set end_time=5 us, needs quotes)");
+        else return usage("check takes one scenario file ('" + *scenario + "', and '" + args[i] + "'" +
+                          after_set_value(args, i) + ")");
       }
       if (!scenario) return usage("check takes one scenario file");
       say(shard::check_scenario(*scenario, overrides).c_str(), stdout);
@@ -280,8 +288,8 @@ int shard_main(int argc, char** argv, shard::Communicator* ranks) {
           options.rebalance_interval = *n;
         } else if (!a.empty() && a[0] == '-') return usage("unknown option '" + a + "'");
         else if (!scenario) scenario = a;
-        else return usage("more than one scenario given ('" + *scenario + "', '" + a +
-                          "'; a value with a space, such as --set end_time=5 us, needs quotes)");
+        else return usage("more than one scenario given ('" + *scenario + "', '" + a + "'" + after_set_value(args, i) +
+                          ")");
       }
       if (!scenario) return usage("run needs a scenario file");
       // A restart goes on in the folder that holds its checkpoint unless told otherwise.

@@ -289,8 +289,10 @@ std::size_t remove_earlier_outputs(const std::filesystem::path& dir) {
   std::size_t removed = 0;
   std::error_code ec;
   for (const auto& entry : std::filesystem::directory_iterator(dir, ec))
+    // resolved.yaml stays (the run replaces it whole): it is what marks the folder as a run's, should
+    // this run be killed before writing its own.
     if (entry.is_regular_file(ec) && is_run_output(entry.path().filename().string()) &&
-        std::filesystem::remove(entry.path(), ec))
+        entry.path().filename() != "resolved.yaml" && std::filesystem::remove(entry.path(), ec))
       ++removed;
   return removed;
 }

@@ -7,6 +7,7 @@
 #include <pybind11/eval.h>
 #include <pybind11/stl/filesystem.h>
 
+#include <chrono>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -84,15 +85,30 @@ py::object read_history(std::filesystem::path path) {
   return py::module_::import("shard").attr("History")(history);
 }
 
-/// A value from Python as the text of a --set: None is YAML's null (removes the key), a NumPy
-/// array or scalar and a tuple are their lists and numbers, a float keeps every digit.
-std::string override_text(py::object value) {
+/// A value from Python as the text of a --set: None is YAML's null (removes the key), text is
+/// given as it is, and anything else (numbers, lists, tuples, dicts, NumPy arrays and scalars, at
+/// any depth) as JSON, which is YAML, with plain numbers and every digit of a float.
+std::string override_text(const py::object& value) {
   if (value.is_none()) return "~";
-  if (py::hasattr(value, "tolist") && !py::isinstance<py::str>(value)) value = value.attr("tolist")();
-  if (py::isinstance<py::tuple>(value)) value = py::list(value);
-  if (py::isinstance<py::bool_>(value)) return value.cast<bool>() ? "true" : "false";
-  if (py::isinstance<py::float_>(value)) return py::str(py::repr(value));
-  return py::str(value);
+  if (py::isinstance<py::str>(value)) return value.cast<std::string>();
+  py::dict scope;
+  scope["value"] = value;
+  py::exec(R"(
+def plain(v):
+    if hasattr(v, "tolist") and not isinstance(v, str):
+        v = v.tolist()
+    if isinstance(v, (list, tuple)):
+        return [plain(x) for x in v]
+    if isinstance(v, dict):
+        return {str(k): plain(x) for k, x in v.items()}
+    if hasattr(v, "item") and not isinstance(v, (str, bool, int, float)):
+        v = v.item()
+    return v
+import json
+text = json.dumps(plain(value))
+)",
+           scope);
+  return scope["text"].cast<std::string>();
 }
 
 /// A scenario file with the overrides put over it, as `shard run FILE --set KEY=VALUE ...` has.
@@ -134,13 +150,22 @@ class Scenario {
     still_as_read();
     // Ctrl-C: the interpreter's signal handlers run when asked, between steps; what they raise
     // (KeyboardInterrupt) is raised once the run has stopped and kept its outputs.
+    // Only the main thread runs signal handlers, and the interpreter is asked at most every 50 ms:
+    // a study running cases on other threads does not wait for the interpreter at every step.
     std::optional<py::error_already_set> raised;
-    options.interrupted = [&raised] {
-      py::gil_scoped_acquire held;
-      if (PyErr_CheckSignals() == 0) return false;
-      raised.emplace();
-      return true;
-    };
+    const py::object threading = py::module_::import("threading");
+    if (threading.attr("current_thread")().is(threading.attr("main_thread")())) {
+      auto asked = std::chrono::steady_clock::now();
+      options.interrupted = [&raised, asked]() mutable {
+        const auto now = std::chrono::steady_clock::now();
+        if (now - asked < std::chrono::milliseconds(50)) return false;
+        asked = now;
+        py::gil_scoped_acquire held;
+        if (PyErr_CheckSignals() == 0) return false;
+        raised.emplace();
+        return true;
+      };
+    }
     try {
       py::gil_scoped_release unlocked;
       (void)shard::run_scenario(file_, options);
@@ -179,7 +204,7 @@ class Scenario {
     if (read_text(file_) != text_)
       throw shard::InputError(file_.string(), 0, "",
                               "the file changed since Scenario() read it: make a new Scenario to run what it says "
-                              "now, or set() the values to change");
+                              "now, or put the file back and set() the values to change");
   }
 
   std::filesystem::path file_;

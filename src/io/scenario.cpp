@@ -1466,7 +1466,10 @@ MadeSection apply_override(YAML::Node& root, const ScenarioOverride& o) {
              (bracketed ? "; text in brackets, such as a layup, needs quotes: --set '" + o.key + "=\"" + o.value + "\"'"
                         : ""));
       }
-      if (value.IsNull() && entries.empty()) return remove_key(at, segment, made, fail);
+      if (value.IsNull() && !entries.empty())
+        fail("~ removes a key, not a list entry: give the whole list without it, --set '" +
+             o.key.substr(0, o.key.rfind('[')) + "=[...]'");
+      if (value.IsNull()) return remove_key(at, segment, made, fail);
       if (entries.empty()) at[segment] = value;
       else next = value;
       return made;

@@ -136,9 +136,16 @@ def scenario_checks(shard, np, scenario_file, work):
     s = shard.Scenario(os.path.relpath(scenario_file))
     s.set("boundary_conditions[1].velocity.x", np.float64(12.0)).set("boundary_conditions[2].fix", ("y",))
     s.set("boundary_conditions[3].fix", np.array(["y"]))
-    if s.overrides != [("boundary_conditions[1].velocity.x", "12.0"), ("boundary_conditions[2].fix", "['y']"),
-                       ("boundary_conditions[3].fix", "['y']")]:
-        fail(f"a NumPy value or a tuple is not its number or list: {s.overrides}")
+    s.set("boundary_conditions[1].velocity", {"x": np.float64(12.0), "y": 0})
+    if s.overrides != [("boundary_conditions[1].velocity.x", "12.0"), ("boundary_conditions[2].fix", '["y"]'),
+                       ("boundary_conditions[3].fix", '["y"]'), ("boundary_conditions[1].velocity", '{"x": 12.0, "y": 0}')]:
+        fail(f"a NumPy value, a tuple or a dict of them is not its number, list or map: {s.overrides}")
+    try:
+        s.set("boundary_conditions[3]", None)
+        fail("None on a list entry was accepted")
+    except shard.InputError as e:
+        if "removes a key, not a list entry" not in str(e):
+            fail(f"None on a list entry: {e}")
     # A swap of elastic constants, checked together (each alone leaves one or three constants).
     s.set({"materials.steel.bulk_modulus": None, "materials.steel.youngs_modulus": "200 GPa"})
     try:

@@ -51,8 +51,9 @@ TEST(RunFailures, CommandLineMistakesAreBadInputAndWriteNothing) {
       {"run " + dir.string() + " -o " + out.string(), "is a folder, not a scenario file"},
       {"check " + dir.string(), "is a folder, not a scenario file"},
       // A value with a space, unquoted: the shell hands its unit over as a second scenario.
-      {"check " + scenario + " --set analysis.end_time=5 us", "and 'us': a value with a space, such as --set "
-                                                              "end_time=5 us, needs quotes"},
+      {"check " + scenario + " --set analysis.end_time=5 us",
+       "and 'us'; a value with a space, such as --set analysis.end_time=5 us, needs quotes: --set "
+       "'analysis.end_time=5 us')"},
       {"run " + scenario + " -o " + out.string() + " --set analysis.end_time=5 us", "'us'; a value with a space"},
       {"check nosuch_folder/x.yaml", "scenario file not found (looked for " +
                                          (fs::current_path() / "nosuch_folder" / "x.yaml").string() + ")"},
