@@ -283,17 +283,25 @@ bool is_run_output(const std::string& name) {
   return std::regex_match(name, pattern);
 }
 
+/// The files in `dir` named as a run writes them (is_run_output), sorted by name.
+std::vector<std::filesystem::path> files_named_as_outputs(const std::filesystem::path& dir) {
+  std::vector<std::filesystem::path> files;
+  std::error_code ec;
+  for (const auto& entry : std::filesystem::directory_iterator(dir, ec))
+    if (entry.is_regular_file(ec) && is_run_output(entry.path().filename().string())) files.push_back(entry.path());
+  std::sort(files.begin(), files.end());
+  return files;
+}
+
 /// Removes what an earlier run left in the output folder, so that a fresh run's series holds
 /// only its own frames (ParaView would show stale frames after the new ones); returns how many.
+/// resolved.yaml stays (the run replaces it whole): it marks the folder as a run's, should this
+/// run be killed before writing its own.
 std::size_t remove_earlier_outputs(const std::filesystem::path& dir) {
   std::size_t removed = 0;
   std::error_code ec;
-  for (const auto& entry : std::filesystem::directory_iterator(dir, ec))
-    // resolved.yaml stays (the run replaces it whole): it is what marks the folder as a run's, should
-    // this run be killed before writing its own.
-    if (entry.is_regular_file(ec) && is_run_output(entry.path().filename().string()) &&
-        entry.path().filename() != "resolved.yaml" && std::filesystem::remove(entry.path(), ec))
-      ++removed;
+  for (const auto& file : files_named_as_outputs(dir))
+    if (file.filename() != "resolved.yaml" && std::filesystem::remove(file, ec)) ++removed;
   return removed;
 }
 
@@ -306,15 +314,12 @@ void check_no_foreign_outputs(const std::filesystem::path& dir) {
   std::ifstream resolved(dir / "resolved.yaml");
   std::string first;
   if (resolved && std::getline(resolved, first) && first.find(", resolved by shard ") != std::string::npos) return;
-  std::vector<std::string> names;
-  for (const auto& entry : std::filesystem::directory_iterator(dir, ec))
-    if (entry.is_regular_file(ec) && is_run_output(entry.path().filename().string()))
-      names.push_back(entry.path().filename().string());
-  if (names.empty()) return;
-  std::sort(names.begin(), names.end());
+  const auto files = files_named_as_outputs(dir);
+  if (files.empty()) return;
   std::string listed;
-  for (std::size_t i = 0; i < std::min<std::size_t>(names.size(), 4); ++i) listed += (i ? ", " : "") + names[i];
-  if (names.size() > 4) listed += " and " + std::to_string(names.size() - 4) + " more";
+  for (std::size_t i = 0; i < std::min<std::size_t>(files.size(), 4); ++i)
+    listed += (i ? ", " : "") + files[i].filename().string();
+  if (files.size() > 4) listed += " and " + std::to_string(files.size() - 4) + " more";
   throw InputError("", 0, "-o",
                    "the output folder '" + dir.string() + "' holds " + listed +
                        ", named as a run's outputs, but no run of shard wrote there (it has no resolved.yaml of "

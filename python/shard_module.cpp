@@ -87,28 +87,12 @@ py::object read_history(std::filesystem::path path) {
 
 /// A value from Python as the text of a --set: None is YAML's null (removes the key), text is
 /// given as it is, and anything else (numbers, lists, tuples, dicts, NumPy arrays and scalars, at
-/// any depth) as JSON, which is YAML, with plain numbers and every digit of a float.
+/// any depth) as JSON, which is YAML, with plain numbers and every digit of a float (the module's
+/// `_override_json`, defined once at import).
 std::string override_text(const py::object& value) {
   if (value.is_none()) return "~";
   if (py::isinstance<py::str>(value)) return value.cast<std::string>();
-  py::dict scope;
-  scope["value"] = value;
-  py::exec(R"(
-def plain(v):
-    if hasattr(v, "tolist") and not isinstance(v, str):
-        v = v.tolist()
-    if isinstance(v, (list, tuple)):
-        return [plain(x) for x in v]
-    if isinstance(v, dict):
-        return {str(k): plain(x) for k, x in v.items()}
-    if hasattr(v, "item") and not isinstance(v, (str, bool, int, float)):
-        v = v.item()
-    return v
-import json
-text = json.dumps(plain(value))
-)",
-           scope);
-  return scope["text"].cast<std::string>();
+  return py::module_::import("shard").attr("_override_json")(value).cast<std::string>();
 }
 
 /// A scenario file with the overrides put over it, as `shard run FILE --set KEY=VALUE ...` has.
@@ -228,9 +212,29 @@ class History(dict):
 
     def __missing__(self, key):
         raise KeyError(f"{key!r}: the history has no such column; it has: {', '.join(self)}")
+
+
+def _plain(v):
+    """A value with NumPy arrays and scalars and tuples made plain lists and numbers, at any depth."""
+    if hasattr(v, "tolist") and not isinstance(v, str):
+        v = v.tolist()
+    if isinstance(v, (list, tuple)):
+        return [_plain(x) for x in v]
+    if isinstance(v, dict):
+        return {str(k): _plain(x) for k, x in v.items()}
+    if hasattr(v, "item") and not isinstance(v, (str, bool, int, float)):
+        v = v.item()
+    return v
+
+
+def _override_json(value):
+    """The text of a set() value that is not text: JSON, which YAML reads."""
+    import json
+    return json.dumps(_plain(value))
 )",
            scope);
   m.attr("History") = scope["History"];
+  m.attr("_override_json") = scope["_override_json"];
   static py::exception<shard::InputError> input_error(m, "InputError", PyExc_ValueError);
   static py::exception<shard::RunError> run_error(m, "RunError", PyExc_RuntimeError);
   py::register_exception_translator([](std::exception_ptr p) {
